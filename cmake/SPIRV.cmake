@@ -1,0 +1,25 @@
+# rrc_add_spirv_header(<target> <source.comp> <c-identifier> [DEPENDS includes...])
+# Compiles a GLSL compute shader with glslangValidator into a C header
+# (${CMAKE_CURRENT_BINARY_DIR}/<c-identifier>.h, a uint32_t array named
+# <c-identifier>) and adds it to <target>'s sources, so the SPIR-V is embedded
+# in the library and never loaded from disk.
+find_program(GLSLANG_VALIDATOR NAMES glslangValidator glslang)
+if(NOT GLSLANG_VALIDATOR)
+  message(FATAL_ERROR "glslangValidator not found: install Debian's glslang-tools (README.md's commands do it).")
+endif()
+
+function(rrc_add_spirv_header target source identifier)
+  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${identifier}.h)
+  add_custom_command(
+    OUTPUT ${out}
+    COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 --quiet
+            -I${CMAKE_CURRENT_SOURCE_DIR} --vn ${identifier} -o ${out}
+            ${CMAKE_CURRENT_SOURCE_DIR}/${source}
+    MAIN_DEPENDENCY ${CMAKE_CURRENT_SOURCE_DIR}/${source}
+    DEPENDS ${ARG_DEPENDS}
+    COMMENT "glslang: ${source} -> ${identifier}.h"
+    VERBATIM)
+  target_sources(${target} PRIVATE ${out})
+  target_include_directories(${target} INTERFACE ${CMAKE_CURRENT_BINARY_DIR})
+endfunction()
