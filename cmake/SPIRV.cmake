@@ -1,7 +1,7 @@
 # rrc_add_spirv_header(<target> <source.comp> <c-identifier> [DEPENDS includes...])
 # Compiles a GLSL compute shader with glslangValidator into a C header
 # (${CMAKE_CURRENT_BINARY_DIR}/<c-identifier>.h, a uint32_t array named
-# <c-identifier>) and adds it to <target>'s sources, so the SPIR-V is embedded
+# <c-identifier>) that <target> (an INTERFACE library) makes available, so the SPIR-V is embedded
 # in the library and never loaded from disk.
 find_program(GLSLANG_VALIDATOR NAMES glslangValidator glslang)
 if(NOT GLSLANG_VALIDATOR)
@@ -20,6 +20,9 @@ function(rrc_add_spirv_header target source identifier)
     DEPENDS ${ARG_DEPENDS}
     COMMENT "glslang: ${source} -> ${identifier}.h"
     VERBATIM)
-  target_sources(${target} PRIVATE ${out})
+  # A custom command's output is only visible in its own directory: a custom
+  # target carries the build order to consumers elsewhere.
+  add_custom_target(${identifier}_gen DEPENDS ${out})
+  add_dependencies(${target} ${identifier}_gen)
   target_include_directories(${target} INTERFACE ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()

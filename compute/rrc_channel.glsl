@@ -1,0 +1,94 @@
+// One channel slot of the fused kernel.  Included once per slot with RRC_CH
+// defined to a literal (0..RRC_MAX_CHANNELS-1): storage-image arrays may only
+// be indexed by constants, and per-slot specialization constants compile out
+// every format, filter and blend the channel does not use.
+//
+// Inputs from the enclosing main(): px, g (RrcGeometry), mask (uint, in/out).
+
+#define CH_(name) ch##name(RRC_CH)
+
+if (RRC_CH < CH_COUNT) {
+    // -- the new sample s and its confidence w
+    vec4 s = CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)
+                                    : imageLoad(u_sample4[RRC_CH], px);
+    float w = CH_(_CONFIDENCE) ? imageLoad(u_confidence[RRC_CH], px).r : 1.0;
+    bool s_valid = rrc_finite4(s) && rrc_finite(w);
+    w = clamp(w, 0.0, 1.0);
+
+    // -- history H, weight W (resampled) and age (nearest) at uv_prev
+#define LOAD_H(t) (CH_(_FP16) ? (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r16f[RRC_CH], t) : imageLoad(u_hist_rgba16f[RRC_CH], t)) \
+                              : (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
+#define LOAD_W(t) (CH_(_CONFIDENCE) ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
+    vec4 H;
+    float Wh;
+    if (CH_(_FILTER) == RRC_FILTER_NEAREST) {
+        H = LOAD_H(g.taps.nearest);
+        Wh = LOAD_W(g.taps.nearest);
+    } else {
+        vec4 h00 = LOAD_H(g.taps.p00), h10 = LOAD_H(g.taps.p10), h01 = LOAD_H(g.taps.p01), h11 = LOAD_H(g.taps.p11);
+        vec4 wt = g.taps.w;
+        H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
+        Wh = CH_(_CONFIDENCE) ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
+        if (CH_(_FILTER) == RRC_FILTER_CATMULL_ROM) {
+            // 4x4 taps, clamped to the range of the bilinear taps so it cannot ring.
+            vec4 wx = rrc_catmull_rom_weights(g.taps.f.x), wy = rrc_catmull_rom_weights(g.taps.f.y);
+            ivec2 hi = imageSize(u_depth) - 1;
+            vec4 acc = vec4(0.0);
+            float accw = 0.0;
+            for (int j = 0; j < 4; ++j) {
+                int y = clamp(g.taps.base.y - 1 + j, 0, hi.y);
+                for (int i = 0; i < 4; ++i) {
+                    ivec2 t = ivec2(clamp(g.taps.base.x - 1 + i, 0, hi.x), y);
+                    acc += (wx[i] * wy[j]) * LOAD_H(t);
+                    if (CH_(_CONFIDENCE)) accw += (wx[i] * wy[j]) * LOAD_W(t);
+                }
+            }
+            H = clamp(acc, min(min(h00, h10), min(h01, h11)), max(max(h00, h10), max(h01, h11)));
+            if (CH_(_CONFIDENCE)) {
+                vec4 wq = vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11));
+                Wh = clamp(accw, min(min(wq.x, wq.y), min(wq.z, wq.w)), max(max(wq.x, wq.y), max(wq.z, wq.w)));
+            }
+        }
+    }
+    uint n_prev = imageLoad(u_age[RRC_CH], g.taps.nearest).r;
+#undef LOAD_H
+#undef LOAD_W
+
+    // -- the table of docs/CONVENTIONS.md
+    float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
+    float W_new = lambda * Wh + (1.0 - lambda) * w;
+    vec4 blended;
+    if (CH_(_CONFIDENCE)) {
+        blended = W_new > 0.0 ? (lambda * Wh * H + (1.0 - lambda) * w * s) / W_new : H;
+    } else {
+        blended = lambda * H + (1.0 - lambda) * s;
+    }
+    bool fresh = !g.hit || n_prev == 0u;  // a miss, or a hit on an empty history
+    vec4 out_v;
+    uint n_out;
+    float W_out;
+    if (!s_valid) {
+        out_v = g.hit ? H : vec4(0.0);
+        n_out = g.hit ? n_prev : 0u;
+        W_out = g.hit ? Wh : 0.0;
+        mask |= RRC_MASK_INVALID_SAMPLE;
+    } else if (fresh) {
+        out_v = s;
+        n_out = g.background ? 0u : 1u;
+        W_out = w;
+    } else if (CH_(_CONFIDENCE) && !(W_new > 0.0)) {
+        out_v = H;
+        n_out = n_prev;
+        W_out = 0.0;
+    } else {
+        out_v = blended;
+        n_out = min(n_prev + 1u, CH_(_AGE_CAP));
+        W_out = W_new;
+    }
+    if (CH_(_FP16)) out_v = rrc_round_fp16(out_v);
+    imageStore(u_hist_out[RRC_CH], px, out_v);
+    imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
+    if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
+}
+
+#undef CH_

@@ -1,0 +1,40 @@
+// The lambda recursive filter's arithmetic, shared by every channel slot
+// (docs/CONVENTIONS.md "The recursive filter").
+#ifndef RRC_FILTER_GLSL
+#define RRC_FILTER_GLSL
+
+#define RRC_BLEND_FIXED 0u
+#define RRC_BLEND_AGE_AWARE 1u
+#define RRC_BLEND_RUNNING_MEAN 2u
+#define RRC_FILTER_BILINEAR 0u
+#define RRC_FILTER_NEAREST 1u
+#define RRC_FILTER_CATMULL_ROM 2u
+
+// Clamp to the fp16 range and round to the nearest fp16 value, ties to even,
+// so the store is exact whatever rounding the driver's conversion uses.
+vec4 rrc_round_fp16(vec4 x) {
+    x = clamp(x, vec4(-65504.0), vec4(65504.0));
+    // Normal halves: round the fp32 mantissa to 10 bits (carry may bump the exponent).
+    uvec4 b = floatBitsToUint(x);
+    b = (b + 0xFFFu + ((b >> 13) & 1u)) & ~0x1FFFu;
+    vec4 normal = uintBitsToFloat(b);
+    // Subnormal halves (|x| < 2^-14) sit on a grid of 2^-24.
+    vec4 sub = roundEven(x * 16777216.0) * 5.9604644775390625e-08;
+    return mix(normal, sub, lessThan(abs(x), vec4(6.103515625e-05)));
+}
+
+float rrc_lambda_eff(uint blend, float lambda, uint n_prev) {
+    float n = float(n_prev);
+    float running = n / (n + 1.0);
+    if (blend == RRC_BLEND_FIXED) return lambda;
+    if (blend == RRC_BLEND_AGE_AWARE) return min(lambda, running);
+    return running;
+}
+
+// Catmull-Rom weights for fraction t (taps at -1, 0, +1, +2).
+vec4 rrc_catmull_rom_weights(float t) {
+    float t2 = t * t, t3 = t2 * t;
+    return 0.5 * vec4(-t3 + 2.0 * t2 - t, 3.0 * t3 - 5.0 * t2 + 2.0, -3.0 * t3 + 4.0 * t2 + t, t3 - t2);
+}
+
+#endif

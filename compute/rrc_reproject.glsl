@@ -1,0 +1,183 @@
+// Reverse reprojection and the epsilon-depth hit test (docs/CONVENTIONS.md).
+// Shared by every kernel that classifies pixels: it declares the geometry
+// inputs (set 0, bindings 0..4), the frame's push constants and the
+// specialization constants that select the source and depth mode, so a
+// configuration compiles only the path it uses.
+#ifndef RRC_REPROJECT_GLSL
+#define RRC_REPROJECT_GLSL
+
+// ---- Specialization constants (ids match plugin/kernel_config.h) ----------
+#define RRC_SOURCE_PREV_CLIP 0u
+#define RRC_SOURCE_MOTION 1u
+#define RRC_SOURCE_MOTION_DEPTH 2u
+#define RRC_SOURCE_CAMERA 3u
+#define RRC_DEPTH_STANDARD 0u
+#define RRC_DEPTH_REVERSED 1u
+#define RRC_DEPTH_LINEAR 2u
+#define RRC_EPS_ABSOLUTE 0u  // pc.eps is epsilon itself
+#define RRC_EPS_ULP 1u       // pc.eps is a scale of ulp(expected depth)
+#define RRC_EPS_RELATIVE 2u  // pc.eps is tau: |diff| <= tau * expected linear depth
+
+layout(constant_id = 0) const uint SOURCE = RRC_SOURCE_PREV_CLIP;
+layout(constant_id = 1) const uint DEPTH_MODE = RRC_DEPTH_STANDARD;
+layout(constant_id = 2) const uint EPS_KIND = RRC_EPS_ULP;
+layout(constant_id = 3) const bool HAS_NOCACHE = false;
+
+// ---- Per-frame parameters (124 bytes: fits the 128-byte minimum) ----------
+layout(push_constant) uniform Frame {
+    mat4 M;             // CAMERA: VP_prev * inverse(VP_cur), formed in double on the CPU
+    vec4 inv_row3;      // CAMERA + LINEAR: row 3 of inverse(VP_cur)
+    vec4 jitter;        // xy: this frame's sample offset (pixels), zw: the previous frame's
+    vec2 motion_scale;  // multiplies motion vectors into uv units
+    float eps;          // see EPS_KIND
+    float near_plane;   // plain MOTION on NDC depth: linearisation
+    float far_plane;    //   (may be +inf for REVERSED)
+    float bg_threshold; // LINEAR: d >= this is background
+    uint prev_valid;    // 0 on the first frame, after reset or resize
+} pc;
+
+layout(set = 0, binding = 0, r32f) uniform readonly image2D u_depth;
+layout(set = 0, binding = 1, r32f) uniform readonly image2D u_prev_depth;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION_DEPTH
+layout(set = 0, binding = 3, rg32f) uniform readonly image2D u_motion;    // MOTION
+layout(set = 0, binding = 4, r8ui) uniform readonly uimage2D u_nocache;
+
+bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
+bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+bool rrc_is_background(float d) {
+    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return d >= 1.0;
+    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return d <= 0.0;
+    return d >= pc.bg_threshold;  // +inf included
+}
+
+// Non-finite depth, or depth outside its mode's range (NaN compares false).
+bool rrc_is_invalid_depth(float d) {
+    if (isnan(d)) return true;
+    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return !(d >= 0.0) || isinf(d);
+    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return !(d <= 1.0) || isinf(d);
+    return !(d > 0.0);  // LINEAR: +inf is background, not invalid
+}
+
+float rrc_linearize(float z) {
+    float n = pc.near_plane, f = pc.far_plane;
+    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return n * f / (f - z * (f - n));
+    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return isinf(f) ? n / z : n * f / (n + z * (f - n));
+    return z;
+}
+
+// ulp of an fp32 value: 2^(floor(log2|e|) - 23), 2^-149 in the denormal range.
+float rrc_ulp(float e) {
+    uint ebits = (floatBitsToUint(e) >> 23) & 0xFFu;
+    if (ebits > 23u) return uintBitsToFloat((ebits - 23u) << 23);
+    return uintBitsToFloat(ebits == 0u ? 1u : (1u << (ebits - 1u)));
+}
+
+// The four bilinear taps at the previous frame's sample coordinate q.  The
+// same taps and weights serve the depth test and the history fetch.
+struct RrcTaps {
+    ivec2 p00, p10, p01, p11;
+    vec4 w;        // (1-fx)(1-fy), fx(1-fy), (1-fx)fy, fx*fy
+    ivec2 nearest; // clamp(floor(q))
+    ivec2 base;    // floor(q - 0.5), unclamped (Catmull-Rom needs its neighbours)
+    vec2 f;        // fractional part of q - 0.5
+};
+
+RrcTaps rrc_taps(vec2 q, ivec2 size) {
+    RrcTaps t;
+    vec2 p = q - 0.5;
+    vec2 i0f = floor(p);
+    t.f = p - i0f;
+    t.base = ivec2(i0f);
+    ivec2 hi = size - 1;
+    ivec2 a = clamp(t.base, ivec2(0), hi);
+    ivec2 b = clamp(t.base + 1, ivec2(0), hi);
+    t.p00 = a;
+    t.p10 = ivec2(b.x, a.y);
+    t.p01 = ivec2(a.x, b.y);
+    t.p11 = b;
+    t.w = vec4((1.0 - t.f.x) * (1.0 - t.f.y), t.f.x * (1.0 - t.f.y), (1.0 - t.f.x) * t.f.y, t.f.x * t.f.y);
+    t.nearest = clamp(ivec2(floor(q)), ivec2(0), hi);
+    return t;
+}
+
+struct RrcGeometry {
+    bool background;
+    bool invalid;  // INVALID_GEOMETRY
+    bool hit;
+    RrcTaps taps;  // valid coordinates even on a miss (clamped), so loads stay in bounds
+};
+
+RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
+    RrcGeometry g;
+    vec2 fsize = vec2(size);
+    float d = imageLoad(u_depth, px).r;
+    g.background = rrc_is_background(d) && !isnan(d);
+    g.invalid = rrc_is_invalid_depth(d) && !g.background;
+
+    vec2 uv_s = (vec2(px) + 0.5 + pc.jitter.xy) / fsize;
+    vec2 uv_prev;
+    float expected;  // in depth-mode units (linear for the relative tests)
+    float w = 1.0;
+    if (SOURCE == RRC_SOURCE_MOTION) {
+        vec2 m = imageLoad(u_motion, px).xy;
+        g.invalid = g.invalid || !rrc_finite4(vec4(m, 0.0, 0.0));
+        uv_prev = uv_s + m * pc.motion_scale;
+        expected = d;
+    } else if (SOURCE == RRC_SOURCE_MOTION_DEPTH) {
+        vec4 m = imageLoad(u_reproj, px);
+        g.invalid = g.invalid || !rrc_finite4(vec4(m.xyz, 0.0));
+        uv_prev = uv_s + m.xy * pc.motion_scale;
+        expected = d + m.z;
+    } else {
+        vec4 c;
+        if (SOURCE == RRC_SOURCE_PREV_CLIP) {
+            c = imageLoad(u_reproj, px);
+            g.invalid = g.invalid || !rrc_finite4(c);
+        } else {  // CAMERA: static geometry, matrices only
+            vec2 ndc = 2.0 * uv_s - 1.0;
+            if (DEPTH_MODE == RRC_DEPTH_LINEAR) {
+                // The point on the pixel's ray whose clip w equals d.
+                float a = dot(pc.inv_row3, vec4(ndc, 0.0, 1.0));
+                c = pc.M * vec4(ndc * d, (1.0 - d * a) / pc.inv_row3.z, d);
+            } else {
+                c = pc.M * vec4(ndc, d, 1.0);
+            }
+        }
+        w = c.w;
+        uv_prev = (c.xy / c.w + 1.0) * 0.5;
+        expected = DEPTH_MODE == RRC_DEPTH_LINEAR ? c.w : c.z / c.w;
+    }
+
+    // Closed square; NaN fails every comparison.  Outside it the taps are
+    // taken at the centre so every load stays in bounds.
+    bool inside = all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
+    vec2 q = (inside ? uv_prev : vec2(0.5)) * fsize - pc.jitter.zw;
+    g.taps = rrc_taps(q, size);
+
+    vec4 z = vec4(imageLoad(u_prev_depth, g.taps.p00).r, imageLoad(u_prev_depth, g.taps.p10).r,
+                  imageLoad(u_prev_depth, g.taps.p01).r, imageLoad(u_prev_depth, g.taps.p11).r);
+    bool tap_background = rrc_is_background(z.x) || rrc_is_background(z.y) ||
+                          rrc_is_background(z.z) || rrc_is_background(z.w);
+    float fetched = DEPTH_MODE == RRC_DEPTH_LINEAR ? 1.0 / dot(g.taps.w, 1.0 / z) : dot(g.taps.w, z);
+
+    float eps;
+    if (EPS_KIND == RRC_EPS_RELATIVE) {
+        if (SOURCE == RRC_SOURCE_MOTION && DEPTH_MODE != RRC_DEPTH_LINEAR) {
+            fetched = rrc_linearize(fetched);
+            expected = rrc_linearize(expected);
+        }
+        eps = pc.eps * expected;
+    } else if (EPS_KIND == RRC_EPS_ULP) {
+        eps = pc.eps * rrc_ulp(expected);
+    } else {
+        eps = pc.eps;
+    }
+    bool nocache = HAS_NOCACHE && imageLoad(u_nocache, px).r != 0u;
+
+    g.hit = pc.prev_valid != 0u && !g.background && !g.invalid && !nocache && w > 0.0 && inside &&
+            !tap_background && abs(fetched - expected) <= eps;
+    return g;
+}
+
+#endif

@@ -1,0 +1,168 @@
+// The C boundary: every entry point validates, catches every exception and
+// turns it into an rrc_result plus a message.  Nothing throws across it.
+#include "error.h"
+#include "standalone_context.h"
+#include "validation.h"
+
+#include <rrc/rrc.h>
+
+#include <cstring>
+#include <mutex>
+#include <new>
+#include <string>
+#include <unordered_set>
+
+struct rrc_context {
+    std::unique_ptr<rrc::StandaloneContext> impl;
+    std::string last_error;
+};
+
+namespace {
+
+thread_local std::string t_last_error;
+
+// Live handles: a destroyed or foreign pointer is detected without being
+// dereferenced.
+std::mutex g_contexts_mutex;
+std::unordered_set<const rrc_context*>& live_contexts() {
+    static std::unordered_set<const rrc_context*> set;
+    return set;
+}
+bool is_live(const rrc_context* c) {
+    std::lock_guard<std::mutex> lock(g_contexts_mutex);
+    return live_contexts().count(c) != 0;
+}
+
+// Runs body; maps exceptions to results and records the message.
+template <typename Body>
+rrc_result guarded(rrc_context* ctx, rrc_log_fn log, void* log_user, Body&& body) {
+    rrc_result code = RRC_SUCCESS;
+    std::string message;
+    try {
+        body();
+        t_last_error.clear();
+        return RRC_SUCCESS;
+    } catch (const rrc::Error& e) {
+        code = e.code;
+        message = e.what();
+    } catch (const std::bad_alloc&) {
+        code = RRC_ERROR_OUT_OF_MEMORY;
+        message = "out of host memory";
+    } catch (const std::exception& e) {
+        code = RRC_ERROR_DEVICE;
+        message = std::string("internal error: ") + e.what();
+    } catch (...) {
+        code = RRC_ERROR_DEVICE;
+        message = "internal error";
+    }
+    try {
+        t_last_error = message;
+        if (ctx) ctx->last_error = message;
+        if (log) log(log_user, RRC_LOG_ERROR, message.c_str());
+    } catch (...) {
+    }
+    return code;
+}
+
+rrc_context* checked(rrc_context* c) {
+    if (!c) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context is NULL");
+    if (!is_live(c)) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context %p is not a live rrc context (destroyed or foreign)", (void*)c);
+    return c;
+}
+
+}  // namespace
+
+extern "C" {
+
+uint32_t rrc_get_version(void) { return RRC_API_VERSION; }
+
+const char* rrc_result_to_string(rrc_result r) {
+    switch (r) {
+        case RRC_SUCCESS: return "RRC_SUCCESS";
+        case RRC_ERROR_INVALID_ARGUMENT: return "RRC_ERROR_INVALID_ARGUMENT";
+        case RRC_ERROR_INVALID_STRUCT: return "RRC_ERROR_INVALID_STRUCT";
+        case RRC_ERROR_INCOMPATIBLE_VERSION: return "RRC_ERROR_INCOMPATIBLE_VERSION";
+        case RRC_ERROR_UNSUPPORTED: return "RRC_ERROR_UNSUPPORTED";
+        case RRC_ERROR_OUT_OF_MEMORY: return "RRC_ERROR_OUT_OF_MEMORY";
+        case RRC_ERROR_DEVICE: return "RRC_ERROR_DEVICE";
+        case RRC_ERROR_DEVICE_LOST: return "RRC_ERROR_DEVICE_LOST";
+        case RRC_ERROR_MISSING_INPUT: return "RRC_ERROR_MISSING_INPUT";
+        case RRC_ERROR_SIZE_MISMATCH: return "RRC_ERROR_SIZE_MISMATCH";
+        case RRC_ERROR_INVALID_HANDLE: return "RRC_ERROR_INVALID_HANDLE";
+        default: return "RRC_ERROR_UNKNOWN";
+    }
+}
+
+const char* rrc_last_error(void) { return t_last_error.c_str(); }
+
+rrc_result rrc_validate_context_desc(const rrc_context_desc* desc) {
+    return guarded(nullptr, nullptr, nullptr, [&] { rrc::resolve_context_desc(desc); });
+}
+
+rrc_result rrc_context_create(const rrc_context_desc* desc, rrc_context** out_context) {
+    rrc_log_fn log = nullptr;
+    void* user = nullptr;
+    if (desc && desc->type == RRC_STRUCT_TYPE_CONTEXT_DESC && desc->size >= sizeof(rrc_context_desc)) {
+        log = desc->log;
+        user = desc->log_user;
+    }
+    return guarded(nullptr, log, user, [&] {
+        if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
+        rrc::ContextConfig config = rrc::resolve_context_desc(desc);
+        std::unique_ptr<rrc_context> ctx(new rrc_context);
+        ctx->impl.reset(new rrc::StandaloneContext(config));
+        {
+            std::lock_guard<std::mutex> lock(g_contexts_mutex);
+            live_contexts().insert(ctx.get());
+        }
+        *out_context = ctx.release();
+    });
+}
+
+void rrc_context_destroy(rrc_context* context) {
+    if (!context) return;
+    {
+        std::lock_guard<std::mutex> lock(g_contexts_mutex);
+        if (!live_contexts().erase(context)) return;  // destroyed twice or foreign: ignore, never free
+    }
+    try {
+        delete context;
+    } catch (...) {
+    }
+}
+
+const char* rrc_context_last_error(const rrc_context* context) {
+    if (!context || !is_live(context)) return "context is NULL or not a live rrc context";
+    return context->last_error.c_str();
+}
+
+rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, size_t capacity) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+        if (!out_name) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_name is NULL");
+        const std::string& name = c->impl->device().name;
+        if (capacity < name.size() + 1)
+            rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "capacity is %zu, the name needs %zu bytes", capacity, name.size() + 1);
+        std::memcpy(out_name, name.c_str(), name.size() + 1);
+    });
+}
+
+rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t* out_count) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+        if (!out_count) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_count is NULL");
+        *out_count = c->impl->device().validation_messages();
+    });
+}
+
+rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_frame_output* output) {
+    rrc_context* c = context && is_live(context) ? context : nullptr;
+    const rrc::ContextConfig* config = c ? &c->impl->config() : nullptr;
+    return guarded(c, config ? config->log : nullptr, config ? config->log_user : nullptr, [&] {
+        checked(context);
+        rrc::validate_frame(*config, frame, output);
+        c->impl->run_frame(*frame, output);
+    });
+}
+
+}  // extern "C"

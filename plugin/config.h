@@ -1,0 +1,47 @@
+// The context's configuration with every default applied: what the
+// validated rrc_context_desc means, in one place.
+#pragma once
+
+#include <rrc/rrc.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rrc {
+
+struct ChannelConfig {
+    std::string name;
+    uint32_t components = 1;
+    bool fp16 = true;
+    float lambda = 0.6f;
+    rrc_blend blend = RRC_BLEND_FIXED;
+    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
+    uint32_t age_cap = 255;
+    bool confidence = false;
+};
+
+// How the kernel's epsilon is formed (matches EPS_KIND in compute/rrc_reproject.glsl).
+enum class EpsilonKind : uint32_t { Absolute = 0, Ulp = 1, Relative = 2 };
+
+struct ContextConfig {
+    uint32_t width = 0, height = 0;
+    rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;
+    float near_plane = 0, far_plane = 0;
+    float background_threshold = 1e10f;
+    rrc_reprojection reprojection = RRC_REPROJECTION_PREV_CLIP;
+    std::array<float, 2> motion_scale{1.0f, 1.0f};
+    EpsilonKind epsilon_kind = EpsilonKind::Ulp;
+    float epsilon_value = 4.0f;  // absolute epsilon, ulp scale, or tau (by kind)
+    bool use_nocache = false;
+    std::vector<ChannelConfig> channels;
+    std::string device_name;  // empty: automatic choice
+    bool validation = false;
+    rrc_log_fn log = nullptr;
+    void* log_user = nullptr;
+};
+
+// Validates desc (throws rrc::Error naming the field) and applies defaults.
+ContextConfig resolve_context_desc(const rrc_context_desc* desc);
+
+}  // namespace rrc

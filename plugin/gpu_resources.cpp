@@ -1,0 +1,133 @@
+#include "gpu_resources.h"
+
+#include "error.h"
+
+#include <utility>
+
+namespace rrc {
+namespace {
+
+uint32_t find_memory(const VulkanDevice& dev, uint32_t type_bits, VkMemoryPropertyFlags want) {
+    for (uint32_t i = 0; i < dev.memory.memoryTypeCount; ++i)
+        if ((type_bits & (1u << i)) && (dev.memory.memoryTypes[i].propertyFlags & want) == want) return i;
+    fail(RRC_ERROR_OUT_OF_MEMORY, "no Vulkan memory type with properties 0x%x", (unsigned)want);
+}
+
+}  // namespace
+
+uint32_t texel_bytes(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R8_UINT: return 1;
+        case VK_FORMAT_R16_UINT:
+        case VK_FORMAT_R16_SFLOAT: return 2;
+        case VK_FORMAT_R32_SFLOAT: return 4;
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT: return 8;
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+        default: fail(RRC_ERROR_UNSUPPORTED, "internal: unexpected VkFormat %d", (int)format);
+    }
+}
+
+GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
+    : format(fmt), width(w), height(h), texel_bytes(rrc::texel_bytes(fmt)), dev_(&dev) {
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = fmt;
+    ci.extent = {w, h, 1};
+    ci.mipLevels = 1;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    try {
+        VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, nullptr, &image), "vkCreateImage");
+        VkMemoryRequirements req;
+        dev.vk.vkGetImageMemoryRequirements(dev.device, image, &req);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex = find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, nullptr, &memory_), "vkAllocateMemory (image)");
+        VulkanDevice::check(dev.vk.vkBindImageMemory(dev.device, image, memory_, 0), "vkBindImageMemory");
+        VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        vi.image = image;
+        vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        vi.format = fmt;
+        vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VulkanDevice::check(dev.vk.vkCreateImageView(dev.device, &vi, nullptr, &view), "vkCreateImageView");
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
+    if (this != &o) {
+        reset();
+        std::swap(image, o.image);
+        std::swap(view, o.view);
+        std::swap(memory_, o.memory_);
+        std::swap(dev_, o.dev_);
+        format = o.format;
+        width = o.width;
+        height = o.height;
+        texel_bytes = o.texel_bytes;
+    }
+    return *this;
+}
+
+void GpuImage::reset() {
+    if (!dev_) return;
+    if (view) dev_->vk.vkDestroyImageView(dev_->device, view, nullptr);
+    if (image) dev_->vk.vkDestroyImage(dev_->device, image, nullptr);
+    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, nullptr);
+    view = VK_NULL_HANDLE;
+    image = VK_NULL_HANDLE;
+    memory_ = VK_NULL_HANDLE;
+}
+
+HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage) : size(bytes), dev_(&dev) {
+    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    ci.size = bytes;
+    ci.usage = usage;
+    try {
+        VulkanDevice::check(dev.vk.vkCreateBuffer(dev.device, &ci, nullptr, &buffer), "vkCreateBuffer");
+        VkMemoryRequirements req;
+        dev.vk.vkGetBufferMemoryRequirements(dev.device, buffer, &req);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex =
+            find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, nullptr, &memory_), "vkAllocateMemory (staging)");
+        VulkanDevice::check(dev.vk.vkBindBufferMemory(dev.device, buffer, memory_, 0), "vkBindBufferMemory");
+        void* p = nullptr;
+        VulkanDevice::check(dev.vk.vkMapMemory(dev.device, memory_, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
+        data = static_cast<unsigned char*>(p);
+    } catch (...) {
+        reset();
+        throw;
+    }
+}
+
+HostBuffer& HostBuffer::operator=(HostBuffer&& o) noexcept {
+    if (this != &o) {
+        reset();
+        std::swap(buffer, o.buffer);
+        std::swap(memory_, o.memory_);
+        std::swap(dev_, o.dev_);
+        std::swap(data, o.data);
+        size = o.size;
+    }
+    return *this;
+}
+
+void HostBuffer::reset() {
+    if (!dev_) return;
+    if (buffer) dev_->vk.vkDestroyBuffer(dev_->device, buffer, nullptr);
+    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, nullptr);  // unmaps
+    buffer = VK_NULL_HANDLE;
+    memory_ = VK_NULL_HANDLE;
+    data = nullptr;
+}
+
+}  // namespace rrc

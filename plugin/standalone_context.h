@@ -1,0 +1,61 @@
+// A context in standalone mode: the library's own device, CPU arrays in and
+// out.  Owns the ping-pong history, age, weight and previous depth, the
+// per-frame input images and the staging buffers.
+#pragma once
+
+#include "accumulate_pipeline.h"
+#include "config.h"
+#include "gpu_resources.h"
+#include "vulkan_device.h"
+
+#include <memory>
+#include <vector>
+
+namespace rrc {
+
+class StandaloneContext {
+public:
+    explicit StandaloneContext(const ContextConfig& config);
+    ~StandaloneContext();
+
+    // Validates, runs one frame and fills `output`; throws rrc::Error with the
+    // context untouched (history, parity) on failure.
+    void run_frame(const rrc_frame_desc& frame, rrc_frame_output* output);
+
+    const ContextConfig& config() const { return config_; }
+    const VulkanDevice& device() const { return *dev_; }
+
+private:
+    struct Channel {
+        GpuImage samples, confidence;
+        GpuImage history[2], age[2], weight[2];  // [parity]: written this frame
+    };
+    void create_images();
+    void write_descriptor_sets();
+    void initialise_images();
+    void upload(const rrc_frame_desc& frame);
+    void record(const rrc_frame_desc& frame, const rrc_frame_output* output);
+    void submit_and_wait();
+    void transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
+                    VkAccessFlags src_access, VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+    void read_back(rrc_frame_output* output);
+    template <typename F>
+    void for_each_readback(const rrc_frame_output* output, F&& f);
+
+    ContextConfig config_;
+    std::unique_ptr<VulkanDevice> dev_;
+    std::unique_ptr<AccumulatePipeline> pipeline_;
+    GpuImage depth_[2];  // [parity]: this frame's depth; the other is the previous frame's
+    GpuImage reprojection_, nocache_, mask_;
+    std::vector<Channel> channels_;
+    std::vector<GpuImage> placeholders_;  // 1x1 images bound where a slot or format is unused
+    HostBuffer upload_, readback_;
+    VkDescriptorSet sets_[2] = {};
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    uint32_t parity_ = 0;     // the image set this frame writes
+    bool have_previous_ = false;
+};
+
+}  // namespace rrc

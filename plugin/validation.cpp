@@ -1,0 +1,189 @@
+#include "validation.h"
+
+#include "error.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace rrc {
+namespace {
+
+// A tagged struct: right type, a size at least as large as the first
+// version's (older callers pass smaller, newer ones larger sizes), and a
+// `next` chain that this version does not understand must be empty.
+template <typename T>
+void check_struct(const T* s, rrc_struct_type type, size_t min_size, const char* what) {
+    if (!s) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what);
+    if (s->type != type)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.type is 0x%08x, expected 0x%08x", what, (unsigned)s->type, (unsigned)type);
+    if (s->size < min_size)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, smaller than the smallest known (%zu)", what, (unsigned)s->size, min_size);
+    if (s->next) fail(RRC_ERROR_INVALID_STRUCT, "%s.next must be NULL (no extension is defined yet)", what);
+}
+
+bool finite(float x) { return std::isfinite(x); }
+
+ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
+    char what[48];
+    std::snprintf(what, sizeof what, "channels[%u]", index);
+    check_struct(&c, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc), what);
+    ChannelConfig out;
+    size_t len = strnlen(c.name, RRC_MAX_NAME);
+    if (len == 0) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is empty", what);
+    if (len == RRC_MAX_NAME) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is not NUL-terminated within %d bytes", what, RRC_MAX_NAME);
+    out.name.assign(c.name, len);
+    if (c.components != 1 && c.components != 4)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.components is %u, must be 1 or 4", what, c.components);
+    out.components = c.components;
+    if (c.precision != RRC_HISTORY_FP16 && c.precision != RRC_HISTORY_FP32)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.precision is %u, not an rrc_history_precision", what, c.precision);
+    out.fp16 = c.precision == RRC_HISTORY_FP16;
+    if (!(c.lambda >= 0.0f && c.lambda < 1.0f))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.lambda is %g, must be in [0, 1)", what, (double)c.lambda);
+    out.lambda = c.lambda;
+    if (c.blend > RRC_BLEND_RUNNING_MEAN)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
+    out.blend = c.blend;
+    if (c.filter > RRC_HISTORY_FILTER_CATMULL_ROM)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
+    out.filter = c.filter;
+    if (c.age_cap > RRC_MAX_AGE_CAP)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
+    out.age_cap = c.age_cap == 0 ? 255u : c.age_cap;
+    out.confidence = c.confidence != 0;
+    return out;
+}
+
+}  // namespace
+
+ContextConfig resolve_context_desc(const rrc_context_desc* d) {
+    check_struct(d, RRC_STRUCT_TYPE_CONTEXT_DESC, sizeof(rrc_context_desc), "desc");
+    if (RRC_VERSION_MAJOR(d->api_version) != RRC_VERSION_MAJOR(RRC_API_VERSION))
+        fail(RRC_ERROR_INCOMPATIBLE_VERSION, "desc.api_version is %u.%u.%u, this library is %u.%u.%u (major versions must match)",
+             RRC_VERSION_MAJOR(d->api_version), RRC_VERSION_MINOR(d->api_version), RRC_VERSION_PATCH(d->api_version),
+             RRC_VERSION_MAJOR(RRC_API_VERSION), RRC_VERSION_MINOR(RRC_API_VERSION), RRC_VERSION_PATCH(RRC_API_VERSION));
+    ContextConfig c;
+    if (d->width == 0 || d->width > RRC_MAX_EXTENT)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.width is %u, must be 1..%u", d->width, RRC_MAX_EXTENT);
+    if (d->height == 0 || d->height > RRC_MAX_EXTENT)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.height is %u, must be 1..%u", d->height, RRC_MAX_EXTENT);
+    c.width = d->width;
+    c.height = d->height;
+
+    if (d->depth_mode > RRC_DEPTH_MODE_LINEAR)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.depth_mode is %u, not an rrc_depth_mode", d->depth_mode);
+    c.depth_mode = d->depth_mode;
+    if (d->reprojection > RRC_REPROJECTION_CAMERA)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.reprojection is %u, not an rrc_reprojection", d->reprojection);
+    c.reprojection = d->reprojection;
+    if (d->depth_format > RRC_DEPTH_FORMAT_UNORM24)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.depth_format is %u, not an rrc_depth_format", d->depth_format);
+
+    if (!(d->background_threshold >= 0.0f) || std::isinf(d->background_threshold))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold is %g, must be finite and >= 0 (0 = default 1e10)",
+             (double)d->background_threshold);
+    c.background_threshold = d->background_threshold == 0.0f ? 1e10f : d->background_threshold;
+
+    // Linearising NDC depth (plain MOTION) needs the planes.
+    c.near_plane = d->near_plane;
+    c.far_plane = d->far_plane;
+    bool linearise = d->reprojection == RRC_REPROJECTION_MOTION && d->depth_mode != RRC_DEPTH_MODE_LINEAR;
+    if (linearise) {
+        if (!(finite(d->near_plane) && d->near_plane > 0.0f))
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane is %g: MOTION without a depth channel on NDC depth needs near > 0",
+                 (double)d->near_plane);
+        bool far_ok = d->far_plane > d->near_plane && (finite(d->far_plane) || d->depth_mode == RRC_DEPTH_MODE_REVERSED);
+        if (!far_ok)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane is %g: must exceed near_plane (+inf only with REVERSED depth)",
+                 (double)d->far_plane);
+    } else if (std::isnan(d->near_plane) || std::isnan(d->far_plane)) {
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane/far_plane is NaN");
+    }
+
+    if (!(d->epsilon_scale >= 0.0f) || std::isinf(d->epsilon_scale))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon_scale is %g, must be finite and >= 0", (double)d->epsilon_scale);
+    if (!(d->epsilon >= 0.0f) || std::isinf(d->epsilon))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon is %g, must be finite and >= 0", (double)d->epsilon);
+    if (!(d->tau >= 0.0f) || std::isinf(d->tau))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.tau is %g, must be finite and >= 0", (double)d->tau);
+    if (d->depth_mode == RRC_DEPTH_MODE_LINEAR || linearise) {
+        c.epsilon_kind = EpsilonKind::Relative;
+        c.epsilon_value = d->tau == 0.0f ? 0.01f : d->tau;
+    } else if (d->epsilon > 0.0f) {
+        c.epsilon_kind = EpsilonKind::Absolute;
+        c.epsilon_value = d->epsilon;
+    } else if (d->depth_format == RRC_DEPTH_FORMAT_FLOAT32) {
+        c.epsilon_kind = EpsilonKind::Ulp;
+        c.epsilon_value = d->epsilon_scale == 0.0f ? 4.0f : d->epsilon_scale;
+    } else {
+        double step = d->depth_format == RRC_DEPTH_FORMAT_UNORM16 ? 1.0 / 65535.0 : 1.0 / 16777215.0;
+        c.epsilon_kind = EpsilonKind::Absolute;
+        c.epsilon_value = (float)((d->epsilon_scale == 0.0f ? 1.0 : (double)d->epsilon_scale) * step);
+    }
+
+    if (d->motion_scale[0] == 0.0f && d->motion_scale[1] == 0.0f) {
+        c.motion_scale = {1.0f, 1.0f};
+    } else {
+        if (!finite(d->motion_scale[0]) || !finite(d->motion_scale[1]))
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale is not finite");
+        c.motion_scale = {d->motion_scale[0], d->motion_scale[1]};
+    }
+
+    if (d->channel_count == 0 || d->channel_count > RRC_MAX_CHANNELS)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count is %u, must be 1..%d", d->channel_count, RRC_MAX_CHANNELS);
+    if (!d->channels) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.channels is NULL");
+    for (uint32_t i = 0; i < d->channel_count; ++i) {
+        c.channels.push_back(resolve_channel(d->channels[i], i));
+        for (uint32_t k = 0; k < i; ++k)
+            if (c.channels[k].name == c.channels[i].name)
+                fail(RRC_ERROR_INVALID_ARGUMENT, "channels[%u].name \"%s\" repeats channels[%u].name", i, c.channels[i].name.c_str(), k);
+    }
+    c.use_nocache = d->use_nocache_mask != 0;
+    if (d->device_name) c.device_name = d->device_name;
+    c.validation = d->enable_validation != 0;
+    c.log = d->log;
+    c.log_user = d->log_user;
+    return c;
+}
+
+void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_frame_output* out) {
+    check_struct(f, RRC_STRUCT_TYPE_FRAME_DESC, sizeof(rrc_frame_desc), "frame");
+    if (!f->depth) fail(RRC_ERROR_MISSING_INPUT, "frame.depth is NULL");
+    if (c.reprojection != RRC_REPROJECTION_CAMERA && !f->reprojection)
+        fail(RRC_ERROR_MISSING_INPUT, "frame.reprojection is NULL but the context reprojects from %s",
+             c.reprojection == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP" : c.reprojection == RRC_REPROJECTION_MOTION ? "MOTION" : "MOTION_DEPTH");
+    if (c.reprojection == RRC_REPROJECTION_CAMERA) {
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(f->view_proj[i]) || !std::isfinite(f->prev_view_proj[i]))
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj/prev_view_proj[%d] is not finite", i);
+    }
+    for (int i = 0; i < 2; ++i)
+        if (!finite(f->jitter[i]) || !finite(f->prev_jitter[i]) || std::fabs(f->jitter[i]) > 1.0f || std::fabs(f->prev_jitter[i]) > 1.0f)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.jitter/prev_jitter[%d] must be finite and within [-1, 1] pixels", i);
+    if (c.use_nocache && !f->nocache) fail(RRC_ERROR_MISSING_INPUT, "frame.nocache is NULL but the context was created with use_nocache_mask");
+    if (f->channel_count != c.channels.size())
+        fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f->channel_count, c.channels.size());
+    if (!f->channels) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
+    for (uint32_t i = 0; i < f->channel_count; ++i) {
+        char what[48];
+        std::snprintf(what, sizeof what, "frame.channels[%u]", i);
+        check_struct(&f->channels[i], RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input), what);
+        if (!f->channels[i].samples) fail(RRC_ERROR_MISSING_INPUT, "%s.samples is NULL (channel \"%s\")", what, c.channels[i].name.c_str());
+        if (c.channels[i].confidence && !f->channels[i].confidence)
+            fail(RRC_ERROR_MISSING_INPUT, "%s.confidence is NULL but channel \"%s\" has confidence", what, c.channels[i].name.c_str());
+    }
+    if (!out) return;
+    check_struct(out, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output), "output");
+    if (out->channel_count != 0 && out->channel_count != c.channels.size())
+        fail(RRC_ERROR_SIZE_MISMATCH, "output.channel_count is %u, must be 0 or the context's %zu", out->channel_count, c.channels.size());
+    if (out->channel_count && !out->channels) fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", out->channel_count);
+    for (uint32_t i = 0; i < out->channel_count; ++i) {
+        char what[48];
+        std::snprintf(what, sizeof what, "output.channels[%u]", i);
+        check_struct(&out->channels[i], RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output), what);
+        if (out->channels[i].weight && !c.channels[i].confidence)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "%s.weight is set but channel \"%s\" has no confidence", what, c.channels[i].name.c_str());
+    }
+}
+
+}  // namespace rrc
