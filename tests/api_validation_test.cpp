@@ -1,0 +1,268 @@
+// The C API's argument checking: every bad descriptor is refused with a
+// specific code and a message naming the field, without touching Vulkan;
+// calls on a live context leave outputs untouched on error.
+#include "support/rrc_test_context.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+using namespace rrc_test;
+
+namespace {
+
+struct DescCase {
+    const char* name;
+    std::function<void(rrc_context_desc&, std::vector<rrc_channel_desc>&)> mutate;
+    rrc_result expected;
+    const char* field;  // must appear in the message
+};
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+
+std::vector<DescCase> desc_cases() {
+    using D = rrc_context_desc;
+    using C = std::vector<rrc_channel_desc>;
+    return {
+        {"wrong_type", [](D& d, C&) { d.type = 7; }, RRC_ERROR_INVALID_STRUCT, "desc.type"},
+        {"small_size", [](D& d, C&) { d.size = 8; }, RRC_ERROR_INVALID_STRUCT, "desc.size"},
+        {"next_set", [](D& d, C&) { d.next = &d; }, RRC_ERROR_INVALID_STRUCT, "desc.next"},
+        {"major_version", [](D& d, C&) { d.api_version = RRC_MAKE_VERSION(9, 0, 0); }, RRC_ERROR_INCOMPATIBLE_VERSION, "api_version"},
+        {"zero_version", [](D& d, C&) { d.api_version = 0x7FFFFFFF; }, RRC_ERROR_INCOMPATIBLE_VERSION, "api_version"},
+        {"zero_width", [](D& d, C&) { d.width = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.width"},
+        {"zero_height", [](D& d, C&) { d.height = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.height"},
+        {"absurd_size", [](D& d, C&) { d.width = 1u << 20; d.height = 1u << 20; }, RRC_ERROR_INVALID_ARGUMENT, "desc.width"},
+        {"absurd_height", [](D& d, C&) { d.height = RRC_MAX_EXTENT + 1; }, RRC_ERROR_INVALID_ARGUMENT, "desc.height"},
+        {"depth_mode", [](D& d, C&) { d.depth_mode = 3; }, RRC_ERROR_INVALID_ARGUMENT, "desc.depth_mode"},
+        {"depth_format", [](D& d, C&) { d.depth_format = 17; }, RRC_ERROR_INVALID_ARGUMENT, "desc.depth_format"},
+        {"reprojection", [](D& d, C&) { d.reprojection = 4; }, RRC_ERROR_INVALID_ARGUMENT, "desc.reprojection"},
+        {"epsilon_nan", [](D& d, C&) { d.epsilon = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon"},
+        {"epsilon_negative", [](D& d, C&) { d.epsilon = -1.0f; }, RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon"},
+        {"epsilon_scale_inf", [](D& d, C&) { d.epsilon_scale = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon_scale"},
+        {"tau_negative", [](D& d, C&) { d.tau = -0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "desc.tau"},
+        {"background_nan", [](D& d, C&) { d.background_threshold = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold"},
+        {"motion_needs_near",
+         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 0; d.far_plane = 100; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane"},
+        {"motion_far_below_near",
+         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 1; d.far_plane = 0.5f; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
+        {"motion_infinite_far_standard",
+         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 1; d.far_plane = kInf; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
+        {"motion_scale_nan", [](D& d, C&) { d.motion_scale[0] = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale"},
+        {"no_channels", [](D& d, C&) { d.channel_count = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count"},
+        {"too_many_channels", [](D& d, C&) { d.channel_count = RRC_MAX_CHANNELS + 1; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count"},
+        {"channels_null", [](D& d, C&) { d.channels = nullptr; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channels"},
+        {"channel_type", [](D&, C& c) { c[0].type = RRC_STRUCT_TYPE_FRAME_DESC; }, RRC_ERROR_INVALID_STRUCT, "channels[0].type"},
+        {"channel_size", [](D&, C& c) { c[0].size = 4; }, RRC_ERROR_INVALID_STRUCT, "channels[0].size"},
+        {"channel_name_empty", [](D&, C& c) { c[0].name[0] = 0; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].name"},
+        {"channel_name_unterminated", [](D&, C& c) { std::memset(c[0].name, 'x', RRC_MAX_NAME); }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0].name"},
+        {"channel_name_repeated", [](D&, C& c) { std::strcpy(c[1].name, c[0].name); }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].name"},
+        {"channel_components", [](D&, C& c) { c[1].components = 3; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].components"},
+        {"channel_precision", [](D&, C& c) { c[0].precision = 2; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].precision"},
+        {"lambda_one", [](D&, C& c) { c[0].lambda = 1.0f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].lambda"},
+        {"lambda_negative", [](D&, C& c) { c[0].lambda = -0.1f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].lambda"},
+        {"lambda_nan", [](D&, C& c) { c[1].lambda = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].lambda"},
+        {"blend", [](D&, C& c) { c[0].blend = 3; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
+        {"filter", [](D&, C& c) { c[0].filter = 9; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].filter"},
+        {"age_cap", [](D&, C& c) { c[0].age_cap = RRC_MAX_AGE_CAP + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].age_cap"},
+        {"channel_next", [](D&, C& c) { c[1].next = &c; }, RRC_ERROR_INVALID_STRUCT, "channels[1].next"},
+    };
+}
+
+class DescValidation : public ::testing::TestWithParam<DescCase> {};
+
+TEST_P(DescValidation, RefusedWithCodeAndFieldName) {
+    std::vector<rrc_channel_desc> channels = {channel("shadow", 1, 0.6f), channel("color", 4, 0.6f)};
+    rrc_context_desc d = context_desc(64, 32, channels);
+    ASSERT_EQ(rrc_validate_context_desc(&d), RRC_SUCCESS) << rrc_last_error();
+    GetParam().mutate(d, channels);
+    EXPECT_EQ(rrc_validate_context_desc(&d), GetParam().expected) << rrc_last_error();
+    EXPECT_NE(std::string(rrc_last_error()).find(GetParam().field), std::string::npos) << rrc_last_error();
+    // create refuses the same way and leaves the output untouched.
+    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
+    rrc_context* out = sentinel;
+    EXPECT_EQ(rrc_context_create(&d, &out), GetParam().expected);
+    EXPECT_EQ(out, sentinel);
+}
+
+INSTANTIATE_TEST_SUITE_P(Api, DescValidation, ::testing::ValuesIn(desc_cases()),
+                         [](const ::testing::TestParamInfo<DescCase>& i) { return std::string(i.param.name); });
+
+TEST(Api, VersionAndResultNames) {
+    EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), RRC_VERSION_MAJOR(RRC_API_VERSION));
+    EXPECT_STREQ(rrc_result_to_string(RRC_ERROR_SIZE_MISMATCH), "RRC_ERROR_SIZE_MISMATCH");
+    EXPECT_STREQ(rrc_result_to_string(RRC_SUCCESS), "RRC_SUCCESS");
+    EXPECT_STREQ(rrc_result_to_string(-999), "RRC_ERROR_UNKNOWN");
+}
+
+TEST(Api, NullArgumentsAreRefused) {
+    EXPECT_EQ(rrc_validate_context_desc(nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("desc"), std::string::npos);
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    rrc_context_desc d = context_desc(8, 8, channels);
+    EXPECT_EQ(rrc_context_create(&d, nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("out_context"), std::string::npos);
+    rrc_frame_desc f = frame_desc();
+    EXPECT_EQ(rrc_frame_run(nullptr, &f, nullptr), RRC_ERROR_INVALID_HANDLE);
+    uint64_t count = 0;
+    EXPECT_EQ(rrc_context_validation_messages(nullptr, &count), RRC_ERROR_INVALID_HANDLE);
+    char name[8];
+    EXPECT_EQ(rrc_context_device_name(nullptr, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
+    rrc_context_destroy(nullptr);  // allowed
+}
+
+TEST(Api, ForeignHandleIsDetectedWithoutDereferencing) {
+    alignas(16) unsigned char garbage[256] = {0xAB};
+    auto* fake = reinterpret_cast<rrc_context*>(garbage);
+    rrc_frame_desc f = frame_desc();
+    EXPECT_EQ(rrc_frame_run(fake, &f, nullptr), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos);
+    rrc_context_destroy(fake);  // ignored, never freed
+}
+
+// Frame-level errors on a live context: each refused, outputs untouched.
+TEST(Api, BadFramesLeaveOutputsUntouched) {
+    const uint32_t W = 16, H = 8;
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED,
+                                                      RRC_HISTORY_FILTER_BILINEAR, 0, 1)};
+    rrc_context_desc d = context_desc(W, H, channels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    d.use_nocache_mask = 1;
+    Context ctx(d);
+    ASSERT_TRUE(ctx);
+    std::vector<float> depth(W * H, 0.5f), clip(W * H * 4, 1.0f), s(W * H, 1.0f), conf(W * H, 1.0f);
+    std::vector<uint8_t> nocache(W * H, 0);
+    for (uint32_t j = 0; j < H; ++j)  // a static frame: each pixel's own clip position
+        for (uint32_t i = 0; i < W; ++i) {
+            float* c = &clip[4 * (j * W + i)];
+            c[0] = 2.0f * (i + 0.5f) / W - 1.0f;
+            c[1] = 2.0f * (j + 0.5f) / H - 1.0f;
+            c[2] = 0.5f;
+            c[3] = 1.0f;
+        }
+    rrc_channel_input in = channel_input(s.data(), conf.data());
+    auto good = [&] {
+        rrc_frame_desc f = frame_desc();
+        f.depth = depth.data();
+        f.reprojection = clip.data();
+        f.nocache = nocache.data();
+        f.channel_count = 1;
+        f.channels = &in;
+        return f;
+    };
+    struct FrameCase {
+        const char* field;
+        rrc_result code;
+        std::function<void(rrc_frame_desc&, rrc_channel_input&)> mutate;
+    };
+    rrc_channel_input bad_in;
+    std::vector<FrameCase> cases = {
+        {"frame.type", RRC_ERROR_INVALID_STRUCT, [](rrc_frame_desc& f, rrc_channel_input&) { f.type = 0; }},
+        {"frame.size", RRC_ERROR_INVALID_STRUCT, [](rrc_frame_desc& f, rrc_channel_input&) { f.size = 3; }},
+        {"frame.depth", RRC_ERROR_MISSING_INPUT, [](rrc_frame_desc& f, rrc_channel_input&) { f.depth = nullptr; }},
+        {"frame.reprojection", RRC_ERROR_MISSING_INPUT, [](rrc_frame_desc& f, rrc_channel_input&) { f.reprojection = nullptr; }},
+        {"frame.nocache", RRC_ERROR_MISSING_INPUT, [](rrc_frame_desc& f, rrc_channel_input&) { f.nocache = nullptr; }},
+        {"frame.channel_count", RRC_ERROR_SIZE_MISMATCH, [](rrc_frame_desc& f, rrc_channel_input&) { f.channel_count = 2; }},
+        {"frame.channels", RRC_ERROR_MISSING_INPUT, [](rrc_frame_desc& f, rrc_channel_input&) { f.channels = nullptr; }},
+        {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.jitter[1] = kNaN; }},
+        {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.prev_jitter[0] = 3.0f; }},
+        {"samples", RRC_ERROR_MISSING_INPUT,
+         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.samples = nullptr; f.channels = &i; }},
+        {"confidence", RRC_ERROR_MISSING_INPUT,
+         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.confidence = nullptr; f.channels = &i; }},
+        {"frame.channels[0].type", RRC_ERROR_INVALID_STRUCT,
+         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.type = 1; f.channels = &i; }},
+    };
+    // A first good frame, so a later failure has history to preserve.
+    FrameResult before = ctx.run(good());
+    for (auto& c : cases) {
+        rrc_frame_desc f = good();
+        c.mutate(f, bad_in);
+        std::vector<float> out(W * H, -7.0f);
+        std::vector<uint8_t> mask(W * H, 0xEE);
+        rrc_channel_output co;
+        std::memset(&co, 0, sizeof co);
+        co.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
+        co.size = sizeof co;
+        co.values = out.data();
+        rrc_frame_output o;
+        std::memset(&o, 0, sizeof o);
+        o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+        o.size = sizeof o;
+        o.mask = mask.data();
+        o.channel_count = 1;
+        o.channels = &co;
+        o.stats.hits = 4242;
+        EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), c.code) << c.field;
+        EXPECT_NE(std::string(rrc_context_last_error(ctx.get())).find(c.field), std::string::npos)
+            << c.field << " vs " << rrc_context_last_error(ctx.get());
+        EXPECT_EQ(out, std::vector<float>(W * H, -7.0f)) << c.field;
+        EXPECT_EQ(mask, std::vector<uint8_t>(W * H, 0xEE)) << c.field;
+        EXPECT_EQ(o.stats.hits, 4242u) << c.field;
+    }
+    // The history survived every refused frame: a static frame now hits everywhere.
+    FrameResult after = ctx.run(good());
+    EXPECT_EQ(after.stats.hits, (uint64_t)W * H);
+    EXPECT_EQ(after.age[0], std::vector<uint16_t>(W * H, 2));
+}
+
+TEST(Api, WrongOutputDescriptionsAreRefused) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    rrc_context_desc d = context_desc(4, 4, channels);
+    d.reprojection = RRC_REPROJECTION_CAMERA;
+    Context ctx(d);
+    ASSERT_TRUE(ctx);
+    std::vector<float> depth(16, 0.5f), s(16, 1.0f), w(16);
+    rrc_channel_input in = channel_input(s.data());
+    rrc_frame_desc f = frame_desc();
+    f.depth = depth.data();
+    for (int i = 0; i < 16; i += 5) f.view_proj[i] = f.prev_view_proj[i] = 1.0;
+    f.channel_count = 1;
+    f.channels = &in;
+    rrc_channel_output co;
+    std::memset(&co, 0, sizeof co);
+    co.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
+    co.size = sizeof co;
+    co.weight = w.data();  // the channel has no confidence
+    rrc_frame_output o;
+    std::memset(&o, 0, sizeof o);
+    o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+    o.size = sizeof o;
+    o.channel_count = 1;
+    o.channels = &co;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("output.channels[0].weight"), std::string::npos) << rrc_last_error();
+    o.channel_count = 3;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_SIZE_MISMATCH);
+    f.view_proj[3] = std::numeric_limits<double>::infinity();
+    o.channel_count = 0;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("view_proj"), std::string::npos);
+}
+
+TEST(Api, DeviceNameIsQueryable) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    Context ctx(context_desc(4, 4, channels));
+    ASSERT_TRUE(ctx);
+    char name[256];
+    ASSERT_EQ(rrc_context_device_name(ctx.get(), name, sizeof name), RRC_SUCCESS);
+    EXPECT_NE(std::string(name).find("llvmpipe"), std::string::npos) << "tests must run on lavapipe, got " << name;
+    char tiny[2];
+    EXPECT_EQ(rrc_context_device_name(ctx.get(), tiny, sizeof tiny), RRC_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(Api, UnknownDeviceNameFailsClearly) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    rrc_context_desc d = context_desc(4, 4, channels);
+    d.device_name = "no such device 42";
+    rrc_context* ctx = nullptr;
+    EXPECT_EQ(rrc_context_create(&d, &ctx), RRC_ERROR_DEVICE);
+    EXPECT_EQ(ctx, nullptr);
+    EXPECT_NE(std::string(rrc_last_error()).find("no such device 42"), std::string::npos) << rrc_last_error();
+}
+
+}  // namespace
