@@ -149,6 +149,9 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
         expected = DEPTH_MODE == RRC_DEPTH_LINEAR ? c.w : c.z / c.w;
     }
 
+    // Background wins over bad reprojection data: the sky has no history.
+    g.invalid = g.invalid && !g.background;
+
     // Closed square; NaN fails every comparison.  Outside it the taps are
     // taken at the centre so every load stays in bounds.
     bool inside = all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
