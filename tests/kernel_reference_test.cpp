@@ -17,6 +17,7 @@
 #include "scenes/false_hits.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
+#include "support/tolerance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,39 +84,6 @@ std::vector<Case> cases() {
          {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)}, true},
     };
 }
-
-double fp16_step(double v) {
-    double a = std::fabs(v);
-    if (a < std::ldexp(1.0, -14)) return std::ldexp(1.0, -24);
-    return std::ldexp(1.0, (int)std::floor(std::log2(a)) - 10);
-}
-
-// Spread (max - min) of component q of the previous history over the 4x4
-// texels around the reprojected position: how much a small error in the fp32
-// sample position can move the resampled value.
-double history_spread(const std::vector<float>& hist, uint32_t comps, uint32_t q, int W, int H, double uvx, double uvy,
-                      const float* prev_jitter) {
-    if (!std::isfinite(uvx) || !std::isfinite(uvy) || hist.empty()) return 0.0;
-    double px = uvx * W - prev_jitter[0] - 0.5, py = uvy * H - prev_jitter[1] - 0.5;
-    int x0 = (int)std::floor(px), y0 = (int)std::floor(py);
-    double lo = INFINITY, hi = -INFINITY;
-    for (int y = y0 - 1; y <= y0 + 2; ++y)
-        for (int x = x0 - 1; x <= x0 + 2; ++x) {
-            int cx = std::min(std::max(x, 0), W - 1), cy = std::min(std::max(y, 0), H - 1);
-            double v = hist[comps * ((size_t)cy * W + cx) + q];
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
-        }
-    return hi - lo;
-}
-
-// fp32 resolution of a texel coordinate in a W x H image, in texels: the
-// kernel's sample position carries this error whatever its arithmetic.
-double coordinate_resolution(int W, int H) { return std::ldexp(1.0, -24) * std::max(W, H); }
-
-// Allowed error from the sample position, in units of spread x coordinate
-// resolution (measured maxima per case are in docs/ACCURACY.md).
-const double kPositionFactor = 4.0;
 
 struct Row {
     std::string name, tolerance;
@@ -200,9 +168,9 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
                     double spread = prev.valid ? history_spread(prev.channels[ch].history, m, q, W, H, r.uv_prev_x[i], r.uv_prev_y[i],
                                                                 in.desc.prev_jitter)
                                                : 0.0;
-                    double arithmetic = 1e-6 + 1e-5 * std::fabs(rv);
-                    if (c.channels[ch].precision == RRC_HISTORY_FP16) arithmetic += fp16_step(r.channels[ch].exact[m * i + q]);
-                    double position = kPositionFactor * spread * coordinate_resolution(W, H);
+                    const bool fp16 = c.channels[ch].precision == RRC_HISTORY_FP16;
+                    double arithmetic = arithmetic_tolerance(rv, r.channels[ch].exact[m * i + q], fp16);
+                    double position = position_tolerance(spread, W, H);
                     if (err > arithmetic && spread > 0)
                         row.max_position_ratio =
                             std::max(row.max_position_ratio, (err - arithmetic) / (spread * coordinate_resolution(W, H)));
