@@ -112,8 +112,10 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcGeometry g;
     vec2 fsize = vec2(size);
     float d = imageLoad(u_depth, px).r;
-    g.background = rrc_is_background(d) && !isnan(d);
-    g.invalid = rrc_is_invalid_depth(d) && !g.background;
+    // Invalid first: only LINEAR's +inf is a (background) depth, any other
+    // non-finite depth is invalid geometry.
+    g.invalid = rrc_is_invalid_depth(d);
+    g.background = !g.invalid && rrc_is_background(d);
 
     vec2 uv_s = (vec2(px) + 0.5 + pc.jitter.xy) / fsize;
     vec2 uv_prev;

@@ -1,0 +1,43 @@
+// Texel fetches of the previous frame at sample coordinate q (texel centres
+// at integer + 0.5, q = uv_prev * size - prev_jitter): nearest, bilinear,
+// Catmull-Rom clamped to the bilinear taps, and the bounded depth fetch.
+#ifndef RRC_REFERENCE_FETCH_H
+#define RRC_REFERENCE_FETCH_H
+
+#include <rrc/rrc.h>
+
+#include <vector>
+
+#include "error_bound.h"
+#include "params.h"
+
+namespace rrc_ref {
+
+// clamp(floor(q), 0, size - 1); q must not be NaN.
+int nearest_index(double q, int size);
+
+// One image of `components` interleaved floats per texel.
+struct Image {
+    const float* data;
+    int width, height;
+    unsigned components;
+    double at(int x, int y, unsigned c) const;  // clamps x, y to the edge
+};
+
+// Resamples every component at (qx, qy) with the filter; out[c] for c < components.
+void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out);
+
+struct DepthFetch {
+    Bounded value;          // fetched previous depth (NDC z, or linear d for LINEAR)
+    Decision no_background; // none of the four taps is background
+};
+
+// The bilinear previous-depth fetch of the hit test.  qx, qy carry the
+// kernel's position error; `scale` multiplies the error bounds it uses for
+// its own decisions (Options::error_scale).
+DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx,
+                       Bounded qy, double scale);
+
+}  // namespace rrc_ref
+
+#endif

@@ -1,0 +1,63 @@
+#include "filter.h"
+
+#include <algorithm>
+
+namespace rrc_ref {
+
+namespace {
+
+double lambda_eff(const ChannelParams& ch, unsigned n_prev) {
+    double mean = static_cast<double>(n_prev) / (n_prev + 1.0);  // exact mean weight
+    switch (ch.blend) {
+        case RRC_BLEND_AGE_AWARE: return std::min(ch.lambda, mean);
+        case RRC_BLEND_RUNNING_MEAN: return mean;
+        default: return ch.lambda;
+    }
+}
+
+Update take_sample(const ChannelParams& ch, const Sample& s, unsigned age) {
+    Update u;
+    for (unsigned c = 0; c < ch.components; ++c) u.out[c] = s.s[c];
+    u.age = age;
+    u.weight = s.w;
+    return u;
+}
+
+Update keep_history(const ChannelParams& ch, const Resampled& prev, double weight) {
+    Update u;
+    for (unsigned c = 0; c < ch.components; ++c) u.out[c] = prev.h[c];
+    u.age = prev.age;
+    u.weight = weight;
+    return u;
+}
+
+}  // namespace
+
+Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, const Resampled& prev) {
+    if (pc != PixelCase::hit) {
+        // background: age 0; miss: age 1.  An invalid sample leaves 0, 0, 0.
+        if (!s.valid) return Update{};
+        return take_sample(ch, s, pc == PixelCase::miss ? 1u : 0u);
+    }
+    if (!s.valid) return keep_history(ch, prev, prev.weight);
+    if (prev.age == 0) return take_sample(ch, s, 1u);
+
+    double lam = lambda_eff(ch, prev.age);
+    unsigned age = std::min(prev.age + 1u, ch.age_cap);
+    Update u;
+    u.age = age;
+    if (!ch.confidence) {
+        for (unsigned c = 0; c < ch.components; ++c)
+            u.out[c] = lam * prev.h[c] + (1.0 - lam) * s.s[c];
+        return u;
+    }
+    // Confidence-weighted mean; reduces to the line above when w == W == 1.
+    double w_new = lam * prev.weight + (1.0 - lam) * s.w;
+    if (w_new == 0.0) return keep_history(ch, prev, 0.0);
+    for (unsigned c = 0; c < ch.components; ++c)
+        u.out[c] = (lam * prev.weight * prev.h[c] + (1.0 - lam) * s.w * s.s[c]) / w_new;
+    u.weight = w_new;
+    return u;
+}
+
+}  // namespace rrc_ref

@@ -1,0 +1,36 @@
+// The per-channel recursive filter: the table of docs/CONVENTIONS.md
+// (background / miss / hit cases, blend modes, age cap, confidence).
+#ifndef RRC_REFERENCE_FILTER_H
+#define RRC_REFERENCE_FILTER_H
+
+#include "params.h"
+
+namespace rrc_ref {
+
+enum class PixelCase { background, miss, hit };
+
+struct Sample {
+    double s[4] = {0, 0, 0, 0};
+    double w = 1.0;      // confidence, clamped to [0, 1]; 1 without confidence
+    bool valid = true;   // every component (and the confidence) finite
+};
+
+// What the hit case reads from the previous frame at uv_prev.
+struct Resampled {
+    double h[4] = {0, 0, 0, 0};  // history, with the channel's filter
+    double weight = 0.0;         // W, same filter (confidence channels)
+    unsigned age = 0;            // n_prev, nearest
+};
+
+struct Update {
+    double out[4] = {0, 0, 0, 0};  // before any fp16 rounding
+    unsigned age = 0;
+    double weight = 0.0;           // W' (confidence channels)
+};
+
+// `prev` is read only for PixelCase::hit.
+Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, const Resampled& prev);
+
+}  // namespace rrc_ref
+
+#endif

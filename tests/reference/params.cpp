@@ -1,0 +1,85 @@
+#include "params.h"
+
+#include <cmath>
+
+#include "rrc_reference.h"
+
+namespace rrc_ref {
+
+Params resolve(const rrc_context_desc& ctx) {
+    Params p{};
+    p.width = static_cast<int>(ctx.width);
+    p.height = static_cast<int>(ctx.height);
+    p.mode = ctx.depth_mode;
+    p.near_plane = ctx.near_plane;
+    p.far_plane = ctx.far_plane;
+    p.background_threshold = ctx.background_threshold != 0.0f ? ctx.background_threshold : 1e10;
+    p.format = ctx.depth_format;
+    p.epsilon_scale = ctx.epsilon_scale != 0.0f ? ctx.epsilon_scale
+                      : ctx.depth_format == RRC_DEPTH_FORMAT_FLOAT32 ? 4.0
+                                                                     : 1.0;
+    p.epsilon = ctx.epsilon;
+    p.tau = ctx.tau != 0.0f ? ctx.tau : 0.01;
+    p.source = ctx.reprojection;
+    bool no_scale = ctx.motion_scale[0] == 0.0f && ctx.motion_scale[1] == 0.0f;
+    p.motion_scale[0] = no_scale ? 1.0 : ctx.motion_scale[0];
+    p.motion_scale[1] = no_scale ? 1.0 : ctx.motion_scale[1];
+    p.nocache = ctx.use_nocache_mask != 0;
+    for (uint32_t c = 0; c < ctx.channel_count; ++c) {
+        const rrc_channel_desc& d = ctx.channels[c];
+        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16, d.lambda, d.blend,
+                              d.filter, d.age_cap != 0 ? d.age_cap : 255u, d.confidence != 0});
+    }
+    return p;
+}
+
+bool is_background(const Params& p, double d) {
+    switch (p.mode) {
+        case RRC_DEPTH_MODE_STANDARD: return d >= 1.0;
+        case RRC_DEPTH_MODE_REVERSED: return d <= 0.0;
+        default: return d >= p.background_threshold;  // also +inf
+    }
+}
+
+bool is_invalid_depth(const Params& p, double d) {
+    switch (p.mode) {
+        case RRC_DEPTH_MODE_STANDARD: return !std::isfinite(d) || d < 0.0;
+        case RRC_DEPTH_MODE_REVERSED: return !std::isfinite(d) || d > 1.0;
+        default: return std::isnan(d) || d == -INFINITY || d <= 0.0;
+    }
+}
+
+Bounded linearise(const Params& p, Bounded z) {
+    Bounded n = exact(p.near_plane), f = exact(p.far_plane), one = exact(1.0);
+    if (std::isinf(p.far_plane)) {  // limits of the formulas below
+        return p.mode == RRC_DEPTH_MODE_REVERSED ? n / z : n / (one - z);
+    }
+    if (p.mode == RRC_DEPTH_MODE_REVERSED) return n * f / (n + z * (f - n));
+    return n * f / (f - z * (f - n));
+}
+
+double ulp_fp32(double v) {
+    float f = static_cast<float>(v);
+    double a = std::fabs(static_cast<double>(f));
+    if (!(a >= FLT_MIN)) return 0x1p-149;  // zero, fp32 denormal (and NaN)
+    if (std::isinf(v)) return NAN;  // no tolerance at an infinite depth: the test fails
+    // Beyond the fp32 range the formula is applied to v itself (the kernel's
+    // own overflow is covered by the error bound, not here).
+    return std::ldexp(1.0, std::ilogb(std::isinf(a) ? v : a) - 23);
+}
+
+double epsilon_at(const Params& p, double e) {
+    if (p.relative_test()) return p.tau * e;
+    if (p.epsilon > 0.0) return p.epsilon;
+    switch (p.format) {
+        case RRC_DEPTH_FORMAT_UNORM16: return p.epsilon_scale / 65535.0;
+        case RRC_DEPTH_FORMAT_UNORM24: return p.epsilon_scale / 16777215.0;
+        default: return p.epsilon_scale * ulp_fp32(e);
+    }
+}
+
+double epsilon_for(const rrc_context_desc& ctx, double expected_depth) {
+    return epsilon_at(resolve(ctx), expected_depth);
+}
+
+}  // namespace rrc_ref

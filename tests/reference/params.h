@@ -1,0 +1,63 @@
+// The context's settings with every "zero means default" resolved, plus the
+// small scalar rules (background, invalid depth, linearisation, epsilon).
+#ifndef RRC_REFERENCE_PARAMS_H
+#define RRC_REFERENCE_PARAMS_H
+
+#include <rrc/rrc.h>
+
+#include <vector>
+
+#include "error_bound.h"
+
+namespace rrc_ref {
+
+struct ChannelParams {
+    unsigned components;
+    bool fp16;
+    double lambda;
+    rrc_blend blend;
+    rrc_history_filter filter;
+    unsigned age_cap;
+    bool confidence;
+};
+
+struct Params {
+    int width, height;
+    rrc_depth_mode mode;
+    double near_plane, far_plane;  // as the host passed them (floats)
+    double background_threshold;   // LINEAR
+    rrc_depth_format format;
+    double epsilon_scale;
+    double epsilon;                // > 0: absolute epsilon (NDC tests)
+    double tau;
+    rrc_reprojection source;
+    double motion_scale[2];
+    bool nocache;
+    std::vector<ChannelParams> channels;
+
+    // Plain MOTION on NDC depth compares linearised depths relatively.
+    bool relative_test() const {
+        return mode == RRC_DEPTH_MODE_LINEAR || source == RRC_REPROJECTION_MOTION;
+    }
+    bool linearise() const {
+        return mode != RRC_DEPTH_MODE_LINEAR && source == RRC_REPROJECTION_MOTION;
+    }
+};
+
+Params resolve(const rrc_context_desc& ctx);
+
+// Background rule applied to any depth value (current pixel or previous tap).
+bool is_background(const Params& p, double depth);
+// The current pixel's depth is unusable (non-finite other than LINEAR's +inf
+// background, or outside the mode's range).  Checked before is_background.
+bool is_invalid_depth(const Params& p, double depth);
+
+// Linear view depth from NDC z with the context's near/far planes.
+Bounded linearise(const Params& p, Bounded z);
+
+// Tolerance at expected depth e (see rrc_reference.h epsilon_for).
+double epsilon_at(const Params& p, double e);
+
+}  // namespace rrc_ref
+
+#endif

@@ -1,0 +1,116 @@
+// Independent double-precision CPU reference of docs/CONVENTIONS.md.
+//
+// It validates the GLSL kernel, so it shares no code with compute/ or plugin/:
+// the math is re-derived from the conventions, in double, with GLM for the
+// CAMERA matrices.  One call computes one frame from the previous frame's
+// stored state; tests feed it the KERNEL's previous outputs so that a one-frame
+// comparison cannot drift.
+//
+// Exactness vs. the fp32 kernel: every comparison the conventions make (hit
+// test, border test, w > 0, background taps, nearest texel) is decided here
+// in exact-ish double math.  Alongside, the reference carries a first-order
+// bound on how far the kernel's fp32 value of each intermediate can be from
+// the exact one (see error_bound.h) and flags pixels whose decision that
+// error could flip:
+//   near_threshold     the hit/miss decision itself may differ;
+//   near_nearest_edge  the nearest texel (age, NEAREST history) may differ.
+// Tests skip the mask comparison on near_threshold pixels and the age /
+// nearest-history comparison on near_nearest_edge pixels.
+//
+// Choices made here where docs/CONVENTIONS.md is silent (keep the kernel in step):
+//  * Precedence for the current pixel: invalid depth -> INVALID_GEOMETRY; else
+//    background -> BACKGROUND (reprojection data is not looked at); else
+//    non-finite reprojection data -> INVALID_GEOMETRY.
+//  * INVALID_SAMPLE is set whenever some channel's sample is invalid, on any
+//    pixel (background and invalid-geometry pixels included).
+//  * A "do not cache" pixel is a plain miss: no mask bit.  REFRESHED is never
+//    set (this API version has no refresh policy).
+//  * Plain MOTION with STANDARD depth and far = +inf linearises as n/(1 - z).
+#ifndef RRC_REFERENCE_H
+#define RRC_REFERENCE_H
+
+#include <rrc/rrc.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace rrc_ref {
+
+// The previous frame's stored state of one channel (the kernel's output).
+struct ChannelHistory {
+    std::vector<float> history;  // W*H*components, as stored (fp16 values for fp16 channels)
+    std::vector<uint16_t> age;   // W*H
+    std::vector<float> weight;   // W*H for confidence channels; empty otherwise
+};
+
+struct PreviousFrame {
+    bool valid = false;          // false: first frame / after reset or resize -> all misses
+    std::vector<float> depth;    // previous frame's depth exactly as the host passed it (W*H)
+    std::vector<ChannelHistory> channels;  // in the context's channel order
+};
+
+struct ChannelResult {
+    std::vector<double> out;     // the stored history: fp16 channels: fp16_round(exact); fp32: exact
+    std::vector<double> exact;   // the value before the fp16 rounding (== out for fp32 channels)
+    std::vector<uint16_t> age;   // W*H
+    std::vector<double> weight;  // W*H for confidence channels; empty otherwise
+};
+
+struct FrameResult {
+    std::vector<uint8_t> mask;   // RRC_MASK_* bits
+    std::vector<ChannelResult> channels;
+    rrc_frame_stats stats{};     // counted from mask as the library counts them
+
+    // Per-pixel diagnostics (see the header comment).
+    std::vector<uint8_t> near_threshold;
+    std::vector<uint8_t> near_nearest_edge;
+    // NaN where the pixel never reached the epsilon test (no valid previous
+    // frame, background, invalid geometry, do-not-cache, non-finite values).
+    std::vector<double> diff, eps;  // diff = fetched - expected (linear depths for plain MOTION)
+    std::vector<double> diff_err;   // error bound of the kernel's diff (times Options::error_scale)
+    std::vector<double> expected, fetched;
+    // NaN for background and invalid-geometry pixels.
+    std::vector<double> uv_prev_x, uv_prev_y;
+};
+
+struct Options {
+    // Multiplies every fp32 error bound.  1 = the first-order worst case of a
+    // straightforward fp32 evaluation of the conventions' formulas.  0 turns
+    // the near_* flags into "exactly on a threshold" only.  Measured against
+    // the lavapipe kernel (tests/kernel_reference_test.cpp, 15 cases): no mask
+    // flip outside the margin at 1 or 0.5, 3 at 0.25 (camera_standard), so the
+    // worst case is not loose by much.  FLOAT32's default 4-ulp epsilon lies
+    // inside that error for most hits: expect them all flagged (and a few real
+    // flips), i.e. the hit decision there is within fp32 noise.
+    double error_scale = 1.0;
+};
+
+// Computes one frame.  Arrays in `frame` are read as the C API documents them;
+// throws std::invalid_argument on NULL required arrays or on a valid `prev`
+// whose arrays do not match the context's size and channels.
+FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
+                      const rrc_frame_desc& frame, const Options& options = {});
+
+// The stored state run_frame's result leaves for the next frame (values as the
+// kernel would store them: fp32 channels rounded to float), for multi-frame
+// runs of the reference on its own.
+PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame,
+                          const FrameResult& result);
+
+// Clamp to +-65504, then round to the nearest fp16 value, ties to even.
+// The result is exactly representable in fp16.  NaN stays NaN.
+double fp16_round(double v);
+
+// The ulp of v as an fp32 value: 2^(floor(log2|f|) - 23) with f = float(v);
+// 2^-149 for f = 0 and for fp32-denormal f.
+double ulp_fp32(double v);
+
+// The hit-test tolerance for this context's test at expected depth e (a
+// linear depth for LINEAR contexts and plain MOTION; NDC z otherwise):
+// relative tests: tau * e; NDC tests: the absolute epsilon if given, else
+// scale * increment of the depth format (FLOAT32: scale * ulp_fp32(e)).
+double epsilon_for(const rrc_context_desc& ctx, double expected_depth);
+
+}  // namespace rrc_ref
+
+#endif

@@ -1,0 +1,190 @@
+// One frame of the reference: classify each pixel, run the hit test, update
+// every channel, and collect the diagnostics tests need.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "fetch.h"
+#include "filter.h"
+#include "hit_test.h"
+#include "params.h"
+#include "reproject.h"
+#include "rrc_reference.h"
+
+namespace rrc_ref {
+
+namespace {
+
+Sample read_sample(const ChannelParams& ch, const rrc_channel_input& in, size_t pixel) {
+    Sample s;
+    for (unsigned c = 0; c < ch.components; ++c) {
+        s.s[c] = in.samples[pixel * ch.components + c];
+        s.valid = s.valid && std::isfinite(s.s[c]);
+    }
+    if (ch.confidence) {
+        double w = in.confidence[pixel];
+        s.valid = s.valid && std::isfinite(w);
+        s.w = std::fmin(std::fmax(w, 0.0), 1.0);
+    }
+    return s;
+}
+
+Resampled read_previous(const ChannelParams& ch, const ChannelHistory& h, int width, int height,
+                        const HitTest& t) {
+    Resampled r;
+    resample(Image{h.history.data(), width, height, ch.components}, ch.filter, t.qx.v, t.qy.v, r.h);
+    if (ch.confidence)
+        resample(Image{h.weight.data(), width, height, 1}, ch.filter, t.qx.v, t.qy.v, &r.weight);
+    int x = nearest_index(t.qx.v, width), y = nearest_index(t.qy.v, height);
+    r.age = h.age[static_cast<size_t>(y) * width + x];
+    return r;
+}
+
+// The kernel's nearest texel may differ when q is within its error of a texel edge.
+bool near_edge(const Bounded& q, int size, double scale) {
+    double d = q.err * scale;
+    if (!std::isfinite(d)) return true;
+    return nearest_index(q.v - d, size) != nearest_index(q.v + d, size);
+}
+
+FrameResult allocate(const Params& p) {
+    size_t n = static_cast<size_t>(p.width) * p.height;
+    FrameResult r;
+    r.mask.assign(n, 0);
+    r.near_threshold.assign(n, 0);
+    r.near_nearest_edge.assign(n, 0);
+    for (auto* v : {&r.diff, &r.eps, &r.diff_err, &r.expected, &r.fetched, &r.uv_prev_x, &r.uv_prev_y})
+        v->assign(n, NAN);
+    for (const ChannelParams& ch : p.channels) {
+        ChannelResult c;
+        c.out.assign(n * ch.components, 0.0);
+        c.exact.assign(n * ch.components, 0.0);
+        c.age.assign(n, 0);
+        if (ch.confidence) c.weight.assign(n, 0.0);
+        r.channels.push_back(std::move(c));
+    }
+    return r;
+}
+
+// The reference reads raw arrays: refuse inputs whose sizes it can check.
+void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_desc& frame) {
+    const size_t n = static_cast<size_t>(p.width) * p.height;
+    auto require = [](bool ok, const char* what) {
+        if (!ok) throw std::invalid_argument(std::string("rrc_ref::run_frame: ") + what);
+    };
+    require(frame.depth != nullptr, "frame.depth is NULL");
+    require(frame.channel_count == p.channels.size() && frame.channels, "frame channels");
+    require(p.source == RRC_REPROJECTION_CAMERA || frame.reprojection, "frame.reprojection is NULL");
+    require(!p.nocache || frame.nocache, "frame.nocache is NULL");
+    for (size_t c = 0; c < p.channels.size(); ++c) {
+        require(frame.channels[c].samples != nullptr, "channel samples are NULL");
+        require(!p.channels[c].confidence || frame.channels[c].confidence, "confidence is NULL");
+    }
+    if (!prev.valid) return;
+    require(prev.depth.size() == n, "previous depth size");
+    require(prev.channels.size() == p.channels.size(), "previous channel count");
+    for (size_t c = 0; c < p.channels.size(); ++c) {
+        const ChannelHistory& h = prev.channels[c];
+        require(h.history.size() == n * p.channels[c].components, "previous history size");
+        require(h.age.size() == n, "previous age size");
+        require(!p.channels[c].confidence || h.weight.size() == n, "previous weight size");
+    }
+}
+
+void count(FrameResult& r) {
+    for (uint8_t m : r.mask) {
+        if (m & RRC_MASK_BACKGROUND) ++r.stats.background;
+        else if (m & RRC_MASK_HIT) ++r.stats.hits;
+        else ++r.stats.misses;
+        if (m & RRC_MASK_INVALID_SAMPLE) ++r.stats.invalid_samples;
+        if (m & RRC_MASK_INVALID_GEOMETRY) ++r.stats.invalid_geometry;
+    }
+}
+
+}  // namespace
+
+FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
+                      const rrc_frame_desc& frame, const Options& options) {
+    const Params p = resolve(ctx);
+    check_inputs(p, prev, frame);
+    const double scale = options.error_scale;
+    const bool prev_valid = prev.valid && !frame.reset;
+    const Camera cam = p.source == RRC_REPROJECTION_CAMERA ? make_camera(frame) : Camera{};
+    FrameResult res = allocate(p);
+
+    for (int j = 0; j < p.height; ++j) {
+        for (int i = 0; i < p.width; ++i) {
+            const size_t px = static_cast<size_t>(j) * p.width + i;
+            const double d = frame.depth[px];
+            uint8_t mask = 0;
+            PixelCase pc = PixelCase::miss;
+            HitTest t;
+            if (is_invalid_depth(p, d)) {
+                mask |= RRC_MASK_INVALID_GEOMETRY;
+            } else if (is_background(p, d)) {
+                mask |= RRC_MASK_BACKGROUND;
+                pc = PixelCase::background;
+            } else if (!reprojection_data_finite(p, frame, px)) {
+                mask |= RRC_MASK_INVALID_GEOMETRY;
+            } else {
+                Reprojected r = reproject(p, frame, cam, i, j, d);
+                res.uv_prev_x[px] = r.uv_x.v;
+                res.uv_prev_y[px] = r.uv_y.v;
+                res.expected[px] = r.e.v;
+                bool cacheable = !(p.nocache && frame.nocache[px]);
+                if (prev_valid && cacheable) {
+                    t = hit_test(p, prev.depth, frame.prev_jitter, r, scale);
+                    res.near_threshold[px] = !t.hit.sure;
+                    res.diff[px] = t.diff;
+                    res.eps[px] = t.eps;
+                    res.diff_err[px] = t.diff_err;
+                    res.fetched[px] = t.fetched;
+                    bool may_hit = t.hit.value || !t.hit.sure;
+                    res.near_nearest_edge[px] =
+                        may_hit && (near_edge(t.qx, p.width, scale) || near_edge(t.qy, p.height, scale));
+                    if (t.hit.value) {
+                        mask |= RRC_MASK_HIT;
+                        pc = PixelCase::hit;
+                    }
+                }
+            }
+
+            for (size_t c = 0; c < p.channels.size(); ++c) {
+                const ChannelParams& ch = p.channels[c];
+                Sample s = read_sample(ch, frame.channels[c], px);
+                if (!s.valid) mask |= RRC_MASK_INVALID_SAMPLE;
+                Resampled r;
+                if (pc == PixelCase::hit) r = read_previous(ch, prev.channels[c], p.width, p.height, t);
+                Update u = filter_update(ch, pc, s, r);
+                ChannelResult& out = res.channels[c];
+                for (unsigned k = 0; k < ch.components; ++k) {
+                    out.exact[px * ch.components + k] = u.out[k];
+                    out.out[px * ch.components + k] = ch.fp16 ? fp16_round(u.out[k]) : u.out[k];
+                }
+                out.age[px] = static_cast<uint16_t>(u.age);
+                if (ch.confidence) out.weight[px] = u.weight;
+            }
+            res.mask[px] = mask;
+        }
+    }
+    count(res);
+    return res;
+}
+
+PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame,
+                          const FrameResult& result) {
+    const size_t n = static_cast<size_t>(ctx.width) * ctx.height;
+    PreviousFrame prev;
+    prev.valid = true;
+    prev.depth.assign(frame.depth, frame.depth + n);
+    for (const ChannelResult& c : result.channels) {
+        ChannelHistory h;
+        h.history.assign(c.out.begin(), c.out.end());  // fp32 store (fp16 values are exact)
+        h.age = c.age;
+        h.weight.assign(c.weight.begin(), c.weight.end());
+        prev.channels.push_back(std::move(h));
+    }
+    return prev;
+}
+
+}  // namespace rrc_ref

@@ -1,0 +1,115 @@
+// Small owned-array scene builder for the reference self-tests: fills the C
+// API descriptors and keeps every array they point to alive.
+#ifndef RRC_REFERENCE_SELFTEST_SCENE_H
+#define RRC_REFERENCE_SELFTEST_SCENE_H
+
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "rrc_reference.h"
+
+namespace rrc_ref_test {
+
+struct Scene {
+    int W, H;
+    rrc_context_desc ctx{};
+    std::vector<rrc_channel_desc> channel_descs;
+    std::vector<float> depth, reprojection;
+    std::vector<uint8_t> nocache;
+    std::vector<std::vector<float>> samples, confidence;
+    std::vector<rrc_channel_input> inputs;
+    rrc_frame_desc frame{};
+
+    Scene(int width, int height, rrc_depth_mode mode, rrc_reprojection source) : W(width), H(height) {
+        ctx.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
+        ctx.size = sizeof(ctx);
+        ctx.api_version = RRC_API_VERSION;
+        ctx.width = width;
+        ctx.height = height;
+        ctx.depth_mode = mode;
+        ctx.reprojection = source;
+        ctx.near_plane = 0.1f;  // plain MOTION on NDC depth linearises with these
+        ctx.far_plane = 100.0f;
+        frame.type = RRC_STRUCT_TYPE_FRAME_DESC;
+        frame.size = sizeof(frame);
+        for (int k = 0; k < 16; ++k)  // identity cameras
+            frame.view_proj[k] = frame.prev_view_proj[k] = (k % 5 == 0) ? 1.0 : 0.0;
+        depth.assign(size(), 0.5f);
+        int n = source == RRC_REPROJECTION_PREV_CLIP ? 4
+                : source == RRC_REPROJECTION_MOTION ? 2
+                : source == RRC_REPROJECTION_MOTION_DEPTH ? 3 : 0;
+        reprojection.assign(size() * n, 0.0f);
+        nocache.assign(size(), 0);
+    }
+    size_t size() const { return static_cast<size_t>(W) * H; }
+    size_t at(int i, int j) const { return static_cast<size_t>(j) * W + i; }
+
+    // Returns the channel's index.
+    int add_channel(unsigned components, float lambda, rrc_blend blend = RRC_BLEND_FIXED,
+                    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR,
+                    rrc_history_precision precision = RRC_HISTORY_FP32, bool with_confidence = false,
+                    unsigned age_cap = 0) {
+        rrc_channel_desc d{};
+        d.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
+        d.size = sizeof(d);
+        std::snprintf(d.name, sizeof(d.name), "c%zu", channel_descs.size());
+        d.components = components;
+        d.precision = precision;
+        d.lambda = lambda;
+        d.blend = blend;
+        d.filter = filter;
+        d.age_cap = age_cap;
+        d.confidence = with_confidence;
+        channel_descs.push_back(d);
+        samples.emplace_back(size() * components, 0.0f);
+        confidence.emplace_back(with_confidence ? size() : 0, 1.0f);
+        return static_cast<int>(channel_descs.size()) - 1;
+    }
+
+    // Points the descriptors at the owned arrays (call after any resize).
+    const rrc_frame_desc& desc() {
+        ctx.channel_count = static_cast<uint32_t>(channel_descs.size());
+        ctx.channels = channel_descs.data();
+        inputs.clear();
+        for (size_t c = 0; c < channel_descs.size(); ++c) {
+            rrc_channel_input in{};
+            in.type = RRC_STRUCT_TYPE_CHANNEL_INPUT;
+            in.size = sizeof(in);
+            in.samples = samples[c].data();
+            in.confidence = confidence[c].empty() ? nullptr : confidence[c].data();
+            inputs.push_back(in);
+        }
+        frame.depth = depth.data();
+        frame.reprojection = reprojection.empty() ? nullptr : reprojection.data();
+        frame.nocache = ctx.use_nocache_mask ? nocache.data() : nullptr;
+        frame.channel_count = ctx.channel_count;
+        frame.channels = inputs.data();
+        return frame;
+    }
+
+    rrc_ref::FrameResult run(const rrc_ref::PreviousFrame& prev, const rrc_ref::Options& o = {}) {
+        const rrc_frame_desc& f = desc();
+        return rrc_ref::run_frame(ctx, prev, f, o);
+    }
+
+    // A previous frame with this scene's depth and a given state per channel.
+    rrc_ref::PreviousFrame previous(std::vector<std::vector<float>> history, uint16_t age,
+                                    float weight = 1.0f) const {
+        rrc_ref::PreviousFrame p;
+        p.valid = true;
+        p.depth = depth;
+        for (size_t c = 0; c < channel_descs.size(); ++c) {
+            rrc_ref::ChannelHistory h;
+            h.history = std::move(history[c]);
+            h.age.assign(size(), age);
+            if (channel_descs[c].confidence) h.weight.assign(size(), weight);
+            p.channels.push_back(std::move(h));
+        }
+        return p;
+    }
+};
+
+}  // namespace rrc_ref_test
+
+#endif
