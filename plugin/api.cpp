@@ -6,6 +6,7 @@
 
 #include <rrc/rrc.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <new>
@@ -109,6 +110,8 @@ rrc_result rrc_context_create(const rrc_context_desc* desc, rrc_context** out_co
     return guarded(nullptr, log, user, [&] {
         if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
         rrc::ContextConfig config = rrc::resolve_context_desc(desc);
+        const char* env = std::getenv("RRC_VALIDATION");
+        if (env && std::strcmp(env, "1") == 0) config.validation = true;  // documented in rrc.h
         std::unique_ptr<rrc_context> ctx(new rrc_context);
         ctx->impl.reset(new rrc::StandaloneContext(config));
         {
