@@ -164,7 +164,26 @@ rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_
     return guarded(c, config ? config->log : nullptr, config ? config->log_user : nullptr, [&] {
         checked(context);
         rrc::validate_frame(*config, frame, output);
-        c->impl->run_frame(*frame, output);
+        c->impl->run_frames(1, frame, output);
+    });
+}
+
+rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
+    rrc_context* c = context && is_live(context) ? context : nullptr;
+    const rrc::ContextConfig* config = c ? &c->impl->config() : nullptr;
+    return guarded(c, config ? config->log : nullptr, config ? config->log_user : nullptr, [&] {
+        checked(context);
+        if (count == 0) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is 0");
+        if (count > 65536) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is %u, at most 65536 frames a batch", count);
+        if (!frames) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frames is NULL");
+        for (uint32_t i = 0; i < count; ++i) {
+            try {
+                rrc::validate_frame(*config, &frames[i], outputs ? &outputs[i] : nullptr);
+            } catch (const rrc::Error& e) {
+                throw rrc::Error(e.code, "frames[" + std::to_string(i) + "]: " + e.what());
+            }
+        }
+        c->impl->run_frames(count, frames, outputs);
     });
 }
 

@@ -118,8 +118,17 @@ void StandaloneContext::create_images() {
     for (VkFormat f : read_formats) placeholders_.emplace_back(d, f, 1, 1);
     placeholders_.emplace_back(d, VK_FORMAT_R32_SFLOAT, 1, 1);  // write placeholders: float
     placeholders_.emplace_back(d, VK_FORMAT_R16_UINT, 1, 1);    // and age
-    upload_ = HostBuffer(d, up, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    readback_ = HostBuffer(d, down, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    upload_bytes_ = up;
+    readback_bytes_ = down;
+    reserve_batch(1);
+}
+
+// Staging holds one region per frame of a batch; it grows to the largest batch.
+void StandaloneContext::reserve_batch(uint32_t frames) {
+    if (frames <= batch_capacity_) return;
+    upload_ = HostBuffer(*dev_, upload_bytes_ * frames, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    readback_ = HostBuffer(*dev_, readback_bytes_ * frames, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    batch_capacity_ = frames;
 }
 
 void StandaloneContext::write_descriptor_sets() {
@@ -227,9 +236,9 @@ void StandaloneContext::initialise_images() {
     submit_and_wait();
 }
 
-void StandaloneContext::upload(const rrc_frame_desc& f) {
+void StandaloneContext::upload(const rrc_frame_desc& f, uint32_t slot) {
     const size_t n = (size_t)config_.width * config_.height;
-    unsigned char* dst = upload_.data;
+    unsigned char* dst = upload_.data + slot * upload_bytes_;
     auto put = [&](const void* src, size_t bytes) {
         std::memcpy(dst, src, bytes);
         dst += align16(bytes);
@@ -253,34 +262,31 @@ void StandaloneContext::upload(const rrc_frame_desc& f) {
 }
 
 template <typename F>
-void StandaloneContext::for_each_readback(const rrc_frame_output* out, F&& f) {
-    // Fixed offsets in the readback buffer, in creation order; only the
-    // requested images are copied.
-    size_t offset = 0;
+void StandaloneContext::for_each_readback(const rrc_frame_output* out, uint32_t parity, uint32_t slot, F&& f) {
+    // Fixed offsets in the slot's region of the readback buffer, in creation
+    // order; only the requested images are copied.
+    size_t offset = slot * readback_bytes_;
     f(mask_, offset, true, nullptr, -1);
     offset += align16(mask_.bytes());
     for (size_t i = 0; i < channels_.size(); ++i) {
         const rrc_channel_output* co = out && out->channel_count ? &out->channels[i] : nullptr;
         Channel& ch = channels_[i];
-        f(ch.history[parity_], offset, co && co->values, co ? (void*)co->values : nullptr, (int)i);
-        offset += align16(ch.history[parity_].bytes());
-        f(ch.age[parity_], offset, co && co->age, co ? (void*)co->age : nullptr, (int)i);
-        offset += align16(ch.age[parity_].bytes());
-        f(ch.weight[parity_], offset, co && co->weight, co ? (void*)co->weight : nullptr, (int)i);
-        offset += align16(ch.weight[parity_].bytes());
+        f(ch.history[parity], offset, co && co->values, co ? (void*)co->values : nullptr, (int)i);
+        offset += align16(ch.history[parity].bytes());
+        f(ch.age[parity], offset, co && co->age, co ? (void*)co->age : nullptr, (int)i);
+        offset += align16(ch.age[parity].bytes());
+        f(ch.weight[parity], offset, co && co->weight, co ? (void*)co->weight : nullptr, (int)i);
+        offset += align16(ch.weight[parity].bytes());
     }
 }
 
-void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* out) {
+void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* out, uint32_t slot, uint32_t parity,
+                               bool prev_valid) {
     auto& vk = dev_->vk;
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
-
-    std::vector<const GpuImage*> inputs = {&depth_[parity_], &reprojection_, &nocache_};
+    std::vector<const GpuImage*> inputs = {&depth_[parity], &reprojection_, &nocache_};
     for (auto& ch : channels_) inputs.insert(inputs.end(), {&ch.samples, &ch.confidence});
     std::vector<const GpuImage*> outputs;
-    for_each_readback(out, [&](const GpuImage& img, size_t, bool wanted, void*, int) {
+    for_each_readback(out, parity, slot, [&](const GpuImage& img, size_t, bool wanted, void*, int) {
         if (wanted) outputs.push_back(&img);
     });
 
@@ -293,7 +299,7 @@ void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* 
     transition(inputs, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_WRITE_BIT);
-    size_t offset = 0;
+    size_t offset = slot * upload_bytes_;
     for (const GpuImage* img : inputs) {
         if (!img->image) continue;
         VkBufferImageCopy r{};
@@ -306,13 +312,13 @@ void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* 
     // 2. Uploaded inputs to the kernel.
     transition(inputs, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    FramePushConstants pc = make_frame_constants(config_, f, have_previous_);
-    pipeline_->record(cmd_, sets_[parity_], pc, config_.width, config_.height);
+    FramePushConstants pc = make_frame_constants(config_, f, prev_valid);
+    pipeline_->record(cmd_, sets_[parity], pc, config_.width, config_.height);
     // 3. Requested outputs to the copy, then back to GENERAL: next frame's
     //    kernel reads them as history.
     transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    for_each_readback(out, [&](const GpuImage& img, size_t at, bool wanted, void*, int) {
+    for_each_readback(out, parity, slot, [&](const GpuImage& img, size_t at, bool wanted, void*, int) {
         if (!img.image || !wanted) return;
         VkBufferImageCopy r{};
         r.bufferOffset = at;
@@ -324,7 +330,6 @@ void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* 
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     memory_barrier(vk, cmd_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                    VK_ACCESS_HOST_READ_BIT);
-    VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 }
 
 void StandaloneContext::transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to,
@@ -359,10 +364,10 @@ void StandaloneContext::submit_and_wait() {
     VulkanDevice::check(vk.vkResetFences(dev_->device, 1, &fence_), "vkResetFences");
 }
 
-void StandaloneContext::read_back(rrc_frame_output* out) {
+void StandaloneContext::read_back(rrc_frame_output* out, uint32_t slot, uint32_t parity) {
     const size_t n = (size_t)config_.width * config_.height;
     rrc_frame_stats stats{};
-    const uint8_t* mask = readback_.data;
+    const uint8_t* mask = readback_.data + slot * readback_bytes_;
     for (size_t i = 0; i < n; ++i) {
         uint8_t m = mask[i];
         stats.hits += (m & RRC_MASK_HIT) ? 1 : 0;
@@ -372,7 +377,7 @@ void StandaloneContext::read_back(rrc_frame_output* out) {
     }
     stats.misses = n - stats.background - stats.hits;
     if (!out) return;
-    for_each_readback(out, [&](const GpuImage& img, size_t at, bool wanted, void* dst, int channel) {
+    for_each_readback(out, parity, slot, [&](const GpuImage& img, size_t at, bool wanted, void* dst, int channel) {
         if (!img.image || !wanted) return;
         const unsigned char* src = readback_.data + at;
         if (channel >= 0 && img.format == VK_FORMAT_R16_SFLOAT) {
@@ -391,13 +396,21 @@ void StandaloneContext::read_back(rrc_frame_output* out) {
     out->stats = stats;
 }
 
-void StandaloneContext::run_frame(const rrc_frame_desc& f, rrc_frame_output* out) {
-    upload(f);
-    record(f, out);
+void StandaloneContext::run_frames(uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
+    reserve_batch(count);
+    for (uint32_t i = 0; i < count; ++i) upload(frames[i], i);
+    auto& vk = dev_->vk;
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    // Frame i writes the image set of parity parity_ ^ (i & 1) and reads the other.
+    for (uint32_t i = 0; i < count; ++i)
+        record(frames[i], outputs ? &outputs[i] : nullptr, i, parity_ ^ (i & 1u), have_previous_ || i > 0);
+    VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
-    read_back(out);
-    // Only now does this frame become the previous one.
-    parity_ = 1 - parity_;
+    for (uint32_t i = 0; i < count; ++i) read_back(outputs ? &outputs[i] : nullptr, i, parity_ ^ (i & 1u));
+    // Only now do the frames become history.
+    parity_ ^= count & 1u;
     have_previous_ = true;
 }
 

@@ -18,9 +18,10 @@ public:
     explicit StandaloneContext(const ContextConfig& config);
     ~StandaloneContext();
 
-    // Validates, runs one frame and fills `output`; throws rrc::Error with the
-    // context untouched (history, parity) on failure.
-    void run_frame(const rrc_frame_desc& frame, rrc_frame_output* output);
+    // Runs already validated frames in one submission and fills `outputs`
+    // (NULL, or one per frame).  Throws rrc::Error; a failure before the
+    // submission leaves history and parity untouched.
+    void run_frames(uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs);
 
     const ContextConfig& config() const { return config_; }
     const VulkanDevice& device() const { return *dev_; }
@@ -33,14 +34,15 @@ private:
     void create_images();
     void write_descriptor_sets();
     void initialise_images();
-    void upload(const rrc_frame_desc& frame);
-    void record(const rrc_frame_desc& frame, const rrc_frame_output* output);
+    void reserve_batch(uint32_t frames);
+    void upload(const rrc_frame_desc& frame, uint32_t slot);
+    void record(const rrc_frame_desc& frame, const rrc_frame_output* output, uint32_t slot, uint32_t parity, bool prev_valid);
     void submit_and_wait();
     void transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
                     VkAccessFlags src_access, VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
-    void read_back(rrc_frame_output* output);
+    void read_back(rrc_frame_output* output, uint32_t slot, uint32_t parity);
     template <typename F>
-    void for_each_readback(const rrc_frame_output* output, F&& f);
+    void for_each_readback(const rrc_frame_output* output, uint32_t parity, uint32_t slot, F&& f);
 
     ContextConfig config_;
     std::unique_ptr<VulkanDevice> dev_;
@@ -49,7 +51,9 @@ private:
     GpuImage reprojection_, nocache_, mask_;
     std::vector<Channel> channels_;
     std::vector<GpuImage> placeholders_;  // 1x1 images bound where a slot or format is unused
-    HostBuffer upload_, readback_;
+    HostBuffer upload_, readback_;    // batch_capacity_ regions of *_bytes_ each
+    size_t upload_bytes_ = 0, readback_bytes_ = 0;
+    uint32_t batch_capacity_ = 0;
     VkDescriptorSet sets_[2] = {};
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;

@@ -329,6 +329,14 @@ typedef struct rrc_frame_output {
  *  of the next call.  On error the history is unchanged. */
 RRC_API rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_frame_output* output);
 
+/** Runs `count` frames in one submission: the same results as `count` calls of
+ *  rrc_frame_run, with one upload, one wait and one readback for all (long
+ *  offline runs, tests).  `outputs` is NULL or an array of `count`.  Every
+ *  frame is validated before anything runs; on a validation error nothing
+ *  changes.  Staging memory grows to the largest batch: count * (inputs + outputs). */
+RRC_API rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames,
+                                       rrc_frame_output* outputs);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,988 @@
+// Tests of rrc-accumulate's option parser, of rrc_exr_io, and of the tool's
+// checks (which run before any rrc context exists).  One end-to-end test
+// runs a small sequence through the library and is skipped without a device.
+//
+// Links: rrc_accumulate_core (which brings rrc and rrc_exr_io), GTest::gtest_main.
+#include "accumulate.h"
+#include "options.h"
+#include "sequence.h"
+
+#include <exr_io.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using rrc_cli::Options;
+using rrc_cli::parse_arguments;
+using rrc_cli::ParseResult;
+using rrc_cli::SignalOptions;
+
+namespace {
+
+ParseResult parse(std::initializer_list<const char*> args)
+{
+    std::vector<const char*> argv = {"rrc-accumulate"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return parse_arguments(static_cast<int>(argv.size()), argv.data());
+}
+
+// The three required options plus `extra`.
+ParseResult parse_with(std::initializer_list<const char*> extra)
+{
+    std::vector<const char*> argv = {"rrc-accumulate", "--input", "in/f_%04d.exr", "--output", "out/o_%04d.exr",
+                                     "--frames", "1-3"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return parse_arguments(static_cast<int>(argv.size()), argv.data());
+}
+
+void expect_error(const ParseResult& r, const std::string& fragment)
+{
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(r.error.find(fragment), std::string::npos) << "error '" << r.error << "' lacks '" << fragment << "'";
+}
+
+// A fresh directory per test.
+class TempDir {
+public:
+    TempDir()
+    {
+        static std::atomic<int> counter{0};
+        path_ = fs::path(testing::TempDir()) /
+                ("rrc_cli_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
+                 "_" + std::to_string(counter++));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir()
+    {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+std::vector<std::string> dir_entries(const fs::path& dir)
+{
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir))
+        names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::vector<char> file_bytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void write_bytes(const std::string& path, const std::vector<char>& bytes)
+{
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+rrc_exr::ExrImage sample_image(int w, int h)
+{
+    rrc_exr::ExrImage img;
+    img.width = w;
+    img.height = h;
+    const std::size_t n = std::size_t(w) * h;
+    auto& a = img.channels["color.R"];
+    auto& b = img.channels["Z"];
+    auto& u = img.uint_channels["id"];
+    for (std::size_t i = 0; i < n; ++i) {
+        a.push_back(0.1f * float(i) - 3.0f);
+        b.push_back(1.0f / float(i + 1));
+        u.push_back(static_cast<uint32_t>(i * 2654435761u));
+    }
+    if (n < 5)
+        return img;
+    // Values a format could mangle.
+    a[0] = std::numeric_limits<float>::infinity();
+    a[1] = -0.0f;
+    a[2] = std::numeric_limits<float>::denorm_min();
+    a[3] = std::numeric_limits<float>::quiet_NaN();
+    a[4] = 123456789.0f;
+    img.attributes["comment"] = "rrc round trip";
+    return img;
+}
+
+bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b)
+{
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+// ---- a sequence on disk for the tool ------------------------------------
+
+struct SceneOptions {
+    int w = 16, h = 12;
+    bool motion = false;   // mv.X/mv.Y(/mv.Z) instead of prevclip
+    bool motion_z = true;
+    bool rgb_only = false; // color.R/G/B without A
+    bool conf = false;
+    const char* drop = nullptr; // a channel left out of frame `drop_frame`
+    int drop_frame = -1;
+};
+
+// A static camera looking at a plane at standard NDC depth 0.5: every pixel
+// reprojects onto itself, so every pixel after the first frame is a hit.
+void write_static_sequence(const std::string& pattern, int first, int last, const SceneOptions& s)
+{
+    for (int f = first; f <= last; ++f) {
+        rrc_exr::ExrImage img;
+        img.width = s.w;
+        img.height = s.h;
+        const std::size_t n = std::size_t(s.w) * s.h;
+        auto ch = [&](const std::string& name) -> std::vector<float>& {
+            return img.channels[name] = std::vector<float>(n, 0.0f);
+        };
+        auto& z = ch("Z");
+        std::vector<float>* px = nullptr;
+        std::vector<float>* py = nullptr;
+        std::vector<float>* pz = nullptr;
+        std::vector<float>* pw = nullptr;
+        if (s.motion) {
+            ch("mv.X");
+            ch("mv.Y");
+            if (s.motion_z)
+                ch("mv.Z");
+        } else {
+            px = &ch("prevclip.X");
+            py = &ch("prevclip.Y");
+            pz = &ch("prevclip.Z");
+            pw = &ch("prevclip.W");
+        }
+        auto& y = ch("shadow.Y");
+        auto& r = ch("color.R");
+        auto& g = ch("color.G");
+        auto& b = ch("color.B");
+        std::vector<float>* a = s.rgb_only ? nullptr : &ch("color.A");
+        std::vector<float>* conf = s.conf ? &ch("color.conf") : nullptr;
+        for (int j = 0; j < s.h; ++j)
+            for (int i = 0; i < s.w; ++i) {
+                const std::size_t k = std::size_t(j) * s.w + i;
+                z[k] = 0.5f;
+                if (px) {
+                    (*px)[k] = 2.0f * (i + 0.5f) / s.w - 1.0f;
+                    (*py)[k] = 2.0f * (j + 0.5f) / s.h - 1.0f;
+                    (*pz)[k] = 0.5f;
+                    (*pw)[k] = 1.0f;
+                }
+                y[k] = float((i + j + f) % 2);
+                r[k] = 0.25f * f;
+                g[k] = 0.5f;
+                b[k] = float(i) / s.w;
+                if (a)
+                    (*a)[k] = 1.0f;
+                if (conf)
+                    (*conf)[k] = 1.0f;
+            }
+        if (s.drop && f == s.drop_frame)
+            img.channels.erase(s.drop);
+        const std::string path = rrc_cli::format_frame_path(pattern, f);
+        fs::create_directories(fs::path(path).parent_path());
+        rrc_exr::write_exr(path, img);
+    }
+}
+
+int run_tool(std::initializer_list<std::string> args, std::string* out_text = nullptr,
+             std::string* err_text = nullptr)
+{
+    std::vector<std::string> storage = {"rrc-accumulate"};
+    storage.insert(storage.end(), args.begin(), args.end());
+    std::vector<const char*> argv;
+    for (const std::string& s : storage)
+        argv.push_back(s.c_str());
+    std::ostringstream out, err;
+    int rc = rrc_cli::accumulate_main(static_cast<int>(argv.size()), argv.data(), out, err);
+    if (out_text)
+        *out_text = out.str();
+    if (err_text)
+        *err_text = err.str();
+    return rc;
+}
+
+} // namespace
+
+// ======================================================================
+// Option parser
+// ======================================================================
+
+TEST(AccumulateOptions, RequiredOnlyGivesDefaults)
+{
+    ParseResult r = parse_with({});
+    ASSERT_TRUE(r.ok()) << r.error;
+    const Options& o = r.options;
+    EXPECT_EQ(o.input_pattern, "in/f_%04d.exr");
+    EXPECT_EQ(o.output_pattern, "out/o_%04d.exr");
+    EXPECT_EQ(o.first_frame, 1);
+    EXPECT_EQ(o.last_frame, 3);
+    EXPECT_EQ(o.depth_mode, RRC_DEPTH_MODE_STANDARD);
+    EXPECT_EQ(o.depth_format, RRC_DEPTH_FORMAT_FLOAT32);
+    EXPECT_EQ(o.epsilon, 0.0f);
+    EXPECT_EQ(o.epsilon_scale, 0.0f);
+    EXPECT_EQ(o.tau, 0.0f);
+    EXPECT_EQ(o.background_threshold, 0.0f);
+    EXPECT_EQ(o.near_plane, 0.0f);
+    EXPECT_EQ(o.far_plane, 0.0f);
+    EXPECT_EQ(o.reproject, rrc_cli::Reproject::PrevClip);
+    EXPECT_EQ(o.motion_scale[0], 1.0f);
+    EXPECT_EQ(o.motion_scale[1], 1.0f);
+    EXPECT_TRUE(o.camera_file.empty());
+    EXPECT_TRUE(o.signals.empty());
+    EXPECT_TRUE(o.device.empty());
+    EXPECT_FALSE(o.validation);
+    EXPECT_FALSE(o.quiet);
+    EXPECT_FALSE(o.verbose);
+    EXPECT_FALSE(o.help);
+}
+
+TEST(AccumulateOptions, EveryOptionParsed)
+{
+    ParseResult r = parse({"--input", "a/%d.exr", "--frames", "7-19", "--output", "b/%05d.exr", "--depth-mode",
+                           "reversed", "--depth-format", "unorm24", "--epsilon", "1e-6", "--epsilon-scale", "2",
+                           "--tau", "0.05", "--background-threshold", "5000", "--near", "0.1", "--far", "inf",
+                           "--reproject", "motion", "--motion-scale", "0.0078125,-0.0104166", "--camera", "cam.json",
+                           "--signal", "shadow:lambda=0.8,blend=age_aware,filter=catmull_rom,history=fp32,max_age=64",
+                           "--signal", "color", "--device", "llvmpipe", "--validation", "--quiet", "--verbose"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    const Options& o = r.options;
+    EXPECT_EQ(o.input_pattern, "a/%d.exr");
+    EXPECT_EQ(o.output_pattern, "b/%05d.exr");
+    EXPECT_EQ(o.first_frame, 7);
+    EXPECT_EQ(o.last_frame, 19);
+    EXPECT_EQ(o.depth_mode, RRC_DEPTH_MODE_REVERSED);
+    EXPECT_EQ(o.depth_format, RRC_DEPTH_FORMAT_UNORM24);
+    EXPECT_FLOAT_EQ(o.epsilon, 1e-6f);
+    EXPECT_FLOAT_EQ(o.epsilon_scale, 2.0f);
+    EXPECT_FLOAT_EQ(o.tau, 0.05f);
+    EXPECT_FLOAT_EQ(o.background_threshold, 5000.0f);
+    EXPECT_FLOAT_EQ(o.near_plane, 0.1f);
+    EXPECT_TRUE(std::isinf(o.far_plane));
+    EXPECT_EQ(o.reproject, rrc_cli::Reproject::Motion);
+    EXPECT_FLOAT_EQ(o.motion_scale[0], 0.0078125f);
+    EXPECT_FLOAT_EQ(o.motion_scale[1], -0.0104166f);
+    EXPECT_EQ(o.camera_file, "cam.json");
+    ASSERT_EQ(o.signals.size(), 2u);
+    EXPECT_EQ(o.signals[0].layer, "shadow");
+    EXPECT_FLOAT_EQ(o.signals[0].lambda, 0.8f);
+    EXPECT_EQ(o.signals[0].blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(o.signals[0].filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(o.signals[0].history, RRC_HISTORY_FP32);
+    EXPECT_EQ(o.signals[0].max_age, 64u);
+    EXPECT_EQ(o.signals[1].layer, "color");
+    EXPECT_EQ(o.device, "llvmpipe");
+    EXPECT_TRUE(o.validation);
+    EXPECT_TRUE(o.quiet);
+    EXPECT_TRUE(o.verbose);
+}
+
+TEST(AccumulateOptions, EnumValues)
+{
+    EXPECT_EQ(parse_with({"--depth-mode", "standard"}).options.depth_mode, RRC_DEPTH_MODE_STANDARD);
+    EXPECT_EQ(parse_with({"--depth-mode", "linear"}).options.depth_mode, RRC_DEPTH_MODE_LINEAR);
+    EXPECT_EQ(parse_with({"--depth-format", "float32"}).options.depth_format, RRC_DEPTH_FORMAT_FLOAT32);
+    EXPECT_EQ(parse_with({"--depth-format", "unorm16"}).options.depth_format, RRC_DEPTH_FORMAT_UNORM16);
+    EXPECT_EQ(parse_with({"--reproject", "prev_clip"}).options.reproject, rrc_cli::Reproject::PrevClip);
+    ParseResult cam = parse_with({"--reproject", "camera", "--camera", "c.json"});
+    ASSERT_TRUE(cam.ok()) << cam.error;
+    EXPECT_EQ(cam.options.reproject, rrc_cli::Reproject::Camera);
+}
+
+TEST(AccumulateOptions, InlineValues)
+{
+    ParseResult r = parse({"--input=i_%03d.exr", "--output=o_%03d.exr", "--frames=4", "--epsilon=0.001",
+                           "--signal=shadow:lambda=0.5"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_EQ(r.options.input_pattern, "i_%03d.exr");
+    EXPECT_EQ(r.options.first_frame, 4);
+    EXPECT_EQ(r.options.last_frame, 4);
+    EXPECT_FLOAT_EQ(r.options.epsilon, 0.001f);
+    ASSERT_EQ(r.options.signals.size(), 1u);
+    EXPECT_FLOAT_EQ(r.options.signals[0].lambda, 0.5f);
+    expect_error(parse_with({"--quiet=1"}), "--quiet");
+}
+
+TEST(AccumulateOptions, HelpNeedsNothingElse)
+{
+    ParseResult r = parse({"--help"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_TRUE(r.options.help);
+    EXPECT_TRUE(parse({"-h"}).options.help);
+}
+
+TEST(AccumulateOptions, UsageDocumentsEveryOption)
+{
+    const std::string u = rrc_cli::usage_text();
+    for (const char* opt : {"--input", "--output", "--frames", "--depth-mode", "--depth-format", "--epsilon",
+                            "--epsilon-scale", "--tau", "--background-threshold", "--near", "--far", "--reproject",
+                            "--motion-scale", "--camera", "--signal", "--device", "--validation", "--quiet",
+                            "--verbose", "--help", "lambda=", "blend=", "filter=", "history=", "max_age=",
+                            "age_aware", "running_mean", "catmull_rom", "nearest", "unorm16", "unorm24", "prev_clip",
+                            "rrc.mask", ".age", "nocache.Y", "jitter", "view_proj", "mv.Z", "prevclip"})
+        EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
+}
+
+TEST(AccumulateOptions, MissingRequired)
+{
+    expect_error(parse({"--output", "o_%d.exr", "--frames", "1-2"}), "--input");
+    expect_error(parse({"--input", "i_%d.exr", "--frames", "1-2"}), "--output");
+    expect_error(parse({"--input", "i_%d.exr", "--output", "o_%d.exr"}), "--frames");
+    expect_error(parse_with({"--reproject", "camera"}), "--camera");
+}
+
+TEST(AccumulateOptions, BadOptionsNameTheOption)
+{
+    expect_error(parse_with({"--bogus"}), "--bogus");
+    expect_error(parse_with({"-x"}), "-x");
+    expect_error(parse_with({"stray"}), "stray");
+    expect_error(parse_with({"--epsilon"}), "--epsilon");              // no value
+    expect_error(parse_with({"--camera", "--quiet"}), "--camera");     // an option is not a value
+    expect_error(parse_with({"--epsilon", "abc"}), "--epsilon");
+    expect_error(parse_with({"--epsilon", "-1"}), "--epsilon");
+    expect_error(parse_with({"--epsilon", "0"}), "--epsilon");
+    expect_error(parse_with({"--epsilon", "1e-3x"}), "--epsilon");
+    expect_error(parse_with({"--epsilon", "nan"}), "--epsilon");
+    expect_error(parse_with({"--epsilon", "1e99"}), "--epsilon");
+    expect_error(parse_with({"--epsilon-scale", "0"}), "--epsilon-scale");
+    expect_error(parse_with({"--tau", "-0.1"}), "--tau");
+    expect_error(parse_with({"--tau", "inf"}), "--tau");
+    expect_error(parse_with({"--background-threshold", "x"}), "--background-threshold");
+    expect_error(parse_with({"--near", "0"}), "--near");
+    expect_error(parse_with({"--far", "-inf"}), "--far");
+    expect_error(parse_with({"--near", "10", "--far", "1"}), "--far");
+    expect_error(parse_with({"--depth-mode", "inverted"}), "--depth-mode");
+    expect_error(parse_with({"--depth-format", "unorm32"}), "--depth-format");
+    expect_error(parse_with({"--reproject", "flow"}), "--reproject");
+    expect_error(parse_with({"--motion-scale", "1"}), "--motion-scale");
+    expect_error(parse_with({"--motion-scale", "a,b"}), "--motion-scale");
+    expect_error(parse_with({"--motion-scale", "0,1"}), "--motion-scale");
+    expect_error(parse_with({"--motion-scale", "1,2,3"}), "--motion-scale");
+    expect_error(parse_with({"--camera", ""}), "--camera");
+    expect_error(parse_with({"--device", ""}), "--device");
+    expect_error(parse_with({"--depth-mode", "linear", "--depth-mode", "reversed"}), "--depth-mode");
+    expect_error(parse_with({"--frames", "2-4"}), "--frames"); // given twice
+    expect_error(parse({"--input", "f_%04d.exr", "--output", "f_%04d.exr", "--frames", "1"}), "--output");
+}
+
+TEST(AccumulateOptions, Patterns)
+{
+    std::string err;
+    EXPECT_TRUE(rrc_cli::validate_pattern("frames/f_%04d.exr", err)) << err;
+    EXPECT_TRUE(rrc_cli::validate_pattern("f%d", err)) << err;
+    EXPECT_TRUE(rrc_cli::validate_pattern("100%%/f_%3i_%%.exr", err)) << err;
+    EXPECT_TRUE(rrc_cli::validate_pattern("%u", err)) << err;
+    EXPECT_FALSE(rrc_cli::validate_pattern("frames/f.exr", err));
+    EXPECT_NE(err.find("exactly one"), std::string::npos) << err;
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%d_%d.exr", err));
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%s.exr", err));
+    EXPECT_NE(err.find("%s"), std::string::npos) << err;
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%-4d.exr", err));
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%04", err));
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%n", err));
+    EXPECT_FALSE(rrc_cli::validate_pattern("f_%999d", err));
+    EXPECT_FALSE(rrc_cli::validate_pattern("", err));
+
+    EXPECT_EQ(rrc_cli::format_frame_path("frames/f_%04d.exr", 7), "frames/f_0007.exr");
+    EXPECT_EQ(rrc_cli::format_frame_path("frames/f_%04d.exr", 123456), "frames/f_123456.exr");
+    EXPECT_EQ(rrc_cli::format_frame_path("f%d", 0), "f0");
+    EXPECT_EQ(rrc_cli::format_frame_path("f%3d", 5), "f  5");
+    EXPECT_EQ(rrc_cli::format_frame_path("100%%/f_%02i_%%.exr", 3), "100%/f_03_%.exr");
+
+    expect_error(parse({"--input", "frames/f.exr", "--output", "o_%d.exr", "--frames", "1"}), "--input");
+    expect_error(parse({"--input", "f_%d.exr", "--output", "o_%s.exr", "--frames", "1"}), "--output");
+}
+
+TEST(AccumulateOptions, FrameRanges)
+{
+    int64_t a = -1, b = -1;
+    std::string err;
+    EXPECT_TRUE(rrc_cli::parse_frame_range("10-20", a, b, err));
+    EXPECT_EQ(a, 10);
+    EXPECT_EQ(b, 20);
+    EXPECT_TRUE(rrc_cli::parse_frame_range("7", a, b, err));
+    EXPECT_EQ(a, 7);
+    EXPECT_EQ(b, 7);
+    EXPECT_TRUE(rrc_cli::parse_frame_range("0-0", a, b, err));
+    EXPECT_EQ(a, 0);
+    EXPECT_EQ(b, 0);
+    EXPECT_TRUE(rrc_cli::parse_frame_range("0012-0013", a, b, err));
+    EXPECT_EQ(a, 12);
+    EXPECT_EQ(b, 13);
+    for (const char* bad : {"5-3", "-3", "a-b", "1-", "-", "", "1-2-3", "1 - 2", "+1-2", "1.5-3",
+                            "99999999999999999999-1", "0-1000000000"}) {
+        EXPECT_FALSE(rrc_cli::parse_frame_range(bad, a, b, err)) << bad;
+        EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+        expect_error(parse({"--input", "i%d", "--output", "o%d", "--frames", bad}), "--frames");
+    }
+}
+
+TEST(AccumulateOptions, SignalSpecs)
+{
+    SignalOptions s;
+    std::string err;
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("shadow", s, err)) << err;
+    EXPECT_EQ(s.layer, "shadow");
+    EXPECT_FLOAT_EQ(s.lambda, 0.6f);
+    EXPECT_EQ(s.blend, RRC_BLEND_FIXED);
+    EXPECT_EQ(s.filter, RRC_HISTORY_FILTER_BILINEAR);
+    EXPECT_EQ(s.history, RRC_HISTORY_FP16);
+    EXPECT_EQ(s.max_age, 255u);
+
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("diffuse.indirect:blend=running_mean,filter=nearest", s, err)) << err;
+    EXPECT_EQ(s.layer, "diffuse.indirect");
+    EXPECT_EQ(s.blend, RRC_BLEND_RUNNING_MEAN);
+    EXPECT_EQ(s.filter, RRC_HISTORY_FILTER_NEAREST);
+    EXPECT_FLOAT_EQ(s.lambda, 0.6f);
+
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("a:lambda=0,max_age=65535,history=fp16,filter=bilinear,blend=fixed", s, err))
+        << err;
+    EXPECT_EQ(s.lambda, 0.0f);
+    EXPECT_EQ(s.max_age, 65535u);
+
+    struct Bad {
+        const char* spec;
+        const char* fragment;
+    };
+    for (const Bad& b : std::initializer_list<Bad>{{"", "empty"},
+                                                   {":lambda=0.5", "empty"},
+                                                   {"s:", "key=value"},
+                                                   {"s:lambda", "key=value"},
+                                                   {"s:lambda=", "key=value"},
+                                                   {"s:=0.5", "key=value"},
+                                                   {"s:lambda=0.5,", "key=value"},
+                                                   {"s:lamda=0.5", "lamda"},
+                                                   {"s:lambda=1", "lambda"},
+                                                   {"s:lambda=1.5", "lambda"},
+                                                   {"s:lambda=-0.1", "lambda"},
+                                                   {"s:lambda=x", "lambda"},
+                                                   {"s:lambda=nan", "lambda"},
+                                                   {"s:lambda=0.5,lambda=0.4", "twice"},
+                                                   {"s:blend=mean", "blend"},
+                                                   {"s:filter=cubic", "filter"},
+                                                   {"s:history=fp64", "history"},
+                                                   {"s:max_age=0", "max_age"},
+                                                   {"s:max_age=65536", "max_age"},
+                                                   {"s:max_age=-3", "max_age"},
+                                                   {"s:max_age=1.5", "max_age"},
+                                                   {"mv", "reserved"},
+                                                   {"prevclip", "reserved"},
+                                                   {"nocache", "reserved"},
+                                                   {"rrc", "reserved"},
+                                                   {".x", "invalid"},
+                                                   {"x.", "invalid"}}) {
+        EXPECT_FALSE(rrc_cli::parse_signal_spec(b.spec, s, err)) << b.spec;
+        EXPECT_NE(err.find(b.fragment), std::string::npos) << b.spec << " -> " << err;
+        EXPECT_NE(err.find("--signal"), std::string::npos) << err;
+        expect_error(parse_with({"--signal", b.spec}), "--signal");
+    }
+    const std::string long_name(RRC_MAX_NAME, 'x');
+    EXPECT_FALSE(rrc_cli::parse_signal_spec(long_name, s, err));
+    EXPECT_TRUE(rrc_cli::parse_signal_spec(std::string(RRC_MAX_NAME - 1, 'x'), s, err)) << err;
+}
+
+TEST(AccumulateOptions, SignalList)
+{
+    ParseResult r = parse_with({"--signal", "a", "--signal", "b:lambda=0.9", "--signal", "c", "--signal", "d"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    ASSERT_EQ(r.options.signals.size(), 4u);
+    EXPECT_FLOAT_EQ(r.options.signals[1].lambda, 0.9f);
+    expect_error(parse_with({"--signal", "a", "--signal", "a:lambda=0.1"}), "twice");
+    expect_error(parse_with({"--signal", "a", "--signal", "b", "--signal", "c", "--signal", "d", "--signal", "e"}),
+                 "at most");
+}
+
+// ======================================================================
+// rrc_exr_io
+// ======================================================================
+
+TEST(ExrIo, RoundTripIsExact)
+{
+    TempDir dir;
+    const rrc_exr::ExrImage img = sample_image(37, 23);
+    for (rrc_exr::Compression c : {rrc_exr::Compression::Zip, rrc_exr::Compression::None,
+                                   rrc_exr::Compression::Piz, rrc_exr::Compression::Zips,
+                                   rrc_exr::Compression::Rle}) {
+        rrc_exr::set_thread_count(c == rrc_exr::Compression::Zip ? 2 : 0);
+        rrc_exr::WriteOptions wo;
+        wo.compression = c;
+        const std::string path = dir / "round.exr";
+        rrc_exr::write_exr(path, img, wo);
+        const rrc_exr::ExrImage back = rrc_exr::read_exr(path);
+        EXPECT_EQ(back.width, 37);
+        EXPECT_EQ(back.height, 23);
+        ASSERT_EQ(back.channels.size(), img.channels.size());
+        for (const auto& kv : img.channels) {
+            ASSERT_NE(back.find(kv.first), nullptr) << kv.first;
+            EXPECT_TRUE(bitwise_equal(*back.find(kv.first), kv.second)) << kv.first;
+        }
+        EXPECT_EQ(back.uint_channels, img.uint_channels);
+        ASSERT_EQ(back.attributes.count("comment"), 1u);
+        EXPECT_EQ(back.attributes.at("comment"), "rrc round trip");
+    }
+    rrc_exr::set_thread_count(0);
+    EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"round.exr"}); // no temporary left
+}
+
+TEST(ExrIo, HeaderInfoAndChannelNames)
+{
+    TempDir dir;
+    const rrc_exr::ExrImage img = sample_image(5, 4);
+    rrc_exr::write_exr(dir / "a.exr", img);
+    const rrc_exr::ExrInfo info = rrc_exr::read_exr_info(dir / "a.exr");
+    EXPECT_EQ(info.width, 5);
+    EXPECT_EQ(info.height, 4);
+    EXPECT_EQ(info.parts, 1);
+    ASSERT_EQ(info.channels.size(), 3u);
+    EXPECT_EQ(info.channels[0].name, "Z");
+    EXPECT_EQ(info.channels[0].type, rrc_exr::PixelType::Float);
+    EXPECT_EQ(info.channels[2].name, "id");
+    EXPECT_EQ(info.channels[2].type, rrc_exr::PixelType::Uint);
+    EXPECT_TRUE(info.has("color.R"));
+    EXPECT_FALSE(info.has("color.G"));
+    const std::vector<std::string> expected = {"Z", "color.R", "id"};
+    EXPECT_EQ(rrc_exr::channel_names(dir / "a.exr"), expected);
+    EXPECT_EQ(rrc_exr::channel_names(img), expected);
+    EXPECT_TRUE(img.has("id"));
+    EXPECT_EQ(img.find("id"), nullptr);
+    EXPECT_EQ(img.as_float("id")[1], float(uint32_t(2654435761u)));
+    EXPECT_THROW(img.as_float("nope", "x.exr"), rrc_exr::ExrError);
+}
+
+TEST(ExrIo, OverwriteReplacesAtomically)
+{
+    TempDir dir;
+    const std::string path = dir / "f.exr";
+    rrc_exr::write_exr(path, sample_image(4, 4));
+    rrc_exr::ExrImage second = sample_image(6, 2);
+    second.channels.erase("Z");
+    rrc_exr::write_exr(path, second);
+    const rrc_exr::ExrImage back = rrc_exr::read_exr(path);
+    EXPECT_EQ(back.width, 6);
+    EXPECT_FALSE(back.has("Z"));
+    EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"f.exr"});
+}
+
+TEST(ExrIo, WriteErrorsLeaveNothing)
+{
+    TempDir dir;
+    const std::string path = dir / "keep.exr";
+    rrc_exr::write_exr(path, sample_image(4, 3));
+    const std::vector<char> before = file_bytes(path);
+
+    rrc_exr::ExrImage bad = sample_image(4, 3);
+    bad.channels["short"] = std::vector<float>(5, 0.0f);
+    try {
+        rrc_exr::write_exr(path, bad);
+        ADD_FAILURE() << "no error for a short channel";
+    } catch (const rrc_exr::ExrError& e) {
+        EXPECT_NE(std::string(e.what()).find("short"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+    rrc_exr::ExrImage both = sample_image(4, 3);
+    both.uint_channels["Z"] = std::vector<uint32_t>(12, 0);
+    EXPECT_THROW(rrc_exr::write_exr(path, both), rrc_exr::ExrError);
+    rrc_exr::ExrImage empty;
+    EXPECT_THROW(rrc_exr::write_exr(path, empty), rrc_exr::ExrError);
+    rrc_exr::ExrImage nochannels;
+    nochannels.width = nochannels.height = 2;
+    EXPECT_THROW(rrc_exr::write_exr(path, nochannels), rrc_exr::ExrError);
+    rrc_exr::ExrImage clash = sample_image(4, 3); // "channels" is a standard attribute of another type
+    clash.attributes["channels"] = "x";
+    EXPECT_THROW(rrc_exr::write_exr(path, clash), rrc_exr::ExrError);
+    EXPECT_THROW(rrc_exr::write_exr(dir / "no/such/dir/f.exr", sample_image(2, 2)), rrc_exr::ExrError);
+    EXPECT_THROW(rrc_exr::write_exr(dir.path().string(), sample_image(2, 2)), rrc_exr::ExrError);
+
+    EXPECT_EQ(file_bytes(path), before);
+    EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"keep.exr"});
+}
+
+TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors)
+{
+    TempDir dir;
+    const std::string good = dir / "good.exr";
+    rrc_exr::ExrImage big = sample_image(64, 64);
+    rrc_exr::write_exr(good, big, rrc_exr::WriteOptions{rrc_exr::Compression::None});
+    const std::vector<char> bytes = file_bytes(good);
+    ASSERT_GT(bytes.size(), 1000u);
+
+    std::vector<std::string> bad_files;
+    for (std::size_t keep : {bytes.size() - 1, bytes.size() / 2, std::size_t(400), std::size_t(100),
+                             std::size_t(20), std::size_t(4), std::size_t(0)}) {
+        const std::string p = dir / ("trunc_" + std::to_string(keep) + ".exr");
+        write_bytes(p, std::vector<char>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(keep)));
+        bad_files.push_back(p);
+    }
+    std::vector<char> garbage(4096);
+    uint32_t x = 12345;
+    for (char& c : garbage)
+        c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
+    write_bytes(dir / "garbage.exr", garbage);
+    bad_files.push_back(dir / "garbage.exr");
+    std::vector<char> magic_garbage = garbage; // valid magic, garbage after
+    std::memcpy(magic_garbage.data(), bytes.data(), 8);
+    write_bytes(dir / "magic_garbage.exr", magic_garbage);
+    bad_files.push_back(dir / "magic_garbage.exr");
+    std::vector<char> corrupt = bytes; // a valid header with a corrupted offset table and pixels
+    for (std::size_t i = bytes.size() / 3; i < bytes.size(); i += 7)
+        corrupt[i] = static_cast<char>(~corrupt[i]);
+    write_bytes(dir / "corrupt.exr", corrupt);
+    bad_files.push_back(dir / "corrupt.exr");
+    std::ofstream(dir / "text.exr") << "this is not an image\n";
+    bad_files.push_back(dir / "text.exr");
+
+    for (const std::string& p : bad_files) {
+        try {
+            rrc_exr::read_exr(p);
+            ADD_FAILURE() << "read_exr accepted " << p;
+        } catch (const rrc_exr::ExrError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(p + ": ", 0), 0u) << e.what();
+            EXPECT_EQ(e.path(), p);
+        }
+    }
+    // The header-only reader refuses what has no valid header.
+    for (const char* name : {"trunc_20.exr", "trunc_4.exr", "trunc_0.exr", "garbage.exr", "text.exr",
+                             "magic_garbage.exr"}) {
+        try {
+            rrc_exr::read_exr_info(dir / name);
+            ADD_FAILURE() << "read_exr_info accepted " << name;
+        } catch (const rrc_exr::ExrError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(ExrIo, MissingFileAndDirectory)
+{
+    TempDir dir;
+    for (const std::string& p : {dir / "nope.exr", dir.path().string()}) {
+        EXPECT_THROW(rrc_exr::read_exr(p), rrc_exr::ExrError);
+        EXPECT_THROW(rrc_exr::read_exr_info(p), rrc_exr::ExrError);
+        EXPECT_THROW(rrc_exr::channel_names(p), rrc_exr::ExrError);
+    }
+    try {
+        rrc_exr::read_exr(dir / "nope.exr");
+    } catch (const rrc_exr::ExrError& e) {
+        EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
+    }
+}
+
+// ======================================================================
+// The tool's checks (no device needed: they fail before rrc_context_create)
+// ======================================================================
+
+TEST(AccumulateTool, HelpAndUsageErrors)
+{
+    std::string out, err;
+    EXPECT_EQ(run_tool({"--help"}, &out, &err), rrc_cli::kExitOk);
+    EXPECT_NE(out.find("--signal"), std::string::npos);
+    EXPECT_EQ(run_tool({}, &out, &err), rrc_cli::kExitUsage); // no argument: the usage, on stderr
+    EXPECT_NE(err.find("Usage: rrc-accumulate"), std::string::npos) << err;
+    EXPECT_EQ(run_tool({"--frames", "x"}, &out, &err), rrc_cli::kExitUsage);
+    EXPECT_NE(err.find("rrc-accumulate: "), std::string::npos) << err;
+    EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+}
+
+TEST(AccumulateTool, RefusesToOverwriteInputs)
+{
+    TempDir dir;
+    write_static_sequence(dir / "f_%02d.exr", 1, 3, {});
+    const std::vector<char> before = file_bytes(dir / "f_02.exr");
+    std::string err;
+    // Frame 2's output is frame 2's input, spelled differently.
+    const std::string in = dir / "f_%02d.exr";
+    const std::string out = (dir.path() / "." / "f_%02d.exr").string();
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-3", "--quiet"}, nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
+    // Another pattern naming the same files.
+    const std::string shifted = dir / "f_0%d.exr";
+    EXPECT_EQ(run_tool({"--input", in, "--output", shifted, "--frames", "1-3"}, nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
+    EXPECT_EQ(file_bytes(dir / "f_02.exr"), before);
+    // The camera file is an input too.
+    std::ofstream(dir / "cam_2.json") << "{}";
+    EXPECT_EQ(run_tool({"--input", in, "--output", dir / "cam_%d.json", "--frames", "1-3", "--camera",
+                        dir / "cam_2.json"},
+                       nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
+}
+
+TEST(AccumulateTool, NamesTheMissingChannelOrFile)
+{
+    TempDir dir;
+    const std::string in = dir / "f_%d.exr", out = dir / "out/o_%d.exr";
+    SceneOptions s;
+    s.drop = "prevclip.W";
+    s.drop_frame = 3;
+    write_static_sequence(in, 1, 4, s);
+    std::string err;
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-4"}, nullptr, &err), rrc_cli::kExitError);
+    EXPECT_NE(err.find("'prevclip.W'"), std::string::npos) << err;
+    EXPECT_NE(err.find("f_3.exr"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir / "out")) << "processing started before the check";
+
+    // mv.* for --reproject motion.
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--reproject", "motion"}, nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("'mv.X'"), std::string::npos) << err;
+
+    // A frame of the range that does not exist.
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "4-9"}, nullptr, &err), rrc_cli::kExitError);
+    EXPECT_NE(err.find("f_5.exr"), std::string::npos) << err;
+    EXPECT_NE(err.find("no such file"), std::string::npos) << err;
+
+    // An unknown --signal layer.
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--signal", "albedo"}, nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("'albedo'"), std::string::npos) << err;
+
+    // A frame whose size differs.
+    rrc_exr::ExrImage small = rrc_exr::read_exr(dir / "f_1.exr");
+    small.height = 1;
+    for (auto& kv : small.channels)
+        kv.second.resize(std::size_t(small.width));
+    rrc_exr::write_exr(dir / "f_2.exr", small);
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2"}, nullptr, &err), rrc_cli::kExitError);
+    EXPECT_NE(err.find("f_2.exr"), std::string::npos) << err;
+    EXPECT_NE(err.find("differs"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(AccumulateTool, MotionWithoutDepthChangeNeedsPlanes)
+{
+    TempDir dir;
+    SceneOptions s;
+    s.motion = true;
+    s.motion_z = false;
+    write_static_sequence(dir / "f_%d.exr", 1, 2, s);
+    std::string err;
+    EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject",
+                        "motion"},
+                       nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("--near"), std::string::npos) << err;
+}
+
+TEST(AccumulateTool, CameraFileErrors)
+{
+    TempDir dir;
+    write_static_sequence(dir / "f_%d.exr", 1, 2, {});
+    struct Case {
+        const char* json;
+        const char* fragment;
+    };
+    const std::string vp = "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]";
+    for (const Case& c : std::initializer_list<Case>{
+             {"{", "invalid JSON"},
+             {"[]", "expected an object"},
+             {"{\"one\": {}}", "frame numbers"},
+             {"{\"-1\": {}}", "frame numbers"},
+             {"{\"1\": 5}", "expected an object"},
+             {"{\"1\": {\"view_proj\": [1,2,3]}}", "16 numbers"},
+             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,\"x\"]}}", "not a number"},
+             {"{\"1\": {\"jitter\": [0.5]}}", "jitter"},
+             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}}", "frame 2"},
+             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}, \"01\": {}}", "twice"}}) {
+        std::ofstream(dir / "cam.json", std::ios::trunc) << c.json;
+        std::string err;
+        EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2",
+                            "--reproject", "camera", "--camera", dir / "cam.json"},
+                           nullptr, &err),
+                  rrc_cli::kExitError)
+            << c.json;
+        EXPECT_NE(err.find(c.fragment), std::string::npos) << c.json << " -> " << err;
+        EXPECT_NE(err.find("cam.json"), std::string::npos) << err;
+    }
+    std::string err;
+    EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject",
+                        "camera", "--camera", dir / "missing.json"},
+                       nullptr, &err),
+              rrc_cli::kExitError);
+    EXPECT_NE(err.find("missing.json"), std::string::npos) << err;
+
+    // A good file parses, keys with leading zeros included.
+    std::ofstream(dir / "cam.json", std::ios::trunc)
+        << "{\"1\": {\"view_proj\": " << vp << ", \"jitter\": [0.25, -0.5]}, \"0002\": {\"view_proj\": " << vp << "}}";
+    auto frames = rrc_cli::load_camera_file(dir / "cam.json", 1, 2, true);
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[1].jitter[0], 0.25f);
+    EXPECT_EQ(frames[1].jitter[1], -0.5f);
+    EXPECT_EQ(frames[2].jitter[0], 0.0f);
+    EXPECT_EQ(frames[2].view_proj[15], 1.0);
+}
+
+TEST(AccumulateTool, LayoutDiscovery)
+{
+    TempDir dir;
+    SceneOptions s;
+    s.rgb_only = true;
+    s.conf = true;
+    write_static_sequence(dir / "f_%d.exr", 1, 1, s);
+    rrc_cli::Options o;
+    const rrc_exr::ExrInfo info = rrc_exr::read_exr_info(dir / "f_1.exr");
+    const rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, dir / "f_1.exr", o);
+    EXPECT_EQ(layout.reprojection, RRC_REPROJECTION_PREV_CLIP);
+    EXPECT_FALSE(layout.nocache);
+    ASSERT_EQ(layout.signals.size(), 2u); // color, shadow: alphabetical
+    EXPECT_EQ(layout.signals[0].options.layer, "color");
+    EXPECT_EQ(layout.signals[0].rrc_components, 4u);
+    EXPECT_EQ(layout.signals[0].components, (std::vector<std::string>{"R", "G", "B"}));
+    EXPECT_TRUE(layout.signals[0].confidence);
+    EXPECT_EQ(layout.signals[1].options.layer, "shadow");
+    EXPECT_EQ(layout.signals[1].rrc_components, 1u);
+    EXPECT_FALSE(layout.signals[1].confidence);
+
+    // RGB is padded with A = 1 for the library.
+    const rrc_cli::FrameData data = rrc_cli::load_frame(rrc_exr::read_exr(dir / "f_1.exr"), dir / "f_1.exr", layout);
+    ASSERT_EQ(data.samples[0].size(), std::size_t(16 * 12 * 4));
+    EXPECT_EQ(data.samples[0][3], 1.0f);
+    EXPECT_EQ(data.samples[0][4 * 5 + 2], 5.0f / 16.0f);
+    EXPECT_EQ(data.reprojection.size(), std::size_t(16 * 12 * 4));
+
+    std::vector<rrc_channel_desc> channels;
+    o.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    o.signals = {};
+    const rrc_context_desc d = rrc_cli::make_context_desc(o, layout, channels);
+    EXPECT_EQ(d.type, RRC_STRUCT_TYPE_CONTEXT_DESC);
+    EXPECT_EQ(d.size, sizeof(rrc_context_desc));
+    EXPECT_EQ(d.api_version, RRC_API_VERSION);
+    EXPECT_EQ(d.width, 16u);
+    EXPECT_EQ(d.height, 12u);
+    EXPECT_EQ(d.depth_mode, RRC_DEPTH_MODE_REVERSED);
+    EXPECT_EQ(d.channel_count, 2u);
+    EXPECT_EQ(d.channels, channels.data());
+    EXPECT_STREQ(channels[0].name, "color");
+    EXPECT_EQ(channels[0].components, 4u);
+    EXPECT_EQ(channels[0].confidence, 1u);
+    EXPECT_FLOAT_EQ(channels[0].lambda, 0.6f);
+    EXPECT_EQ(channels[0].age_cap, 255u);
+    EXPECT_EQ(d.device_name, nullptr);
+    EXPECT_EQ(d.use_nocache_mask, 0u);
+
+    // The output image writes back only the input's channels.
+    rrc_cli::FrameResult result;
+    const std::size_t n = 16 * 12;
+    result.values = {std::vector<float>(n * 4, 0.5f), std::vector<float>(n, 0.25f)};
+    result.age = {std::vector<uint16_t>(n, 3), std::vector<uint16_t>(n, 65535)};
+    result.weight = {std::vector<float>(n, 0.75f), {}};
+    result.mask.assign(n, RRC_MASK_HIT | RRC_MASK_REFRESHED);
+    const rrc_exr::ExrImage img = rrc_cli::make_output_image(layout, result);
+    EXPECT_EQ(rrc_exr::channel_names(img),
+              (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "color.weight", "rrc.mask",
+                                        "shadow.Y", "shadow.age"}));
+    EXPECT_EQ(img.channels.at("rrc.mask")[0], 3.0f);
+    EXPECT_EQ(img.channels.at("shadow.age")[0], 65535.0f);
+    EXPECT_EQ(img.channels.at("color.weight")[0], 0.75f);
+
+    // A nocache.Y channel turns the mask on; non-zero (NaN included) means do not cache.
+    {
+        rrc_exr::ExrImage with_mask = rrc_exr::read_exr(dir / "f_1.exr");
+        std::vector<float> m(n, 0.0f);
+        m[1] = 1.0f;
+        m[2] = -0.5f;
+        m[3] = std::numeric_limits<float>::quiet_NaN();
+        with_mask.channels["nocache.Y"] = m;
+        rrc_exr::write_exr(dir / "mask.exr", with_mask);
+        const rrc_cli::SequenceLayout ml = rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "mask.exr"), "m", o);
+        EXPECT_TRUE(ml.nocache);
+        EXPECT_EQ(ml.signals.size(), 2u); // nocache is not a signal
+        bool required = false;
+        for (const rrc_cli::RequiredChannel& r : rrc_cli::required_channels(ml))
+            required = required || r.name == "nocache.Y";
+        EXPECT_TRUE(required);
+        const rrc_cli::FrameData md = rrc_cli::load_frame(rrc_exr::read_exr(dir / "mask.exr"), "m", ml);
+        ASSERT_EQ(md.nocache.size(), n);
+        EXPECT_EQ(md.nocache[0], 0);
+        EXPECT_EQ(md.nocache[1], 1);
+        EXPECT_EQ(md.nocache[2], 1);
+        EXPECT_EQ(md.nocache[3], 1);
+        std::vector<rrc_channel_desc> mc;
+        EXPECT_EQ(rrc_cli::make_context_desc(o, ml, mc).use_nocache_mask, 1u);
+    }
+
+    // Five layers without --signal is too many.
+    rrc_exr::ExrImage many = rrc_exr::read_exr(dir / "f_1.exr");
+    for (const char* l : {"a.Y", "b.Y", "c.Y"})
+        many.channels[l] = std::vector<float>(n, 0.0f);
+    many.channels["d.X"] = many.channels["d.Y"] = std::vector<float>(n, 0.0f);
+    rrc_exr::write_exr(dir / "many.exr", many);
+    EXPECT_THROW(rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "many.exr"), "many.exr", o),
+                 rrc_cli::CliError);
+    o.signals.resize(1);
+    o.signals[0].layer = "d"; // d.X + d.Y is neither Y nor RGB
+    try {
+        rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "many.exr"), "many.exr", o);
+        ADD_FAILURE() << "layer d accepted";
+    } catch (const rrc_cli::CliError& e) {
+        EXPECT_NE(std::string(e.what()).find("d.X"), std::string::npos) << e.what();
+    }
+}
+
+// ======================================================================
+// End to end through the library (skipped when no Vulkan device exists)
+// ======================================================================
+
+TEST(AccumulateTool, StaticSequenceEndToEnd)
+{
+    TempDir dir;
+    SceneOptions s;
+    s.rgb_only = true;
+    write_static_sequence(dir / "in/f_%03d.exr", 5, 7, s);
+    std::string out, err;
+    const int rc = run_tool({"--input", dir / "in/f_%03d.exr", "--output", dir / "out/acc_%03d.exr", "--frames",
+                             "5-7", "--signal", "shadow:history=fp32", "--signal", "color:history=fp32,lambda=0.5"},
+                            &out, &err);
+    ASSERT_EQ(rc, 0) << err;  // the suite runs on lavapipe: no device is a failure
+    EXPECT_NE(out.find("frame 5:"), std::string::npos) << out;
+    EXPECT_NE(out.find("frame 7:"), std::string::npos) << out;
+    EXPECT_NE(out.find("3 frames"), std::string::npos) << out;
+    EXPECT_NE(out.find("device"), std::string::npos) << out;
+
+    const std::size_t n = 16 * 12;
+    std::vector<rrc_exr::ExrImage> res;
+    for (int f = 5; f <= 7; ++f) {
+        res.push_back(rrc_exr::read_exr(rrc_cli::format_frame_path(dir / "out/acc_%03d.exr", f)));
+        EXPECT_EQ(rrc_exr::channel_names(res.back()),
+                  (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "rrc.mask", "shadow.Y",
+                                            "shadow.age"}));
+    }
+    // Frame 5 is a full miss: out = sample, age 1.
+    for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(int(res[0].channels["rrc.mask"][i]) & RRC_MASK_HIT, 0);
+        EXPECT_EQ(res[0].channels["shadow.age"][i], 1.0f);
+        EXPECT_EQ(res[0].channels["color.R"][i], 1.25f);
+    }
+    // Static geometry: every later pixel hits and blends.  color.R is 0.25 f.
+    for (std::size_t i = 0; i < n; ++i) {
+        EXPECT_NE(int(res[1].channels["rrc.mask"][i]) & RRC_MASK_HIT, 0) << i;
+        EXPECT_EQ(res[1].channels["color.age"][i], 2.0f);
+        EXPECT_EQ(res[2].channels["color.age"][i], 3.0f);
+        EXPECT_NEAR(res[1].channels["color.R"][i], 0.5f * 1.25f + 0.5f * 1.5f, 1e-4f);
+        EXPECT_NEAR(res[2].channels["color.R"][i], 0.5f * 1.375f + 0.5f * 1.75f, 1e-4f);
+        EXPECT_NEAR(res[1].channels["color.G"][i], 0.5f, 1e-4f);
+    }
+    // The inputs are untouched and nothing else was written.
+    EXPECT_EQ(dir_entries(dir.path() / "out"),
+              (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
+}

@@ -1,0 +1,494 @@
+// rrc-accumulate: command-line parsing.
+#include "options.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+#include <sstream>
+
+namespace rrc_cli {
+
+namespace {
+
+// Strict number parsing: the whole text, finite unless allow_inf.
+bool parse_float(const std::string& text, float& out, bool allow_inf = false)
+{
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+        return false;
+    errno = 0;
+    char* end = nullptr;
+    double v = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || std::isnan(v))
+        return false;
+    if (std::isinf(v) && !(allow_inf && v > 0 && errno == 0))
+        return false;
+    if (!std::isinf(v) && std::fabs(v) > 3.4028234663852886e38)
+        return false;
+    out = static_cast<float>(v);
+    return true;
+}
+
+bool parse_int(const std::string& text, int64_t& out)
+{
+    if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0])))
+        return false;
+    errno = 0;
+    char* end = nullptr;
+    long long v = std::strtoll(text.c_str(), &end, 10);
+    if (errno == ERANGE || end != text.c_str() + text.size())
+        return false;
+    out = v;
+    return true;
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// The layers that carry the per-pixel geometry or our own output.
+bool is_reserved_layer(const std::string& layer)
+{
+    return layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc";
+}
+
+} // namespace
+
+const char* reproject_name(Reproject r)
+{
+    switch (r) {
+    case Reproject::PrevClip: return "prev_clip";
+    case Reproject::Motion: return "motion";
+    case Reproject::Camera: return "camera";
+    }
+    return "?";
+}
+
+const char* depth_mode_name(rrc_depth_mode m)
+{
+    switch (m) {
+    case RRC_DEPTH_MODE_STANDARD: return "standard";
+    case RRC_DEPTH_MODE_REVERSED: return "reversed";
+    case RRC_DEPTH_MODE_LINEAR: return "linear";
+    default: return "?";
+    }
+}
+
+bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error)
+{
+    SignalOptions s;
+    const std::size_t colon = text.find(':');
+    s.layer = text.substr(0, colon);
+    const std::string where = "--signal " + quoted(text) + ": ";
+    if (s.layer.empty()) {
+        error = where + "the layer name is empty";
+        return false;
+    }
+    if (s.layer.size() >= RRC_MAX_NAME) {
+        error = where + "the layer name is longer than " + std::to_string(RRC_MAX_NAME - 1) + " characters";
+        return false;
+    }
+    if (s.layer.front() == '.' || s.layer.back() == '.' || s.layer.find('=') != std::string::npos ||
+        s.layer.find(',') != std::string::npos) {
+        error = where + "invalid layer name " + quoted(s.layer);
+        return false;
+    }
+    if (is_reserved_layer(s.layer)) {
+        error = where + "layer " + quoted(s.layer) + " is reserved (mv, prevclip, nocache, rrc)";
+        return false;
+    }
+    std::set<std::string> seen;
+    if (colon != std::string::npos) {
+        std::string rest = text.substr(colon + 1);
+        if (rest.empty()) {
+            error = where + "nothing after ':' (expected key=value,...)";
+            return false;
+        }
+        std::size_t pos = 0;
+        while (pos <= rest.size()) {
+            std::size_t comma = rest.find(',', pos);
+            std::string item = rest.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+            pos = comma == std::string::npos ? rest.size() + 1 : comma + 1;
+            std::size_t eq = item.find('=');
+            if (item.empty() || eq == std::string::npos || eq == 0 || eq + 1 == item.size()) {
+                error = where + "expected key=value, got " + quoted(item);
+                return false;
+            }
+            std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+            if (!seen.insert(key).second) {
+                error = where + "'" + key + "' given twice";
+                return false;
+            }
+            if (key == "lambda") {
+                if (!parse_float(value, s.lambda) || !(s.lambda >= 0.0f && s.lambda < 1.0f)) {
+                    error = where + "lambda must be a number in [0, 1), got " + quoted(value);
+                    return false;
+                }
+            } else if (key == "blend") {
+                if (value == "fixed") s.blend = RRC_BLEND_FIXED;
+                else if (value == "age_aware") s.blend = RRC_BLEND_AGE_AWARE;
+                else if (value == "running_mean") s.blend = RRC_BLEND_RUNNING_MEAN;
+                else {
+                    error = where + "blend must be fixed, age_aware or running_mean, got " + quoted(value);
+                    return false;
+                }
+            } else if (key == "filter") {
+                if (value == "nearest") s.filter = RRC_HISTORY_FILTER_NEAREST;
+                else if (value == "bilinear") s.filter = RRC_HISTORY_FILTER_BILINEAR;
+                else if (value == "catmull_rom") s.filter = RRC_HISTORY_FILTER_CATMULL_ROM;
+                else {
+                    error = where + "filter must be nearest, bilinear or catmull_rom, got " + quoted(value);
+                    return false;
+                }
+            } else if (key == "history") {
+                if (value == "fp16") s.history = RRC_HISTORY_FP16;
+                else if (value == "fp32") s.history = RRC_HISTORY_FP32;
+                else {
+                    error = where + "history must be fp16 or fp32, got " + quoted(value);
+                    return false;
+                }
+            } else if (key == "max_age") {
+                int64_t v = 0;
+                if (!parse_int(value, v) || v < 1 || v > static_cast<int64_t>(RRC_MAX_AGE_CAP)) {
+                    error = where + "max_age must be an integer in [1, " + std::to_string(RRC_MAX_AGE_CAP) +
+                            "], got " + quoted(value);
+                    return false;
+                }
+                s.max_age = static_cast<uint32_t>(v);
+            } else {
+                error = where + "unknown key " + quoted(key) + " (expected lambda, blend, filter, history, max_age)";
+                return false;
+            }
+        }
+    }
+    out = s;
+    return true;
+}
+
+bool parse_frame_range(const std::string& text, int64_t& first, int64_t& last, std::string& error)
+{
+    const std::string where = "--frames " + quoted(text) + ": ";
+    const std::size_t dash = text.find('-');
+    int64_t a = 0, b = 0;
+    bool ok = dash == std::string::npos ? parse_int(text, a) && (b = a, true)
+                                        : parse_int(text.substr(0, dash), a) && parse_int(text.substr(dash + 1), b);
+    if (!ok) {
+        error = where + "expected FIRST-LAST or FRAME with non-negative integers (e.g. 1-24)";
+        return false;
+    }
+    if (b < a) {
+        error = where + "the last frame is before the first";
+        return false;
+    }
+    if (b > 999999999) {
+        error = where + "frame numbers above 999999999 are not supported";
+        return false;
+    }
+    first = a;
+    last = b;
+    return true;
+}
+
+namespace {
+
+// Walks a pattern; calls lit(text) for literal text and conv(zero_pad, width)
+// for the integer conversion.  Returns the number of conversions or -1.
+template <class Lit, class Conv>
+int walk_pattern(const std::string& p, Lit lit, Conv conv, std::string& bad)
+{
+    int conversions = 0;
+    for (std::size_t i = 0; i < p.size();) {
+        if (p[i] != '%') {
+            std::size_t j = p.find('%', i);
+            lit(p.substr(i, j == std::string::npos ? std::string::npos : j - i));
+            i = j == std::string::npos ? p.size() : j;
+            continue;
+        }
+        std::size_t j = i + 1;
+        if (j < p.size() && p[j] == '%') {
+            lit("%");
+            i = j + 1;
+            continue;
+        }
+        bool zero = false;
+        if (j < p.size() && p[j] == '0') {
+            zero = true;
+            ++j;
+        }
+        int width = 0;
+        while (j < p.size() && std::isdigit(static_cast<unsigned char>(p[j])) && width < 100)
+            width = width * 10 + (p[j++] - '0');
+        if (j >= p.size() || (p[j] != 'd' && p[j] != 'i' && p[j] != 'u') || width > 32) {
+            bad = p.substr(i, j < p.size() ? j - i + 1 : std::string::npos);
+            return -1;
+        }
+        conv(zero, width);
+        ++conversions;
+        i = j + 1;
+    }
+    return conversions;
+}
+
+} // namespace
+
+bool validate_pattern(const std::string& pattern, std::string& error)
+{
+    std::string bad;
+    int n = walk_pattern(pattern, [](const std::string&) {}, [](bool, int) {}, bad);
+    if (pattern.empty())
+        error = "the pattern is empty";
+    else if (n < 0)
+        error = "unsupported conversion " + quoted(bad) + " in " + quoted(pattern) +
+                " (use %d, %04d...; write %% for a literal %)";
+    else if (n != 1)
+        error = quoted(pattern) + " must contain exactly one frame-number conversion such as %04d, found " +
+                std::to_string(n);
+    else
+        return true;
+    return false;
+}
+
+std::string format_frame_path(const std::string& pattern, int64_t frame)
+{
+    std::string out, bad;
+    walk_pattern(
+        pattern, [&](const std::string& s) { out += s; },
+        [&](bool zero, int width) {
+            std::string digits = std::to_string(frame < 0 ? -frame : frame);
+            std::string sign = frame < 0 ? "-" : "";
+            const std::size_t len = digits.size() + sign.size();
+            const std::size_t pad = static_cast<std::size_t>(width) > len ? width - len : 0;
+            out += zero ? sign + std::string(pad, '0') + digits : std::string(pad, ' ') + sign + digits;
+        },
+        bad);
+    return out;
+}
+
+std::string usage_text()
+{
+    return R"(Usage: rrc-accumulate --input PATTERN --frames A-B --output PATTERN [options]
+
+Accumulates a numbered sequence of single-part OpenEXR frames with rrc, the
+real-time reprojection cache, and writes one OpenEXR per frame.
+
+Required:
+  --input PATTERN        input frames, printf-style: frames/f_%04d.exr
+  --frames A-B           inclusive frame range (or a single frame A); may start
+                         anywhere: the first frame processed is a full miss
+  --output PATTERN       output frames: out/acc_%04d.exr (directories are
+                         created; an output may never be one of the inputs)
+
+Geometry and the hit test:
+  --depth-mode M         standard (NDC, near 0; default) | reversed (NDC,
+                         near 1) | linear (view depth)
+  --depth-format F       float32 (default) | unorm16 | unorm24: the depth
+                         buffer's format, which sets epsilon
+  --epsilon E            absolute epsilon for NDC depth (overrides the format)
+  --epsilon-scale S      epsilon = S x the format's smallest increment
+                         (default 4 for float32, 1 for unorm)
+  --tau T                relative tolerance for linear-depth tests (0.01)
+  --background-threshold T  linear depth >= T is background (1e10)
+  --near N, --far F      view distances of the near and far planes (F may be
+                         inf); needed by --reproject motion on NDC depth
+                         without mv.Z
+  --reproject R          prev_clip (default) | motion | camera
+                           prev_clip: channels prevclip.X/.Y/.Z/.W
+                           motion: mv.X, mv.Y (uv_prev - uv_cur); with an mv.Z
+                             channel in the first frame (expected previous
+                             depth - current depth) the exact depth test is used
+                           camera: view_proj matrices from --camera (static
+                             scenes only)
+  --motion-scale SX,SY   multiplies motion vectors into uv units (1,1);
+                         pixel vectors: 1/W,1/H; y-up vectors: negate SY
+  --camera FILE          JSON object: frame number (string) ->
+                         {"view_proj": [16 numbers, column-major as GLM, Vulkan
+                         clip], "jitter": [x, y] (pixels, optional)}.  Required
+                         by --reproject camera; otherwise read for jitter only
+
+Signals:
+  --signal NAME[:key=value,...]   accumulate EXR layer NAME (repeatable, at
+                         most 4).  Keys: lambda=0.6 (history weight, [0,1)),
+                         blend=fixed|age_aware|running_mean (fixed),
+                         filter=nearest|bilinear|catmull_rom (bilinear),
+                         history=fp16|fp32 (fp16), max_age=1..65535 (255).
+                         Without --signal every layer of the first frame is
+                         accumulated except Z, mv.*, prevclip.*, nocache.*.
+                         A layer is NAME.Y (or any single channel NAME.c: one
+                         component) or NAME.R/.G/.B[/.A] (four components; a
+                         missing A is given as 1 and not written back).  A
+                         NAME.conf channel is a per-sample confidence in [0,1].
+
+Other inputs (optional):
+  nocache.Y channel      non-zero: the pixel is never a hit ("do not cache")
+  jitter in --camera     the frame's sub-pixel offset, pixels, x right y down
+
+Device and output:
+  --device NAME          the first Vulkan device whose name contains NAME
+  --validation           enable the Khronos validation layer (as does
+                         RRC_VALIDATION=1); any message makes the exit
+                         status non-zero
+  --quiet                no per-frame progress lines (the summary remains)
+  --verbose              also print the library's informational log
+  --help, -h             this text
+
+Output channels (32-bit float): each layer's channels as in the input
+(NAME.Y or NAME.R/G/B[/A]) holding the accumulated values, NAME.age (the
+number of samples in the history, an exact integer), NAME.weight (confidence
+layers only: the accumulated confidence), and rrc.mask: the integer value of
+the per-pixel bitfield 1 HIT, 2 REFRESHED, 4 BACKGROUND, 8 INVALID_SAMPLE,
+16 INVALID_GEOMETRY.
+
+Images are row-major with row 0 at the top; depth is channel Z.  Each frame
+prints its number, hit ratio (hits / (hits + misses); background excluded)
+and time; the last line summarises the run.
+
+Exit status: 0 success, 1 an error (missing file or channel, library error,
+validation message), 2 a bad command line.
+)";
+}
+
+ParseResult parse_arguments(int argc, const char* const* argv)
+{
+    ParseResult r;
+    Options& o = r.options;
+    std::set<std::string> given;
+    bool frames_given = false;
+
+    auto fail = [&](const std::string& msg) {
+        r.error = msg;
+        return r;
+    };
+
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i] ? argv[i] : "";
+        std::string value;
+        bool has_inline = false;
+        if (arg.rfind("--", 0) == 0) {
+            std::size_t eq = arg.find('=');
+            if (eq != std::string::npos) {
+                value = arg.substr(eq + 1);
+                arg = arg.substr(0, eq);
+                has_inline = true;
+            }
+        }
+        // Flags.
+        if (arg == "--help" || arg == "-h" || arg == "--validation" || arg == "--quiet" || arg == "--verbose") {
+            if (has_inline)
+                return fail("option " + arg + " takes no value");
+            if (arg == "--help" || arg == "-h") o.help = true;
+            else if (arg == "--validation") o.validation = true;
+            else if (arg == "--quiet") o.quiet = true;
+            else o.verbose = true;
+            continue;
+        }
+        static const std::set<std::string> valued = {
+            "--input", "--output", "--frames", "--depth-mode", "--depth-format", "--epsilon",
+            "--epsilon-scale", "--tau", "--background-threshold", "--near", "--far", "--reproject",
+            "--motion-scale", "--camera", "--signal", "--device"};
+        if (!valued.count(arg)) {
+            if (arg.rfind("-", 0) == 0)
+                return fail("unknown option " + quoted(arg) + " (see --help)");
+            return fail("unexpected argument " + quoted(arg) + " (see --help)");
+        }
+        if (!has_inline) {
+            if (i + 1 >= argc || !argv[i + 1])
+                return fail("option " + arg + " needs a value");
+            value = argv[++i];
+            if (value.rfind("--", 0) == 0)
+                return fail("option " + arg + " needs a value, got the option " + quoted(value));
+        }
+        if (arg != "--signal" && !given.insert(arg).second)
+            return fail("option " + arg + " given more than once");
+        const std::string where = "option " + arg + " " + quoted(value) + ": ";
+
+        if (arg == "--input" || arg == "--output") {
+            std::string err;
+            if (!validate_pattern(value, err))
+                return fail("option " + arg + ": " + err);
+            (arg == "--input" ? o.input_pattern : o.output_pattern) = value;
+        } else if (arg == "--frames") {
+            std::string err;
+            if (!parse_frame_range(value, o.first_frame, o.last_frame, err))
+                return fail(err);
+            frames_given = true;
+        } else if (arg == "--depth-mode") {
+            if (value == "standard") o.depth_mode = RRC_DEPTH_MODE_STANDARD;
+            else if (value == "reversed") o.depth_mode = RRC_DEPTH_MODE_REVERSED;
+            else if (value == "linear") o.depth_mode = RRC_DEPTH_MODE_LINEAR;
+            else return fail(where + "expected standard, reversed or linear");
+        } else if (arg == "--depth-format") {
+            if (value == "float32") o.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
+            else if (value == "unorm16") o.depth_format = RRC_DEPTH_FORMAT_UNORM16;
+            else if (value == "unorm24") o.depth_format = RRC_DEPTH_FORMAT_UNORM24;
+            else return fail(where + "expected float32, unorm16 or unorm24");
+        } else if (arg == "--reproject") {
+            if (value == "prev_clip") o.reproject = Reproject::PrevClip;
+            else if (value == "motion") o.reproject = Reproject::Motion;
+            else if (value == "camera") o.reproject = Reproject::Camera;
+            else return fail(where + "expected prev_clip, motion or camera");
+        } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" ||
+                   arg == "--background-threshold" || arg == "--near") {
+            float v = 0;
+            if (!parse_float(value, v) || !(v > 0.0f))
+                return fail(where + "expected a positive number");
+            (arg == "--epsilon"         ? o.epsilon
+             : arg == "--epsilon-scale" ? o.epsilon_scale
+             : arg == "--tau"           ? o.tau
+             : arg == "--near"          ? o.near_plane
+                                        : o.background_threshold) = v;
+        } else if (arg == "--far") {
+            float v = 0;
+            if (!parse_float(value, v, /*allow_inf*/ true) || !(v > 0.0f))
+                return fail(where + "expected a positive number or inf");
+            o.far_plane = v;
+        } else if (arg == "--motion-scale") {
+            std::size_t comma = value.find(',');
+            float sx = 0, sy = 0;
+            if (comma == std::string::npos || !parse_float(value.substr(0, comma), sx) ||
+                !parse_float(value.substr(comma + 1), sy))
+                return fail(where + "expected two numbers SX,SY (e.g. 1,-1)");
+            if (sx == 0.0f || sy == 0.0f)
+                return fail(where + "the scales must be non-zero");
+            o.motion_scale[0] = sx;
+            o.motion_scale[1] = sy;
+        } else if (arg == "--camera") {
+            if (value.empty())
+                return fail("option --camera: the file name is empty");
+            o.camera_file = value;
+        } else if (arg == "--device") {
+            if (value.empty())
+                return fail("option --device: the name is empty");
+            o.device = value;
+        } else if (arg == "--signal") {
+            SignalOptions s;
+            std::string err;
+            if (!parse_signal_spec(value, s, err))
+                return fail(err);
+            for (const SignalOptions& prev : o.signals)
+                if (prev.layer == s.layer)
+                    return fail("--signal " + quoted(value) + ": layer " + quoted(s.layer) + " given twice");
+            if (o.signals.size() >= RRC_MAX_CHANNELS)
+                return fail("--signal " + quoted(value) + ": at most " + std::to_string(RRC_MAX_CHANNELS) +
+                            " signals per run");
+            o.signals.push_back(s);
+        }
+    }
+
+    if (o.help)
+        return r;
+    if (o.input_pattern.empty())
+        return fail("missing required option --input PATTERN (see --help)");
+    if (o.output_pattern.empty())
+        return fail("missing required option --output PATTERN (see --help)");
+    if (!frames_given)
+        return fail("missing required option --frames A-B (see --help)");
+    if (o.reproject == Reproject::Camera && o.camera_file.empty())
+        return fail("option --reproject camera needs --camera FILE (the view-projection matrices)");
+    if (o.near_plane > 0.0f && o.far_plane > 0.0f && !(o.far_plane > o.near_plane))
+        return fail("option --far must be greater than --near");
+    if (o.input_pattern == o.output_pattern)
+        return fail("option --output: the output pattern equals the input pattern; inputs are never overwritten");
+    return r;
+}
+
+} // namespace rrc_cli

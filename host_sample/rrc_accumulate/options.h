@@ -1,0 +1,89 @@
+// rrc-accumulate: command-line options.  parse_arguments() only parses and
+// checks what can be checked without reading a file; it never prints and
+// never exits, so tests call it directly.
+#ifndef RRC_ACCUMULATE_OPTIONS_H
+#define RRC_ACCUMULATE_OPTIONS_H
+
+#include <rrc/rrc.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rrc_cli {
+
+enum class Reproject { PrevClip, Motion, Camera };
+
+/** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
+struct SignalOptions {
+    std::string layer;                                     /* EXR layer name: "shadow", "color" */
+    float lambda = 0.6f;                                   /* lambda=  (3/5, the paper's) */
+    rrc_blend blend = RRC_BLEND_FIXED;                     /* blend=fixed|age_aware|running_mean */
+    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR; /* filter=nearest|bilinear|catmull_rom */
+    rrc_history_precision history = RRC_HISTORY_FP16;     /* history=fp16|fp32 */
+    uint32_t max_age = 255;                                /* max_age=1..65535 */
+};
+
+struct Options {
+    bool help = false;
+
+    std::string input_pattern;  /* --input, printf-style: frames/f_%04d.exr */
+    std::string output_pattern; /* --output */
+    int64_t first_frame = 0;    /* --frames A-B (or A) */
+    int64_t last_frame = -1;
+
+    rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;     /* --depth-mode */
+    rrc_depth_format depth_format = RRC_DEPTH_FORMAT_FLOAT32; /* --depth-format */
+    float epsilon = 0.0f;              /* --epsilon: absolute; 0 = from the format */
+    float epsilon_scale = 0.0f;        /* --epsilon-scale; 0 = library default */
+    float tau = 0.0f;                  /* --tau; 0 = library default 0.01 */
+    float background_threshold = 0.0f; /* --background-threshold; 0 = library default */
+    float near_plane = 0.0f;           /* --near */
+    float far_plane = 0.0f;            /* --far (may be inf) */
+
+    Reproject reproject = Reproject::PrevClip; /* --reproject */
+    float motion_scale[2] = {1.0f, 1.0f};      /* --motion-scale sx,sy */
+    std::string camera_file;                   /* --camera */
+
+    std::vector<SignalOptions> signals; /* --signal, repeatable; empty: every layer */
+
+    std::string device;      /* --device */
+    bool validation = false; /* --validation */
+    bool quiet = false;      /* --quiet */
+    bool verbose = false;    /* --verbose */
+};
+
+struct ParseResult {
+    Options options;
+    std::string error; /* empty on success; otherwise names the offending option */
+    bool ok() const { return error.empty(); }
+};
+
+/** argv[0] is the program name and is skipped.  Options take their value as
+ *  the next argument or after '=' (--epsilon=1e-6).  With --help nothing is
+ *  required. */
+ParseResult parse_arguments(int argc, const char* const* argv);
+
+/** The --help text: every option, the channel names, the exit codes. */
+std::string usage_text();
+
+/** "NAME[:key=value,...]"; on failure returns false and sets error. */
+bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error);
+
+/** "A-B" or "A", 0 <= A <= B. */
+bool parse_frame_range(const std::string& text, int64_t& first, int64_t& last, std::string& error);
+
+/** A pattern holds exactly one integer conversion (%d, %i, %u with an
+ *  optional 0 flag and width, e.g. %04d) and any number of "%%". */
+bool validate_pattern(const std::string& pattern, std::string& error);
+
+/** The pattern with the frame number substituted; the pattern must be valid. */
+std::string format_frame_path(const std::string& pattern, int64_t frame);
+
+/** Names used in messages and output: "prev_clip", "standard", "fp16"... */
+const char* reproject_name(Reproject r);
+const char* depth_mode_name(rrc_depth_mode m);
+
+} // namespace rrc_cli
+
+#endif

@@ -1,0 +1,402 @@
+// rrc-accumulate: reading the sequence into rrc's descriptors.
+#include "sequence.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <system_error>
+
+namespace rrc_cli {
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+bool is_reserved_layer(const std::string& layer)
+{
+    return layer.empty() || layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc";
+}
+
+// Channel suffixes that are never components of a signal.
+bool is_reserved_component(const std::string& c) { return c == "conf" || c == "age" || c == "weight"; }
+
+// layer -> component suffixes, from names "layer.comp" (layer may hold dots).
+std::map<std::string, std::set<std::string>> group_layers(const rrc_exr::ExrInfo& info)
+{
+    std::map<std::string, std::set<std::string>> layers;
+    for (const auto& c : info.channels) {
+        std::size_t dot = c.name.rfind('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == c.name.size())
+            continue;
+        layers[c.name.substr(0, dot)].insert(c.name.substr(dot + 1));
+    }
+    return layers;
+}
+
+std::string list_channels(const rrc_exr::ExrInfo& info)
+{
+    std::string s;
+    std::size_t n = 0;
+    for (const auto& c : info.channels) {
+        if (n == 24) {
+            s += ", ...";
+            break;
+        }
+        s += (n++ ? ", " : "") + c.name;
+    }
+    return s.empty() ? "none" : s;
+}
+
+SignalLayout layout_signal(const SignalOptions& options, const std::set<std::string>& suffixes,
+                           const rrc_exr::ExrInfo& info, const std::string& path)
+{
+    SignalLayout s;
+    s.options = options;
+    const std::string& layer = options.layer;
+    std::set<std::string> comps;
+    for (const std::string& c : suffixes)
+        if (!is_reserved_component(c))
+            comps.insert(c);
+    s.confidence = suffixes.count("conf") != 0;
+    if (comps.empty())
+        throw CliError(path + ": layer " + quoted(layer) + " not found (no channel " + quoted(layer + ".*") +
+                       "); the file has: " + list_channels(info));
+    const std::set<std::string> rgb = {"B", "G", "R"}, rgba = {"A", "B", "G", "R"};
+    if (comps.size() == 1) {
+        s.components = {*comps.begin()};
+        s.rrc_components = 1;
+    } else if (comps == rgb || comps == rgba) {
+        s.components = {"R", "G", "B"};
+        if (comps.count("A"))
+            s.components.push_back("A");
+        s.rrc_components = 4;
+    } else {
+        std::string have;
+        for (const std::string& c : comps)
+            have += (have.empty() ? "" : ", ") + layer + "." + c;
+        throw CliError(path + ": layer " + quoted(layer) + " has channels " + have + "; expected " + layer +
+                       ".Y (or one channel) or " + layer + ".R/.G/.B[/.A]");
+    }
+    return s;
+}
+
+void check_finite(double v, const std::string& where)
+{
+    if (!std::isfinite(v))
+        throw CliError(where + ": not a finite number");
+}
+
+} // namespace
+
+SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
+                               const Options& options)
+{
+    SequenceLayout layout;
+    layout.width = first.width;
+    layout.height = first.height;
+    if (first.width > static_cast<int>(RRC_MAX_EXTENT) || first.height > static_cast<int>(RRC_MAX_EXTENT))
+        throw CliError(first_path + ": " + std::to_string(first.width) + "x" + std::to_string(first.height) +
+                       " is larger than rrc's limit of " + std::to_string(RRC_MAX_EXTENT) + " pixels a side");
+    switch (options.reproject) {
+    case Reproject::PrevClip: layout.reprojection = RRC_REPROJECTION_PREV_CLIP; break;
+    case Reproject::Motion:
+        layout.reprojection = first.has("mv.Z") ? RRC_REPROJECTION_MOTION_DEPTH : RRC_REPROJECTION_MOTION;
+        break;
+    case Reproject::Camera: layout.reprojection = RRC_REPROJECTION_CAMERA; break;
+    }
+    layout.nocache = first.has("nocache.Y");
+
+    const auto layers = group_layers(first);
+    if (!options.signals.empty()) {
+        for (const SignalOptions& s : options.signals) {
+            auto it = layers.find(s.layer);
+            layout.signals.push_back(layout_signal(s, it == layers.end() ? std::set<std::string>{} : it->second,
+                                                   first, first_path));
+        }
+    } else {
+        std::vector<std::string> found;
+        for (const auto& kv : layers) {
+            if (is_reserved_layer(kv.first))
+                continue;
+            bool has_component = false;
+            for (const std::string& c : kv.second)
+                has_component = has_component || !is_reserved_component(c);
+            if (has_component)
+                found.push_back(kv.first);
+        }
+        if (found.empty())
+            throw CliError(first_path + ": no signal layer to accumulate (expected e.g. shadow.Y or color.R/.G/.B); "
+                                        "the file has: " + list_channels(first));
+        if (found.size() > RRC_MAX_CHANNELS) {
+            std::string names;
+            for (const std::string& f : found)
+                names += (names.empty() ? "" : ", ") + f;
+            throw CliError(first_path + ": " + std::to_string(found.size()) + " signal layers (" + names +
+                           "); rrc accumulates at most " + std::to_string(RRC_MAX_CHANNELS) +
+                           " per run: choose them with --signal");
+        }
+        for (const std::string& f : found) {
+            SignalOptions s;
+            s.layer = f;
+            layout.signals.push_back(layout_signal(s, layers.at(f), first, first_path));
+        }
+    }
+    return layout;
+}
+
+std::vector<RequiredChannel> required_channels(const SequenceLayout& layout)
+{
+    std::vector<RequiredChannel> req;
+    req.push_back({"Z", "the depth"});
+    switch (layout.reprojection) {
+    case RRC_REPROJECTION_PREV_CLIP:
+        for (const char* c : {"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"})
+            req.push_back({c, "needed by --reproject prev_clip"});
+        break;
+    case RRC_REPROJECTION_MOTION:
+    case RRC_REPROJECTION_MOTION_DEPTH:
+        req.push_back({"mv.X", "needed by --reproject motion"});
+        req.push_back({"mv.Y", "needed by --reproject motion"});
+        if (layout.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
+            req.push_back({"mv.Z", "the first frame has it, so every frame needs it"});
+        break;
+    default: break;
+    }
+    for (const SignalLayout& s : layout.signals) {
+        for (const std::string& c : s.components)
+            req.push_back({s.options.layer + "." + c, "signal " + quoted(s.options.layer)});
+        if (s.confidence)
+            req.push_back({s.options.layer + ".conf", "confidence of signal " + quoted(s.options.layer) +
+                                                          "; the first frame has it, so every frame needs it"});
+    }
+    if (layout.nocache)
+        req.push_back({"nocache.Y", "the do-not-cache mask; the first frame has it, so every frame needs it"});
+    return req;
+}
+
+void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, const SequenceLayout& layout)
+{
+    if (info.width != layout.width || info.height != layout.height)
+        throw CliError(path + ": " + std::to_string(info.width) + "x" + std::to_string(info.height) +
+                       " differs from the first frame's " + std::to_string(layout.width) + "x" +
+                       std::to_string(layout.height));
+    for (const RequiredChannel& r : required_channels(layout))
+        if (!info.has(r.name))
+            throw CliError(path + ": missing channel " + quoted(r.name) + " (" + r.reason + ")");
+}
+
+std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last,
+                                                bool need_view_proj)
+{
+    using nlohmann::json;
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw CliError("camera file " + quoted(path) + ": cannot open (" +
+                       std::error_code(errno, std::generic_category()).message() + ")");
+    json root;
+    try {
+        root = json::parse(in);
+    } catch (const json::exception& e) {
+        throw CliError("camera file " + quoted(path) + ": invalid JSON: " + e.what());
+    }
+    const std::string where = "camera file " + quoted(path);
+    if (!root.is_object())
+        throw CliError(where + ": expected an object mapping frame numbers to {\"view_proj\": [...]}");
+
+    std::map<int64_t, CameraFrame> frames;
+    for (auto it = root.begin(); it != root.end(); ++it) {
+        const std::string& key = it.key();
+        const std::string at = where + ", frame " + quoted(key);
+        char* end = nullptr;
+        errno = 0;
+        long long n = key.empty() || !std::isdigit(static_cast<unsigned char>(key[0]))
+                          ? -1
+                          : std::strtoll(key.c_str(), &end, 10);
+        if (n < 0 || errno == ERANGE || end != key.c_str() + key.size())
+            throw CliError(at + ": keys must be frame numbers (non-negative integers)");
+        if (frames.count(n))
+            throw CliError(at + ": frame " + std::to_string(n) + " appears twice");
+        const json& v = it.value();
+        if (!v.is_object())
+            throw CliError(at + ": expected an object {\"view_proj\": [16 numbers], \"jitter\": [x, y]}");
+        CameraFrame cf;
+        if (auto vp = v.find("view_proj"); vp != v.end()) {
+            if (!vp->is_array() || vp->size() != 16)
+                throw CliError(at + ": \"view_proj\" must be an array of 16 numbers (column-major)");
+            for (std::size_t i = 0; i < 16; ++i) {
+                if (!(*vp)[i].is_number())
+                    throw CliError(at + ": \"view_proj\"[" + std::to_string(i) + "] is not a number");
+                cf.view_proj[i] = (*vp)[i].get<double>();
+                check_finite(cf.view_proj[i], at + ": \"view_proj\"[" + std::to_string(i) + "]");
+            }
+            cf.has_view_proj = true;
+        }
+        if (auto j = v.find("jitter"); j != v.end()) {
+            if (!j->is_array() || j->size() != 2 || !(*j)[0].is_number() || !(*j)[1].is_number())
+                throw CliError(at + ": \"jitter\" must be an array of 2 numbers (pixels)");
+            for (int i = 0; i < 2; ++i) {
+                double d = (*j)[i].get<double>();
+                check_finite(d, at + ": \"jitter\"[" + std::to_string(i) + "]");
+                cf.jitter[i] = static_cast<float>(d);
+            }
+        }
+        frames[n] = cf;
+    }
+    if (need_view_proj) {
+        for (int64_t f = first; f <= last; ++f) {
+            auto it = frames.find(f);
+            if (it == frames.end() || !it->second.has_view_proj)
+                throw CliError(where + ": no \"view_proj\" for frame " + std::to_string(f) +
+                               " (needed by --reproject camera)");
+        }
+    }
+    return frames;
+}
+
+FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, const SequenceLayout& layout)
+{
+    const std::size_t n = image.pixel_count();
+    if (image.width != layout.width || image.height != layout.height)
+        throw CliError(path + ": the size changed while reading");
+    auto channel = [&](const std::string& name) {
+        try {
+            return image.as_float(name, path);
+        } catch (const std::exception& e) {
+            throw CliError(e.what());
+        }
+    };
+    auto interleave = [&](std::initializer_list<const char*> names, std::vector<float>& out) {
+        const std::size_t k = names.size();
+        out.assign(n * k, 0.0f);
+        std::size_t c = 0;
+        for (const char* name : names) {
+            std::vector<float> v = channel(name);
+            for (std::size_t i = 0; i < n; ++i)
+                out[i * k + c] = v[i];
+            ++c;
+        }
+    };
+
+    FrameData f;
+    f.depth = channel("Z");
+    switch (layout.reprojection) {
+    case RRC_REPROJECTION_PREV_CLIP:
+        interleave({"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"}, f.reprojection);
+        break;
+    case RRC_REPROJECTION_MOTION: interleave({"mv.X", "mv.Y"}, f.reprojection); break;
+    case RRC_REPROJECTION_MOTION_DEPTH: interleave({"mv.X", "mv.Y", "mv.Z"}, f.reprojection); break;
+    default: break;
+    }
+    for (const SignalLayout& s : layout.signals) {
+        const std::string& layer = s.options.layer;
+        std::vector<float> samples;
+        if (s.rrc_components == 1) {
+            samples = channel(layer + "." + s.components[0]);
+        } else {
+            samples.assign(n * 4, 1.0f); // a missing A stays 1
+            for (std::size_t c = 0; c < s.components.size(); ++c) {
+                std::vector<float> v = channel(layer + "." + s.components[c]);
+                for (std::size_t i = 0; i < n; ++i)
+                    samples[i * 4 + c] = v[i];
+            }
+        }
+        f.samples.push_back(std::move(samples));
+        f.confidence.push_back(s.confidence ? channel(layer + ".conf") : std::vector<float>{});
+    }
+    if (layout.nocache) {
+        std::vector<float> v = channel("nocache.Y");
+        f.nocache.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            f.nocache[i] = v[i] != 0.0f ? 1 : 0; // NaN counts as non-zero
+    }
+    return f;
+}
+
+rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layout,
+                                   std::vector<rrc_channel_desc>& channels)
+{
+    if (layout.reprojection == RRC_REPROJECTION_MOTION && o.depth_mode != RRC_DEPTH_MODE_LINEAR &&
+        !(o.near_plane > 0.0f && o.far_plane > 0.0f))
+        throw CliError(std::string("--reproject motion without an mv.Z channel on --depth-mode ") +
+                       depth_mode_name(o.depth_mode) +
+                       " compares linear depths: give the camera's --near and --far planes "
+                       "(or add mv.Z, the depth change)");
+
+    channels.clear();
+    for (const SignalLayout& s : layout.signals) {
+        rrc_channel_desc c{};
+        c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
+        c.next = nullptr;
+        c.size = sizeof(rrc_channel_desc);
+        if (s.options.layer.size() >= RRC_MAX_NAME)
+            throw CliError("layer name " + quoted(s.options.layer) + " is too long for rrc");
+        s.options.layer.copy(c.name, s.options.layer.size());
+        c.name[s.options.layer.size()] = '\0';
+        c.components = s.rrc_components;
+        c.precision = s.options.history;
+        c.lambda = s.options.lambda;
+        c.blend = s.options.blend;
+        c.filter = s.options.filter;
+        c.age_cap = s.options.max_age;
+        c.confidence = s.confidence ? 1u : 0u;
+        channels.push_back(c);
+    }
+
+    rrc_context_desc d{};
+    d.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
+    d.next = nullptr;
+    d.size = sizeof(rrc_context_desc);
+    d.api_version = RRC_API_VERSION;
+    d.width = static_cast<uint32_t>(layout.width);
+    d.height = static_cast<uint32_t>(layout.height);
+    d.depth_mode = o.depth_mode;
+    d.near_plane = o.near_plane;
+    d.far_plane = o.far_plane;
+    d.background_threshold = o.background_threshold;
+    d.depth_format = o.depth_format;
+    d.epsilon_scale = o.epsilon_scale;
+    d.epsilon = o.epsilon;
+    d.tau = o.tau;
+    d.reprojection = layout.reprojection;
+    d.motion_scale[0] = o.motion_scale[0];
+    d.motion_scale[1] = o.motion_scale[1];
+    d.channel_count = static_cast<uint32_t>(channels.size());
+    d.channels = channels.data();
+    d.use_nocache_mask = layout.nocache ? 1u : 0u;
+    d.device_name = o.device.empty() ? nullptr : o.device.c_str();
+    d.enable_validation = o.validation ? 1u : 0u;
+    return d;
+}
+
+rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameResult& r)
+{
+    rrc_exr::ExrImage img;
+    img.width = layout.width;
+    img.height = layout.height;
+    const std::size_t n = img.pixel_count();
+    for (std::size_t k = 0; k < layout.signals.size(); ++k) {
+        const SignalLayout& s = layout.signals[k];
+        const std::string& layer = s.options.layer;
+        for (std::size_t c = 0; c < s.components.size(); ++c) {
+            std::vector<float>& out = img.channels[layer + "." + s.components[c]];
+            out.resize(n);
+            for (std::size_t i = 0; i < n; ++i)
+                out[i] = r.values[k][i * s.rrc_components + c];
+        }
+        std::vector<float>& age = img.channels[layer + ".age"];
+        age.assign(r.age[k].begin(), r.age[k].end());
+        if (s.confidence)
+            img.channels[layer + ".weight"] = r.weight[k];
+    }
+    std::vector<float>& mask = img.channels["rrc.mask"];
+    mask.assign(r.mask.begin(), r.mask.end());
+    img.attributes["rrc.mask"] = "bits: 1 HIT, 2 REFRESHED, 4 BACKGROUND, 8 INVALID_SAMPLE, 16 INVALID_GEOMETRY";
+    return img;
+}
+
+} // namespace rrc_cli

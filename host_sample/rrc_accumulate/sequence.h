@@ -1,0 +1,103 @@
+// rrc-accumulate: from EXR frames and the camera file to rrc descriptors.
+#ifndef RRC_ACCUMULATE_SEQUENCE_H
+#define RRC_ACCUMULATE_SEQUENCE_H
+
+#include "options.h"
+
+#include <exr_io.h>
+#include <rrc/rrc.h>
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rrc_cli {
+
+/** Every failure of the tool that is not a bad command line. */
+class CliError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/** One accumulated layer as found in the first frame. */
+struct SignalLayout {
+    SignalOptions options;              /* options.layer is the layer name */
+    std::vector<std::string> components; /* channel suffixes in the file: {"Y"}, {"R","G","B"}, ... */
+    uint32_t rrc_components = 1;        /* 1 or 4 (RGB is padded with A = 1) */
+    bool confidence = false;            /* <layer>.conf present */
+};
+
+/** What the first frame and the options make of the sequence. */
+struct SequenceLayout {
+    int width = 0, height = 0;
+    rrc_reprojection reprojection = RRC_REPROJECTION_PREV_CLIP;
+    bool nocache = false; /* nocache.Y present */
+    std::vector<SignalLayout> signals;
+};
+
+/** A channel every frame must have, and why (for the error message). */
+struct RequiredChannel {
+    std::string name;
+    std::string reason;
+};
+
+/** Decides the layout from the first frame's header: the reprojection
+ *  (motion becomes MOTION_DEPTH when mv.Z exists), the signals (from
+ *  --signal, or every non-reserved layer), their components and confidence,
+ *  and the nocache mask.  Throws CliError naming the file and channel. */
+SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
+                               const Options& options);
+
+/** The channels the layout reads from every frame. */
+std::vector<RequiredChannel> required_channels(const SequenceLayout& layout);
+
+/** Throws CliError if the frame's size differs from the layout's or a
+ *  required channel is missing. */
+void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, const SequenceLayout& layout);
+
+/** One frame's entry in the camera file. */
+struct CameraFrame {
+    bool has_view_proj = false;
+    std::array<double, 16> view_proj{}; /* column-major (GLM), Vulkan clip */
+    std::array<float, 2> jitter{};      /* pixels, x right, y down; 0 if absent */
+};
+
+/** Reads the camera JSON: an object mapping frame numbers ("12") to
+ *  {"view_proj": [16 numbers], "jitter": [x, y]}.  With need_view_proj
+ *  every frame in [first, last] must have a view_proj.  Throws CliError. */
+std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last,
+                                                bool need_view_proj);
+
+/** The arrays of one frame in rrc's layout (interleaved components). */
+struct FrameData {
+    std::vector<float> depth;
+    std::vector<float> reprojection; /* 4, 3 or 2 floats a pixel; empty for CAMERA */
+    std::vector<std::vector<float>> samples;    /* per signal */
+    std::vector<std::vector<float>> confidence; /* per signal; empty without */
+    std::vector<uint8_t> nocache;               /* empty without */
+};
+
+/** Converts a decoded frame (already checked by check_frame_header). */
+FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, const SequenceLayout& layout);
+
+/** rrc's context descriptor; `channels` receives the channel descriptors the
+ *  result points to (keep it alive).  Throws CliError for combinations the
+ *  tool can explain better than the library. */
+rrc_context_desc make_context_desc(const Options& options, const SequenceLayout& layout,
+                                   std::vector<rrc_channel_desc>& channels);
+
+/** The output image of one frame from rrc's outputs. */
+struct FrameResult {
+    std::vector<std::vector<float>> values; /* per signal, w*h*rrc_components */
+    std::vector<std::vector<uint16_t>> age; /* per signal */
+    std::vector<std::vector<float>> weight; /* per signal; filled for confidence layers */
+    std::vector<uint8_t> mask;
+};
+rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameResult& result);
+
+} // namespace rrc_cli
+
+#endif
