@@ -77,9 +77,12 @@ layout(set = 0, binding = 18, r32f) uniform readonly image2D u_weight[RRC_MAX_CH
 layout(set = 0, binding = 19) uniform writeonly image2D u_hist_out[RRC_MAX_CHANNELS];  // any float format
 layout(set = 0, binding = 20, r16ui) uniform writeonly uimage2D u_age_out[RRC_MAX_CHANNELS];
 layout(set = 0, binding = 21, r32f) uniform writeonly image2D u_weight_out[RRC_MAX_CHANNELS];
+layout(set = 0, binding = 22) uniform sampler2D s_samples[RRC_MAX_CHANNELS];     // INTEROP
+layout(set = 0, binding = 23) uniform sampler2D s_confidence[RRC_MAX_CHANNELS];  // INTEROP
+layout(set = 0, binding = 24) uniform writeonly image2D u_host_out[RRC_MAX_CHANNELS];  // INTEROP: any float format
 
 void main() {
-    ivec2 size = imageSize(u_depth);
+    ivec2 size = rrc_size();
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (px.x >= size.x || px.y >= size.y) return;  // the dispatch rounds up
 

@@ -9,9 +9,13 @@
 
 if (RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
-    vec4 s = CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)
-                                    : imageLoad(u_sample4[RRC_CH], px);
-    float w = CH_(_CONFIDENCE) ? imageLoad(u_confidence[RRC_CH], px).r : 1.0;
+    vec4 s = INTEROP                        ? texelFetch(s_samples[RRC_CH], px, 0)
+             : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)
+                                      : imageLoad(u_sample4[RRC_CH], px);
+    if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
+    float w = !CH_(_CONFIDENCE) ? 1.0
+              : INTEROP         ? texelFetch(s_confidence[RRC_CH], px, 0).r
+                                : imageLoad(u_confidence[RRC_CH], px).r;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);
 
@@ -87,6 +91,7 @@ if (RRC_CH < CH_COUNT) {
     }
     if (CH_(_FP16)) out_v = rrc_round_fp16(out_v);
     imageStore(u_hist_out[RRC_CH], px, out_v);
+    if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
     imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
     if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
 }

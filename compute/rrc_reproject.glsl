@@ -22,6 +22,10 @@ layout(constant_id = 0) const uint SOURCE = RRC_SOURCE_PREV_CLIP;
 layout(constant_id = 1) const uint DEPTH_MODE = RRC_DEPTH_STANDARD;
 layout(constant_id = 2) const uint EPS_KIND = RRC_EPS_ULP;
 layout(constant_id = 3) const bool HAS_NOCACHE = false;
+// Interop: the host's images are read through samplers (any format, depth
+// formats included), the library keeps its own copy of depth for the next
+// frame and writes each channel to the host's output image too.
+layout(constant_id = 5) const bool INTEROP = false;
 
 // ---- Per-frame parameters (124 bytes: fits the 128-byte minimum) ----------
 layout(push_constant) uniform Frame {
@@ -41,6 +45,18 @@ layout(set = 0, binding = 1, r32f) uniform readonly image2D u_prev_depth;
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION_DEPTH
 layout(set = 0, binding = 3, rg32f) uniform readonly image2D u_motion;    // MOTION
 layout(set = 0, binding = 4, r8ui) uniform readonly uimage2D u_nocache;
+layout(set = 0, binding = 6) uniform sampler2D s_depth;        // INTEROP: the host's depth
+layout(set = 0, binding = 7) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
+layout(set = 0, binding = 8) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
+layout(set = 0, binding = 9, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
+
+ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
+float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
+vec4 rrc_load_reprojection(ivec2 px) {
+    if (INTEROP) return texelFetch(s_reproj, px, 0);
+    return SOURCE == RRC_SOURCE_MOTION ? vec4(imageLoad(u_motion, px).xy, 0.0, 0.0) : imageLoad(u_reproj, px);
+}
+bool rrc_load_nocache(ivec2 px) { return (INTEROP ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
 
 bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
 bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
@@ -111,7 +127,8 @@ struct RrcGeometry {
 RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcGeometry g;
     vec2 fsize = vec2(size);
-    float d = imageLoad(u_depth, px).r;
+    float d = rrc_load_depth(px);
+    if (INTEROP) imageStore(u_depth_out, px, vec4(d));
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -122,19 +139,19 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     float expected;  // in depth-mode units (linear for the relative tests)
     float w = 1.0;
     if (SOURCE == RRC_SOURCE_MOTION) {
-        vec2 m = imageLoad(u_motion, px).xy;
+        vec2 m = rrc_load_reprojection(px).xy;
         g.invalid = g.invalid || !rrc_finite4(vec4(m, 0.0, 0.0));
         uv_prev = uv_s + m * pc.motion_scale;
         expected = d;
     } else if (SOURCE == RRC_SOURCE_MOTION_DEPTH) {
-        vec4 m = imageLoad(u_reproj, px);
+        vec4 m = rrc_load_reprojection(px);
         g.invalid = g.invalid || !rrc_finite4(vec4(m.xyz, 0.0));
         uv_prev = uv_s + m.xy * pc.motion_scale;
         expected = d + m.z;
     } else {
         vec4 c;
         if (SOURCE == RRC_SOURCE_PREV_CLIP) {
-            c = imageLoad(u_reproj, px);
+            c = rrc_load_reprojection(px);
             g.invalid = g.invalid || !rrc_finite4(c);
         } else {  // CAMERA: static geometry, matrices only
             vec2 ndc = 2.0 * uv_s - 1.0;
@@ -178,7 +195,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     } else {
         eps = pc.eps;
     }
-    bool nocache = HAS_NOCACHE && imageLoad(u_nocache, px).r != 0u;
+    bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
 
     g.hit = pc.prev_valid != 0u && !g.background && !g.invalid && !nocache && w > 0.0 && inside &&
             !tap_background && abs(fetched - expected) <= eps;

@@ -10,7 +10,7 @@ namespace rrc {
 namespace {
 
 // Specialization constant ids (compute/rrc_reproject.glsl, rrc_accumulate.comp).
-enum : uint32_t { kSource = 0, kDepthMode = 1, kEpsKind = 2, kHasNocache = 3, kChannelCount = 4, kGroupXId = 100, kGroupYId = 101 };
+enum : uint32_t { kSource = 0, kDepthMode = 1, kEpsKind = 2, kHasNocache = 3, kChannelCount = 4, kInterop = 5, kGroupXId = 100, kGroupYId = 101 };
 // Per-channel property k of slot c has id 16 + 4*k + c.
 enum : uint32_t { kComponents = 0, kFp16, kBlend, kFilter, kConfidenceOn, kLambda, kAgeCap };
 uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return 16 + 4 * property + slot; }
@@ -31,18 +31,28 @@ struct SpecBuilder {
 
 }  // namespace
 
-AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c) : dev_(dev) {
+AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c, bool interop, uint32_t sets,
+                                       VkPipelineCache cache)
+    : dev_(dev) {
     auto& vk = dev.vk;
     try {
+        VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+        sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+        sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        VulkanDevice::check(vk.vkCreateSampler(dev.device, &sci, dev.allocator, &sampler_), "vkCreateSampler");
+        const VkSampler immutable[RRC_MAX_CHANNELS] = {sampler_, sampler_, sampler_, sampler_};
         std::vector<VkDescriptorSetLayoutBinding> bindings;
-        for (uint32_t b = kDepth; b <= kMask; ++b)
-            bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-        for (uint32_t b = kFirstChannelBinding; b <= kLastBinding; ++b)
-            bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, RRC_MAX_CHANNELS, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        for (uint32_t b = 0; b < kBindingCount; ++b) {
+            if (b > kDepthOut && b < kFirstChannelBinding) continue;
+            bool sampled = is_sampled_binding(b);
+            bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                binding_count(b), VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
+        }
         VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         lci.bindingCount = (uint32_t)bindings.size();
         lci.pBindings = bindings.data();
-        VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
+        VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, dev.allocator, &set_layout_), "vkCreateDescriptorSetLayout");
 
         VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FramePushConstants)};
         VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -50,13 +60,13 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         pli.pSetLayouts = &set_layout_;
         pli.pushConstantRangeCount = 1;
         pli.pPushConstantRanges = &range;
-        VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
+        VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layout_), "vkCreatePipelineLayout");
 
         VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
         smi.codeSize = sizeof(rrc_accumulate_spv);
         smi.pCode = rrc_accumulate_spv;
         VkShaderModule module = VK_NULL_HANDLE;
-        VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, nullptr, &module), "vkCreateShaderModule");
+        VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
 
         SpecBuilder spec;
         spec.add(kSource, c.reprojection);
@@ -64,6 +74,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         spec.add(kEpsKind, (uint32_t)c.epsilon_kind);
         spec.add(kHasNocache, c.use_nocache ? 1u : 0u);
         spec.add(kChannelCount, (uint32_t)c.channels.size());
+        spec.add(kInterop, interop ? 1u : 0u);
         spec.add(kGroupXId, kGroupX);
         spec.add(kGroupYId, kGroupY);
         for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
@@ -84,18 +95,19 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         pci.stage.pName = "main";
         pci.stage.pSpecializationInfo = &si;
         pci.layout = layout_;
-        VkResult r = vk.vkCreateComputePipelines(dev.device, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline_);
-        vk.vkDestroyShaderModule(dev.device, module, nullptr);
+        VkResult r = vk.vkCreateComputePipelines(dev.device, cache, 1, &pci, dev.allocator, &pipeline_);
+        vk.vkDestroyShaderModule(dev.device, module, dev.allocator);
         VulkanDevice::check(r, "vkCreateComputePipelines");
 
-        // Two sets: the ping-pong parity of history and depth.
-        uint32_t per_set = (kMask - kDepth + 1) + (kLastBinding - kFirstChannelBinding + 1) * RRC_MAX_CHANNELS;
-        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * per_set};
+        uint32_t storage = 0, sampled = 0;
+        for (const auto& b : bindings) (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
+        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        dpi.maxSets = 2;
-        dpi.poolSizeCount = 1;
-        dpi.pPoolSizes = &size;
-        VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, nullptr, &pool_), "vkCreateDescriptorPool");
+        dpi.maxSets = sets;
+        dpi.poolSizeCount = 2;
+        dpi.pPoolSizes = sizes;
+        VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, dev.allocator, &pool_), "vkCreateDescriptorPool");
     } catch (...) {
         release();  // the destructor does not run for a constructor that throws
         throw;
@@ -106,10 +118,12 @@ AccumulatePipeline::~AccumulatePipeline() { release(); }
 
 void AccumulatePipeline::release() {
     auto& vk = dev_.vk;
-    if (pool_) vk.vkDestroyDescriptorPool(dev_.device, pool_, nullptr);
-    if (pipeline_) vk.vkDestroyPipeline(dev_.device, pipeline_, nullptr);
-    if (layout_) vk.vkDestroyPipelineLayout(dev_.device, layout_, nullptr);
-    if (set_layout_) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layout_, nullptr);
+    if (pool_) vk.vkDestroyDescriptorPool(dev_.device, pool_, dev_.allocator);
+    if (pipeline_) vk.vkDestroyPipeline(dev_.device, pipeline_, dev_.allocator);
+    if (layout_) vk.vkDestroyPipelineLayout(dev_.device, layout_, dev_.allocator);
+    if (set_layout_) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layout_, dev_.allocator);
+    if (sampler_) vk.vkDestroySampler(dev_.device, sampler_, dev_.allocator);
+    sampler_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     pipeline_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
@@ -124,6 +138,27 @@ VkDescriptorSet AccumulatePipeline::allocate_set() {
     VkDescriptorSet set = VK_NULL_HANDLE;
     VulkanDevice::check(dev_.vk.vkAllocateDescriptorSets(dev_.device, &ai, &set), "vkAllocateDescriptorSets");
     return set;
+}
+
+void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v) const {
+    VkDescriptorImageInfo infos[kBindingCount][RRC_MAX_CHANNELS];
+    std::vector<VkWriteDescriptorSet> writes;
+    for (uint32_t b = 0; b < kBindingCount; ++b) {
+        if (b > kDepthOut && b < kFirstChannelBinding) continue;
+        for (uint32_t s = 0; s < binding_count(b); ++s) {
+            if (!v.view[b][s]) fail(RRC_ERROR_UNSUPPORTED, "internal: binding %u slot %u has no view", b, s);
+            VkImageLayout layout = v.layout[b][s] ? v.layout[b][s] : VK_IMAGE_LAYOUT_GENERAL;
+            infos[b][s] = {VK_NULL_HANDLE, v.view[b][s], layout};
+        }
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set;
+        w.dstBinding = b;
+        w.descriptorCount = binding_count(b);
+        w.descriptorType = is_sampled_binding(b) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        w.pImageInfo = infos[b];
+        writes.push_back(w);
+    }
+    dev_.vk.vkUpdateDescriptorSets(dev_.device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
 }
 
 void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width,

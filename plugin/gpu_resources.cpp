@@ -38,23 +38,23 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     ci.arrayLayers = 1;
     ci.samples = VK_SAMPLE_COUNT_1_BIT;
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     try {
-        VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, nullptr, &image), "vkCreateImage");
+        VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, dev.allocator, &image), "vkCreateImage");
         VkMemoryRequirements req;
         dev.vk.vkGetImageMemoryRequirements(dev.device, image, &req);
         VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         ai.allocationSize = req.size;
         ai.memoryTypeIndex = find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, nullptr, &memory_), "vkAllocateMemory (image)");
+        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, dev.allocator, &memory_), "vkAllocateMemory (image)");
         VulkanDevice::check(dev.vk.vkBindImageMemory(dev.device, image, memory_, 0), "vkBindImageMemory");
         VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         vi.image = image;
         vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
         vi.format = fmt;
         vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VulkanDevice::check(dev.vk.vkCreateImageView(dev.device, &vi, nullptr, &view), "vkCreateImageView");
+        VulkanDevice::check(dev.vk.vkCreateImageView(dev.device, &vi, dev.allocator, &view), "vkCreateImageView");
     } catch (...) {
         reset();
         throw;
@@ -78,9 +78,9 @@ GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
 
 void GpuImage::reset() {
     if (!dev_) return;
-    if (view) dev_->vk.vkDestroyImageView(dev_->device, view, nullptr);
-    if (image) dev_->vk.vkDestroyImage(dev_->device, image, nullptr);
-    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, nullptr);
+    if (view) dev_->vk.vkDestroyImageView(dev_->device, view, dev_->allocator);
+    if (image) dev_->vk.vkDestroyImage(dev_->device, image, dev_->allocator);
+    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, dev_->allocator);
     view = VK_NULL_HANDLE;
     image = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
@@ -91,14 +91,14 @@ HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage
     ci.size = bytes;
     ci.usage = usage;
     try {
-        VulkanDevice::check(dev.vk.vkCreateBuffer(dev.device, &ci, nullptr, &buffer), "vkCreateBuffer");
+        VulkanDevice::check(dev.vk.vkCreateBuffer(dev.device, &ci, dev.allocator, &buffer), "vkCreateBuffer");
         VkMemoryRequirements req;
         dev.vk.vkGetBufferMemoryRequirements(dev.device, buffer, &req);
         VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         ai.allocationSize = req.size;
         ai.memoryTypeIndex =
             find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, nullptr, &memory_), "vkAllocateMemory (staging)");
+        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, dev.allocator, &memory_), "vkAllocateMemory (staging)");
         VulkanDevice::check(dev.vk.vkBindBufferMemory(dev.device, buffer, memory_, 0), "vkBindBufferMemory");
         void* p = nullptr;
         VulkanDevice::check(dev.vk.vkMapMemory(dev.device, memory_, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
@@ -123,8 +123,8 @@ HostBuffer& HostBuffer::operator=(HostBuffer&& o) noexcept {
 
 void HostBuffer::reset() {
     if (!dev_) return;
-    if (buffer) dev_->vk.vkDestroyBuffer(dev_->device, buffer, nullptr);
-    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, nullptr);  // unmaps
+    if (buffer) dev_->vk.vkDestroyBuffer(dev_->device, buffer, dev_->allocator);
+    if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, dev_->allocator);  // unmaps
     buffer = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
     data = nullptr;

@@ -13,11 +13,6 @@ namespace {
 
 size_t align16(size_t x) { return (x + 15) & ~size_t(15); }
 
-VkFormat history_format(const ChannelConfig& ch) {
-    if (ch.fp16) return ch.components == 1 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
-    return ch.components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
-}
-
 VkImageSubresourceLayers color_layers() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}; }
 
 void memory_barrier(const VolkDeviceTable& vk, VkCommandBuffer cmd, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
@@ -34,7 +29,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) : config_(conf
     Log log{config.log, config.log_user};
     dev_.reset(new VulkanDevice(config.device_name, config.validation, log));
     try {
-        pipeline_.reset(new AccumulatePipeline(*dev_, config_));
+        pipeline_.reset(new AccumulatePipeline(*dev_, config_, /*interop=*/false, /*sets=*/2));
         create_images();
         auto& vk = dev_->vk;
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -68,7 +63,7 @@ StandaloneContext::~StandaloneContext() {
         if (pool_) dev_->vk.vkDestroyCommandPool(dev_->device, pool_, nullptr);
     }
     // Resources must go before the device: release them explicitly.
-    placeholders_.clear();
+    placeholders_.reset();
     channels_.clear();
     depth_[0] = GpuImage();
     depth_[1] = GpuImage();
@@ -103,21 +98,10 @@ void StandaloneContext::create_images() {
         up += align16(ch.samples.bytes());
         if (cc.confidence) ch.confidence = GpuImage(d, VK_FORMAT_R32_SFLOAT, w, h);
         up += align16(ch.confidence.bytes());
-        for (int p = 0; p < 2; ++p) {
-            ch.history[p] = GpuImage(d, history_format(cc), w, h);
-            ch.age[p] = GpuImage(d, VK_FORMAT_R16_UINT, w, h);
-            if (cc.confidence) ch.weight[p] = GpuImage(d, VK_FORMAT_R32_SFLOAT, w, h);
-        }
-        down += align16(ch.history[0].bytes()) + align16(ch.age[0].bytes()) + align16(ch.weight[0].bytes());
+        ch.state.reset(new ChannelHistory(d, cc, w, h));
+        down += align16(ch.state->history[0].bytes()) + align16(ch.state->age[0].bytes()) + align16(ch.state->weight[0].bytes());
     }
-    // Placeholders, one per format for reads and separate ones for writes, so
-    // synchronization validation never sees a read and a write share an image.
-    const VkFormat read_formats[] = {VK_FORMAT_R32_SFLOAT,       VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                     VK_FORMAT_R16_SFLOAT,       VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT,
-                                     VK_FORMAT_R16_UINT};
-    for (VkFormat f : read_formats) placeholders_.emplace_back(d, f, 1, 1);
-    placeholders_.emplace_back(d, VK_FORMAT_R32_SFLOAT, 1, 1);  // write placeholders: float
-    placeholders_.emplace_back(d, VK_FORMAT_R16_UINT, 1, 1);    // and age
+    placeholders_.reset(new Placeholders(d));
     upload_bytes_ = up;
     readback_bytes_ = down;
     reserve_batch(1);
@@ -132,68 +116,22 @@ void StandaloneContext::reserve_batch(uint32_t frames) {
 }
 
 void StandaloneContext::write_descriptor_sets() {
-    auto read_placeholder = [&](VkFormat f) -> VkImageView {
-        for (size_t i = 0; i < 7; ++i)
-            if (placeholders_[i].format == f) return placeholders_[i].view;
-        fail(RRC_ERROR_UNSUPPORTED, "internal: no placeholder for VkFormat %d", (int)f);
-    };
-    const VkImageView write_float = placeholders_[7].view, write_age = placeholders_[8].view;
     for (uint32_t p = 0; p < 2; ++p) {
+        DescriptorViews v = placeholders_->views();
         const uint32_t prev = 1 - p;
-        // views[binding][slot]
-        VkImageView views[kLastBinding + 1][RRC_MAX_CHANNELS] = {};
-        views[kDepth][0] = depth_[p].view;
-        views[kPrevDepth][0] = depth_[prev].view;
-        views[kReproj][0] = reprojection_.format == VK_FORMAT_R32G32B32A32_SFLOAT ? reprojection_.view
-                                                                                  : read_placeholder(VK_FORMAT_R32G32B32A32_SFLOAT);
-        views[kMotion][0] = reprojection_.format == VK_FORMAT_R32G32_SFLOAT ? reprojection_.view : read_placeholder(VK_FORMAT_R32G32_SFLOAT);
-        views[kNocache][0] = nocache_.view ? nocache_.view : read_placeholder(VK_FORMAT_R8_UINT);
-        views[kMask][0] = mask_.view;
-        for (uint32_t s = 0; s < RRC_MAX_CHANNELS; ++s) {
-            views[kSample1][s] = read_placeholder(VK_FORMAT_R32_SFLOAT);
-            views[kSample4][s] = read_placeholder(VK_FORMAT_R32G32B32A32_SFLOAT);
-            views[kConfidence][s] = read_placeholder(VK_FORMAT_R32_SFLOAT);
-            views[kHistR16f][s] = read_placeholder(VK_FORMAT_R16_SFLOAT);
-            views[kHistRgba16f][s] = read_placeholder(VK_FORMAT_R16G16B16A16_SFLOAT);
-            views[kHistR32f][s] = read_placeholder(VK_FORMAT_R32_SFLOAT);
-            views[kHistRgba32f][s] = read_placeholder(VK_FORMAT_R32G32B32A32_SFLOAT);
-            views[kAge][s] = read_placeholder(VK_FORMAT_R16_UINT);
-            views[kWeight][s] = read_placeholder(VK_FORMAT_R32_SFLOAT);
-            views[kHistOut][s] = write_float;
-            views[kAgeOut][s] = write_age;
-            views[kWeightOut][s] = write_float;
-            if (s >= channels_.size()) continue;
+        v.view[kDepth][0] = depth_[p].view;
+        v.view[kPrevDepth][0] = depth_[prev].view;
+        if (reprojection_.format == VK_FORMAT_R32G32B32A32_SFLOAT) v.view[kReproj][0] = reprojection_.view;
+        if (reprojection_.format == VK_FORMAT_R32G32_SFLOAT) v.view[kMotion][0] = reprojection_.view;
+        if (nocache_.view) v.view[kNocache][0] = nocache_.view;
+        v.view[kMask][0] = mask_.view;
+        for (uint32_t s = 0; s < channels_.size(); ++s) {
             Channel& ch = channels_[s];
-            views[ch.samples.format == VK_FORMAT_R32_SFLOAT ? kSample1 : kSample4][s] = ch.samples.view;
-            if (ch.confidence.view) views[kConfidence][s] = ch.confidence.view;
-            Binding hist = ch.history[prev].format == VK_FORMAT_R16_SFLOAT           ? kHistR16f
-                           : ch.history[prev].format == VK_FORMAT_R16G16B16A16_SFLOAT ? kHistRgba16f
-                           : ch.history[prev].format == VK_FORMAT_R32_SFLOAT          ? kHistR32f
-                                                                                      : kHistRgba32f;
-            views[hist][s] = ch.history[prev].view;
-            views[kAge][s] = ch.age[prev].view;
-            if (ch.weight[prev].view) views[kWeight][s] = ch.weight[prev].view;
-            views[kHistOut][s] = ch.history[p].view;
-            views[kAgeOut][s] = ch.age[p].view;
-            if (ch.weight[p].view) views[kWeightOut][s] = ch.weight[p].view;
+            v.view[ch.samples.format == VK_FORMAT_R32_SFLOAT ? kSample1 : kSample4][s] = ch.samples.view;
+            if (ch.confidence.view) v.view[kConfidence][s] = ch.confidence.view;
+            bind_history(v, s, *ch.state, p);
         }
-        std::vector<VkDescriptorImageInfo> infos;
-        infos.reserve((kLastBinding + 1) * RRC_MAX_CHANNELS);
-        std::vector<VkWriteDescriptorSet> writes;
-        for (uint32_t b = 0; b <= kLastBinding; ++b) {
-            uint32_t count = b <= kMask ? 1 : b >= kFirstChannelBinding ? RRC_MAX_CHANNELS : 0;
-            if (!count) continue;
-            size_t first = infos.size();
-            for (uint32_t s = 0; s < count; ++s) infos.push_back({VK_NULL_HANDLE, views[b][s], VK_IMAGE_LAYOUT_GENERAL});
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = sets_[p];
-            w.dstBinding = b;
-            w.descriptorCount = count;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-            w.pImageInfo = infos.data() + first;
-            writes.push_back(w);
-        }
-        dev_->vk.vkUpdateDescriptorSets(dev_->device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
+        pipeline_->write_set(sets_[p], v);
     }
 }
 
@@ -203,10 +141,10 @@ void StandaloneContext::initialise_images() {
     auto& vk = dev_->vk;
     std::vector<GpuImage*> all = {&depth_[0], &depth_[1], &reprojection_, &nocache_, &mask_};
     for (auto& ch : channels_) {
-        all.insert(all.end(), {&ch.samples, &ch.confidence, &ch.history[0], &ch.history[1], &ch.age[0], &ch.age[1],
-                               &ch.weight[0], &ch.weight[1]});
+        all.insert(all.end(), {&ch.samples, &ch.confidence});
+        ch.state->collect(all);
     }
-    for (auto& p : placeholders_) all.push_back(&p);
+    placeholders_->collect(all);
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
@@ -271,12 +209,13 @@ void StandaloneContext::for_each_readback(const rrc_frame_output* out, uint32_t 
     for (size_t i = 0; i < channels_.size(); ++i) {
         const rrc_channel_output* co = out && out->channel_count ? &out->channels[i] : nullptr;
         Channel& ch = channels_[i];
-        f(ch.history[parity], offset, co && co->values, co ? (void*)co->values : nullptr, (int)i);
-        offset += align16(ch.history[parity].bytes());
-        f(ch.age[parity], offset, co && co->age, co ? (void*)co->age : nullptr, (int)i);
-        offset += align16(ch.age[parity].bytes());
-        f(ch.weight[parity], offset, co && co->weight, co ? (void*)co->weight : nullptr, (int)i);
-        offset += align16(ch.weight[parity].bytes());
+        const ChannelHistory& h = *ch.state;
+        f(h.history[parity], offset, co && co->values, co ? (void*)co->values : nullptr, (int)i);
+        offset += align16(h.history[parity].bytes());
+        f(h.age[parity], offset, co && co->age, co ? (void*)co->age : nullptr, (int)i);
+        offset += align16(h.age[parity].bytes());
+        f(h.weight[parity], offset, co && co->weight, co ? (void*)co->weight : nullptr, (int)i);
+        offset += align16(h.weight[parity].bytes());
     }
 }
 

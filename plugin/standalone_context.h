@@ -4,6 +4,7 @@
 #pragma once
 
 #include "accumulate_pipeline.h"
+#include "channel_history.h"
 #include "config.h"
 #include "gpu_resources.h"
 #include "vulkan_device.h"
@@ -28,8 +29,8 @@ public:
 
 private:
     struct Channel {
-        GpuImage samples, confidence;
-        GpuImage history[2], age[2], weight[2];  // [parity]: written this frame
+        GpuImage samples, confidence;         // this frame's inputs
+        std::unique_ptr<ChannelHistory> state;
     };
     void create_images();
     void write_descriptor_sets();
@@ -50,7 +51,7 @@ private:
     GpuImage depth_[2];  // [parity]: this frame's depth; the other is the previous frame's
     GpuImage reprojection_, nocache_, mask_;
     std::vector<Channel> channels_;
-    std::vector<GpuImage> placeholders_;  // 1x1 images bound where a slot or format is unused
+    std::unique_ptr<Placeholders> placeholders_;
     HostBuffer upload_, readback_;    // batch_capacity_ regions of *_bytes_ each
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;

@@ -134,7 +134,16 @@ void VulkanDevice::create_instance(bool validation) {
     ci.ppEnabledExtensionNames = extensions.data();
     check(vkCreateInstance(&ci, nullptr, &instance_), "vkCreateInstance");
 
-#define RRC_LOAD(name) fi_.name = (PFN_vk##name)vkGetInstanceProcAddr(instance_, "vk" #name)
+    load_instance_functions(vkGetInstanceProcAddr, validation);
+    {
+        std::lock_guard<std::mutex> lock(g_volk_mutex);
+        if (!vkGetDeviceProcAddr) vkGetDeviceProcAddr = (PFN_vkGetDeviceProcAddr)vkGetInstanceProcAddr(instance_, "vkGetDeviceProcAddr");
+    }
+    if (validation) check(fi.CreateDebugUtilsMessengerEXT(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+}
+
+void VulkanDevice::load_instance_functions(PFN_vkGetInstanceProcAddr gipa, bool debug_utils) {
+#define RRC_LOAD(name) fi.name = (PFN_vk##name)gipa(instance_, "vk" #name)
     RRC_LOAD(DestroyInstance);
     RRC_LOAD(EnumeratePhysicalDevices);
     RRC_LOAD(GetPhysicalDeviceProperties);
@@ -143,26 +152,54 @@ void VulkanDevice::create_instance(bool validation) {
     RRC_LOAD(GetPhysicalDeviceMemoryProperties);
     RRC_LOAD(GetPhysicalDeviceFormatProperties);
     RRC_LOAD(CreateDevice);
-    RRC_LOAD(CreateDebugUtilsMessengerEXT);
-    RRC_LOAD(DestroyDebugUtilsMessengerEXT);
-#undef RRC_LOAD
-    {
-        std::lock_guard<std::mutex> lock(g_volk_mutex);
-        if (!vkGetDeviceProcAddr) vkGetDeviceProcAddr = (PFN_vkGetDeviceProcAddr)vkGetInstanceProcAddr(instance_, "vkGetDeviceProcAddr");
+    if (debug_utils) {
+        RRC_LOAD(CreateDebugUtilsMessengerEXT);
+        RRC_LOAD(DestroyDebugUtilsMessengerEXT);
+        RRC_LOAD(CmdBeginDebugUtilsLabelEXT);
+        RRC_LOAD(CmdEndDebugUtilsLabelEXT);
     }
-    if (validation) check(fi_.CreateDebugUtilsMessengerEXT(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+#undef RRC_LOAD
+    if (!fi.GetPhysicalDeviceProperties || !fi.GetPhysicalDeviceMemoryProperties)
+        fail(RRC_ERROR_DEVICE, "vkGetInstanceProcAddr returned no core instance functions");
+}
+
+VulkanDevice::VulkanDevice(const HostDevice& host, Log log) : messages_(new Messages), owns_(false) {
+    messages_->log = log;
+    instance_ = host.instance;
+    physical = host.physical;
+    device = host.device;
+    queue_family = host.queue_family;
+    allocator = host.allocator;
+    load_instance_functions(host.get_instance_proc_addr, host.debug_utils);
+    PFN_vkGetDeviceProcAddr gdpa = host.get_device_proc_addr;
+    if (!gdpa) gdpa = (PFN_vkGetDeviceProcAddr)host.get_instance_proc_addr(instance_, "vkGetDeviceProcAddr");
+    if (!gdpa) fail(RRC_ERROR_DEVICE, "no vkGetDeviceProcAddr from the host's vkGetInstanceProcAddr");
+    {
+        // volkLoadDeviceTable reads volk's global vkGetDeviceProcAddr: point it at
+        // the host's loader for this call only, so the table holds the host's entry points.
+        std::lock_guard<std::mutex> lock(g_volk_mutex);
+        PFN_vkGetDeviceProcAddr saved = vkGetDeviceProcAddr;
+        vkGetDeviceProcAddr = gdpa;
+        volkLoadDeviceTable(&vk, device);
+        vkGetDeviceProcAddr = saved;
+    }
+    VkPhysicalDeviceProperties p;
+    fi.GetPhysicalDeviceProperties(physical, &p);
+    name = p.deviceName;
+    fi.GetPhysicalDeviceMemoryProperties(physical, &memory);
+    check_physical_device();
 }
 
 void VulkanDevice::pick_physical_device(const std::string& filter) {
     uint32_t n = 0;
-    check(fi_.EnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
+    check(fi.EnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> devices(n);
-    check(fi_.EnumeratePhysicalDevices(instance_, &n, devices.data()), "vkEnumeratePhysicalDevices");
+    check(fi.EnumeratePhysicalDevices(instance_, &n, devices.data()), "vkEnumeratePhysicalDevices");
     int best_rank = 1 << 30;
     std::string seen;
     for (VkPhysicalDevice d : devices) {
         VkPhysicalDeviceProperties p;
-        fi_.GetPhysicalDeviceProperties(d, &p);
+        fi.GetPhysicalDeviceProperties(d, &p);
         seen += std::string(seen.empty() ? "" : ", ") + p.deviceName;
         if (p.apiVersion < VK_API_VERSION_1_1) continue;
         if (!filter.empty() && std::strstr(p.deviceName, filter.c_str()) == nullptr) continue;
@@ -177,17 +214,25 @@ void VulkanDevice::pick_physical_device(const std::string& filter) {
         if (filter.empty()) fail(RRC_ERROR_DEVICE, "no Vulkan 1.1 device found (install mesa-vulkan-drivers for lavapipe)");
         fail(RRC_ERROR_DEVICE, "no Vulkan 1.1 device name contains \"%s\" (devices: %s)", filter.c_str(), seen.c_str());
     }
-    fi_.GetPhysicalDeviceMemoryProperties(physical, &memory);
+    fi.GetPhysicalDeviceMemoryProperties(physical, &memory);
+    check_physical_device();
+}
 
+void VulkanDevice::check_physical_device() {
     VkPhysicalDeviceFeatures f;
-    fi_.GetPhysicalDeviceFeatures(physical, &f);
+    fi.GetPhysicalDeviceFeatures(physical, &f);
     if (!f.shaderStorageImageWriteWithoutFormat)
         fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" lacks shaderStorageImageWriteWithoutFormat", name.c_str());
+    VkPhysicalDeviceProperties p;
+    fi.GetPhysicalDeviceProperties(physical, &p);
+    if (p.limits.maxPerStageDescriptorStorageImages < 59)  // bindings 0-5, 9, 10-21 and 24 (x4)
+        fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs 59", name.c_str(),
+             p.limits.maxPerStageDescriptorStorageImages);
     const VkFormat needed[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT,
                                VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R16_UINT};
     for (VkFormat fmt : needed) {
         VkFormatProperties fp;
-        fi_.GetPhysicalDeviceFormatProperties(physical, fmt, &fp);
+        fi.GetPhysicalDeviceFormatProperties(physical, fmt, &fp);
         if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
             fail(RRC_ERROR_UNSUPPORTED, "device \"%s\": VkFormat %d is not usable as a storage image", name.c_str(), (int)fmt);
     }
@@ -195,9 +240,9 @@ void VulkanDevice::pick_physical_device(const std::string& filter) {
 
 void VulkanDevice::create_device() {
     uint32_t n = 0;
-    fi_.GetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
+    fi.GetPhysicalDeviceQueueFamilyProperties(physical, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
-    fi_.GetPhysicalDeviceQueueFamilyProperties(physical, &n, families.data());
+    fi.GetPhysicalDeviceQueueFamilyProperties(physical, &n, families.data());
     bool found = false;
     for (uint32_t i = 0; i < n && !found; ++i)
         if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) queue_family = i, found = true;
@@ -214,7 +259,7 @@ void VulkanDevice::create_device() {
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
     dci.pEnabledFeatures = &enabled;
-    check(fi_.CreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
+    check(fi.CreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
     {
         std::lock_guard<std::mutex> lock(g_volk_mutex);
         volkLoadDeviceTable(&vk, device);
@@ -225,11 +270,12 @@ void VulkanDevice::create_device() {
 VulkanDevice::~VulkanDevice() { release(); }
 
 void VulkanDevice::release() {
+    if (!owns_) return;  // the host's objects
     if (device) vk.vkDestroyDevice(device, nullptr);
     device = VK_NULL_HANDLE;
-    if (messenger_) fi_.DestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
+    if (messenger_) fi.DestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
     messenger_ = VK_NULL_HANDLE;
-    if (instance_) fi_.DestroyInstance(instance_, nullptr);
+    if (instance_) fi.DestroyInstance(instance_, nullptr);
     instance_ = VK_NULL_HANDLE;
 }
 

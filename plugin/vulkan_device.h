@@ -24,6 +24,20 @@ struct InstanceFunctions {
     PFN_vkCreateDevice CreateDevice;
     PFN_vkCreateDebugUtilsMessengerEXT CreateDebugUtilsMessengerEXT;
     PFN_vkDestroyDebugUtilsMessengerEXT DestroyDebugUtilsMessengerEXT;
+    PFN_vkCmdBeginDebugUtilsLabelEXT CmdBeginDebugUtilsLabelEXT;  // NULL unless debug utils is enabled
+    PFN_vkCmdEndDebugUtilsLabelEXT CmdEndDebugUtilsLabelEXT;
+};
+
+// The host's Vulkan objects (interop): used, never destroyed.
+struct HostDevice {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
+    PFN_vkGetDeviceProcAddr get_device_proc_addr = nullptr;  // optional
+    const VkAllocationCallbacks* allocator = nullptr;
+    bool debug_utils = false;  // the host enabled VK_EXT_debug_utils on its instance
 };
 
 class VulkanDevice {
@@ -31,6 +45,8 @@ public:
     // device_filter: empty = automatic (discrete > integrated > virtual > CPU),
     // else the first device whose name contains it.  Throws rrc::Error.
     VulkanDevice(const std::string& device_filter, bool validation, Log log);
+    // Interop: wraps the host's device; entry points come from its loader.
+    VulkanDevice(const HostDevice& host, Log log);
     ~VulkanDevice();
     VulkanDevice(const VulkanDevice&) = delete;
     VulkanDevice& operator=(const VulkanDevice&) = delete;
@@ -41,6 +57,8 @@ public:
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queue_family = 0;
     VkPhysicalDeviceMemoryProperties memory{};
+    const VkAllocationCallbacks* allocator = nullptr;  // the host's, or NULL
+    InstanceFunctions fi{};
     std::string name;
     uint64_t validation_messages() const { return messages_->count.load(); }
 
@@ -59,9 +77,12 @@ private:
     void create_device();
     void release();
 
+    void load_instance_functions(PFN_vkGetInstanceProcAddr gipa, bool debug_utils);
+    void check_physical_device();
+
     std::unique_ptr<Messages> messages_;
     VkInstance instance_ = VK_NULL_HANDLE;
-    InstanceFunctions fi_{};
+    bool owns_ = true;  // false: the host's objects
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
 

@@ -1,0 +1,38 @@
+// What the library owns per channel in both modes: the ping-pong history,
+// age and (with confidence) weight; plus the 1x1 placeholder images bound
+// wherever a configuration leaves a kernel binding unused.
+#pragma once
+
+#include "accumulate_pipeline.h"
+#include "config.h"
+#include "gpu_resources.h"
+
+#include <vector>
+
+namespace rrc {
+
+struct ChannelHistory {
+    GpuImage history[2], age[2], weight[2];  // [parity]: the frame writing parity p reads 1 - p
+    ChannelHistory(VulkanDevice& dev, const ChannelConfig& config, uint32_t width, uint32_t height);
+    void collect(std::vector<GpuImage*>& out);
+    size_t bytes() const;
+};
+
+// Binds a channel's history for the frame that writes `parity`.
+void bind_history(DescriptorViews& views, uint32_t slot, const ChannelHistory& h, uint32_t parity);
+
+class Placeholders {
+public:
+    explicit Placeholders(VulkanDevice& dev);
+    // Every binding filled with a placeholder of a matching format: reads
+    // and writes never share an image, so synchronization validation sees
+    // no false hazard between them.
+    DescriptorViews views() const;
+    void collect(std::vector<GpuImage*>& out);
+
+private:
+    VkImageView read(VkFormat format) const;
+    std::vector<GpuImage> read_, write_;  // write_: R32F (float writes), R16UI (ages)
+};
+
+}  // namespace rrc
