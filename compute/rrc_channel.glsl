@@ -36,7 +36,7 @@ if (RRC_CH < CH_COUNT) {
         if (CH_(_FILTER) == RRC_FILTER_CATMULL_ROM) {
             // 4x4 taps, clamped to the range of the bilinear taps so it cannot ring.
             vec4 wx = rrc_catmull_rom_weights(g.taps.f.x), wy = rrc_catmull_rom_weights(g.taps.f.y);
-            ivec2 hi = imageSize(u_depth) - 1;
+            ivec2 hi = rrc_size() - 1;
             vec4 acc = vec4(0.0);
             float accw = 0.0;
             for (int j = 0; j < 4; ++j) {

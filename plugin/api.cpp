@@ -1,10 +1,12 @@
 // The C boundary: every entry point validates, catches every exception and
 // turns it into an rrc_result plus a message.  Nothing throws across it.
 #include "error.h"
+#include "interop_context.h"
 #include "standalone_context.h"
 #include "validation.h"
 
 #include <rrc/rrc.h>
+#include <rrc/rrc_vulkan.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -13,9 +15,13 @@
 #include <string>
 #include <unordered_set>
 
+// Exactly one of the two is set: the library's own device, or the host's.
 struct rrc_context {
-    std::unique_ptr<rrc::StandaloneContext> impl;
+    std::unique_ptr<rrc::StandaloneContext> standalone;
+    std::unique_ptr<rrc::InteropContext> interop;
     std::string last_error;
+    const rrc::ContextConfig& config() const { return standalone ? standalone->config() : interop->config(); }
+    const rrc::VulkanDevice& device() const { return standalone ? standalone->device() : interop->device(); }
 };
 
 namespace {
@@ -65,10 +71,25 @@ rrc_result guarded(rrc_context* ctx, rrc_log_fn log, void* log_user, Body&& body
     return code;
 }
 
+rrc_context* publish(std::unique_ptr<rrc_context> ctx) {
+    std::lock_guard<std::mutex> lock(g_contexts_mutex);
+    live_contexts().insert(ctx.get());
+    return ctx.release();
+}
+
 rrc_context* checked(rrc_context* c) {
     if (!c) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context is NULL");
     if (!is_live(c)) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context %p is not a live rrc context (destroyed or foreign)", (void*)c);
     return c;
+}
+
+// The context's log callback, for calls on a live context.
+rrc_log_fn log_of(const rrc_context* c) { return c ? c->config().log : nullptr; }
+void* log_user_of(const rrc_context* c) { return c ? c->config().log_user : nullptr; }
+
+rrc::StandaloneContext& standalone(rrc_context* c) {
+    if (!c->standalone) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context was made by rrc_vulkan_context_create: use rrc_vulkan_record_frame");
+    return *c->standalone;
 }
 
 }  // namespace
@@ -113,12 +134,25 @@ rrc_result rrc_context_create(const rrc_context_desc* desc, rrc_context** out_co
         const char* env = std::getenv("RRC_VALIDATION");
         if (env && std::strcmp(env, "1") == 0) config.validation = true;  // documented in rrc.h
         std::unique_ptr<rrc_context> ctx(new rrc_context);
-        ctx->impl.reset(new rrc::StandaloneContext(config));
-        {
-            std::lock_guard<std::mutex> lock(g_contexts_mutex);
-            live_contexts().insert(ctx.get());
-        }
-        *out_context = ctx.release();
+        ctx->standalone.reset(new rrc::StandaloneContext(config));
+        *out_context = publish(std::move(ctx));
+    });
+}
+
+rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device, rrc_context** out_context) {
+    rrc_log_fn log = nullptr;
+    void* user = nullptr;
+    if (desc && desc->type == RRC_STRUCT_TYPE_CONTEXT_DESC && desc->size >= sizeof(rrc_context_desc)) {
+        log = desc->log;
+        user = desc->log_user;
+    }
+    return guarded(nullptr, log, user, [&] {
+        if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
+        rrc::ContextConfig config = rrc::resolve_context_desc(desc);
+        rrc::validate_vulkan_device_desc(device);
+        std::unique_ptr<rrc_context> ctx(new rrc_context);
+        ctx->interop.reset(new rrc::InteropContext(config, *device));
+        *out_context = publish(std::move(ctx));
     });
 }
 
@@ -143,7 +177,7 @@ rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, s
     return guarded(nullptr, nullptr, nullptr, [&] {
         const rrc_context* c = checked(const_cast<rrc_context*>(context));
         if (!out_name) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_name is NULL");
-        const std::string& name = c->impl->device().name;
+        const std::string& name = c->device().name;
         if (capacity < name.size() + 1)
             rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "capacity is %zu, the name needs %zu bytes", capacity, name.size() + 1);
         std::memcpy(out_name, name.c_str(), name.size() + 1);
@@ -154,25 +188,42 @@ rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t*
     return guarded(nullptr, nullptr, nullptr, [&] {
         const rrc_context* c = checked(const_cast<rrc_context*>(context));
         if (!out_count) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_count is NULL");
-        *out_count = c->impl->device().validation_messages();
+        *out_count = c->device().validation_messages();
     });
 }
 
 rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_frame_output* output) {
     rrc_context* c = context && is_live(context) ? context : nullptr;
-    const rrc::ContextConfig* config = c ? &c->impl->config() : nullptr;
-    return guarded(c, config ? config->log : nullptr, config ? config->log_user : nullptr, [&] {
+    return guarded(c, log_of(c), log_user_of(c), [&] {
         checked(context);
-        rrc::validate_frame(*config, frame, output);
-        c->impl->run_frames(1, frame, output);
+        rrc::validate_frame(c->config(), frame, output);
+        standalone(c).run_frames(1, frame, output);
+    });
+}
+
+rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame) {
+    rrc_context* c = context && is_live(context) ? context : nullptr;
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(context);
+        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
+        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_run");
+        c->interop->record_frame(*frame);
+    });
+}
+
+rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+        if (!out_bytes) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_bytes is NULL");
+        *out_bytes = c->standalone ? c->standalone->memory_bytes() : c->interop->memory_bytes();
     });
 }
 
 rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
     rrc_context* c = context && is_live(context) ? context : nullptr;
-    const rrc::ContextConfig* config = c ? &c->impl->config() : nullptr;
-    return guarded(c, config ? config->log : nullptr, config ? config->log_user : nullptr, [&] {
+    return guarded(c, log_of(c), log_user_of(c), [&] {
         checked(context);
+        const rrc::ContextConfig* config = &c->config();
         if (count == 0) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is 0");
         if (count > 65536) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is %u, at most 65536 frames a batch", count);
         if (!frames) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frames is NULL");
@@ -183,7 +234,7 @@ rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_f
                 throw rrc::Error(e.code, "frames[" + std::to_string(i) + "]: " + e.what());
             }
         }
-        c->impl->run_frames(count, frames, outputs);
+        standalone(c).run_frames(count, frames, outputs);
     });
 }
 

@@ -335,6 +335,12 @@ void StandaloneContext::read_back(rrc_frame_output* out, uint32_t slot, uint32_t
     out->stats = stats;
 }
 
+size_t StandaloneContext::memory_bytes() const {
+    size_t bytes = 2 * depth_[0].bytes() + reprojection_.bytes() + nocache_.bytes() + mask_.bytes() + upload_.size + readback_.size;
+    for (const Channel& ch : channels_) bytes += ch.samples.bytes() + ch.confidence.bytes() + ch.state->bytes();
+    return bytes;
+}
+
 void StandaloneContext::run_frames(uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
     reserve_batch(count);
     for (uint32_t i = 0; i < count; ++i) upload(frames[i], i);

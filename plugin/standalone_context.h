@@ -26,6 +26,7 @@ public:
 
     const ContextConfig& config() const { return config_; }
     const VulkanDevice& device() const { return *dev_; }
+    size_t memory_bytes() const;
 
 private:
     struct Channel {

@@ -2,6 +2,8 @@
 
 #include "error.h"
 
+#include <rrc/rrc_vulkan.h>
+
 #include <cmath>
 #include <cstring>
 
@@ -184,6 +186,23 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_f
         if (out->channels[i].weight && !c.channels[i].confidence)
             fail(RRC_ERROR_INVALID_ARGUMENT, "%s.weight is set but channel \"%s\" has no confidence", what, c.channels[i].name.c_str());
     }
+}
+
+}  // namespace rrc
+
+namespace rrc {
+
+void validate_vulkan_device_desc(const rrc_vulkan_device_desc* d) {
+    check_struct(d, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, sizeof(rrc_vulkan_device_desc), "device");
+    if (!d->instance) fail(RRC_ERROR_INVALID_ARGUMENT, "device.instance is VK_NULL_HANDLE");
+    if (!d->physical_device) fail(RRC_ERROR_INVALID_ARGUMENT, "device.physical_device is VK_NULL_HANDLE");
+    if (!d->device) fail(RRC_ERROR_INVALID_ARGUMENT, "device.device is VK_NULL_HANDLE");
+    if (!d->get_instance_proc_addr) fail(RRC_ERROR_INVALID_ARGUMENT, "device.get_instance_proc_addr is NULL");
+    if (d->vulkan_api_version < VK_API_VERSION_1_1)
+        fail(RRC_ERROR_UNSUPPORTED, "device.vulkan_api_version is %u.%u, rrc needs Vulkan 1.1", VK_API_VERSION_MAJOR(d->vulkan_api_version),
+             VK_API_VERSION_MINOR(d->vulkan_api_version));
+    if (d->max_frames_in_flight > 16)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "device.max_frames_in_flight is %u, at most 16", d->max_frames_in_flight);
 }
 
 }  // namespace rrc

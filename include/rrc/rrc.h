@@ -262,6 +262,10 @@ RRC_API const char* rrc_context_last_error(const rrc_context* context);
 /** The name of the Vulkan device the context runs on (NUL-terminated). */
 RRC_API rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, size_t capacity);
 
+/** Device memory the context owns (history, ages, weights, previous depth,
+ *  its own input copies and staging), in bytes. */
+RRC_API rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes);
+
 /** Number of validation-layer messages seen so far (0 if validation is off). */
 RRC_API rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t* out_count);
 

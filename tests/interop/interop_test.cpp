@@ -1,0 +1,217 @@
+// The interop path (include/rrc/rrc_vulkan.h) inside a host's own device and
+// command buffers: the same frames give bit-identical outputs through the
+// standalone and the interop paths, with zero validation messages (the host
+// runs the layer with synchronization validation, teardown included).
+#include "interop/vulkan_host.h"
+#include "support/rrc_test_context.h"
+#include "support/scene_frames.h"
+
+#include <rrc/rrc_vulkan.h>
+
+#include <glm/gtc/packing.hpp>
+
+using namespace rrc_test;
+
+namespace {
+
+const int W = 48, H = 32, kFrames = 6;
+
+std::vector<rrc_channel_desc> test_channels() {
+    return {channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR),
+            channel("env", 4, 0.7f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 0, 1)};
+}
+
+rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels) {
+    rrc_context_desc d = context_desc(W, H, channels);
+    d.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    d.near_plane = 0.1f;
+    d.far_plane = 100.0f;
+    return d;
+}
+
+rrc_vulkan_device_desc device_desc(const VulkanHost& host) {
+    rrc_vulkan_device_desc d;
+    std::memset(&d, 0, sizeof d);
+    d.type = RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC;
+    d.size = sizeof d;
+    d.instance = host.instance;
+    d.physical_device = host.physical;
+    d.device = host.device;
+    d.queue_family_index = host.family;
+    d.vulkan_api_version = VK_API_VERSION_1_1;
+    d.get_instance_proc_addr = vkGetInstanceProcAddr;
+    d.max_frames_in_flight = 2;
+    d.debug_utils_enabled = 1;
+    return d;
+}
+
+rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) {
+    rrc_vulkan_image v;
+    std::memset(&v, 0, sizeof v);
+    v.image = img.image;
+    v.view = img.view;
+    v.format = img.format;
+    v.layout = layout;
+    return v;
+}
+
+std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
+    std::vector<float> f(bytes.size() / 4);
+    std::memcpy(f.data(), bytes.data(), bytes.size());
+    return f;
+}
+
+TEST(Interop, SameOutputsAsStandaloneBitForBit) {
+    rrc_scene::SceneConfig sc;
+    sc.width = W;
+    sc.height = H;
+    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    sc.jitter = true;
+    rrc_scene::Scene scene(sc);
+    std::vector<rrc_channel_desc> channels = test_channels();
+
+    // Standalone: the library's own device.
+    std::vector<FrameResult> expected;
+    {
+        Context ctx(test_desc(channels));
+        ASSERT_TRUE(ctx);
+        for (int t = 0; t < kFrames; ++t) {
+            SceneFrameInputs in;
+            in.frame = scene.render(t);
+            make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+            expected.push_back(ctx.run(in.desc));
+        }
+    }
+
+    // Interop: the host's device, images and command buffers.
+    VulkanHost host;
+    rrc_vulkan_device_desc dd = device_desc(host);
+    rrc_context_desc cd = test_desc(channels);
+    rrc_context* ctx = nullptr;
+    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    uint64_t bytes = 0;
+    ASSERT_EQ(rrc_get_memory_usage(ctx, &bytes), RRC_SUCCESS);
+    // Ping-pong: depth 2 x 4 B, fp16 history + age 2 x (2 + 2) B, fp32 rgba history + age + weight 2 x (16 + 2 + 4) B, mask 1 B.
+    EXPECT_EQ(bytes, (uint64_t)W * H * (8 + 8 + 44 + 1));
+
+    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
+    HostImage depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
+    HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
+    HostImage mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
+    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    for (HostImage* img : {&out1, &out4, &mask}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
+
+    // The depth is handed over as a depth attachment would leave it.
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, dro = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    for (int t = 0; t < kFrames; ++t) {
+        SceneFrameInputs in;
+        in.frame = scene.render(t);
+        make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+        host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
+        host.upload(clip, in.reprojection.data(), W * H * 16, ro);
+        host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
+        host.upload(s4, in.frame.signal4.data(), W * H * 16, ro);
+        host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
+
+        rrc_vulkan_channel_images ch[2];
+        std::memset(ch, 0, sizeof ch);
+        for (auto& c : ch) {
+            c.type = RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES;
+            c.size = sizeof c;
+        }
+        ch[0].samples = view_of(s1, ro);
+        ch[0].output = view_of(out1, VK_IMAGE_LAYOUT_GENERAL);
+        ch[1].samples = view_of(s4, ro);
+        ch[1].confidence = view_of(conf, ro);
+        ch[1].output = view_of(out4, VK_IMAGE_LAYOUT_GENERAL);
+        rrc_vulkan_frame_desc f;
+        std::memset(&f, 0, sizeof f);
+        f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+        f.size = sizeof f;
+        f.frame_index = t;
+        f.depth = view_of(depth, dro);
+        f.reprojection = view_of(clip, ro);
+        f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
+        std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
+        std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
+        f.channel_count = 2;
+        f.channels = ch;
+        f.command_buffer = host.begin();
+        ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+        host.submit_and_wait(f.command_buffer);
+
+        std::vector<float> v1 = as_floats(host.download(out1, VK_IMAGE_LAYOUT_GENERAL));
+        std::vector<float> v4 = as_floats(host.download(out4, VK_IMAGE_LAYOUT_GENERAL));
+        std::vector<unsigned char> m = host.download(mask, VK_IMAGE_LAYOUT_GENERAL);
+        EXPECT_EQ(v1, expected[t].values[0]) << "frame " << t;  // fp16 history: the same rounded values
+        EXPECT_EQ(v4, expected[t].values[1]) << "frame " << t;
+        EXPECT_EQ(std::vector<uint8_t>(m.begin(), m.end()), expected[t].mask) << "frame " << t;
+        if (t > 0) EXPECT_GT(expected[t].stats.hits, (uint64_t)W * H / 3) << "the comparison must cover hits";
+    }
+    rrc_context_destroy(ctx);
+    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &out1, &out4, &mask}) host.destroy(*img);
+    host.shutdown();
+    EXPECT_TRUE(host.messages.empty()) << host.messages.size() << " validation messages, first: " << host.messages.front();
+}
+
+TEST(Interop, WrongModeAndBadInputAreRefused) {
+    VulkanHost host;
+    std::vector<rrc_channel_desc> channels = test_channels();
+    rrc_context_desc cd = test_desc(channels);
+    rrc_vulkan_device_desc dd = device_desc(host);
+    rrc_context* ctx = nullptr;
+
+    rrc_vulkan_device_desc bad = dd;
+    bad.device = VK_NULL_HANDLE;
+    EXPECT_EQ(rrc_vulkan_context_create(&cd, &bad, &ctx), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("device.device"), std::string::npos) << rrc_last_error();
+    bad = dd;
+    bad.vulkan_api_version = VK_API_VERSION_1_0;
+    EXPECT_EQ(rrc_vulkan_context_create(&cd, &bad, &ctx), RRC_ERROR_UNSUPPORTED);
+    bad = dd;
+    bad.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
+    EXPECT_EQ(rrc_vulkan_context_create(&cd, &bad, &ctx), RRC_ERROR_INVALID_STRUCT);
+    bad = dd;
+    bad.get_instance_proc_addr = nullptr;
+    EXPECT_EQ(rrc_vulkan_context_create(&cd, &bad, &ctx), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(ctx, nullptr);
+
+    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_frame_desc core = frame_desc();
+    EXPECT_EQ(rrc_frame_run(ctx, &core, nullptr), RRC_ERROR_MISSING_INPUT);  // validated first...
+    std::vector<float> depth(W * H, 0.5f), clip(W * H * 4, 0.0f), s(W * H * 4, 0.0f);
+    std::vector<rrc_channel_input> inputs = {channel_input(s.data()), channel_input(s.data(), s.data())};
+    core.depth = depth.data();
+    core.reprojection = clip.data();
+    core.channel_count = 2;
+    core.channels = inputs.data();
+    EXPECT_EQ(rrc_frame_run(ctx, &core, nullptr), RRC_ERROR_UNSUPPORTED);  // ...then refused: not standalone
+    EXPECT_NE(std::string(rrc_last_error()).find("rrc_vulkan_record_frame"), std::string::npos);
+
+    rrc_vulkan_frame_desc f;
+    std::memset(&f, 0, sizeof f);
+    f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+    f.size = sizeof f;
+    EXPECT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("command_buffer"), std::string::npos);
+    f.command_buffer = host.begin();
+    EXPECT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_ERROR_MISSING_INPUT);
+    EXPECT_NE(std::string(rrc_last_error()).find("frame.depth"), std::string::npos);
+    EXPECT_EQ(rrc_vulkan_record_frame(ctx, nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    host.submit_and_wait(f.command_buffer);  // nothing was recorded into it
+    rrc_context_destroy(ctx);
+
+    Context standalone(cd);
+    ASSERT_TRUE(standalone);
+    EXPECT_EQ(rrc_vulkan_record_frame(standalone.get(), &f), RRC_ERROR_UNSUPPORTED);
+    host.shutdown();
+    EXPECT_TRUE(host.messages.empty()) << host.messages.front();
+}
+
+}  // namespace
