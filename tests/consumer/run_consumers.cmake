@@ -1,0 +1,39 @@
+# Installs rrc into a fresh prefix, then builds and runs the integration
+# example twice: with find_package(rrc) and with pkg-config.
+# -DBUILD_DIR=<rrc build> -DSOURCE_DIR=<rrc source> -DWORK=<scratch dir>
+file(REMOVE_RECURSE ${WORK})
+set(prefix ${WORK}/prefix)
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endfunction()
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+include(GNUInstallDirs)
+set(libdir ${prefix}/${CMAKE_INSTALL_LIBDIR})
+foreach(f include/rrc/rrc.h include/rrc/rrc_vulkan.h ${CMAKE_INSTALL_LIBDIR}/cmake/rrc/rrcConfig.cmake
+          ${CMAKE_INSTALL_LIBDIR}/cmake/rrc/rrcConfigVersion.cmake ${CMAKE_INSTALL_LIBDIR}/pkgconfig/rrc.pc)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "install is missing ${f}")
+  endif()
+endforeach()
+
+# 1. CMake package.
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK}/cmake -DCMAKE_PREFIX_PATH=${prefix}
+    -DRRC_INTEGRATION_DOC=${SOURCE_DIR}/docs/INTEGRATION.md)
+run(${CMAKE_COMMAND} --build ${WORK}/cmake)
+run(${WORK}/cmake/integration_example)
+
+# 2. pkg-config, with the C compiler directly.
+find_program(PKG_CONFIG pkg-config REQUIRED)
+set(ENV{PKG_CONFIG_PATH} ${libdir}/pkgconfig)
+execute_process(COMMAND ${PKG_CONFIG} --cflags --libs rrc OUTPUT_VARIABLE flags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "pkg-config does not find rrc in ${libdir}/pkgconfig")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run(cc -std=c99 -pedantic-errors -Wall -Werror ${WORK}/cmake/integration_example.c ${flags} -Wl,-rpath,${libdir}
+    -o ${WORK}/integration_example_pkgconfig)
+run(${WORK}/integration_example_pkgconfig)
