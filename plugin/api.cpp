@@ -83,6 +83,14 @@ rrc_context* checked(rrc_context* c) {
     return c;
 }
 
+// A create call reports to the descriptor's log callback when the
+// descriptor is readable enough to hold one.
+bool desc_readable(const rrc_context_desc* d) {
+    return d && d->type == RRC_STRUCT_TYPE_CONTEXT_DESC && d->size >= sizeof(rrc_context_desc);
+}
+rrc_log_fn desc_log(const rrc_context_desc* d) { return desc_readable(d) ? d->log : nullptr; }
+void* desc_log_user(const rrc_context_desc* d) { return desc_readable(d) ? d->log_user : nullptr; }
+
 // The context's log callback, for calls on a live context.
 rrc_log_fn log_of(const rrc_context* c) { return c ? c->config().log : nullptr; }
 void* log_user_of(const rrc_context* c) { return c ? c->config().log_user : nullptr; }
@@ -122,13 +130,7 @@ rrc_result rrc_validate_context_desc(const rrc_context_desc* desc) {
 }
 
 rrc_result rrc_context_create(const rrc_context_desc* desc, rrc_context** out_context) {
-    rrc_log_fn log = nullptr;
-    void* user = nullptr;
-    if (desc && desc->type == RRC_STRUCT_TYPE_CONTEXT_DESC && desc->size >= sizeof(rrc_context_desc)) {
-        log = desc->log;
-        user = desc->log_user;
-    }
-    return guarded(nullptr, log, user, [&] {
+    return guarded(nullptr, desc_log(desc), desc_log_user(desc), [&] {
         if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
         rrc::ContextConfig config = rrc::resolve_context_desc(desc);
         const char* env = std::getenv("RRC_VALIDATION");
@@ -140,13 +142,7 @@ rrc_result rrc_context_create(const rrc_context_desc* desc, rrc_context** out_co
 }
 
 rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device, rrc_context** out_context) {
-    rrc_log_fn log = nullptr;
-    void* user = nullptr;
-    if (desc && desc->type == RRC_STRUCT_TYPE_CONTEXT_DESC && desc->size >= sizeof(rrc_context_desc)) {
-        log = desc->log;
-        user = desc->log_user;
-    }
-    return guarded(nullptr, log, user, [&] {
+    return guarded(nullptr, desc_log(desc), desc_log_user(desc), [&] {
         if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
         rrc::ContextConfig config = rrc::resolve_context_desc(desc);
         rrc::validate_vulkan_device_desc(device);

@@ -131,3 +131,34 @@ void HostBuffer::reset() {
 }
 
 }  // namespace rrc
+
+namespace rrc {
+
+void record_initialise(const VulkanDevice& dev, VkCommandBuffer cmd, const std::vector<GpuImage*>& images) {
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    std::vector<VkImageMemoryBarrier> barriers;
+    for (GpuImage* img : images) {
+        if (!img->image) continue;
+        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = img->image;
+        b.subresourceRange = range;
+        barriers.push_back(b);
+    }
+    auto& vk = dev.vk;
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                            (uint32_t)barriers.size(), barriers.data());
+    VkClearColorValue zero{};
+    for (GpuImage* img : images)
+        if (img->image) vk.vkCmdClearColorImage(cmd, img->image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
+                            1, &mb, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace rrc

@@ -4,6 +4,8 @@
 
 #include "vulkan_device.h"
 
+#include <vector>
+
 namespace rrc {
 
 class GpuImage {
@@ -48,5 +50,10 @@ private:
 };
 
 uint32_t texel_bytes(VkFormat format);
+
+// Records the one-time start of the library's images: UNDEFINED -> GENERAL
+// (the only layout the library uses for its own images), cleared to zero so
+// even a never-written texel reads as zero, visible to later copies and kernels.
+void record_initialise(const VulkanDevice& dev, VkCommandBuffer cmd, const std::vector<GpuImage*>& images);
 
 }  // namespace rrc

@@ -135,8 +135,7 @@ void StandaloneContext::write_descriptor_sets() {
     }
 }
 
-// Every image to GENERAL (the only layout the library uses) and cleared, so
-// even a never-written texel reads as zero.
+// One submission at creation: every image to GENERAL, cleared.
 void StandaloneContext::initialise_images() {
     auto& vk = dev_->vk;
     std::vector<GpuImage*> all = {&depth_[0], &depth_[1], &reprojection_, &nocache_, &mask_};
@@ -148,28 +147,7 @@ void StandaloneContext::initialise_images() {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
-    std::vector<VkImageMemoryBarrier> barriers;
-    for (GpuImage* img : all) {
-        if (!img->image) continue;
-        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-        b.srcAccessMask = 0;
-        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = img->image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        barriers.push_back(b);
-    }
-    vk.vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                            (uint32_t)barriers.size(), barriers.data());
-    VkClearColorValue zero{};
-    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    for (GpuImage* img : all)
-        if (img->image) vk.vkCmdClearColorImage(cmd_, img->image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-    memory_barrier(vk, cmd_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                   VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    record_initialise(*dev_, cmd_, all);
     VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
 }

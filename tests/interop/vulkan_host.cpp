@@ -21,6 +21,32 @@ uint32_t bytes_of(VkFormat f) {
     }
 }
 
+// A host-visible, coherent staging buffer, made and freed per call (tests move a few KB).
+struct Staging {
+    VkDevice device;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* data = nullptr;
+    Staging(const VulkanHost& host, size_t bytes, VkBufferUsageFlags usage) : device(host.device) {
+        VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+        bci.size = bytes;
+        bci.usage = usage;
+        check(vkCreateBuffer(device, &bci, nullptr, &buffer), "vkCreateBuffer");
+        VkMemoryRequirements req;
+        vkGetBufferMemoryRequirements(device, buffer, &req);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex = host.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
+        check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
+        check(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &data), "vkMapMemory");
+    }
+    ~Staging() {
+        vkDestroyBuffer(device, buffer, nullptr);
+        vkFreeMemory(device, memory, nullptr);
+    }
+};
+
 }  // namespace
 
 VKAPI_ATTR VkBool32 VKAPI_CALL VulkanHost::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
@@ -176,67 +202,35 @@ void VulkanHost::transition(VkCommandBuffer cmd, HostImage& img, VkImageLayout f
 
 
 void VulkanHost::upload(HostImage& img, const void* data, size_t bytes, VkImageLayout layout) {
-    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    bci.size = bytes;
-    bci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-    VkBuffer buffer;
-    check(vkCreateBuffer(device, &bci, nullptr, &buffer), "vkCreateBuffer");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VkDeviceMemory memory;
-    check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
-    check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
-    void* p;
-    check(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
-    std::memcpy(p, data, bytes);
+    Staging staging(*this, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    std::memcpy(staging.data, data, bytes);
     VkCommandBuffer cmd = begin();
     transition(cmd, img, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkBufferImageCopy r{};
     r.imageSubresource = {img.aspect, 0, 0, 1};
     r.imageExtent = {img.width, img.height, 1};
-    vkCmdCopyBufferToImage(cmd, buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
     transition(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, layout);
     submit_and_wait(cmd);
-    vkDestroyBuffer(device, buffer, nullptr);
-    vkFreeMemory(device, memory, nullptr);
 }
 
 std::vector<unsigned char> VulkanHost::download(HostImage& img, VkImageLayout layout) {
     const size_t bytes = (size_t)img.width * img.height * img.texel_bytes;
-    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    bci.size = bytes;
-    bci.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    VkBuffer buffer;
-    check(vkCreateBuffer(device, &bci, nullptr, &buffer), "vkCreateBuffer");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VkDeviceMemory memory;
-    check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
-    check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
+    Staging staging(*this, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     VkCommandBuffer cmd = begin();
     transition(cmd, img, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     VkBufferImageCopy r{};
     r.imageSubresource = {img.aspect, 0, 0, 1};
     r.imageExtent = {img.width, img.height, 1};
-    vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &r);
+    vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &r);
     transition(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
     mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr, 0, nullptr);
     submit_and_wait(cmd);
-    void* p;
-    check(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
-    std::vector<unsigned char> out((unsigned char*)p, (unsigned char*)p + bytes);
-    vkDestroyBuffer(device, buffer, nullptr);
-    vkFreeMemory(device, memory, nullptr);
-    return out;
+    const unsigned char* p = static_cast<const unsigned char*>(staging.data);
+    return std::vector<unsigned char>(p, p + bytes);
 }
 
 }  // namespace rrc_test

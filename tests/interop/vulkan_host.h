@@ -45,11 +45,11 @@ public:
     // A one-time command buffer: begin, then submit_and_wait it.
     VkCommandBuffer begin();
     void submit_and_wait(VkCommandBuffer cmd);
+    uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
 
 private:
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
                                                      const VkDebugUtilsMessengerCallbackDataEXT*, void*);
-    uint32_t memory_type(uint32_t bits, VkMemoryPropertyFlags flags) const;
     void transition(VkCommandBuffer cmd, HostImage& img, VkImageLayout from, VkImageLayout to);
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     VkCommandPool pool_ = VK_NULL_HANDLE;
