@@ -10,6 +10,8 @@
 #include <ImfIO.h>
 #include <ImfInputPart.h>
 #include <ImfMultiPartInputFile.h>
+#include <ImfMultiPartOutputFile.h>
+#include <ImfOutputPart.h>
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
 #include <ImfStdIO.h>
@@ -18,6 +20,8 @@
 #include <ImfVersion.h>
 #include <openexr.h>
 
+#include <Imath/half.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -25,6 +29,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <set>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -318,6 +323,91 @@ ExrInfo read_exr_info(const std::string& path)
     return info;
 }
 
+void verify_exr_chunks(const std::string& path)
+{
+    require_readable_file(path);
+    std::error_code size_ec;
+    const std::uintmax_t file_size = fs::file_size(path, size_ec);
+    if (size_ec)
+        throw ExrError(path, "cannot read: " + size_ec.message());
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = &core_error_handler;
+    exr_context_t ctx = nullptr;
+    t_core_message.clear();
+    auto fail = [&](exr_result_t code, const std::string& what) {
+        std::string msg = t_core_message.empty() ? exr_get_default_error_message(code) : t_core_message;
+        if (ctx)
+            exr_finish(&ctx);
+        throw ExrError(path, "truncated or corrupt OpenEXR file: " + what + ": " + msg);
+    };
+    exr_result_t rv = exr_start_read(&ctx, path.c_str(), &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        std::string msg = t_core_message.empty() ? exr_get_default_error_message(rv) : t_core_message;
+        if (ctx)
+            exr_finish(&ctx);
+        throw ExrError(path, "not a readable OpenEXR file: " + msg);
+    }
+    int parts = 0;
+    if ((rv = exr_get_count(ctx, &parts)) != EXR_ERR_SUCCESS)
+        fail(rv, "part count");
+    auto check_block = [&](const exr_chunk_info_t& ci, const std::string& where) {
+        if (ci.data_offset > file_size || ci.packed_size > file_size - ci.data_offset) {
+            exr_finish(&ctx);
+            throw ExrError(path, "truncated OpenEXR file: " + where + " ends at byte " +
+                                     std::to_string(ci.data_offset + ci.packed_size) + " but the file has " +
+                                     std::to_string(file_size) + " bytes");
+        }
+    };
+    for (int p = 0; p < parts; ++p) {
+        exr_storage_t storage;
+        exr_attr_box2i_t dw;
+        if ((rv = exr_get_storage(ctx, p, &storage)) != EXR_ERR_SUCCESS ||
+            (rv = exr_get_data_window(ctx, p, &dw)) != EXR_ERR_SUCCESS)
+            fail(rv, "part " + std::to_string(p));
+        const std::string part = parts > 1 ? "part " + std::to_string(p) + ", " : "";
+        if (storage == EXR_STORAGE_SCANLINE || storage == EXR_STORAGE_DEEP_SCANLINE) {
+            int32_t lines = 0;
+            if ((rv = exr_get_scanlines_per_chunk(ctx, p, &lines)) != EXR_ERR_SUCCESS || lines <= 0)
+                fail(rv == EXR_ERR_SUCCESS ? EXR_ERR_INVALID_ATTR : rv, part + "scanlines per block");
+            for (int64_t y = dw.min.y; y <= dw.max.y; y += lines) {
+                exr_chunk_info_t ci;
+                const std::string where = part + "the block of scanline " + std::to_string(y);
+                if ((rv = exr_read_scanline_chunk_info(ctx, p, static_cast<int>(y), &ci)) != EXR_ERR_SUCCESS)
+                    fail(rv, where);
+                check_block(ci, where);
+            }
+        } else {
+            uint32_t tw = 0, th = 0;
+            exr_tile_level_mode_t level_mode;
+            exr_tile_round_mode_t round_mode;
+            int32_t levels_x = 0, levels_y = 0;
+            if ((rv = exr_get_tile_descriptor(ctx, p, &tw, &th, &level_mode, &round_mode)) != EXR_ERR_SUCCESS ||
+                (rv = exr_get_tile_levels(ctx, p, &levels_x, &levels_y)) != EXR_ERR_SUCCESS)
+                fail(rv, part + "tile description");
+            for (int ly = 0; ly < levels_y; ++ly)
+                for (int lx = 0; lx < levels_x; ++lx) {
+                    if (level_mode != EXR_TILE_RIPMAP_LEVELS && lx != ly)
+                        continue;
+                    int32_t lw = 0, lh = 0, sw = 0, sh = 0;
+                    if ((rv = exr_get_level_sizes(ctx, p, lx, ly, &lw, &lh)) != EXR_ERR_SUCCESS ||
+                        (rv = exr_get_tile_sizes(ctx, p, lx, ly, &sw, &sh)) != EXR_ERR_SUCCESS || sw <= 0 || sh <= 0)
+                        fail(rv == EXR_ERR_SUCCESS ? EXR_ERR_INVALID_ATTR : rv, part + "tile level sizes");
+                    for (int ty = 0; ty < (lh + sh - 1) / sh; ++ty)
+                        for (int tx = 0; tx < (lw + sw - 1) / sw; ++tx) {
+                            exr_chunk_info_t ci;
+                            const std::string where = part + "tile (" + std::to_string(tx) + ", " +
+                                                      std::to_string(ty) + ") of level (" + std::to_string(lx) +
+                                                      ", " + std::to_string(ly) + ")";
+                            if ((rv = exr_read_tile_chunk_info(ctx, p, tx, ty, lx, ly, &ci)) != EXR_ERR_SUCCESS)
+                                fail(rv, where);
+                            check_block(ci, where);
+                        }
+                }
+        }
+    }
+    exr_finish(&ctx);
+}
+
 void set_thread_count(int threads)
 {
     Imf::setGlobalThreadCount(threads > 0 ? threads : 0);
@@ -378,21 +468,57 @@ void write_exr(const std::string& path, const ExrImage& image, const WriteOption
 
     const std::string tmp = temporary_name_for(target);
     try {
-        Imf::Header header(image.width, image.height);
-        header.compression() = to_imf(options.compression);
-        for (const auto& kv : image.attributes)
-            header.insert(kv.first, Imf::StringAttribute(kv.second));
-        Imf::FrameBuffer fb;
+        const std::set<std::string> as_half(options.half_channels.begin(), options.half_channels.end());
+        // Channels grouped into parts: one part, or one per layer.
+        std::map<std::string, std::vector<std::string>> parts;
+        auto part_of = [&](const std::string& name) {
+            if (!options.multipart_by_layer)
+                return std::string();
+            const std::size_t dot = name.rfind('.');
+            return dot == std::string::npos ? std::string() : name.substr(0, dot);
+        };
+        for (const auto& kv : image.channels)
+            parts[part_of(kv.first)].push_back(kv.first);
+        for (const auto& kv : image.uint_channels)
+            parts[part_of(kv.first)].push_back(kv.first);
+
+        std::vector<Imf::Header> headers;
+        std::vector<Imf::FrameBuffer> buffers;
+        // OpenEXR writes each channel from a slice of its own type: HALF
+        // channels get a rounded copy (Imath's half(float) rounds to nearest even).
+        std::map<std::string, std::vector<half>> half_copies;
+        const std::size_t hxs = sizeof(half), hys = sizeof(half) * static_cast<std::size_t>(image.width);
         const std::size_t xs = sizeof(float), ys = sizeof(float) * static_cast<std::size_t>(image.width);
-        for (const auto& kv : image.channels) {
-            header.channels().insert(kv.first, Imf::Channel(Imf::FLOAT));
-            char* base = reinterpret_cast<char*>(const_cast<float*>(kv.second.data()));
-            fb.insert(kv.first, Imf::Slice(Imf::FLOAT, base, xs, ys));
-        }
-        for (const auto& kv : image.uint_channels) {
-            header.channels().insert(kv.first, Imf::Channel(Imf::UINT));
-            char* base = reinterpret_cast<char*>(const_cast<uint32_t*>(kv.second.data()));
-            fb.insert(kv.first, Imf::Slice(Imf::UINT, base, xs, ys));
+        for (const auto& part : parts) {
+            Imf::Header header(image.width, image.height);
+            header.compression() = to_imf(options.compression);
+            if (headers.empty())
+                for (const auto& kv : image.attributes)
+                    header.insert(kv.first, Imf::StringAttribute(kv.second));
+            if (options.multipart_by_layer) {
+                header.setName(part.first.empty() ? "default" : part.first);
+                header.setType(Imf::SCANLINEIMAGE);
+            }
+            Imf::FrameBuffer fb;
+            for (const std::string& name : part.second) {
+                if (auto it = image.channels.find(name); it != image.channels.end() && as_half.count(name)) {
+                    std::vector<half>& h = half_copies[name];
+                    h.assign(it->second.begin(), it->second.end());
+                    header.channels().insert(name, Imf::Channel(Imf::HALF));
+                    fb.insert(name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(h.data()), hxs, hys));
+                } else if (it != image.channels.end()) {
+                    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+                    char* base = reinterpret_cast<char*>(const_cast<float*>(it->second.data()));
+                    fb.insert(name, Imf::Slice(Imf::FLOAT, base, xs, ys));
+                } else {
+                    const auto& v = image.uint_channels.at(name);
+                    header.channels().insert(name, Imf::Channel(Imf::UINT));
+                    char* base = reinterpret_cast<char*>(const_cast<uint32_t*>(v.data()));
+                    fb.insert(name, Imf::Slice(Imf::UINT, base, xs, ys));
+                }
+            }
+            headers.push_back(header);
+            buffers.push_back(fb);
         }
 
         std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
@@ -400,9 +526,18 @@ void write_exr(const std::string& path, const ExrImage& image, const WriteOption
             throw ExrError(path, "cannot create '" + tmp + "': " + errno_text(errno));
         {
             Imf::StdOFStream stream(os, tmp.c_str());
-            Imf::OutputFile file(stream, header);
-            file.setFrameBuffer(fb);
-            file.writePixels(image.height);
+            if (!options.multipart_by_layer) {
+                Imf::OutputFile file(stream, headers[0]);
+                file.setFrameBuffer(buffers[0]);
+                file.writePixels(image.height);
+            } else {
+                Imf::MultiPartOutputFile file(stream, headers.data(), static_cast<int>(headers.size()));
+                for (int p = 0; p < static_cast<int>(headers.size()); ++p) {
+                    Imf::OutputPart part(file, p);
+                    part.setFrameBuffer(buffers[static_cast<std::size_t>(p)]);
+                    part.writePixels(image.height);
+                }
+            }
         } // the destructor writes the offset table; a failure there shows on `os`
         os.flush();
         os.close();

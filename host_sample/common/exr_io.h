@@ -80,6 +80,14 @@ ExrImage read_exr(const std::string& path);
  *  malformed input.  Cheap: used to check a whole sequence up front. */
 ExrInfo read_exr_info(const std::string& path);
 
+/** Checks, without decoding pixels, that every pixel block (chunk) the
+ *  header promises is in the file: the offset table and each block's
+ *  leader are read with the OpenEXR Core library and every block must end
+ *  within the file.  Catches truncated files up front (a whole sequence
+ *  can be checked before any output is written); corrupt compressed data
+ *  inside a block is only found by read_exr().  Throws ExrError. */
+void verify_exr_chunks(const std::string& path);
+
 /** The sorted channel names of a file (header only) or of an image. */
 std::vector<std::string> channel_names(const std::string& path);
 std::vector<std::string> channel_names(const ExrImage& image);
@@ -88,10 +96,17 @@ enum class Compression { None, Zip, Zips, Piz, Rle };
 
 struct WriteOptions {
     Compression compression = Compression::Zip; /* lossless */
+    /** Float channels written as HALF (rounded to nearest); the others are
+     *  FLOAT.  Names not in the image are ignored. */
+    std::vector<std::string> half_channels;
+    /** false: one part (as Blender writes multilayer files).  true: one part
+     *  per layer (the channel name up to its last '.', "" for plain names),
+     *  each part named after its layer, as compositors often write. */
+    bool multipart_by_layer = false;
 };
 
-/** Write a single-part scanline file (data window = display window =
- *  [0,w-1]x[0,h-1]).  Every channel must hold width*height values and no
+/** Write a scanline file (data window = display window = [0,w-1]x[0,h-1]),
+ *  single-part unless options.multipart_by_layer.  Every channel must hold width*height values and no
  *  name may be both a float and a UINT channel.  The file is written under a
  *  temporary name in the same directory and renamed over `path` only once
  *  complete, so a failure never leaves a partial file (an existing `path`

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <sstream>
@@ -46,6 +47,22 @@ bool parse_int(const std::string& text, int64_t& out)
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
+// "a,b,c" -> {"a","b","c"}; false if an item is empty.
+bool split_list(const std::string& text, std::vector<std::string>& out)
+{
+    out.clear();
+    std::size_t pos = 0;
+    while (true) {
+        std::size_t comma = text.find(',', pos);
+        out.push_back(text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+        if (out.back().empty())
+            return false;
+        if (comma == std::string::npos)
+            return true;
+        pos = comma + 1;
+    }
+}
+
 // The layers that carry the per-pixel geometry or our own output.
 bool is_reserved_layer(const std::string& layer)
 {
@@ -53,6 +70,14 @@ bool is_reserved_layer(const std::string& layer)
 }
 
 } // namespace
+
+std::string metrics_path(const Options& o)
+{
+    if (!o.metrics_file.empty())
+        return o.metrics_file;
+    const std::size_t slash = o.output_pattern.find_last_of('/');
+    return slash == std::string::npos ? std::string("metrics.csv") : o.output_pattern.substr(0, slash + 1) + "metrics.csv";
+}
 
 const char* reproject_name(Reproject r)
 {
@@ -266,10 +291,13 @@ std::string format_frame_path(const std::string& pattern, int64_t frame)
 
 std::string usage_text()
 {
-    return R"(Usage: rrc-accumulate --input PATTERN --frames A-B --output PATTERN [options]
+    std::string text = R"(Usage: rrc-accumulate --input PATTERN --frames A-B --output PATTERN [options]
 
-Accumulates a numbered sequence of single-part OpenEXR frames with rrc, the
-real-time reprojection cache, and writes one OpenEXR per frame.
+Accumulates a numbered sequence of OpenEXR frames (single- or multi-part,
+half, float or uint channels) with rrc, the real-time reprojection cache,
+and writes one OpenEXR per frame.  Renderer passes are read by channel name:
+the project's own names by default, Blender's with --preset blender, any
+other through the channel options.  docs/OFFLINE.md is the guide.
 
 Required:
   --input PATTERN        input frames, printf-style: frames/f_%04d.exr
@@ -277,6 +305,17 @@ Required:
                          anywhere: the first frame processed is a full miss
   --output PATTERN       output frames: out/acc_%04d.exr (directories are
                          created; an output may never be one of the inputs)
+
+Presets:
+  --preset blender       Blender 3.x OpenEXR MultiLayer (Cycles passes
+                         Combined, Z and Vector): depth <view layer>.Depth.Z as
+                         linear (planar) view depth with the sky at 1e10,
+                         motion <view layer>.Vector.X/.Y (previous minus
+                         current position, pixels, y up; .Z/.W, the next
+                         frame's, are not used), --tau @TAU@, and the signal
+                         <view layer>.Combined when no --signal is given.
+                         Every option given explicitly overrides the preset.
+  --view-layer NAME      the view layer to read (found when there is one)
 
 Geometry and the hit test:
   --depth-mode M         standard (NDC, near 0; default) | reversed (NDC,
@@ -286,7 +325,8 @@ Geometry and the hit test:
   --epsilon E            absolute epsilon for NDC depth (overrides the format)
   --epsilon-scale S      epsilon = S x the format's smallest increment
                          (default 4 for float32, 1 for unorm)
-  --tau T                relative tolerance for linear-depth tests (0.01)
+  --tau T                relative tolerance for linear-depth tests (0.01;
+                         @TAU@ with --preset blender)
   --background-threshold T  linear depth >= T is background (1e10)
   --near N, --far F      view distances of the near and far planes (F may be
                          inf); needed by --reproject motion on NDC depth
@@ -298,12 +338,25 @@ Geometry and the hit test:
                              depth - current depth) the exact depth test is used
                            camera: view_proj matrices from --camera (static
                              scenes only)
-  --motion-scale SX,SY   multiplies motion vectors into uv units (1,1);
-                         pixel vectors: 1/W,1/H; y-up vectors: negate SY
+  --motion-units U       uv (default) | pixels: the unit of the motion vectors
+  --motion-y Y           down (default: rows grow downwards, as rrc) | up
+                         (as Blender): the direction of the vectors' y
+  --motion-scale SX,SY   multiplies the vectors after the units and y sign are
+                         applied (1,1): e.g. -1,-1 for current minus previous
   --camera FILE          JSON object: frame number (string) ->
                          {"view_proj": [16 numbers, column-major as GLM, Vulkan
                          clip], "jitter": [x, y] (pixels, optional)}.  Required
                          by --reproject camera; otherwise read for jitter only
+  --cut F[,F...]         camera cuts: frame F starts a new shot and every pixel
+                         misses (renderers' vectors are not reset at cuts);
+                         repeatable
+
+Channel names (any channel of the file can be mapped):
+  --depth-channel NAME          depth (Z)
+  --motion-channels X,Y[,Z]     motion vectors (mv.X,mv.Y[,mv.Z]); a third
+                                channel is the depth change
+  --prevclip-channels X,Y,Z,W   previous clip positions (prevclip.X,...)
+  --nocache-channel NAME        do-not-cache mask (nocache.Y)
 
 Signals:
   --signal NAME[:key=value,...]   accumulate EXR layer NAME (repeatable, at
@@ -312,22 +365,38 @@ Signals:
                          filter=nearest|bilinear|catmull_rom (bilinear),
                          history=fp16|fp32 (fp16), max_age=1..65535 (255).
                          Without --signal every layer of the first frame is
-                         accumulated except Z, mv.*, prevclip.*, nocache.*.
-                         A layer is NAME.Y (or any single channel NAME.c: one
-                         component) or NAME.R/.G/.B[/.A] (four components; a
-                         missing A is given as 1 and not written back).  A
-                         NAME.conf channel is a per-sample confidence in [0,1].
+                         accumulated except the depth, motion, prevclip and
+                         nocache channels' layers.  A layer is NAME.Y (or any
+                         single channel NAME.c: one component) or
+                         NAME.R/.G/.B[/.A] (four components; a missing A is
+                         given as 1 and not written back); NAME may hold dots
+                         (ViewLayer.Combined).  A NAME.conf channel is a
+                         per-sample confidence in [0,1].
 
 Other inputs (optional):
   nocache.Y channel      non-zero: the pixel is never a hit ("do not cache")
   jitter in --camera     the frame's sub-pixel offset, pixels, x right y down
+
+Measurements and pictures:
+  --reference PATTERN    converged frames (same channel names as the signals)
+                         to measure against: per frame and signal the RMSE and
+                         PSNR of the raw input and of the accumulated output
+                         go to a CSV file, and a summary line is printed
+  --metrics FILE         the CSV file (default: metrics.csv in the output
+                         directory)
+  --psnr-peak P          PSNR = 10 log10(P^2 / MSE) (1)
+  --coherence PATTERN    a PNG per frame: green hit, red miss, blue refreshed,
+                         dark grey background, magenta invalid geometry
 
 Device and output:
   --device NAME          the first Vulkan device whose name contains NAME
   --validation           enable the Khronos validation layer (as does
                          RRC_VALIDATION=1); any message makes the exit
                          status non-zero
-  --quiet                no per-frame progress lines (the summary remains)
+  --progress P           auto (default: a progress bar with the frame count
+                         and ETA on a terminal, one line per frame otherwise)
+                         | bar | lines
+  --quiet                no progress (the summary lines remain)
   --verbose              also print the library's informational log
   --help, -h             this text
 
@@ -338,13 +407,21 @@ layers only: the accumulated confidence), and rrc.mask: the integer value of
 the per-pixel bitfield 1 HIT, 2 REFRESHED, 4 BACKGROUND, 8 INVALID_SAMPLE,
 16 INVALID_GEOMETRY.
 
-Images are row-major with row 0 at the top; depth is channel Z.  Each frame
-prints its number, hit ratio (hits / (hits + misses); background excluded)
-and time; the last line summarises the run.
+Images are row-major with row 0 at the top.  Every input frame's header and
+block table is checked before anything is written; each output file is
+written under a temporary name and renamed when complete, so an error never
+leaves a partial file.  Each frame reports its number, hit ratio (hits /
+(hits + misses); background excluded) and time; the last line summarises
+the run.
 
-Exit status: 0 success, 1 an error (missing file or channel, library error,
-validation message), 2 a bad command line.
+Exit status: 0 success, 1 an error (missing, truncated or corrupt file,
+missing channel, library error, validation message), 2 a bad command line.
 )";
+    char tau[32];
+    std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
+    for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;)
+        text.replace(p, 5, tau);
+    return text;
 }
 
 ParseResult parse_arguments(int argc, const char* const* argv)
@@ -384,7 +461,10 @@ ParseResult parse_arguments(int argc, const char* const* argv)
         static const std::set<std::string> valued = {
             "--input", "--output", "--frames", "--depth-mode", "--depth-format", "--epsilon",
             "--epsilon-scale", "--tau", "--background-threshold", "--near", "--far", "--reproject",
-            "--motion-scale", "--camera", "--signal", "--device"};
+            "--motion-scale", "--camera", "--signal", "--device", "--preset", "--view-layer",
+            "--depth-channel", "--motion-channels", "--prevclip-channels", "--nocache-channel",
+            "--motion-units", "--motion-y", "--cut", "--coherence", "--reference", "--metrics",
+            "--psnr-peak", "--progress"};
         if (!valued.count(arg)) {
             if (arg.rfind("-", 0) == 0)
                 return fail("unknown option " + quoted(arg) + " (see --help)");
@@ -397,15 +477,69 @@ ParseResult parse_arguments(int argc, const char* const* argv)
             if (value.rfind("--", 0) == 0)
                 return fail("option " + arg + " needs a value, got the option " + quoted(value));
         }
-        if (arg != "--signal" && !given.insert(arg).second)
+        if (arg != "--signal" && arg != "--cut" && !given.insert(arg).second)
             return fail("option " + arg + " given more than once");
         const std::string where = "option " + arg + " " + quoted(value) + ": ";
 
-        if (arg == "--input" || arg == "--output") {
+        if (arg == "--input" || arg == "--output" || arg == "--coherence" || arg == "--reference") {
             std::string err;
             if (!validate_pattern(value, err))
                 return fail("option " + arg + ": " + err);
-            (arg == "--input" ? o.input_pattern : o.output_pattern) = value;
+            (arg == "--input"       ? o.input_pattern
+             : arg == "--output"    ? o.output_pattern
+             : arg == "--coherence" ? o.coherence_pattern
+                                    : o.reference_pattern) = value;
+        } else if (arg == "--preset") {
+            if (value != "blender")
+                return fail(where + "the only preset is blender (Blender 3.x multilayer EXR passes)");
+            o.preset = value;
+        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" ||
+                   arg == "--metrics") {
+            if (value.empty())
+                return fail("option " + arg + ": the name is empty");
+            (arg == "--view-layer"      ? o.view_layer
+             : arg == "--depth-channel" ? o.depth_channel
+             : arg == "--metrics"       ? o.metrics_file
+                                        : o.nocache_channel) = value;
+        } else if (arg == "--motion-channels" || arg == "--prevclip-channels") {
+            std::vector<std::string> names;
+            const bool motion = arg == "--motion-channels";
+            if (!split_list(value, names) || (motion ? names.size() < 2 || names.size() > 3 : names.size() != 4))
+                return fail(where + (motion ? "expected 2 or 3 channel names X,Y[,Z] (e.g. mv.X,mv.Y)"
+                                            : "expected 4 channel names X,Y,Z,W (e.g. prevclip.X,...)"));
+            for (std::size_t a = 0; a < names.size(); ++a)
+                for (std::size_t b = a + 1; b < names.size(); ++b)
+                    if (names[a] == names[b])
+                        return fail(where + "channel " + quoted(names[a]) + " named twice");
+            (motion ? o.motion_channels : o.prevclip_channels) = names;
+        } else if (arg == "--motion-units") {
+            if (value == "uv") o.motion_units = MotionUnits::Uv;
+            else if (value == "pixels") o.motion_units = MotionUnits::Pixels;
+            else return fail(where + "expected uv or pixels");
+        } else if (arg == "--motion-y") {
+            if (value == "down") o.motion_y_up = false;
+            else if (value == "up") o.motion_y_up = true;
+            else return fail(where + "expected down (rows grow downwards, as rrc) or up (as Blender)");
+        } else if (arg == "--progress") {
+            if (value == "auto") o.progress = Progress::Auto;
+            else if (value == "bar") o.progress = Progress::Bar;
+            else if (value == "lines") o.progress = Progress::Lines;
+            else return fail(where + "expected auto, bar or lines");
+        } else if (arg == "--cut") {
+            std::vector<std::string> items;
+            if (!split_list(value, items))
+                return fail(where + "expected frame numbers F[,F...]");
+            for (const std::string& item : items) {
+                int64_t f = 0;
+                if (!parse_int(item, f) || f > 999999999)
+                    return fail(where + "expected frame numbers F[,F...], got " + quoted(item));
+                o.cuts.push_back(f);
+            }
+        } else if (arg == "--psnr-peak") {
+            float v = 0;
+            if (!parse_float(value, v) || !(v > 0.0f))
+                return fail(where + "expected a positive number");
+            o.psnr_peak = v;
         } else if (arg == "--frames") {
             std::string err;
             if (!parse_frame_range(value, o.first_frame, o.last_frame, err))
@@ -476,6 +610,16 @@ ParseResult parse_arguments(int argc, const char* const* argv)
 
     if (o.help)
         return r;
+    if (o.preset == "blender") {
+        // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
+        if (!given.count("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;
+        if (!given.count("--reproject")) o.reproject = Reproject::Motion;
+        if (!given.count("--motion-units")) o.motion_units = MotionUnits::Pixels;
+        if (!given.count("--motion-y")) o.motion_y_up = true;
+        if (!given.count("--tau")) o.tau = kBlenderPresetTau;
+    } else if (!o.view_layer.empty()) {
+        return fail("option --view-layer needs --preset blender");
+    }
     if (o.input_pattern.empty())
         return fail("missing required option --input PATTERN (see --help)");
     if (o.output_pattern.empty())
@@ -488,6 +632,12 @@ ParseResult parse_arguments(int argc, const char* const* argv)
         return fail("option --far must be greater than --near");
     if (o.input_pattern == o.output_pattern)
         return fail("option --output: the output pattern equals the input pattern; inputs are never overwritten");
+    if (!o.coherence_pattern.empty() && o.coherence_pattern == o.output_pattern)
+        return fail("option --coherence: the PNG pattern equals the --output pattern");
+    if (!o.metrics_file.empty() && o.reference_pattern.empty())
+        return fail("option --metrics needs --reference PATTERN (the frames to measure against)");
+    if (!o.reference_pattern.empty() && o.reference_pattern == o.input_pattern)
+        return fail("option --reference: the reference pattern equals the input pattern");
     return r;
 }
 

@@ -13,6 +13,13 @@
 namespace rrc_cli {
 
 enum class Reproject { PrevClip, Motion, Camera };
+enum class MotionUnits { Uv, Pixels };  /* --motion-units: uv (of the image) or pixels */
+enum class Progress { Auto, Bar, Lines }; /* --progress; auto: a bar on a terminal, lines otherwise */
+
+/** --preset blender's relative depth tolerance (tau for LINEAR depth with
+ *  plain motion vectors), chosen from the hit and false-hit rates measured
+ *  in docs/OFFLINE.md. */
+constexpr float kBlenderPresetTau = 0.04f;
 
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {
@@ -42,15 +49,39 @@ struct Options {
     float far_plane = 0.0f;            /* --far (may be inf) */
 
     Reproject reproject = Reproject::PrevClip; /* --reproject */
-    float motion_scale[2] = {1.0f, 1.0f};      /* --motion-scale sx,sy */
+    float motion_scale[2] = {1.0f, 1.0f};      /* --motion-scale sx,sy (after the units and y sign) */
+    MotionUnits motion_units = MotionUnits::Uv; /* --motion-units uv|pixels */
+    bool motion_y_up = false;                  /* --motion-y up|down */
     std::string camera_file;                   /* --camera */
+    std::vector<int64_t> cuts;                 /* --cut F[,F...]: camera cuts, every pixel misses */
+
+    /* --preset blender: Blender 3.x multilayer EXR passes.  Applied by
+     * parse_arguments to every option not given: --depth-mode linear,
+     * --reproject motion, --motion-units pixels, --motion-y up, --tau
+     * kBlenderPresetTau; the channel names (<view layer>.Depth.Z,
+     * <view layer>.Vector.X/Y, signal <view layer>.Combined) are resolved
+     * from the first frame by discover_layout. */
+    std::string preset;
+    std::string view_layer; /* --view-layer: Blender's view layer name (the preset finds it otherwise) */
+
+    /* Channel names; empty = the default (or the preset's). */
+    std::string depth_channel;                  /* --depth-channel (Z) */
+    std::vector<std::string> motion_channels;   /* --motion-channels X,Y[,Z] (mv.X,mv.Y[,mv.Z]) */
+    std::vector<std::string> prevclip_channels; /* --prevclip-channels X,Y,Z,W (prevclip.X,...) */
+    std::string nocache_channel;                /* --nocache-channel (nocache.Y) */
 
     std::vector<SignalOptions> signals; /* --signal, repeatable; empty: every layer */
+
+    std::string coherence_pattern; /* --coherence: PNG hit/miss maps, printf-style */
+    std::string reference_pattern; /* --reference: converged frames to measure against */
+    std::string metrics_file;      /* --metrics: CSV path; default <output directory>/metrics.csv */
+    float psnr_peak = 1.0f;        /* --psnr-peak: PSNR = 10 log10(peak^2 / MSE) */
 
     std::string device;      /* --device */
     bool validation = false; /* --validation */
     bool quiet = false;      /* --quiet */
     bool verbose = false;    /* --verbose */
+    Progress progress = Progress::Auto; /* --progress auto|bar|lines */
 };
 
 struct ParseResult {
@@ -79,6 +110,10 @@ bool validate_pattern(const std::string& pattern, std::string& error);
 
 /** The pattern with the frame number substituted; the pattern must be valid. */
 std::string format_frame_path(const std::string& pattern, int64_t frame);
+
+/** The CSV path --reference writes: --metrics, or metrics.csv in the
+ *  directory of the output pattern. */
+std::string metrics_path(const Options& options);
 
 /** Names used in messages and output: "prev_clip", "standard", "fp16"... */
 const char* reproject_name(Reproject r);

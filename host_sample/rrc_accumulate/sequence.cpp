@@ -10,6 +10,7 @@
 #include <fstream>
 #include <set>
 #include <system_error>
+#include <utility>
 
 namespace rrc_cli {
 
@@ -36,20 +37,6 @@ std::map<std::string, std::set<std::string>> group_layers(const rrc_exr::ExrInfo
         layers[c.name.substr(0, dot)].insert(c.name.substr(dot + 1));
     }
     return layers;
-}
-
-std::string list_channels(const rrc_exr::ExrInfo& info)
-{
-    std::string s;
-    std::size_t n = 0;
-    for (const auto& c : info.channels) {
-        if (n == 24) {
-            s += ", ...";
-            break;
-        }
-        s += (n++ ? ", " : "") + c.name;
-    }
-    return s.empty() ? "none" : s;
 }
 
 SignalLayout layout_signal(const SignalOptions& options, const std::set<std::string>& suffixes,
@@ -93,6 +80,107 @@ void check_finite(double v, const std::string& where)
 
 } // namespace
 
+std::string list_channels(const rrc_exr::ExrInfo& info)
+{
+    std::string s;
+    std::size_t n = 0;
+    for (const auto& c : info.channels) {
+        if (n == 40) {
+            s += ", ... (" + std::to_string(info.channels.size()) + " in all)";
+            break;
+        }
+        s += (n++ ? ", " : "") + c.name;
+    }
+    return s.empty() ? "none" : s;
+}
+
+namespace {
+
+std::string layer_of(const std::string& channel)
+{
+    const std::size_t dot = channel.rfind('.');
+    return dot == std::string::npos ? std::string() : channel.substr(0, dot);
+}
+
+// The view layer of a Blender multilayer file: the prefix of "<layer>.Depth.Z".
+std::string find_view_layer(const rrc_exr::ExrInfo& info, const std::string& path, const Options& o)
+{
+    if (!o.view_layer.empty()) {
+        if (!info.has(o.view_layer + ".Depth.Z") && !info.has(o.view_layer + ".Combined.R")) {
+            std::set<std::string> layers;
+            for (const auto& c : info.channels)
+                if (c.name.size() > 8 && c.name.compare(c.name.size() - 8, 8, ".Depth.Z") == 0)
+                    layers.insert(c.name.substr(0, c.name.size() - 8));
+            std::string have;
+            for (const std::string& l : layers)
+                have += (have.empty() ? "" : ", ") + quoted(l);
+            throw CliError(path + ": --view-layer " + quoted(o.view_layer) + ": no channel " +
+                           quoted(o.view_layer + ".Depth.Z") + " or " + quoted(o.view_layer + ".Combined.R") +
+                           (have.empty() ? std::string() : "; view layers with a depth pass: " + have) +
+                           "; the file has: " + list_channels(info));
+        }
+        return o.view_layer;
+    }
+    std::vector<std::string> layers;
+    for (const auto& c : info.channels)
+        if (c.name.size() > 8 && c.name.compare(c.name.size() - 8, 8, ".Depth.Z") == 0)
+            layers.push_back(c.name.substr(0, c.name.size() - 8));
+    if (layers.size() == 1)
+        return layers[0];
+    if (layers.empty()) {
+        if (!o.depth_channel.empty())
+            return std::string(); // the depth is mapped explicitly; the view layer is not needed for it
+        throw CliError(path + ": --preset blender: no channel '<view layer>.Depth.Z' (enable the Z pass: View "
+                              "Layer Properties > Passes > Data > Z, and save as OpenEXR MultiLayer); the file has: " +
+                       list_channels(info));
+    }
+    std::string names;
+    for (const std::string& l : layers)
+        names += (names.empty() ? "" : ", ") + quoted(l);
+    throw CliError(path + ": --preset blender: several view layers have a depth pass (" + names +
+                   "): choose one with --view-layer");
+}
+
+ChannelMap resolve_channels(const rrc_exr::ExrInfo& first, const std::string& path, const Options& o,
+                            rrc_reprojection& reprojection)
+{
+    ChannelMap m;
+    const bool blender = o.preset == "blender";
+    if (blender) {
+        m.view_layer = find_view_layer(first, path, o);
+        const std::string p = m.view_layer.empty() ? std::string() : m.view_layer + ".";
+        m.depth = p + "Depth.Z";
+        m.motion = {p + "Vector.X", p + "Vector.Y"}; // .Z/.W are the next frame's vectors, not a depth change
+    } else {
+        m.motion = {"mv.X", "mv.Y"};
+        if (first.has("mv.Z"))
+            m.motion.push_back("mv.Z");
+    }
+    m.prevclip = {"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"};
+    if (!o.depth_channel.empty()) m.depth = o.depth_channel;
+    if (!o.motion_channels.empty()) m.motion = o.motion_channels;
+    if (!o.prevclip_channels.empty()) m.prevclip = o.prevclip_channels;
+    if (!o.nocache_channel.empty()) m.nocache = o.nocache_channel;
+    switch (o.reproject) {
+    case Reproject::PrevClip:
+        reprojection = RRC_REPROJECTION_PREV_CLIP;
+        m.motion.clear();
+        break;
+    case Reproject::Motion:
+        reprojection = m.motion.size() == 3 ? RRC_REPROJECTION_MOTION_DEPTH : RRC_REPROJECTION_MOTION;
+        m.prevclip.clear();
+        break;
+    case Reproject::Camera:
+        reprojection = RRC_REPROJECTION_CAMERA;
+        m.motion.clear();
+        m.prevclip.clear();
+        break;
+    }
+    return m;
+}
+
+} // namespace
+
 SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
                                const Options& options)
 {
@@ -102,18 +190,31 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
     if (first.width > static_cast<int>(RRC_MAX_EXTENT) || first.height > static_cast<int>(RRC_MAX_EXTENT))
         throw CliError(first_path + ": " + std::to_string(first.width) + "x" + std::to_string(first.height) +
                        " is larger than rrc's limit of " + std::to_string(RRC_MAX_EXTENT) + " pixels a side");
-    switch (options.reproject) {
-    case Reproject::PrevClip: layout.reprojection = RRC_REPROJECTION_PREV_CLIP; break;
-    case Reproject::Motion:
-        layout.reprojection = first.has("mv.Z") ? RRC_REPROJECTION_MOTION_DEPTH : RRC_REPROJECTION_MOTION;
-        break;
-    case Reproject::Camera: layout.reprojection = RRC_REPROJECTION_CAMERA; break;
-    }
-    layout.nocache = first.has("nocache.Y");
+    layout.channels = resolve_channels(first, first_path, options, layout.reprojection);
+    const ChannelMap& map = layout.channels;
+    layout.nocache = first.has(map.nocache);
+
+    // Layers that carry geometry are never signals.
+    std::set<std::string> geometry_layers = {"mv", "prevclip", "nocache", "rrc"};
+    for (const std::string& c : {map.depth, map.nocache})
+        geometry_layers.insert(layer_of(c));
+    for (const auto* list : {&map.motion, &map.prevclip})
+        for (const std::string& c : *list)
+            geometry_layers.insert(layer_of(c));
 
     const auto layers = group_layers(first);
-    if (!options.signals.empty()) {
-        for (const SignalOptions& s : options.signals) {
+    std::vector<SignalOptions> requested = options.signals;
+    if (requested.empty() && options.preset == "blender") {
+        SignalOptions s;
+        s.layer = (map.view_layer.empty() ? std::string() : map.view_layer + ".") + "Combined";
+        if (!layers.count(s.layer))
+            throw CliError(first_path + ": --preset blender without --signal accumulates " + quoted(std::as_const(s.layer)) +
+                           ", which the file lacks (name the layers with --signal); the file has: " +
+                           list_channels(first));
+        requested.push_back(s);
+    }
+    if (!requested.empty()) {
+        for (const SignalOptions& s : requested) {
             auto it = layers.find(s.layer);
             layout.signals.push_back(layout_signal(s, it == layers.end() ? std::set<std::string>{} : it->second,
                                                    first, first_path));
@@ -121,7 +222,7 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
     } else {
         std::vector<std::string> found;
         for (const auto& kv : layers) {
-            if (is_reserved_layer(kv.first))
+            if (is_reserved_layer(kv.first) || geometry_layers.count(kv.first))
                 continue;
             bool has_component = false;
             for (const std::string& c : kv.second)
@@ -152,18 +253,19 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
 std::vector<RequiredChannel> required_channels(const SequenceLayout& layout)
 {
     std::vector<RequiredChannel> req;
-    req.push_back({"Z", "the depth"});
+    const ChannelMap& map = layout.channels;
+    req.push_back({map.depth, "the depth"});
     switch (layout.reprojection) {
     case RRC_REPROJECTION_PREV_CLIP:
-        for (const char* c : {"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"})
+        for (const std::string& c : map.prevclip)
             req.push_back({c, "needed by --reproject prev_clip"});
         break;
     case RRC_REPROJECTION_MOTION:
     case RRC_REPROJECTION_MOTION_DEPTH:
-        req.push_back({"mv.X", "needed by --reproject motion"});
-        req.push_back({"mv.Y", "needed by --reproject motion"});
+        req.push_back({map.motion[0], "motion vector x, needed by --reproject motion"});
+        req.push_back({map.motion[1], "motion vector y, needed by --reproject motion"});
         if (layout.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
-            req.push_back({"mv.Z", "the first frame has it, so every frame needs it"});
+            req.push_back({map.motion[2], "the depth change of the motion vectors"});
         break;
     default: break;
     }
@@ -175,7 +277,7 @@ std::vector<RequiredChannel> required_channels(const SequenceLayout& layout)
                                                           "; the first frame has it, so every frame needs it"});
     }
     if (layout.nocache)
-        req.push_back({"nocache.Y", "the do-not-cache mask; the first frame has it, so every frame needs it"});
+        req.push_back({map.nocache, "the do-not-cache mask; the first frame has it, so every frame needs it"});
     return req;
 }
 
@@ -187,7 +289,8 @@ void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, c
                        std::to_string(layout.height));
     for (const RequiredChannel& r : required_channels(layout))
         if (!info.has(r.name))
-            throw CliError(path + ": missing channel " + quoted(r.name) + " (" + r.reason + ")");
+            throw CliError(path + ": missing channel " + quoted(r.name) + " (" + r.reason +
+                           "); the file has: " + list_channels(info));
 }
 
 std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last,
@@ -270,11 +373,11 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
             throw CliError(e.what());
         }
     };
-    auto interleave = [&](std::initializer_list<const char*> names, std::vector<float>& out) {
+    auto interleave = [&](const std::vector<std::string>& names, std::vector<float>& out) {
         const std::size_t k = names.size();
         out.assign(n * k, 0.0f);
         std::size_t c = 0;
-        for (const char* name : names) {
+        for (const std::string& name : names) {
             std::vector<float> v = channel(name);
             for (std::size_t i = 0; i < n; ++i)
                 out[i * k + c] = v[i];
@@ -283,13 +386,11 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
     };
 
     FrameData f;
-    f.depth = channel("Z");
+    f.depth = channel(layout.channels.depth);
     switch (layout.reprojection) {
-    case RRC_REPROJECTION_PREV_CLIP:
-        interleave({"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"}, f.reprojection);
-        break;
-    case RRC_REPROJECTION_MOTION: interleave({"mv.X", "mv.Y"}, f.reprojection); break;
-    case RRC_REPROJECTION_MOTION_DEPTH: interleave({"mv.X", "mv.Y", "mv.Z"}, f.reprojection); break;
+    case RRC_REPROJECTION_PREV_CLIP: interleave(layout.channels.prevclip, f.reprojection); break;
+    case RRC_REPROJECTION_MOTION:
+    case RRC_REPROJECTION_MOTION_DEPTH: interleave(layout.channels.motion, f.reprojection); break;
     default: break;
     }
     for (const SignalLayout& s : layout.signals) {
@@ -309,7 +410,7 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
         f.confidence.push_back(s.confidence ? channel(layer + ".conf") : std::vector<float>{});
     }
     if (layout.nocache) {
-        std::vector<float> v = channel("nocache.Y");
+        std::vector<float> v = channel(layout.channels.nocache);
         f.nocache.resize(n);
         for (std::size_t i = 0; i < n; ++i)
             f.nocache[i] = v[i] != 0.0f ? 1 : 0; // NaN counts as non-zero
@@ -322,7 +423,7 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
 {
     if (layout.reprojection == RRC_REPROJECTION_MOTION && o.depth_mode != RRC_DEPTH_MODE_LINEAR &&
         !(o.near_plane > 0.0f && o.far_plane > 0.0f))
-        throw CliError(std::string("--reproject motion without an mv.Z channel on --depth-mode ") +
+        throw CliError(std::string("--reproject motion without a depth-change channel (mv.Z) on --depth-mode ") +
                        depth_mode_name(o.depth_mode) +
                        " compares linear depths: give the camera's --near and --far planes "
                        "(or add mv.Z, the depth change)");
@@ -363,8 +464,16 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
     d.epsilon = o.epsilon;
     d.tau = o.tau;
     d.reprojection = layout.reprojection;
-    d.motion_scale[0] = o.motion_scale[0];
-    d.motion_scale[1] = o.motion_scale[1];
+    // Into uv units, y down: pixels divide by the size, y-up vectors flip y.
+    double sx = o.motion_scale[0], sy = o.motion_scale[1];
+    if (o.motion_units == MotionUnits::Pixels) {
+        sx /= layout.width;
+        sy /= layout.height;
+    }
+    if (o.motion_y_up)
+        sy = -sy;
+    d.motion_scale[0] = static_cast<float>(sx);
+    d.motion_scale[1] = static_cast<float>(sy);
     d.channel_count = static_cast<uint32_t>(channels.size());
     d.channels = channels.data();
     d.use_nocache_mask = layout.nocache ? 1u : 0u;
@@ -397,6 +506,32 @@ rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameRes
     mask.assign(r.mask.begin(), r.mask.end());
     img.attributes["rrc.mask"] = "bits: 1 HIT, 2 REFRESHED, 4 BACKGROUND, 8 INVALID_SAMPLE, 16 INVALID_GEOMETRY";
     return img;
+}
+
+std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask)
+{
+    std::vector<uint8_t> rgb(mask.size() * 3, 0);
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        const uint8_t m = mask[i];
+        uint8_t r = 255, g = 0, b = 0; // miss
+        if (m & RRC_MASK_BACKGROUND) r = g = b = 64;
+        else if (m & RRC_MASK_INVALID_GEOMETRY) r = 255, g = 0, b = 255;
+        else if (m & RRC_MASK_REFRESHED) r = 0, g = 0, b = 255;
+        else if (m & RRC_MASK_HIT) r = 0, g = 255, b = 0;
+        rgb[3 * i] = r;
+        rgb[3 * i + 1] = g;
+        rgb[3 * i + 2] = b;
+    }
+    return rgb;
+}
+
+std::vector<std::string> metric_channels(const SignalLayout& signal)
+{
+    std::vector<std::string> names;
+    for (const std::string& c : signal.components)
+        if (!(c == "A" && signal.components.size() > 1))
+            names.push_back(signal.options.layer + "." + c);
+    return names;
 }
 
 } // namespace rrc_cli

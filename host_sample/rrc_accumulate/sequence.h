@@ -30,13 +30,26 @@ struct SignalLayout {
     bool confidence = false;            /* <layer>.conf present */
 };
 
+/** The channels the geometry is read from (defaults, preset or options). */
+struct ChannelMap {
+    std::string depth = "Z";
+    std::vector<std::string> motion;   /* 2 (MOTION) or 3 (MOTION_DEPTH) names; empty otherwise */
+    std::vector<std::string> prevclip; /* 4 names for PREV_CLIP; empty otherwise */
+    std::string nocache = "nocache.Y";
+    std::string view_layer;            /* --preset blender: the view layer read ("ViewLayer") */
+};
+
 /** What the first frame and the options make of the sequence. */
 struct SequenceLayout {
     int width = 0, height = 0;
     rrc_reprojection reprojection = RRC_REPROJECTION_PREV_CLIP;
-    bool nocache = false; /* nocache.Y present */
+    bool nocache = false; /* the nocache channel is present */
+    ChannelMap channels;
     std::vector<SignalLayout> signals;
 };
+
+/** "a, b, c" (at most 40 names, then "... (N in all)"); "none" if empty. */
+std::string list_channels(const rrc_exr::ExrInfo& info);
 
 /** A channel every frame must have, and why (for the error message). */
 struct RequiredChannel {
@@ -44,10 +57,13 @@ struct RequiredChannel {
     std::string reason;
 };
 
-/** Decides the layout from the first frame's header: the reprojection
- *  (motion becomes MOTION_DEPTH when mv.Z exists), the signals (from
- *  --signal, or every non-reserved layer), their components and confidence,
- *  and the nocache mask.  Throws CliError naming the file and channel. */
+/** Decides the layout from the first frame's header: the channel names
+ *  (defaults, --preset blender's with its view layer, or the channel
+ *  options), the reprojection (motion becomes MOTION_DEPTH when mv.Z exists
+ *  or three motion channels are named), the signals (from --signal, the
+ *  preset's Combined, or every layer not used by the geometry), their
+ *  components and confidence, and the nocache mask.  Throws CliError naming
+ *  the file and channel and listing the channels the file has. */
 SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
                                const Options& options);
 
@@ -55,7 +71,7 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
 std::vector<RequiredChannel> required_channels(const SequenceLayout& layout);
 
 /** Throws CliError if the frame's size differs from the layout's or a
- *  required channel is missing. */
+ *  required channel is missing (the message lists the file's channels). */
 void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, const SequenceLayout& layout);
 
 /** One frame's entry in the camera file. */
@@ -97,6 +113,13 @@ struct FrameResult {
     std::vector<uint8_t> mask;
 };
 rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameResult& result);
+
+/** The coherence map of a mask: green hit, red miss, blue refreshed, dark
+ *  grey (64) background, magenta invalid geometry; 8-bit RGB, row 0 on top. */
+std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask);
+
+/** The channels of a signal that metrics compare (its components but A). */
+std::vector<std::string> metric_channels(const SignalLayout& signal);
 
 } // namespace rrc_cli
 

@@ -1,0 +1,329 @@
+// rrc-blender-check: measures what Blender's Depth and Vector passes hold,
+// against the exact geometry of the scene render_check_scene.py made
+// (docs/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
+//
+//   rrc-blender-check DIR [OTHER_DIR]
+//   rrc-blender-check DIR --hits OUT_PATTERN
+//
+// DIR holds frame_0001.exr... and scene.json from render_check_scene.py.
+// With OTHER_DIR (the same scene rendered with another sample count) it also
+// reports how many Depth and Vector values are bitwise equal between the two
+// renders: equal Depth at 1 and 64 samples means Depth comes from one sample.
+// With --hits and rrc-accumulate's outputs of DIR (OUT_PATTERN, printf-style)
+// it counts the hits whose history comes from another object, by Blender's
+// object index: the nearest previous texel's (false) or any bilinear tap's
+// with weight > 1e-3 (strict); hits on the moving sphere are reported too.
+#include <exr_io.h>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct FrameInfo {
+    glm::dmat4 camera_world{1.0}, projection{1.0};
+    glm::dmat4 objects[4]; // by pass index 1..3
+};
+
+glm::dmat4 from_rows(const nlohmann::json& m)
+{
+    glm::dmat4 r(1.0);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            r[j][i] = m[i][j].get<double>(); // glm is column-major: r[col][row]
+    return r;
+}
+
+struct Scene {
+    int W = 0, H = 0, count = 3; // frames 1..count rendered; 0..count+1 described
+    std::vector<FrameInfo> frames;
+};
+
+Scene load_scene(const std::string& dir)
+{
+    std::ifstream in(dir + "/scene.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    Scene s;
+    s.W = j["width"];
+    s.H = j["height"];
+    s.count = j.value("frame_count", 3);
+    s.frames.resize(std::size_t(s.count) + 2);
+    for (int f = 0; f < s.count + 2; ++f) {
+        const auto& fj = j["frames"][std::to_string(f)];
+        s.frames[f].camera_world = from_rows(fj["camera_world"]);
+        s.frames[f].projection = from_rows(fj["projection"]);
+        for (const auto& kv : fj["objects"].items())
+            s.frames[f].objects[kv.value()["index"].get<int>()] = from_rows(kv.value()["world"]);
+    }
+    return s;
+}
+
+// The centre ray of pixel (i, j) (row j from the top): origin and a world
+// direction scaled so that its view-space z is -1 (so t is planar depth).
+void centre_ray(const Scene& s, int f, double px, double py_down, glm::dvec3& o, glm::dvec3& d)
+{
+    const FrameInfo& fi = s.frames[f];
+    const double ndc_x = 2.0 * px / s.W - 1.0, ndc_y = 1.0 - 2.0 * py_down / s.H; // OpenGL: y up
+    const glm::dvec3 dir_view(ndc_x / fi.projection[0][0], ndc_y / fi.projection[1][1], -1.0);
+    o = glm::dvec3(fi.camera_world[3]);
+    d = glm::dmat3(fi.camera_world) * dir_view;
+}
+
+// Nearest intersection with object `id` (1 plane z=0, 2 cube, 3 sphere) at frame f; -1 if none.
+double intersect(const Scene& s, int f, int id, const glm::dvec3& o, const glm::dvec3& d)
+{
+    const glm::dmat4& m = s.frames[f].objects[id];
+    const glm::dvec3 c(m[3]);
+    if (id == 1)
+        return d.z < 0 ? -o.z / d.z : -1.0;
+    if (id == 3) { // radius 0.8 (a 48x24 UV sphere: within ~0.2% of it)
+        const glm::dvec3 oc = o - c;
+        const double a = glm::dot(d, d), b = glm::dot(oc, d), cc = glm::dot(oc, oc) - 0.64, disc = b * b - a * cc;
+        if (disc < 0) return -1.0;
+        return (-b - std::sqrt(disc)) / a;
+    }
+    double t0 = -1e300, t1 = 1e300; // cube: half size 0.75, axis-aligned
+    for (int k = 0; k < 3; ++k) {
+        const double lo = c[k] - 0.75, hi = c[k] + 0.75;
+        if (std::fabs(d[k]) < 1e-300) {
+            if (o[k] < lo || o[k] > hi) return -1.0;
+            continue;
+        }
+        double a = (lo - o[k]) / d[k], b = (hi - o[k]) / d[k];
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+    }
+    return t0 <= t1 && t0 > 0 ? t0 : -1.0;
+}
+
+// Pixel position (x right, y UP from the bottom edge, Blender's raster) of a world point at frame f.
+glm::dvec2 project_up(const Scene& s, int f, const glm::dvec3& p)
+{
+    const FrameInfo& fi = s.frames[f];
+    const glm::dvec4 c = fi.projection * glm::inverse(fi.camera_world) * glm::dvec4(p, 1.0);
+    return glm::dvec2((c.x / c.w + 1.0) / 2.0 * s.W, (c.y / c.w + 1.0) / 2.0 * s.H);
+}
+
+struct Stat {
+    double sum = 0, max = 0;
+    long n = 0;
+    void add(double v)
+    {
+        sum += std::fabs(v);
+        max = std::max(max, std::fabs(v));
+        ++n;
+    }
+    double mean() const { return n ? sum / n : 0.0; }
+};
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: rrc-blender-check DIR [OTHER_DIR]\n");
+        return 2;
+    }
+    const std::string dir = argv[1];
+    const Scene s = load_scene(dir);
+    const std::string L = "ViewLayer.";
+    if (argc > 3 && std::string(argv[2]) == "--hits") {
+        long hits = 0, tested = 0, false_hits = 0, strict = 0, sphere = 0, sphere_hits = 0;
+        for (int f = 2; f <= s.count; ++f) {
+            char name[64], out[1024];
+            std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
+            const rrc_exr::ExrImage cur = rrc_exr::read_exr(dir + name);
+            std::snprintf(name, sizeof name, "/frame_%04d.exr", f - 1);
+            const rrc_exr::ExrImage prev = rrc_exr::read_exr(dir + name);
+            std::snprintf(out, sizeof out, argv[3], f);
+            const auto& mask = rrc_exr::read_exr(out).channels.at("rrc.mask");
+            const auto &ID = cur.channels.at(L + "IndexOB.X"), &PID = prev.channels.at(L + "IndexOB.X");
+            const auto &VX = cur.channels.at(L + "Vector.X"), &VY = cur.channels.at(L + "Vector.Y");
+            for (int j = 0; j < s.H; ++j)
+                for (int i = 0; i < s.W; ++i) {
+                    const std::size_t k = std::size_t(j) * s.W + i;
+                    const int m = int(mask[k]);
+                    if (m & 4)
+                        continue; // background
+                    ++tested;
+                    const int id = int(std::lround(ID[k]));
+                    sphere += id == 3;
+                    if (!(m & 1))
+                        continue;
+                    ++hits;
+                    sphere_hits += id == 3;
+                    const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k];
+                    const int nx = std::clamp(int(std::floor(qx)), 0, s.W - 1), ny = std::clamp(int(std::floor(qy)), 0, s.H - 1);
+                    const bool wrong = int(std::lround(PID[std::size_t(ny) * s.W + nx])) != id;
+                    bool wrong_tap = false;
+                    const double px = qx - 0.5, py = qy - 0.5;
+                    const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
+                    const double fx = px - x0, fy = py - y0;
+                    for (int t = 0; t < 4; ++t) {
+                        const double w = ((t & 1) ? fx : 1 - fx) * ((t >> 1) ? fy : 1 - fy);
+                        const int x = std::clamp(x0 + (t & 1), 0, s.W - 1), y = std::clamp(y0 + (t >> 1), 0, s.H - 1);
+                        wrong_tap = wrong_tap || (w > 1e-3 && int(std::lround(PID[std::size_t(y) * s.W + x])) != id);
+                    }
+                    false_hits += wrong;
+                    strict += wrong || wrong_tap;
+                }
+        }
+        std::printf("frames 2-%d: hit ratio %.2f%% (%ld of %ld), false hits %.3f%%, strict false hits %.3f%% "
+                    "(object index), moving sphere hit ratio %.2f%%\n",
+                    s.count, 100.0 * hits / tested, hits, tested, 100.0 * false_hits / std::max(1L, hits),
+                    100.0 * strict / std::max(1L, hits), 100.0 * sphere_hits / std::max(1L, sphere));
+        return 0;
+    }
+    for (int f = 1; f <= s.count; ++f) {
+        char name[64];
+        std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
+        const rrc_exr::ExrImage img = rrc_exr::read_exr(dir + name);
+        const auto& Z = img.channels.at(L + "Depth.Z");
+        const auto& VX = img.channels.at(L + "Vector.X");
+        const auto& VY = img.channels.at(L + "Vector.Y");
+        const auto& VZ = img.channels.at(L + "Vector.Z");
+        const auto& VW = img.channels.at(L + "Vector.W");
+        const auto& ID = img.channels.at(L + "IndexOB.X");
+        long sky = 0, sky_1e10 = 0, sky_zero_vector = 0, nonsky_1e10 = 0;
+        Stat planar_rel, euclid_rel, offset_px;
+        long offset_over_half = 0, offset_n = 0;
+        // Hypotheses for Vector.XY: prev - cur (y up), cur - prev (y up), prev - cur (y down).
+        Stat h_prev_up, h_cur_up, h_prev_down, h_next_zw, h_next_zw_flip;
+        long interior = 0;
+        Stat edge_fraction; // object edge pixels: |V| / |V_object| (1 = not diluted by sky or other samples)
+        // What rrc's plain-motion test sees: |fetched previous depth - depth| / depth at the
+        // position the Vector gives, per object (interior pixels, previous frame needed).
+        std::vector<double> rel_change[4];
+        rrc_exr::ExrImage prev_img;
+        if (f > 1) {
+            char pname[64];
+            std::snprintf(pname, sizeof pname, "/frame_%04d.exr", f - 1);
+            prev_img = rrc_exr::read_exr(dir + pname);
+        }
+        for (int j = 0; j < s.H; ++j)
+            for (int i = 0; i < s.W; ++i) {
+                const std::size_t k = std::size_t(j) * s.W + i;
+                const int id = int(std::lround(ID[k]));
+                if (id == 0) {
+                    ++sky;
+                    sky_1e10 += Z[k] == 1e10f;
+                    sky_zero_vector += VX[k] == 0 && VY[k] == 0 && VZ[k] == 0 && VW[k] == 0;
+                    continue;
+                }
+                nonsky_1e10 += Z[k] == 1e10f;
+                bool uniform = true;
+                for (int dj = -1; dj <= 1; ++dj)
+                    for (int di = -1; di <= 1; ++di) {
+                        const int x = std::clamp(i + di, 0, s.W - 1), y = std::clamp(j + dj, 0, s.H - 1);
+                        uniform = uniform && int(std::lround(ID[std::size_t(y) * s.W + x])) == id;
+                    }
+                glm::dvec3 o, d;
+                centre_ray(s, f, i + 0.5, j + 0.5, o, d);
+                const double t = intersect(s, f, id, o, d);
+                if (t <= 0)
+                    continue;
+                const glm::dvec3 p = o + t * d;
+                if (uniform) {
+                    planar_rel.add((Z[k] - t) / t);
+                    euclid_rel.add((Z[k] - t * glm::length(d)) / (t * glm::length(d)));
+                    if (id == 1) { // ground plane: where on the plane did the depth sample land?
+                        glm::dvec3 o2, d2;
+                        const double h = 0.01;
+                        centre_ray(s, f, i + 0.5 + h, j + 0.5, o2, d2);
+                        const double gx = (intersect(s, f, 1, o2, d2) - t) / h;
+                        centre_ray(s, f, i + 0.5, j + 0.5 + h, o2, d2);
+                        const double gy = (intersect(s, f, 1, o2, d2) - t) / h;
+                        const double g = std::hypot(gx, gy);
+                        if (g > 1e-3 * t) { // only where depth changes measurably across a pixel
+                            const double off = (Z[k] - t) / g; // along the gradient, pixels
+                            offset_px.add(off);
+                            ++offset_n;
+                            offset_over_half += std::fabs(off) > 0.5;
+                        }
+                    }
+                }
+                // Where is this surface point in the previous and next frames?
+                const glm::dmat4& m = s.frames[f].objects[id];
+                const glm::dvec3 po = glm::dvec3(glm::inverse(m) * glm::dvec4(p, 1.0));
+                const glm::dvec2 cur(i + 0.5, s.H - (j + 0.5));
+                const glm::dvec2 prev = project_up(s, f - 1, glm::dvec3(s.frames[f - 1].objects[id] * glm::dvec4(po, 1.0)));
+                const glm::dvec2 next = project_up(s, f + 1, glm::dvec3(s.frames[f + 1].objects[id] * glm::dvec4(po, 1.0)));
+                const glm::dvec2 v(VX[k], VY[k]), vn(VZ[k], VW[k]);
+                if (uniform && f > 1) {
+                    const auto& PZ = prev_img.channels.at(L + "Depth.Z");
+                    const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k]; // y up -> rows
+                    const double px = qx - 0.5, py = qy - 0.5;
+                    const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
+                    const double fx = px - x0, fy = py - y0;
+                    double inv = 0;
+                    bool sky_tap = false;
+                    for (int t = 0; t < 4; ++t) {
+                        const int x = std::clamp(x0 + (t & 1), 0, s.W - 1), y = std::clamp(y0 + (t >> 1), 0, s.H - 1);
+                        const double z = PZ[std::size_t(y) * s.W + x];
+                        sky_tap = sky_tap || z >= 1e10;
+                        inv += ((t & 1) ? fx : 1 - fx) * ((t >> 1) ? fy : 1 - fy) / z;
+                    }
+                    if (!sky_tap && qx >= 0 && qy >= 0 && qx <= s.W && qy <= s.H)
+                        rel_change[id].push_back(std::fabs(1.0 / inv - Z[k]) / Z[k]);
+                }
+                if (uniform) {
+                    ++interior;
+                    h_prev_up.add(glm::length(v - (prev - cur)));
+                    h_cur_up.add(glm::length(v - (cur - prev)));
+                    h_prev_down.add(glm::length(v - glm::dvec2(prev.x - cur.x, -(prev.y - cur.y))));
+                    h_next_zw.add(glm::length(vn - (cur - next)));
+                    h_next_zw_flip.add(glm::length(vn - (next - cur)));
+                } else if (id == 3 && glm::length(prev - cur) > 0.5) {
+                    edge_fraction.add(glm::length(v) / glm::length(prev - cur));
+                }
+            }
+        std::printf("frame %d: %ld sky pixels (IndexOB 0), %ld with Depth exactly 1e10, %ld with Vector exactly 0; "
+                    "%ld non-sky pixels with Depth 1e10\n",
+                    f, sky, sky_1e10, sky_zero_vector, nonsky_1e10);
+        std::printf("  depth vs centre ray (interior pixels): planar |rel| mean %.2e max %.2e; along-ray |rel| mean %.2e max %.2e\n",
+                    planar_rel.mean(), planar_rel.max, euclid_rel.mean(), euclid_rel.max);
+        std::printf("  ground-plane depth sample offset along the depth gradient: mean |off| %.3f px, max %.3f px, "
+                    "%.1f%% beyond 0.5 px (%ld pixels)\n",
+                    offset_px.mean(), offset_px.max, offset_n ? 100.0 * offset_over_half / offset_n : 0.0, offset_n);
+        std::printf("  Vector.XY vs exact motion (%ld interior pixels), mean |error| px: prev-cur y-up %.4f (max %.4f), "
+                    "cur-prev y-up %.4f, prev-cur y-down %.4f\n",
+                    interior, h_prev_up.mean(), h_prev_up.max, h_cur_up.mean(), h_prev_down.mean());
+        std::printf("  Vector.ZW: cur-next y-up %.4f (max %.4f), next-cur %.4f\n", h_next_zw.mean(), h_next_zw.max,
+                    h_next_zw_flip.mean());
+        for (int id = 1; id <= 3; ++id) {
+            auto& v = rel_change[id];
+            if (v.empty())
+                continue;
+            std::sort(v.begin(), v.end());
+            auto pct = [&](double p) { return v[std::min(v.size() - 1, std::size_t(p * v.size()))]; };
+            std::printf("  %s: |fetched previous depth - depth| / depth: median %.4f, 90%% %.4f, 99%% %.4f, max %.4f (%zu pixels)\n",
+                        id == 1 ? "ground" : id == 2 ? "cube  " : "sphere", pct(0.5), pct(0.9), pct(0.99), v.back(), v.size());
+        }
+        std::printf("  moving-sphere edge pixels: |Vector| / |exact motion| mean %.3f (%ld pixels; 1 = not diluted)\n",
+                    edge_fraction.mean(), edge_fraction.n);
+    }
+    if (argc > 2) {
+        for (int f = 1; f <= s.count; ++f) {
+            char name[64];
+            std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
+            const rrc_exr::ExrImage a = rrc_exr::read_exr(dir + name), b = rrc_exr::read_exr(std::string(argv[2]) + name);
+            for (const char* c : {"Depth.Z", "Vector.X", "IndexOB.X", "Combined.R"}) {
+                const auto &x = a.channels.at(L + c), &y = b.channels.at(L + c);
+                long same = 0;
+                for (std::size_t k = 0; k < x.size(); ++k)
+                    same += x[k] == y[k];
+                std::printf("frame %d %-10s bitwise equal in %s and %s: %5.1f%%\n", f, c, argv[1], argv[2],
+                            100.0 * same / double(x.size()));
+            }
+        }
+    }
+    return 0;
+}

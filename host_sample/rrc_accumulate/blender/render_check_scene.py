@@ -1,0 +1,149 @@
+# Renders a tiny Cycles scene whose geometry and cameras are known exactly,
+# so the Depth and Vector passes Blender writes can be checked against them
+# (docs/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
+#
+#   blender -b --factory-startup --python render_check_scene.py -- OUT_DIR [SAMPLES [float|half [fixed|seed [FRAMES]]]]
+#
+# Writes OUT_DIR/frame_0001.exr ... frame_NNNN.exr (FRAMES, default 3;
+# OpenEXR multilayer with Combined, Depth, Vector, IndexOB; Combined in half
+# with "half", Blender writes the data passes in float either way; "seed"
+# animates Cycles' seed) and OUT_DIR/scene.json: per frame 0..FRAMES+1 the
+# camera's world matrix and OpenGL projection, every object's world matrix
+# and pass index, the render size.  Motion is linear in the frame number, so
+# frame 1 has a previous and the last frame a next frame.
+import bpy
+import json
+import math
+import os
+import sys
+
+argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+out_dir = os.path.abspath(argv[0] if argv else "blender_check")
+samples = int(argv[1]) if len(argv) > 1 else 16
+half = len(argv) > 2 and argv[2] == "half"
+animated_seed = len(argv) > 3 and argv[3] == "seed"
+frames = int(argv[4]) if len(argv) > 4 else 3
+os.makedirs(out_dir, exist_ok=True)
+
+W, H = 64, 48
+scene = bpy.context.scene
+for o in list(bpy.data.objects):
+    bpy.data.objects.remove(o, do_unlink=True)
+
+scene.render.engine = 'CYCLES'
+scene.cycles.device = 'CPU'
+scene.cycles.samples = samples
+scene.cycles.use_denoising = False
+scene.cycles.use_adaptive_sampling = False
+scene.cycles.seed = 0
+scene.cycles.use_animated_seed = animated_seed
+scene.render.use_motion_blur = False  # the Vector pass needs it off
+scene.render.resolution_x = W
+scene.render.resolution_y = H
+scene.render.resolution_percentage = 100
+scene.render.film_transparent = False
+scene.render.image_settings.file_format = 'OPEN_EXR_MULTILAYER'
+scene.render.image_settings.color_depth = '16' if half else '32'
+scene.render.image_settings.exr_codec = 'ZIP'
+scene.render.filepath = os.path.join(out_dir, "frame_####")
+scene.frame_start, scene.frame_end = 1, frames
+
+layer = scene.view_layers[0]
+layer.use_pass_combined = True
+layer.use_pass_z = True
+layer.use_pass_vector = True
+layer.use_pass_object_index = True
+
+world = scene.world or bpy.data.worlds.new("World")
+scene.world = world
+world.use_nodes = True
+world.node_tree.nodes["Background"].inputs[0].default_value = (0.3, 0.5, 0.8, 1.0)
+world.node_tree.nodes["Background"].inputs[1].default_value = 0.4
+
+
+def material(name, colour, checker=False):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = colour
+    if checker:  # structure on the ground, so blur and lag show
+        tex = m.node_tree.nodes.new("ShaderNodeTexChecker")
+        tex.inputs["Scale"].default_value = 40.0
+        tex.inputs["Color1"].default_value = colour
+        tex.inputs["Color2"].default_value = (0.1, 0.1, 0.1, 1.0)
+        m.node_tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    return m
+
+
+def keyed(obj, frames_locs, rotations=None):
+    for f, loc in frames_locs.items():
+        obj.location = loc
+        obj.keyframe_insert("location", frame=f)
+        if rotations:
+            obj.rotation_euler = rotations[f]
+            obj.keyframe_insert("rotation_euler", frame=f)
+    for fc in obj.animation_data.action.fcurves:
+        for k in fc.keyframe_points:
+            k.interpolation = 'LINEAR'
+
+
+# Ground plane z = 0 (index 1), a static cube (index 2), a moving sphere (index 3).
+bpy.ops.mesh.primitive_plane_add(size=40, location=(0, 0, 0))
+plane = bpy.context.active_object
+plane.name = "Ground"
+plane.pass_index = 1
+plane.data.materials.append(material("Ground", (0.6, 0.6, 0.6, 1.0), checker=True))
+bpy.ops.mesh.primitive_cube_add(size=1.5, location=(-1.5, 1.0, 0.75))
+cube = bpy.context.active_object
+cube.name = "Cube"
+cube.pass_index = 2
+cube.data.materials.append(material("Cube", (0.2, 0.5, 0.2, 1.0)))
+bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(1.0, -0.5, 1.2), segments=48, ring_count=24)
+sphere = bpy.context.active_object
+sphere.name = "Sphere"
+sphere.pass_index = 3
+sphere.data.materials.append(material("Sphere", (0.7, 0.2, 0.1, 1.0)))
+bpy.ops.object.shade_smooth()
+# The sphere moves right and up: both signs of the vector show.
+keys = (0, frames + 1)  # linear between, so every frame moves alike
+keyed(sphere, {f: (1.0 + 0.25 * f, -0.5, 1.2 + 0.15 * f) for f in keys})
+
+cam_data = bpy.data.cameras.new("Camera")
+cam_data.lens = 35.0
+cam_data.sensor_fit = 'AUTO'
+cam = bpy.data.objects.new("Camera", cam_data)
+scene.collection.objects.link(cam)
+scene.camera = cam
+# The camera moves sideways, rises and pans: translation and rotation.
+keyed(cam, {f: (0.4 * f, -9.0 + 0.2 * f, 3.0 + 0.12 * f) for f in keys},
+      {f: (math.radians(73.0 - 0.8 * f), 0.0, math.radians(4.0 + 1.5 * f)) for f in keys})
+
+sun = bpy.data.lights.new("Sun", type='SUN')
+sun.energy = 1.5
+sun.angle = math.radians(15.0)  # soft shadows: noisy penumbrae at few samples
+light = bpy.data.objects.new("Sun", sun)
+light.rotation_euler = (math.radians(40), 0, math.radians(30))
+scene.collection.objects.link(light)
+
+
+def mat(m):
+    return [[m[i][j] for j in range(4)] for i in range(4)]  # row-major
+
+
+info = {"width": W, "height": H, "samples": samples, "half": half, "frame_count": frames, "frames": {}}
+depsgraph = bpy.context.evaluated_depsgraph_get()
+for f in range(0, frames + 2):
+    scene.frame_set(f)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    cam_eval = cam.evaluated_get(depsgraph)
+    proj = cam_eval.calc_matrix_camera(depsgraph, x=W, y=H, scale_x=1.0, scale_y=1.0)
+    info["frames"][str(f)] = {
+        "camera_world": mat(cam_eval.matrix_world),
+        "projection": mat(proj),
+        "objects": {o.name: {"index": o.pass_index, "world": mat(o.evaluated_get(depsgraph).matrix_world)}
+                    for o in (plane, cube, sphere)},
+    }
+with open(os.path.join(out_dir, "scene.json"), "w") as fp:
+    json.dump(info, fp, indent=1)
+
+bpy.ops.render.render(animation=True)
