@@ -1,0 +1,112 @@
+#include "metrics.h"
+
+#include <rrc/rrc.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rrc_sample {
+
+HitStats hit_stats(const std::vector<uint8_t>& mask) {
+    HitStats s;
+    for (uint8_t m : mask) {
+        if (m & RRC_MASK_BACKGROUND) ++s.background;
+        else if (m & RRC_MASK_HIT) ++s.hits;
+        else ++s.misses;
+        if (m & RRC_MASK_REFRESHED) ++s.refreshed;
+    }
+    return s;
+}
+
+ErrorStats error_against(const std::vector<float>& v, const std::vector<float>& ref, int components, int compare,
+                         const std::vector<uint8_t>& valid) {
+    ErrorStats e;
+    double sum = 0.0;
+    for (size_t i = 0; i < valid.size(); ++i) {
+        if (!valid[i]) continue;
+        for (int c = 0; c < compare; ++c) {
+            const double d = (double)v[i * components + c] - (double)ref[i * components + c];
+            sum += d * d;
+        }
+        ++e.pixels;
+    }
+    if (!e.pixels) return e;
+    const double mse = sum / (double)(e.pixels * (uint64_t)compare);
+    e.rmse = std::sqrt(mse);
+    e.psnr = mse > 0.0 ? -10.0 * std::log10(mse) : 99.0;
+    return e;
+}
+
+FalseHitStats count_false_hits(const FrameOutput& prev, const FrameOutput& cur, uint32_t W, uint32_t H) {
+    FalseHitStats s;
+    if (prev.position.empty() || cur.position.empty()) return s;
+    for (uint32_t y = 0; y < H; ++y)
+        for (uint32_t x = 0; x < W; ++x) {
+            const size_t i = (size_t)y * W + x;
+            if (!(cur.mask[i] & RRC_MASK_HIT) || cur.material[i] == kMatBackground || cur.material[i] == kMatMover) continue;
+            ++s.checked;
+            const float* c = &cur.prev_clip[i * 4];
+            const glm::vec3 p(cur.position[i * 4], cur.position[i * 4 + 1], cur.position[i * 4 + 2]);
+            const glm::vec3 n(cur.normal[i * 3], cur.normal[i * 3 + 1], cur.normal[i * 3 + 2]);
+            const float dist = glm::length(p - cur.eye);
+            const float cosv = std::max(std::fabs(glm::dot(n, (cur.eye - p) / dist)), 0.02f);
+            const float limit = 2.0f * dist * cur.pixel_angle / cosv + 0.005f;
+            const float px = ((c[0] / c[3] + 1.0f) * 0.5f) * (float)W - 0.5f, py = ((c[1] / c[3] + 1.0f) * 0.5f) * (float)H - 0.5f;
+            const float fx0 = std::floor(px), fy0 = std::floor(py), fx = px - fx0, fy = py - fy0;
+            float foreign = 0.0f;
+            bool strict = false;
+            for (int t = 0; t < 4; ++t) {
+                const int dx = t & 1, dy = t >> 1;
+                const float w = (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
+                if (w <= 1e-3f) continue;
+                const int tx = std::clamp((int)fx0 + dx, 0, (int)W - 1), ty = std::clamp((int)fy0 + dy, 0, (int)H - 1);
+                const size_t j = (size_t)ty * W + (size_t)tx;
+                const glm::vec3 q(prev.position[j * 4], prev.position[j * 4 + 1], prev.position[j * 4 + 2]);
+                if (prev.material[j] == kMatBackground || prev.material[j] == kMatMover || glm::length(q - p) > limit) {
+                    foreign += w;
+                    strict = true;
+                }
+            }
+            if (foreign >= 0.25f) ++s.false_hits;
+            if (strict) ++s.strict;
+        }
+    return s;
+}
+
+std::vector<SignalErrors> frame_errors(const FrameOutput& f) {
+    std::vector<SignalErrors> out;
+    if (!f.checkpoint) return out;
+    const size_t n = f.mask.size();
+    std::vector<uint8_t> surface(n), hits(n);
+    for (size_t i = 0; i < n; ++i) {
+        surface[i] = !(f.mask[i] & RRC_MASK_BACKGROUND);
+        hits[i] = (f.mask[i] & RRC_MASK_HIT) != 0;
+    }
+    auto add = [&](const char* name, const SignalData& s, const std::vector<uint8_t>& valid, int compare) {
+        if (s.reference.empty()) return;
+        SignalErrors e;
+        e.signal = name;
+        e.raw = error_against(s.raw, s.reference, s.components, compare, valid);
+        e.accumulated = error_against(s.accumulated, s.reference, s.components, compare, valid);
+        if (!s.brute_force.empty()) e.brute_force = error_against(s.brute_force, s.reference, s.components, compare, valid);
+        std::vector<uint8_t> valid_hits(n);
+        for (size_t i = 0; i < n; ++i) valid_hits[i] = valid[i] && hits[i];
+        e.raw_hits = error_against(s.raw, s.reference, s.components, compare, valid_hits);
+        e.accumulated_hits = error_against(s.accumulated, s.reference, s.components, compare, valid_hits);
+        if (!s.shown.empty()) {
+            e.shown = error_against(s.shown, s.reference, 1, 1, valid);
+            e.fallback = error_against(s.pcss, s.reference, 1, 1, valid);
+        }
+        out.push_back(e);
+    };
+    add("pcf", f.pcf, surface, 1);
+    if (!f.env.reference.empty()) {
+        std::vector<uint8_t> sphere(n);  // the env signal lives on the mirror sphere (alpha 1)
+        for (size_t i = 0; i < n; ++i) sphere[i] = f.env.raw[i * 4 + 3] > 0.5f;
+        add("env", f.env, sphere, 3);
+    }
+    add("soft", f.soft, surface, 1);
+    return out;
+}
+
+}  // namespace rrc_sample

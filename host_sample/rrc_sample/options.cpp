@@ -1,0 +1,141 @@
+#include "options.h"
+
+#include "scene.h"
+
+#include <rrc/rrc.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <sstream>
+
+namespace rrc_sample {
+namespace {
+
+long to_int(const std::string& opt, const std::string& v, long lo, long hi) {
+    char* end = nullptr;
+    errno = 0;
+    long x = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end || errno || x < lo || x > hi)
+        throw OptionError(opt + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
+    return x;
+}
+
+float to_float(const std::string& opt, const std::string& v, float lo, float hi) {
+    char* end = nullptr;
+    errno = 0;
+    float x = std::strtof(v.c_str(), &end);
+    if (v.empty() || *end || errno || !(x >= lo && x <= hi))
+        throw OptionError(opt + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
+    return x;
+}
+
+uint32_t parse_signals(const std::string& v) {
+    uint32_t bits = 0;
+    std::stringstream ss(v);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        if (item == "pcf") bits |= kSignalPcf;
+        else if (item == "env") bits |= kSignalEnv;
+        else if (item == "soft") bits |= kSignalSoft;
+        else throw OptionError("--signals: unknown signal \"" + item + "\" (pcf, env, soft)");
+    }
+    if (!bits) throw OptionError("--signals: name at least one of pcf, env, soft");
+    return bits;
+}
+
+}  // namespace
+
+std::string signal_list(uint32_t s) {
+    std::string out;
+    if (s & kSignalPcf) out += "pcf,";
+    if (s & kSignalEnv) out += "env,";
+    if (s & kSignalSoft) out += "soft,";
+    if (!out.empty()) out.pop_back();
+    return out;
+}
+
+const char* reprojection_name(uint32_t r) {
+    switch (r) {
+        case RRC_REPROJECTION_PREV_CLIP: return "prev_clip";
+        case RRC_REPROJECTION_MOTION: return "motion";
+        case RRC_REPROJECTION_MOTION_DEPTH: return "motion_depth";
+        case RRC_REPROJECTION_CAMERA: return "camera";
+        default: return "?";
+    }
+}
+
+std::string usage() {
+    return "usage: rrc-sample [options]\n"
+           "A headless Vulkan renderer driving rrc through its interop path: an animated temple scene,\n"
+           "three noisy per-frame signals accumulated by rrc, a brute-force reference on checkpoint frames.\n"
+           "\n"
+           "  --scene NAME             temple (default: pcf, env, soft) or courtyard (no mirror sphere)\n"
+           "  --frames N               frames to render (default 60)\n"
+           "  --size WxH               resolution (default 256x160)\n"
+           "  --out DIR                output directory (default out/sample)\n"
+           "  --reference-every K      brute-force reference on frames K-1, 2K-1, ... and the last (default 10; 0 = none)\n"
+           "  --reference-samples N    samples per pixel of the reference (default 256)\n"
+           "  --taps k                 PCF taps and env sub-pixel samples per frame (default 4)\n"
+           "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
+           "  --reproject SRC          prev_clip (default), motion, motion_depth or camera\n"
+           "  --epsilon-scale S        rrc's depth-test epsilon in ulps of the fp32 depth (default 16384, ~0.2% of z;\n"
+           "                           0 = the library default, 4 ulp: see README.md)\n"
+           "  --soft-prior N           weight of the PCSS fallback on young soft-shadow pixels, in samples (default 4)\n"
+           "  --soft-age-cap N         the soft channel's running mean stops growing at N samples (default 64)\n"
+           "  --fps F                  animation frames per second of scene time (default 30)\n"
+           "  --shadow-map-size S      sun and lamp shadow maps, S x S texels (default 512)\n"
+           "  --pcf-radius R           PCF disk radius in sun shadow-map texels (default 3)\n"
+           "  --static-camera          keep the camera still (the torus still moves)\n"
+           "  --no-images              write only summary.md, summary.csv and errors.csv\n"
+           "  --validation             Khronos validation layer with synchronization validation\n"
+           "  --device TEXT            use the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
+           "  --quiet                  no per-frame progress\n"
+           "  --help                   this text\n";
+}
+
+Options parse_options(int argc, const char* const* argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw OptionError(a + ": missing value");
+            return argv[++i];
+        };
+        if (a == "--help" || a == "-h") o.help = true;
+        else if (a == "--scene") o.scene = value();
+        else if (a == "--frames") o.frames = (int)to_int(a, value(), 1, 100000);
+        else if (a == "--size") {
+            const std::string v = value();
+            const size_t x = v.find('x');
+            if (x == std::string::npos) throw OptionError("--size: expected WxH, got \"" + v + "\"");
+            o.width = (uint32_t)to_int(a, v.substr(0, x), 8, 8192);
+            o.height = (uint32_t)to_int(a, v.substr(x + 1), 8, 8192);
+        } else if (a == "--out") o.out = value();
+        else if (a == "--reference-every") o.reference_every = (int)to_int(a, value(), 0, 100000);
+        else if (a == "--reference-samples") o.reference_samples = (int)to_int(a, value(), 1, 65536);
+        else if (a == "--taps") o.taps = (int)to_int(a, value(), 1, 64);
+        else if (a == "--signals") o.signals = parse_signals(value());
+        else if (a == "--reproject") {
+            const std::string v = value();
+            if (v == "prev_clip") o.reprojection = RRC_REPROJECTION_PREV_CLIP;
+            else if (v == "motion") o.reprojection = RRC_REPROJECTION_MOTION;
+            else if (v == "motion_depth") o.reprojection = RRC_REPROJECTION_MOTION_DEPTH;
+            else if (v == "camera") o.reprojection = RRC_REPROJECTION_CAMERA;
+            else throw OptionError("--reproject: expected prev_clip, motion, motion_depth or camera, got \"" + v + "\"");
+        } else if (a == "--epsilon-scale") o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
+        else if (a == "--soft-prior") o.soft_prior = to_float(a, value(), 0.0f, 1e6f);
+        else if (a == "--soft-age-cap") o.soft_age_cap = (uint32_t)to_int(a, value(), 1, 65535);
+        else if (a == "--fps") o.fps = to_float(a, value(), 0.1f, 10000.0f);
+        else if (a == "--shadow-map-size") o.sun_map = o.lamp_map = (uint32_t)to_int(a, value(), 16, 8192);
+        else if (a == "--pcf-radius") o.pcf_radius = to_float(a, value(), 0.0f, 64.0f);
+        else if (a == "--static-camera") o.static_camera = true;
+        else if (a == "--no-images") o.write_images = false;
+        else if (a == "--validation") o.validation = true;
+        else if (a == "--device") o.device = value();
+        else if (a == "--quiet") o.quiet = true;
+        else throw OptionError("unknown option \"" + a + "\" (--help lists them)");
+    }
+    return o;
+}
+
+}  // namespace rrc_sample

@@ -1,0 +1,28 @@
+// Files of a run: composed frames, coherence maps and age heat maps as PNG,
+// each signal's images as EXR.
+#pragma once
+
+#include "renderer.h"
+
+#include <string>
+
+namespace rrc_sample {
+
+class OutputWriter {
+public:
+    /** Creates out_dir/{frames,coherence,age,exr}. */
+    OutputWriter(const std::string& out_dir, uint32_t width, uint32_t height);
+    void write(const FrameOutput& frame) const;
+    const std::string& dir() const { return dir_; }
+
+private:
+    std::string dir_;
+    uint32_t width_, height_;
+};
+
+/** The paper's Figure 1 colours: green hit, red miss, blue refreshed, black background; RGB8. */
+std::vector<uint8_t> coherence_map(const std::vector<uint8_t>& mask);
+/** Age 0 black, then dark red -> yellow -> white at `full` and above; RGB8. */
+std::vector<uint8_t> age_heat_map(const std::vector<uint16_t>& age, uint32_t full);
+
+}  // namespace rrc_sample

@@ -1,0 +1,82 @@
+#include "post.h"
+
+#include "rrc_sample_age_comp.h"
+#include "rrc_sample_compose_comp.h"
+#include "rrc_sample_soft_fallback_comp.h"
+
+namespace rrc_sample {
+namespace {
+
+const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                       IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
+
+}  // namespace
+
+PostPasses::PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask,
+                       const SignalImages& acc, const SignalImages& raw, const SignalImages& ref, uint32_t w, uint32_t h)
+    : gpu_(gpu), width_(w), height_(h) {
+    const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    age_[0] = gpu.create_image(VK_FORMAT_R16_UINT, w, h, use, "age 0");
+    age_[1] = gpu.create_image(VK_FORMAT_R16_UINT, w, h, use, "age 1");
+    shown_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft shown");
+    pcss_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft pcss");
+    const char* names[3] = {"frame accumulated", "frame raw", "frame reference"};
+    for (int i = 0; i < 3; ++i) colour_[i] = gpu.create_image(VK_FORMAT_R8G8B8A8_UNORM, w, h, use, names[i]);
+    gpu.init_storage_images({&age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2]});
+
+    age_kernel_ = ComputeKernel(gpu, "age", rrc_sample_age_comp, sizeof rrc_sample_age_comp, {UBO, TEX, IMG, IMG, IMG}, 4, 2);
+    fallback_ = ComputeKernel(gpu, "soft_fallback", rrc_sample_soft_fallback_comp, sizeof rrc_sample_soft_fallback_comp,
+                              {UBO, TEX, TEX, TEX, IMG, IMG, IMG, IMG, IMG}, 4, 2);
+    for (uint32_t p = 0; p < 2; ++p) {
+        age_kernel_.bind_buffer(p, 0, scene.uniforms());
+        age_kernel_.bind_image(p, 1, g.prev_clip.view, RO);
+        age_kernel_.bind_image(p, 2, mask.view, GEN);
+        age_kernel_.bind_image(p, 3, age_[1 - p].view, GEN);
+        age_kernel_.bind_image(p, 4, age_[p].view, GEN);
+        fallback_.bind_buffer(p, 0, scene.uniforms());
+        fallback_.bind_image(p, 1, g.position.view, RO);
+        fallback_.bind_image(p, 2, g.normal.view, RO);
+        fallback_.bind_image(p, 3, maps.lamp_centre.view, RO);
+        fallback_.bind_image(p, 4, acc.soft.view, GEN);
+        fallback_.bind_image(p, 5, mask.view, GEN);
+        fallback_.bind_image(p, 6, age_[p].view, GEN);
+        fallback_.bind_image(p, 7, shown_.view, GEN);
+        fallback_.bind_image(p, 8, pcss_.view, GEN);
+    }
+    compose_ = ComputeKernel(gpu, "compose", rrc_sample_compose_comp, sizeof rrc_sample_compose_comp, {UBO, TEX, TEX, IMG, IMG, IMG, IMG},
+                             4, 3);
+    for (uint32_t s = 0; s < 3; ++s) {
+        const SignalImages& in = s == kComposeAccumulated ? acc : s == kComposeRaw ? raw : ref;
+        compose_.bind_buffer(s, 0, scene.uniforms());
+        compose_.bind_image(s, 1, g.position.view, RO);
+        compose_.bind_image(s, 2, g.normal.view, RO);
+        compose_.bind_image(s, 3, in.pcf.view, GEN);
+        compose_.bind_image(s, 4, in.env.view, GEN);
+        compose_.bind_image(s, 5, s == kComposeAccumulated ? shown_.view : in.soft.view, GEN);
+        compose_.bind_image(s, 6, colour_[s].view, GEN);
+    }
+}
+
+PostPasses::~PostPasses() {
+    age_kernel_.release();
+    fallback_.release();
+    compose_.release();
+    for (Image* i : {&age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2]}) gpu_.destroy(*i);
+}
+
+void PostPasses::record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior) {
+    const uint32_t cap = 255;
+    age_kernel_.dispatch(cmd, parity, &cap, width_, height_);
+    compute_to_compute(cmd);
+    if (signals & kSignalSoft) {
+        fallback_.dispatch(cmd, parity, &soft_prior, width_, height_);
+        compute_to_compute(cmd);
+    }
+}
+
+void PostPasses::record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input) {
+    compose_.dispatch(cmd, input, &signals, width_, height_);
+}
+
+}  // namespace rrc_sample

@@ -1,0 +1,247 @@
+#include "renderer.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <chrono>
+#include <cstring>
+
+namespace rrc_sample {
+namespace {
+
+enum Stamp : uint32_t { kStart, kShadows, kGBuffer, kSignals, kRrc, kPost, kReference, kBrute, kStampCount };
+
+template <typename T>
+std::vector<T> copy_of(const void* data, size_t bytes) {
+    std::vector<T> v(bytes / sizeof(T));
+    std::memcpy(v.data(), data, bytes);
+    return v;
+}
+
+void label(const Gpu& gpu, VkCommandBuffer cmd, const char* name) {
+    if (!gpu.debug_utils || !vkCmdInsertDebugUtilsLabelEXT) return;
+    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+    l.pLabelName = name;
+    vkCmdInsertDebugUtilsLabelEXT(cmd, &l);
+}
+
+}  // namespace
+
+Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gpu_(gpu), scene_(scene), s_(s) {
+    const uint32_t w = s.render.width, h = s.render.height;
+    gpu_scene_.reset(new GpuScene(gpu, scene));
+    const VkImageUsageFlags map_use = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    maps_.sun = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.sun_map, s.render.sun_map, map_use, "sun shadow map");
+    maps_.lamp_point = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "lamp point map");
+    maps_.lamp_centre = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "lamp centre map");
+    maps_.reference = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "reference lamp map");
+    // Every map is sampled by some descriptor set: give each a defined layout even if its pass never runs.
+    gpu.immediate([&](VkCommandBuffer cmd) {
+        std::vector<VkImageMemoryBarrier> bs;
+        for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference}) {
+            VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+            b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+            b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = m->image;
+            b.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+            bs.push_back(b);
+        }
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                             (uint32_t)bs.size(), bs.data());
+    });
+    shadows_.reset(new ShadowPass(gpu, *gpu_scene_));
+    gbuffer_.reset(new GBufferPass(gpu, *gpu_scene_, w, h));
+    signals_.reset(new SignalPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, w, h));
+    RrcSettings rs;
+    rs.width = w;
+    rs.height = h;
+    rs.signals = s.signals;
+    rs.reprojection = s.reprojection;
+    rs.epsilon_scale = s.epsilon_scale;
+    rs.soft_age_cap = s.soft_age_cap;
+    rs.near_plane = scene.near_plane;
+    rs.far_plane = scene.far_plane;
+    rrc_.reset(new RrcStage(gpu, rs));
+    post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
+                               signals_->reference(), w, h));
+
+    readback_.reset(new Readback(gpu));
+    Readback& r = *readback_;
+    slot_.mask = r.add(rrc_->mask());
+    for (uint32_t p = 0; p < 2; ++p) slot_.age[p] = r.add(post_->age(p));
+    for (uint32_t c = 0; c < 3; ++c) slot_.colour[c] = r.add(post_->colour((ComposeInput)c));
+    const SignalImages* sets[4] = {&signals_->raw(), &rrc_->accumulated(), &signals_->reference(), &signals_->brute_force()};
+    int* slots[4] = {slot_.raw, slot_.acc, slot_.ref, slot_.brute};
+    for (int k = 0; k < 4; ++k) {
+        slots[k][0] = r.add(sets[k]->pcf);
+        slots[k][1] = r.add(sets[k]->env);
+        slots[k][2] = r.add(sets[k]->soft);
+    }
+    slot_.shown = r.add(post_->soft_shown());
+    slot_.pcss = r.add(post_->soft_pcss());
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    slot_.position = r.add(gbuffer_->images().position, ro);
+    slot_.normal = r.add(gbuffer_->images().normal, ro);
+    slot_.prev_clip = r.add(gbuffer_->images().prev_clip, ro);
+    r.allocate();
+
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = gpu.pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence_), "vkCreateFence");
+    if (gpu.timestamps) {
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qci.queryCount = kStampCount;
+        vk_check(vkCreateQueryPool(gpu.device, &qci, nullptr, &queries_), "vkCreateQueryPool");
+    }
+}
+
+Renderer::~Renderer() {
+    vkDeviceWaitIdle(gpu_.device);
+    if (queries_) vkDestroyQueryPool(gpu_.device, queries_, nullptr);
+    vkDestroyFence(gpu_.device, fence_, nullptr);
+    vkFreeCommandBuffers(gpu_.device, gpu_.pool, 1, &cmd_);
+    readback_.reset();
+    post_.reset();
+    rrc_.reset();
+    signals_.reset();
+    gbuffer_.reset();
+    shadows_.reset();
+    for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference}) gpu_.destroy(*m);
+    gpu_scene_.reset();
+}
+
+FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const FrameState state = make_frame_state(scene_, s_.render, index);
+    gpu_scene_->update(state);  // the previous frame's fence has been waited for
+    const uint32_t sig = s_.signals;
+    VkCommandBuffer cmd = cmd_;
+    vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    auto stamp = [&](Stamp s) {
+        if (queries_) vkCmdWriteTimestamp(cmd, s == kStart ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, s);
+    };
+    if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, kStampCount);
+    // Everything of the previous frame (readback copies included) before anything of this one.
+    memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+    stamp(kStart);
+
+    label(gpu_, cmd, "shadow maps");
+    if (sig & kSignalPcf) shadows_->record(cmd, maps_.sun, state.uniforms.sun_vp);
+    if (sig & kSignalSoft) {
+        shadows_->record(cmd, maps_.lamp_point, state.uniforms.lamp_point_vp);
+        shadows_->record(cmd, maps_.lamp_centre, state.uniforms.lamp_centre_vp);
+    }
+    stamp(kShadows);
+    label(gpu_, cmd, "g-buffer");
+    gbuffer_->record(cmd);
+    stamp(kGBuffer);
+    label(gpu_, cmd, "signals");
+    signals_->record(cmd, sig, state);
+    stamp(kSignals);
+    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset);
+    stamp(kRrc);
+    label(gpu_, cmd, "post");
+    post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);
+    post_->record_compose(cmd, sig, kComposeAccumulated);
+    stamp(kPost);
+    if (checkpoint) {
+        label(gpu_, cmd, "reference");
+        signals_->record_reference(cmd, sig, s_.reference_samples, scene_, *shadows_);
+        stamp(kReference);
+        signals_->record_brute_force(cmd, sig, (uint32_t)s_.render.taps, index, scene_, *shadows_);
+        stamp(kBrute);
+        compute_to_compute(cmd);
+        post_->record_compose(cmd, sig, kComposeRaw);
+        post_->record_compose(cmd, sig, kComposeReference);
+    }
+    std::vector<int> slots = {slot_.mask, slot_.age[parity_], slot_.colour[0], slot_.shown, slot_.pcss, slot_.position, slot_.normal,
+                              slot_.prev_clip};
+    for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]);
+    if (checkpoint)
+        for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);
+    if (checkpoint) slots.push_back(slot_.colour[1]), slots.push_back(slot_.colour[2]);
+    readback_->record(cmd, slots);
+    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    vk_check(vkQueueSubmit(gpu_.queue, 1, &si, fence_), "vkQueueSubmit");
+    vk_check(vkWaitForFences(gpu_.device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    vk_check(vkResetFences(gpu_.device, 1, &fence_), "vkResetFences");
+    const auto t1 = std::chrono::steady_clock::now();
+
+    FrameOutput out;
+    out.index = index;
+    out.checkpoint = checkpoint;
+    out.eye = glm::vec3(state.uniforms.camera_pos);
+    out.pixel_angle = scene_.camera(state.uniforms.camera_pos.w).fov_y / (float)s_.render.height;
+    out.timings.cpu_frame = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    if (queries_) {
+        uint64_t ts[kStampCount] = {};
+        const uint32_t n = checkpoint ? kStampCount : kReference;
+        vk_check(vkGetQueryPoolResults(gpu_.device, queries_, 0, n, sizeof ts, ts, sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                 "vkGetQueryPoolResults");
+        const double ms = gpu_.properties.limits.timestampPeriod * 1e-6;
+        auto d = [&](Stamp a, Stamp b) { return (double)(ts[b] - ts[a]) * ms; };
+        FrameTimings& t = out.timings;
+        t.shadows = d(kStart, kShadows);
+        t.gbuffer = d(kShadows, kGBuffer);
+        t.signals = d(kGBuffer, kSignals);
+        t.rrc = d(kSignals, kRrc);
+        t.post = d(kRrc, kPost);
+        t.reference = checkpoint ? d(kPost, kReference) : 0.0;
+        t.brute_force = checkpoint ? d(kReference, kBrute) : 0.0;
+        t.from_timestamps = true;
+    }
+    read_back(out, parity_);
+    parity_ = 1 - parity_;
+    return out;
+}
+
+void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
+    const Readback& r = *readback_;
+    out.mask = copy_of<uint8_t>(r.data(slot_.mask), r.bytes(slot_.mask));
+    out.age = copy_of<uint16_t>(r.data(slot_.age[parity]), r.bytes(slot_.age[parity]));
+    out.colour[0] = copy_of<uint8_t>(r.data(slot_.colour[0]), r.bytes(slot_.colour[0]));
+    out.position = copy_of<float>(r.data(slot_.position), r.bytes(slot_.position));
+    out.prev_clip = copy_of<float>(r.data(slot_.prev_clip), r.bytes(slot_.prev_clip));
+    const std::vector<uint16_t> nm = copy_of<uint16_t>(r.data(slot_.normal), r.bytes(slot_.normal));
+    out.material.resize(nm.size() / 4);
+    out.normal.resize(nm.size() / 4 * 3);
+    for (size_t i = 0; i < out.material.size(); ++i) {
+        for (int c = 0; c < 3; ++c) out.normal[i * 3 + c] = glm::unpackHalf1x16(nm[i * 4 + c]);
+        out.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
+    }
+    if (out.checkpoint)
+        for (int c = 1; c < 3; ++c) out.colour[c] = copy_of<uint8_t>(r.data(slot_.colour[c]), r.bytes(slot_.colour[c]));
+    SignalData* sd[3] = {&out.pcf, &out.env, &out.soft};
+    const uint32_t bits[3] = {kSignalPcf, kSignalEnv, kSignalSoft};
+    for (int k = 0; k < 3; ++k) {
+        if (!(s_.signals & bits[k])) continue;
+        sd[k]->components = k == 1 ? 4 : 1;
+        sd[k]->raw = copy_of<float>(r.data(slot_.raw[k]), r.bytes(slot_.raw[k]));
+        sd[k]->accumulated = copy_of<float>(r.data(slot_.acc[k]), r.bytes(slot_.acc[k]));
+        if (out.checkpoint) {
+            sd[k]->reference = copy_of<float>(r.data(slot_.ref[k]), r.bytes(slot_.ref[k]));
+            sd[k]->brute_force = copy_of<float>(r.data(slot_.brute[k]), r.bytes(slot_.brute[k]));
+        }
+    }
+    if (s_.signals & kSignalSoft) {
+        out.soft.shown = copy_of<float>(r.data(slot_.shown), r.bytes(slot_.shown));
+        out.soft.pcss = copy_of<float>(r.data(slot_.pcss), r.bytes(slot_.pcss));
+    }
+}
+
+}  // namespace rrc_sample

@@ -1,0 +1,98 @@
+// One frame of the small engine: shadow maps, G-buffer, the noisy signals,
+// rrc, the host's post passes, on checkpoints the brute-force reference,
+// then the readback -- all in one command buffer, timed with GPU timestamps.
+#pragma once
+
+#include "frame_state.h"
+#include "gpu.h"
+#include "post.h"
+#include "raster.h"
+#include "readback.h"
+#include "rrc_stage.h"
+#include "scene.h"
+#include "signals.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace rrc_sample {
+
+struct RendererSettings {
+    RenderSettings render;
+    uint32_t signals = 0;
+    uint32_t reprojection = 0;
+    float epsilon_scale = 0.0f;
+    float soft_prior = 4.0f;
+    uint32_t soft_age_cap = 64;
+    uint32_t reference_samples = 256;
+};
+
+/** Milliseconds of GPU time per stage (timestamps; CPU wall clock where the queue has none). */
+struct FrameTimings {
+    double shadows = 0, gbuffer = 0, signals = 0, rrc = 0, post = 0, reference = 0;
+    double brute_force = 0;  // checkpoints: the signals at 4x the samples (the paper's equal-quality comparison)
+    double render() const { return shadows + gbuffer + signals; }
+    double cpu_frame = 0;  // record + submit + wait, wall clock
+    bool from_timestamps = false;
+};
+
+/** One signal's images of a frame, on the CPU, row-major (components interleaved). */
+struct SignalData {
+    int components = 1;
+    std::vector<float> raw, accumulated, reference;  // reference: checkpoints only
+    std::vector<float> brute_force;                  // checkpoints: 4x the per-frame samples
+    std::vector<float> shown, pcss;                  // soft only: what is displayed, the fallback
+};
+
+struct FrameOutput {
+    int index = 0;
+    bool checkpoint = false;
+    std::vector<uint8_t> mask;       // rrc's mask bits
+    std::vector<uint16_t> age;       // the host's age map
+    std::array<std::vector<uint8_t>, 3> colour;  // RGBA8: accumulated; raw, reference (checkpoints)
+    std::vector<float> position;   // G-buffer world position, RGBA (false-hit count)
+    std::vector<float> prev_clip;  // G-buffer previous clip position, RGBA
+    std::vector<uint8_t> material; // G-buffer material id
+    std::vector<float> normal;     // G-buffer world normal, xyz
+    glm::vec3 eye{0.0f};           // camera position
+    float pixel_angle = 0.0f;      // radians per pixel, vertically
+    SignalData pcf, env, soft;
+    FrameTimings timings;
+};
+
+class Renderer {
+public:
+    Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& settings);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /** Renders frame `index` (reset makes rrc miss everywhere); reference pass if `checkpoint`. */
+    FrameOutput render(int index, bool reset, bool checkpoint);
+    uint64_t rrc_memory_bytes() const { return rrc_->memory_bytes(); }
+    const RrcStage& rrc() const { return *rrc_; }
+
+private:
+    void read_back(FrameOutput& out, uint32_t parity) const;
+    Gpu& gpu_;
+    const Scene& scene_;
+    RendererSettings s_;
+    std::unique_ptr<GpuScene> gpu_scene_;
+    ShadowMaps maps_;
+    std::unique_ptr<ShadowPass> shadows_;
+    std::unique_ptr<GBufferPass> gbuffer_;
+    std::unique_ptr<SignalPasses> signals_;
+    std::unique_ptr<RrcStage> rrc_;
+    std::unique_ptr<PostPasses> post_;
+    std::unique_ptr<Readback> readback_;
+    struct Slots {
+        int mask, age[2], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip;
+    } slot_{};
+    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    VkQueryPool queries_ = VK_NULL_HANDLE;
+    uint32_t parity_ = 0;
+};
+
+}  // namespace rrc_sample

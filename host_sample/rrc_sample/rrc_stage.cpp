@@ -1,0 +1,146 @@
+#include "rrc_stage.h"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace rrc_sample {
+namespace {
+
+rrc_channel_desc make_channel(const char* name, uint32_t components, float lambda, rrc_blend blend, rrc_history_precision precision,
+                              uint32_t age_cap) {
+    rrc_channel_desc c;
+    std::memset(&c, 0, sizeof c);
+    c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
+    c.size = sizeof c;
+    std::snprintf(c.name, sizeof c.name, "%s", name);
+    c.components = components;
+    c.lambda = lambda;
+    c.blend = blend;
+    c.filter = RRC_HISTORY_FILTER_BILINEAR;
+    c.precision = precision;
+    c.age_cap = age_cap;
+    return c;
+}
+
+void log_to_stderr(void*, rrc_log_level level, const char* message) {
+    if (level >= RRC_LOG_WARNING) std::fprintf(stderr, "rrc: %s\n", message);
+}
+
+rrc_vulkan_image view_of(const Image& img, VkImageLayout layout) {
+    rrc_vulkan_image v;
+    std::memset(&v, 0, sizeof v);
+    v.image = img.image;
+    v.view = img.view;
+    v.format = img.format;
+    v.layout = layout;  // final_layout 0: left as it was
+    return v;
+}
+
+}  // namespace
+
+std::vector<rrc_channel_desc> channel_descs(uint32_t signals, uint32_t soft_age_cap) {
+    std::vector<rrc_channel_desc> c;
+    // Amortized PCF: lambda = 3/5 (variance to 1/4: 4 taps a frame ~ 16), the paper's fixed blend, bilinear.
+    if (signals & kSignalPcf) c.push_back(make_channel("pcf", 1, 0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FP16, 0));
+    // Env-mapped bump mapping: 4 components, lambda = 0.6.
+    if (signals & kSignalEnv) c.push_back(make_channel("env", 4, 0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FP16, 0));
+    // Soft shadow: the running mean of one light point a frame, up to the age cap.  fp32 history:
+    // a mean of binary samples over 64 frames would drift by fp16 rounding (2^-11 a step).
+    if (signals & kSignalSoft) c.push_back(make_channel("soft", 1, 0.0f, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FP32, soft_age_cap));
+    return c;
+}
+
+RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
+    channels_ = channel_descs(s.signals, s.soft_age_cap);
+    const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    out_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, s.width, s.height, use, "pcf accumulated");
+    out_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, use, "env accumulated");
+    out_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, s.width, s.height, use, "soft accumulated");
+    mask_ = gpu.create_image(VK_FORMAT_R8_UINT, s.width, s.height, use, "rrc mask");
+    gpu.init_storage_images({&out_.pcf, &out_.env, &out_.soft, &mask_});
+
+    rrc_context_desc d;
+    std::memset(&d, 0, sizeof d);
+    d.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
+    d.size = sizeof d;
+    d.api_version = RRC_API_VERSION;
+    d.width = s.width;
+    d.height = s.height;
+    d.depth_mode = RRC_DEPTH_MODE_REVERSED;  // the G-buffer's D32 reversed-z attachment
+    d.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
+    d.near_plane = s.near_plane;  // used by plain MOTION to linearise depth
+    d.far_plane = s.far_plane;
+    d.epsilon_scale = s.epsilon_scale;
+    d.reprojection = s.reprojection;
+    d.channel_count = (uint32_t)channels_.size();
+    d.channels = channels_.data();
+    d.log = log_to_stderr;
+
+    rrc_vulkan_device_desc dd;
+    std::memset(&dd, 0, sizeof dd);
+    dd.type = RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC;
+    dd.size = sizeof dd;
+    dd.instance = gpu.instance;
+    dd.physical_device = gpu.physical;
+    dd.device = gpu.device;
+    dd.queue_family_index = gpu.family;
+    dd.vulkan_api_version = gpu.api_version;
+    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
+    dd.max_frames_in_flight = 1;  // the sample waits for each frame (it reads every frame back)
+    dd.debug_utils_enabled = gpu.debug_utils ? 1u : 0u;
+    if (rrc_vulkan_context_create(&d, &dd, &ctx_) != RRC_SUCCESS)
+        throw std::runtime_error(std::string("rrc_vulkan_context_create: ") + rrc_last_error());
+}
+
+RrcStage::~RrcStage() {
+    rrc_context_destroy(ctx_);  // the device is idle (the renderer waited)
+    for (Image* i : {&out_.pcf, &out_.env, &out_.soft, &mask_}) gpu_.destroy(*i);
+}
+
+uint64_t RrcStage::memory_bytes() const {
+    uint64_t bytes = 0;
+    rrc_get_memory_usage(ctx_, &bytes);
+    return bytes;
+}
+
+void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
+                      bool reset) {
+    const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
+    std::vector<rrc_vulkan_channel_images> ch;
+    auto add = [&](const Image& in, const Image& out) {
+        rrc_vulkan_channel_images c;
+        std::memset(&c, 0, sizeof c);
+        c.type = RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES;
+        c.size = sizeof c;
+        c.samples = view_of(in, GEN);
+        c.output = view_of(out, GEN);
+        ch.push_back(c);
+    };
+    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf);
+    if (settings_.signals & kSignalEnv) add(samples.env, out_.env);
+    if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft);
+
+    rrc_vulkan_frame_desc f;
+    std::memset(&f, 0, sizeof f);
+    f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+    f.size = sizeof f;
+    f.command_buffer = cmd;
+    f.frame_index = frame_index;
+    f.reset = reset ? 1u : 0u;
+    f.depth = view_of(g.depth, RO);  // the G-buffer pass leaves it SHADER_READ_ONLY_OPTIMAL
+    if (settings_.reprojection == RRC_REPROJECTION_PREV_CLIP) f.reprojection = view_of(g.prev_clip, RO);
+    if (settings_.reprojection == RRC_REPROJECTION_MOTION || settings_.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
+        f.reprojection = view_of(g.motion, RO);
+    f.mask = view_of(mask_, GEN);
+    for (int i = 0; i < 16; ++i) {
+        f.view_proj[i] = state.view_proj[i / 4][i % 4];  // column-major, as GLM stores it
+        f.prev_view_proj[i] = state.prev_view_proj[i / 4][i % 4];
+    }
+    f.channel_count = (uint32_t)ch.size();
+    f.channels = ch.data();
+    if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS)
+        throw std::runtime_error(std::string("rrc_vulkan_record_frame: ") + rrc_context_last_error(ctx_));
+}
+
+}  // namespace rrc_sample

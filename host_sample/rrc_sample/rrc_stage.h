@@ -1,0 +1,56 @@
+// rrc inside the sample's own device and command buffer (rrc_vulkan.h):
+// one channel per signal the scene uses, configured here, recorded after
+// the signal passes.  Owns the accumulated output images and the mask.
+#pragma once
+
+#include "frame_state.h"
+#include "gpu.h"
+#include "raster.h"
+#include "signals.h"
+
+#include <rrc/rrc.h>
+#include <rrc/rrc_vulkan.h>
+
+#include <string>
+#include <vector>
+
+namespace rrc_sample {
+
+struct RrcSettings {
+    uint32_t width = 0, height = 0;
+    uint32_t signals = 0;         // one channel per bit, in the order pcf, env, soft
+    uint32_t reprojection = RRC_REPROJECTION_PREV_CLIP;
+    float epsilon_scale = 0.0f;   // 0 = library default
+    float near_plane = 0.1f, far_plane = 200.0f;
+    uint32_t soft_age_cap = 64;
+};
+
+/** The channel descriptions for the signals (the presets of SPEC §3). */
+std::vector<rrc_channel_desc> channel_descs(uint32_t signals, uint32_t soft_age_cap);
+
+class RrcStage {
+public:
+    RrcStage(Gpu& gpu, const RrcSettings& settings);  // throws std::runtime_error with rrc's message
+    ~RrcStage();
+    RrcStage(const RrcStage&) = delete;
+    RrcStage& operator=(const RrcStage&) = delete;
+
+    /** Records rrc's barriers and its one dispatch.  reset: every pixel misses. */
+    void record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
+                bool reset);
+
+    const SignalImages& accumulated() const { return out_; }
+    const Image& mask() const { return mask_; }
+    const std::vector<rrc_channel_desc>& channels() const { return channels_; }
+    uint64_t memory_bytes() const;
+
+private:
+    Gpu& gpu_;
+    RrcSettings settings_;
+    std::vector<rrc_channel_desc> channels_;
+    rrc_context* ctx_ = nullptr;
+    SignalImages out_;
+    Image mask_;
+};
+
+}  // namespace rrc_sample

@@ -1,0 +1,112 @@
+#include "sample_run.h"
+
+#include "output.h"
+#include "scene.h"
+#include "summary.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace rrc_sample {
+namespace {
+
+std::string channel_line(const rrc_channel_desc& c) {
+    const char* blend = c.blend == RRC_BLEND_FIXED ? "fixed" : c.blend == RRC_BLEND_AGE_AWARE ? "age_aware" : "running_mean";
+    char line[256];
+    if (c.blend == RRC_BLEND_RUNNING_MEAN)
+        std::snprintf(line, sizeof line, "%s: %u component%s, %s, age cap %u, bilinear, %s history", c.name, c.components,
+                      c.components > 1 ? "s" : "", blend, c.age_cap ? c.age_cap : 255u, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
+    else
+        std::snprintf(line, sizeof line, "%s: %u component%s, %s, lambda %.2f, bilinear, %s history", c.name, c.components,
+                      c.components > 1 ? "s" : "", blend, c.lambda, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
+    return line;
+}
+
+}  // namespace
+
+bool is_checkpoint(const Options& o, int frame) {
+    if (o.reference_every <= 0) return false;
+    return frame % o.reference_every == o.reference_every - 1 || frame == o.frames - 1;
+}
+
+RunResult run_sample(const Options& o, std::ostream* progress, const std::function<void(const FrameOutput&, const FrameRecord&)>& on_frame) {
+    if (o.quiet) progress = nullptr;
+    Scene scene = Scene::make(o.scene);
+    if (o.static_camera) scene.camera_speed = 0.0f;
+    RunResult run;
+    run.options = o;
+    run.signals = o.signals ? (o.signals & scene.signals) : scene.signals;
+    if (o.signals & ~scene.signals && progress)
+        *progress << "note: scene " << scene.name << " does not use " << signal_list(o.signals & ~scene.signals)
+                  << "; no channel is made for it\n";
+    if (!run.signals) throw std::runtime_error("scene " + scene.name + " uses none of the signals asked for");
+
+    RendererSettings rs;
+    rs.render.width = o.width;
+    rs.render.height = o.height;
+    rs.render.taps = o.taps;
+    rs.render.fps = o.fps;
+    rs.render.sun_map = o.sun_map;
+    rs.render.lamp_map = o.lamp_map;
+    rs.render.pcf_radius = o.pcf_radius;
+    rs.signals = run.signals;
+    rs.reprojection = o.reprojection;
+    rs.epsilon_scale = o.epsilon_scale;
+    rs.soft_prior = o.soft_prior;
+    rs.soft_age_cap = o.soft_age_cap;
+    rs.reference_samples = (uint32_t)o.reference_samples;
+
+    std::filesystem::create_directories(o.out);
+    Gpu gpu(GpuOptions{o.validation, o.device});
+    run.device = gpu.device_name();
+    try {
+        Renderer renderer(gpu, scene, rs);
+        run.rrc_memory_bytes = renderer.rrc_memory_bytes();
+        for (const rrc_channel_desc& c : renderer.rrc().channels()) run.channels.push_back(channel_line(c));
+        if (progress) {
+            *progress << "rrc-sample: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.frames << " frames, signals "
+                      << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", k = " << o.taps
+                      << (o.reference_every > 0 ? ", reference " + std::to_string(o.reference_samples) + " samples every " +
+                                                      std::to_string(o.reference_every) + " frames"
+                                                : std::string(", no reference"))
+                      << "\n"
+                      << "device: " << run.device << (o.validation ? " (validation layer on)" : "") << "\n";
+            for (const std::string& c : run.channels) *progress << "  rrc channel " << c << "\n";
+        }
+        std::unique_ptr<OutputWriter> writer;
+        if (o.write_images) writer.reset(new OutputWriter(o.out, o.width, o.height));
+
+        // Warm-up: lavapipe compiles shaders at their first dispatch; frame 0 then runs again with reset.
+        renderer.render(0, true, false);
+        const auto start = std::chrono::steady_clock::now();
+        FrameOutput previous;
+        for (int t = 0; t < o.frames; ++t) {
+            FrameOutput out = renderer.render(t, t == 0, is_checkpoint(o, t));
+            FrameRecord rec;
+            if (t > 0) rec.false_hits = count_false_hits(previous, out, o.width, o.height);
+            rec.index = t;
+            rec.checkpoint = out.checkpoint;
+            rec.hits = hit_stats(out.mask);
+            rec.timings = out.timings;
+            rec.errors = frame_errors(out);
+            if (writer) writer->write(out);
+            if (on_frame) on_frame(out, rec);
+            if (progress) *progress << progress_line(rec, o.frames) << std::flush;
+            run.frames.push_back(std::move(rec));
+            previous = std::move(out);
+        }
+        run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    } catch (...) {
+        gpu.shutdown();
+        throw;
+    }
+    gpu.shutdown();  // leaked objects are reported here
+    run.validation_messages = gpu.message_count();
+    run.messages = gpu.messages();
+    write_summary_files(run, o.out);
+    return run;
+}
+
+}  // namespace rrc_sample

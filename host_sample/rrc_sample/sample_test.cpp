@@ -1,0 +1,158 @@
+// rrc-sample under the Khronos validation layer with synchronization
+// validation, on its own instance and device: a short sequence must produce
+// zero messages (device and instance destruction included, so leaked objects
+// count), hit the cache, and accumulate signals that beat one frame's samples.
+#include "options.h"
+#include "sample_run.h"
+
+#include <gtest/gtest.h>
+#include <rrc/rrc.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace rrc_sample;
+
+namespace {
+
+Options tiny(const std::string& name) {
+    Options o;
+    o.frames = 6;
+    o.width = 64;
+    o.height = 40;
+    o.reference_every = 3;    // checkpoints: frames 2 and 5
+    o.reference_samples = 16;  // 4x4 light points for the soft reference
+    o.sun_map = o.lamp_map = 256;
+    o.validation = true;
+    o.quiet = true;
+    o.out = (std::filesystem::path(testing::TempDir()) / ("rrc_sample_" + name)).string();
+    std::filesystem::remove_all(o.out);
+    return o;
+}
+
+std::string first_messages(const RunResult& r) {
+    std::string s;
+    for (const std::string& m : r.messages) s += "\n  " + m;
+    return s;
+}
+
+const SignalErrors* find(const FrameRecord& f, const std::string& signal) {
+    for (const SignalErrors& e : f.errors)
+        if (e.signal == signal) return &e;
+    return nullptr;
+}
+
+TEST(RrcSample, ShortSequenceUnderValidationLayer) {
+    const Options o = tiny("validation");
+    RunResult r = run_sample(o, nullptr);
+    EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    ASSERT_EQ(r.frames.size(), 6u);
+    EXPECT_EQ(r.channels.size(), 3u);  // pcf, env, soft
+    EXPECT_EQ(r.frames[0].hits.hits, 0u) << "frame 0 is a reset";
+    EXPECT_GT(r.frames[5].hits.ratio(), 0.5);
+    EXPECT_GT(r.frames[5].hits.background, 0u);
+    EXPECT_GT(r.frames[5].timings.rrc, 0.0);
+    uint64_t false_hits = 0, checked = 0;
+    for (const FrameRecord& f : r.frames) false_hits += f.false_hits.false_hits, checked += f.false_hits.checked;
+    EXPECT_GT(checked, 0u);
+    EXPECT_LE(false_hits * 200, checked) << "false hits above 0.5% of the static-surface hits";
+
+    ASSERT_TRUE(r.frames[5].checkpoint);
+    for (const char* signal : {"pcf", "env", "soft"}) {
+        const SignalErrors* e = find(r.frames[5], signal);
+        ASSERT_NE(e, nullptr) << signal;
+        EXPECT_GT(e->raw.pixels, 0u) << signal;
+        EXPECT_GT(e->raw.rmse, 0.0) << signal;
+        EXPECT_LT(e->accumulated.rmse, e->raw.rmse) << signal << ": accumulation must beat one frame's samples";
+        EXPECT_LT(e->accumulated_hits.rmse, e->raw_hits.rmse) << signal << " on cache hits";
+    }
+
+    namespace fs = std::filesystem;
+    for (const char* f : {"summary.md", "summary.csv", "errors.csv", "frames/frame_0005.png", "frames/frame_0005_reference.png",
+                          "coherence/coherence_0005.png", "age/age_0005.png", "exr/pcf_0005.exr", "exr/env_0005.exr",
+                          "exr/soft_0005.exr"})
+        EXPECT_TRUE(fs::exists(fs::path(o.out) / f)) << f;
+}
+
+// With the camera still, a pixel's accumulated PCF varies less from frame to
+// frame than its raw 4-tap estimate: the recursive filter's (1-l)/(1+l) = 1/4
+// for independent samples (the torus and its shadow move: they stay in).
+TEST(RrcSample, AccumulatedPcfVariesLessThanRawOnStaticPixels) {
+    Options o = tiny("static");
+    o.static_camera = true;
+    o.signals = kSignalPcf;
+    o.reference_every = 0;
+    o.write_images = false;
+    std::vector<std::vector<float>> raw, acc;
+    std::vector<uint8_t> always_hit;
+    RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        if (f.index < 2) return;  // let the history fill
+        raw.push_back(f.pcf.raw);
+        acc.push_back(f.pcf.accumulated);
+        if (always_hit.empty()) always_hit.assign(f.mask.size(), 1);
+        for (size_t i = 0; i < f.mask.size(); ++i)
+            if (!(f.mask[i] & RRC_MASK_HIT)) always_hit[i] = 0;
+    });
+    EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    EXPECT_EQ(r.channels.size(), 1u);
+    ASSERT_EQ(raw.size(), 4u);
+    double var_raw = 0.0, var_acc = 0.0;
+    size_t pixels = 0;
+    for (size_t i = 0; i < always_hit.size(); ++i) {
+        if (!always_hit[i]) continue;
+        ++pixels;
+        for (const auto* series : {&raw, &acc}) {
+            double mean = 0.0, sq = 0.0;
+            for (const auto& frame : *series) mean += frame[i];
+            mean /= (double)series->size();
+            for (const auto& frame : *series) sq += (frame[i] - mean) * (frame[i] - mean);
+            (series == &raw ? var_raw : var_acc) += sq / (double)(series->size() - 1);
+        }
+    }
+    EXPECT_GT(pixels, always_hit.size() / 2);
+    ASSERT_GT(var_raw, 0.0) << "the raw PCF signal must be noisy somewhere";
+    EXPECT_LT(var_acc, 0.6 * var_raw) << "temporal variance, accumulated / raw = " << var_acc / var_raw;
+}
+
+// A scene that does not use a signal makes no channel for it.
+TEST(RrcSample, SceneWithoutMirrorSphereHasNoEnvChannel) {
+    Options o = tiny("courtyard");
+    o.scene = "courtyard";
+    o.frames = 2;
+    o.reference_every = 0;
+    o.write_images = false;
+    RunResult r = run_sample(o, nullptr);
+    EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    EXPECT_EQ(r.signals, (uint32_t)(kSignalPcf | kSignalSoft));
+    ASSERT_EQ(r.channels.size(), 2u);
+    EXPECT_EQ(r.channels[0].rfind("pcf:", 0), 0u);
+    EXPECT_EQ(r.channels[1].rfind("soft:", 0), 0u);
+}
+
+TEST(RrcSampleOptions, ParsesAndRefuses) {
+    const char* ok[] = {"rrc-sample", "--frames", "12", "--size", "96x64", "--signals", "pcf,soft", "--reproject", "motion",
+                        "--taps", "8", "--reference-every", "4", "--reference-samples", "64", "--quiet", "--no-images"};
+    Options o = parse_options((int)(sizeof ok / sizeof *ok), ok);
+    EXPECT_EQ(o.frames, 12);
+    EXPECT_EQ(o.width, 96u);
+    EXPECT_EQ(o.height, 64u);
+    EXPECT_EQ(o.signals, (uint32_t)(kSignalPcf | kSignalSoft));
+    EXPECT_EQ(o.reprojection, (uint32_t)RRC_REPROJECTION_MOTION);
+    EXPECT_EQ(o.taps, 8);
+    EXPECT_TRUE(o.quiet);
+    EXPECT_FALSE(o.write_images);
+    EXPECT_TRUE(is_checkpoint(o, 3));
+    EXPECT_TRUE(is_checkpoint(o, 11));
+    EXPECT_FALSE(is_checkpoint(o, 4));
+
+    const std::vector<std::vector<const char*>> bad = {
+        {"rrc-sample", "--frames", "0"},        {"rrc-sample", "--size", "64"},          {"rrc-sample", "--signals", "pcf,fog"},
+        {"rrc-sample", "--reproject", "warp"},  {"rrc-sample", "--taps", "65"},          {"rrc-sample", "--frames"},
+        {"rrc-sample", "--bogus"},              {"rrc-sample", "--epsilon-scale", "-1"}};
+    for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
+}
+
+}  // namespace

@@ -1,0 +1,54 @@
+// The procedural environment map and the bump-mapped mirror sphere.
+#ifndef RRC_SAMPLE_ENV_GLSL
+#define RRC_SAMPLE_ENV_GLSL
+
+// Radiance from direction d: a sky with a band of coloured banners along the
+// horizon and a sun, over a checkered ground.  Hard edges on purpose: a
+// bumpy mirror turns them into sub-pixel detail that one sample aliases.
+vec3 env_radiance(vec3 d) {
+    d = normalize(d);
+    if (d.y >= 0.0) {
+        vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(d.y));
+        float az = atan(d.z, d.x) * (12.0 / (2.0 * PI));
+        bool warm = fract(az) < 0.5;
+        if (d.y < 0.07) sky = warm ? vec3(1.1, 0.55, 0.18) : vec3(0.18, 0.6, 0.32);
+        float s = max(dot(d, u.sun_dir.xyz), 0.0);
+        sky += vec3(1.6, 1.4, 1.0) * pow(s, 200.0);
+        return sky;
+    }
+    vec2 g = d.xz / max(-d.y, 0.05);
+    float c = mod(floor(g.x * 1.5) + floor(g.y * 1.5), 2.0);
+    return mix(vec3(0.12, 0.1, 0.09), vec3(0.6, 0.56, 0.5), c);
+}
+
+// The bumped normal of the sphere at unit normal n: height h(p) =
+// sin(Fx) sin(Fy) sin(Fz) / F on the object-space point p = n * radius.
+vec3 bumped_normal(vec3 n) {
+    float F = u.bump.x, k = u.bump.y;
+    vec3 q = n * u.sphere.w * F;
+    vec3 s = sin(q), c = cos(q);
+    vec3 g = vec3(c.x * s.y * s.z, s.x * c.y * s.z, s.x * s.y * c.z);
+    g -= dot(g, n) * n;  // tangential part
+    return normalize(n - k * g);
+}
+
+// The colour the mirror sphere shows along a camera ray through ndc (sub-pixel
+// position): the ray is intersected with the analytic sphere (rays that pass
+// the silhouette are clamped to the grazing point), the bumped normal
+// reflects it into the environment.
+vec3 sphere_sample(vec2 ndc) {
+    vec4 far_point = u.inv_view_proj * vec4(ndc, 0.5, 1.0);
+    vec3 o = u.camera_pos.xyz;
+    vec3 d = normalize(far_point.xyz / far_point.w - o);
+    vec3 oc = o - u.sphere.xyz;
+    float b = dot(oc, d);
+    float disc = max(b * b - (dot(oc, oc) - u.sphere.w * u.sphere.w), 0.0);
+    float t = -b - sqrt(disc);
+    vec3 n = normalize(o + t * d - u.sphere.xyz);
+    vec3 nb = bumped_normal(n);
+    vec3 r = reflect(d, nb);
+    if (dot(r, n) < 0.0) r = reflect(r, n);  // keep reflections above the geometric surface
+    return env_radiance(r);
+}
+
+#endif

@@ -1,0 +1,34 @@
+#version 450
+// Signal 2, env-mapped bump mapping: k sub-pixel samples of the mirror
+// sphere per pixel.  The samples are a stratified k-point set (x stratified,
+// y by the golden ratio) shifted by a random toroidal offset per pixel and
+// frame (Cranley-Patterson), so each frame is an unbiased estimate of the
+// pixel integral.  Reference mode: `samples` points of the same kind.
+// Pixels that do not show the sphere get 0 (alpha 0 marks them).
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+#include "env.glsl"
+layout(local_size_x = 128, local_size_y = 1) in;
+
+layout(set = 0, binding = 1) uniform sampler2D g_normal_material;
+layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D o_signal;
+layout(push_constant) uniform Push { uint samples; uint reference; } pc;
+
+void main() {
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= int(u.frame.z) || px.y >= int(u.frame.w)) return;
+    if (material_of(texelFetch(g_normal_material, px, 0)) != MAT_SPHERE) {
+        imageStore(o_signal, px, vec4(0.0));
+        return;
+    }
+    uint n = pc.reference != 0u ? pc.samples : u.frame.y;
+    uint stream = pc.reference != 0u ? 0x5eedu + 2u * pc.reference : 2u;  // reference: 1, brute force: 2
+    vec2 shift = vec2(rnd(uint(px.x), uint(px.y), u.frame.x, stream), rnd(uint(px.x), uint(px.y), u.frame.x, stream + 1u));
+    vec2 size = vec2(u.frame.zw);
+    vec3 sum = vec3(0.0);
+    for (uint j = 0u; j < n; ++j) {
+        vec2 o = fract(vec2((float(j) + 0.5) / float(n), float(j) * 0.6180339887) + shift);
+        sum += sphere_sample((vec2(px) + o) / size * 2.0 - 1.0);
+    }
+    imageStore(o_signal, px, vec4(sum / float(n), 1.0));
+}

@@ -1,0 +1,117 @@
+#include "signals.h"
+
+#include "rrc_sample_signal_env_comp.h"
+#include "rrc_sample_signal_pcf_comp.h"
+#include "rrc_sample_signal_soft_comp.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rrc_sample {
+namespace {
+
+const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                       IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
+
+struct SamplesPush {
+    uint32_t samples, reference;
+};
+struct SoftPush {
+    glm::mat4 light_vp;
+    uint32_t pass, count;
+};
+
+}  // namespace
+
+SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, uint32_t w, uint32_t h)
+    : gpu_(gpu), maps_(maps), width_(w), height_(h) {
+    // Sampled by rrc, written here, read back by the host.
+    const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    raw_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf signal");
+    raw_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env signal");
+    raw_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft signal");
+    ref_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf reference");
+    ref_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env reference");
+    ref_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft reference");
+    brute_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf brute force");
+    brute_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env brute force");
+    brute_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft brute force");
+    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft});
+
+    pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG},
+                         sizeof(SamplesPush), 3);
+    env_ = ComputeKernel(gpu, "signal_env", rrc_sample_signal_env_comp, sizeof rrc_sample_signal_env_comp, {UBO, TEX, IMG},
+                         sizeof(SamplesPush), 3);
+    soft_ = ComputeKernel(gpu, "signal_soft", rrc_sample_signal_soft_comp, sizeof rrc_sample_signal_soft_comp, {UBO, TEX, TEX, TEX, IMG},
+                          sizeof(SoftPush), 3);
+    for (uint32_t s = 0; s < 3; ++s) {  // sets: 0 per-frame signal, 1 reference, 2 brute force
+        const SignalImages& out = s == 0 ? raw_ : s == 1 ? ref_ : brute_;
+        pcf_.bind_buffer(s, 0, scene.uniforms());
+        pcf_.bind_image(s, 1, g.position.view, RO);
+        pcf_.bind_image(s, 2, g.normal.view, RO);
+        pcf_.bind_image(s, 3, maps.sun.view, RO);
+        pcf_.bind_image(s, 4, out.pcf.view, GEN);
+        env_.bind_buffer(s, 0, scene.uniforms());
+        env_.bind_image(s, 1, g.normal.view, RO);
+        env_.bind_image(s, 2, out.env.view, GEN);
+        soft_.bind_buffer(s, 0, scene.uniforms());
+        soft_.bind_image(s, 1, g.position.view, RO);
+        soft_.bind_image(s, 2, g.normal.view, RO);
+        soft_.bind_image(s, 3, s ? maps.reference.view : maps.lamp_point.view, RO);
+        soft_.bind_image(s, 4, out.soft.view, GEN);
+    }
+}
+
+SignalPasses::~SignalPasses() {
+    pcf_.release();
+    env_.release();
+    soft_.release();
+    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft})
+        gpu_.destroy(*i);
+}
+
+void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state) {
+    const SamplesPush one{0, 0};
+    if (signals & kSignalPcf) pcf_.dispatch(cmd, 0, &one, width_, height_);
+    if (signals & kSignalEnv) env_.dispatch(cmd, 0, &one, width_, height_);
+    if (signals & kSignalSoft) {
+        const SoftPush p{state.uniforms.lamp_point_vp, 0, 0};
+        soft_.dispatch(cmd, 0, &p, width_, height_);
+    }
+}
+
+void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples,
+                               const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows) {
+    const SamplesPush many{samples, set};  // the set (1 reference, 2 brute force) picks the random stream
+    if (signals & kSignalPcf) pcf_.dispatch(cmd, set, &many, width_, height_);
+    if (signals & kSignalEnv) env_.dispatch(cmd, set, &many, width_, height_);
+    if (signals & kSignalSoft) {
+        // One shadow map per light point, each pixel's test added in (the sum is read-modify-write).
+        const uint32_t count = (uint32_t)light_points.size();
+        for (uint32_t j = 0; j < count; ++j) {
+            const glm::mat4 vp = lamp_view_proj(scene.lamp, light_points[j]);
+            shadows.record(cmd, maps_.reference, vp);
+            const SoftPush p{vp, j, count};
+            soft_.dispatch(cmd, set, &p, width_, height_);
+            compute_to_compute(cmd);
+        }
+    }
+}
+
+void SignalPasses::record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows) {
+    const uint32_t m = std::max(1u, (uint32_t)std::lround(std::sqrt((double)samples)));
+    std::vector<glm::vec3> points;
+    for (uint32_t j = 0; j < m * m; ++j) points.push_back(lamp_grid_point(scene.lamp, (int)j, (int)(m * m)));
+    record_many(cmd, signals, 1, samples, points, scene, shadows);
+}
+
+void SignalPasses::record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Scene& scene,
+                                      ShadowPass& shadows) {
+    std::vector<glm::vec3> points;
+    for (int j = 0; j < 4; ++j) points.push_back(lamp_sequence_point(scene.lamp, 1000003 + 4 * frame + j));
+    record_many(cmd, signals, 2, 4 * taps, points, scene, shadows);
+}
+
+}  // namespace rrc_sample

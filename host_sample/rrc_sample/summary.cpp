@@ -1,0 +1,254 @@
+#include "summary.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace rrc_sample {
+namespace {
+
+std::string fmt(const char* f, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return b;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct Aggregate {
+    double hit_mean = 0, hit_min = 1;
+    uint64_t false_hits = 0, strict = 0, checked = 0;
+    int hit_frames = 0;
+    double render = 0, rrc = 0, post = 0, reference = 0, cpu = 0, signals = 0, brute = 0;
+    // Per signal: mean RMSE and PSNR over checkpoints (raw, accumulated, shown, fallback).
+    struct Sig {
+        int n = 0;
+        double rmse_raw = 0, rmse_acc = 0, psnr_raw = 0, psnr_acc = 0, rmse_shown = 0, rmse_fallback = 0, psnr_shown = 0;
+        double rmse_brute = 0, psnr_brute = 0;
+    };
+    std::map<std::string, Sig> sig;
+    std::vector<std::string> order;
+};
+
+Aggregate aggregate(const RunResult& run) {
+    Aggregate a;
+    std::vector<double> render, rrc, post, ref, cpu, signals, brute;
+    for (const FrameRecord& f : run.frames) {
+        if (f.index > 0) {  // frame 0 misses everywhere by definition
+            a.hit_mean += f.hits.ratio();
+            a.hit_min = std::min(a.hit_min, f.hits.ratio());
+            a.false_hits += f.false_hits.false_hits;
+            a.strict += f.false_hits.strict;
+            a.checked += f.false_hits.checked;
+            ++a.hit_frames;
+        }
+        render.push_back(f.timings.render());
+        rrc.push_back(f.timings.rrc);
+        post.push_back(f.timings.post);
+        cpu.push_back(f.timings.cpu_frame);
+        signals.push_back(f.timings.signals);
+        if (f.checkpoint) ref.push_back(f.timings.reference), brute.push_back(f.timings.brute_force);
+        for (const SignalErrors& e : f.errors) {
+            if (!a.sig.count(e.signal)) a.order.push_back(e.signal);
+            Aggregate::Sig& s = a.sig[e.signal];
+            ++s.n;
+            s.rmse_raw += e.raw.rmse;
+            s.rmse_acc += e.accumulated.rmse;
+            s.psnr_raw += e.raw.psnr;
+            s.psnr_acc += e.accumulated.psnr;
+            s.rmse_shown += e.shown.rmse;
+            s.psnr_shown += e.shown.psnr;
+            s.rmse_fallback += e.fallback.rmse;
+            s.rmse_brute += e.brute_force.rmse;
+            s.psnr_brute += e.brute_force.psnr;
+        }
+    }
+    if (a.hit_frames) a.hit_mean /= a.hit_frames;
+    else a.hit_min = 0;
+    a.render = median(render);
+    a.rrc = median(rrc);
+    a.post = median(post);
+    a.reference = median(ref);
+    a.cpu = median(cpu);
+    a.signals = median(signals);
+    a.brute = median(brute);
+    for (auto& [name, s] : a.sig) {
+        const double n = std::max(s.n, 1);
+        s.rmse_raw /= n, s.rmse_acc /= n, s.psnr_raw /= n, s.psnr_acc /= n, s.rmse_shown /= n, s.psnr_shown /= n, s.rmse_fallback /= n;
+        s.rmse_brute /= n, s.psnr_brute /= n;
+    }
+    return a;
+}
+
+void open_or_throw(std::ofstream& f, const std::string& path) {
+    f.open(path);
+    if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+std::string progress_line(const FrameRecord& f, int frames) {
+    std::ostringstream os;
+    char b[256];
+    std::snprintf(b, sizeof b, "frame %3d/%d  hit %5.1f%%  render %7.2f ms  rrc %6.2f ms  post %6.2f ms", f.index + 1, frames,
+                  100.0 * f.hits.ratio(), f.timings.render(), f.timings.rrc, f.timings.post);
+    os << b;
+    if (f.checkpoint) {
+        std::snprintf(b, sizeof b, "  | reference %.0f ms, RMSE raw -> accumulated:", f.timings.reference);
+        os << b;
+        for (const SignalErrors& e : f.errors) {
+            std::snprintf(b, sizeof b, " %s %.4f -> %.4f", e.signal.c_str(), e.raw.rmse, e.accumulated.rmse);
+            os << b;
+        }
+    }
+    os << "\n";
+    return os.str();
+}
+
+void print_summary(const RunResult& run, std::ostream& os) {
+    const Aggregate a = aggregate(run);
+    char b[512];
+    os << "\nsummary (" << run.frames.size() << " frames, " << run.options.width << "x" << run.options.height << ", " << run.device
+       << ")\n";
+    std::snprintf(b, sizeof b, "  hit ratio, frames 2..%zu: mean %.1f%%, min %.1f%%; false hits %.3f%% of static-surface hits (strict %.3f%%)\n",
+                  run.frames.size(), 100.0 * a.hit_mean, 100.0 * a.hit_min,
+                  a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0,
+                  a.checked ? 100.0 * (double)a.strict / (double)a.checked : 0.0);
+    os << b;
+    std::snprintf(b, sizeof b,
+                  "  GPU ms per frame (median): render %.2f (shadows + g-buffer + signals), rrc %.2f, post %.2f; reference %.0f on checkpoints\n"
+                  "  the signal passes: %.2f ms with k = %d samples; %.2f ms brute force with 4k\n",
+                  a.render, a.rrc, a.post, a.reference, a.signals, run.options.taps, a.brute);
+    os << b;
+    if (!a.order.empty()) {
+        os << "  error against the reference (mean over checkpoints; PSNR with peak 1):\n";
+        std::snprintf(b, sizeof b, "    %-6s %10s %10s %10s %10s %10s %10s %9s\n", "signal", "RMSE raw", "RMSE 4x", "RMSE acc", "PSNR raw",
+                      "PSNR 4x", "PSNR acc", "acc-raw");
+        os << b;
+        for (const std::string& name : a.order) {
+            const Aggregate::Sig& s = a.sig.at(name);
+            std::snprintf(b, sizeof b, "    %-6s %10.4f %10.4f %10.4f %7.2f dB %7.2f dB %7.2f dB %+6.2f dB\n", name.c_str(), s.rmse_raw,
+                          s.rmse_brute, s.rmse_acc, s.psnr_raw, s.psnr_brute, s.psnr_acc, s.psnr_acc - s.psnr_raw);
+            os << b;
+            if (name == "soft") {
+                std::snprintf(b, sizeof b, "    %-6s %10s %10s %10.4f %10s %10s %7.2f dB   (displayed: accumulated + PCSS fallback; PCSS alone %.4f)\n",
+                              "shown", "", "", s.rmse_shown, "", "", s.psnr_shown, s.rmse_fallback);
+                os << b;
+            }
+        }
+        os << "    (raw: one frame's k samples; 4x: one frame at 4k samples, 4 shadow maps for soft; acc: rrc's output)\n";
+    }
+    if (run.options.validation)
+        os << "  validation messages: " << run.validation_messages << (run.validation_messages ? " (see stderr)" : "") << "\n";
+    if (run.options.write_images)
+        os << "  images: " << run.options.out << "/{frames,coherence,age,exr}/\n";
+    os << "  summary: " << run.options.out << "/summary.md, summary.csv, errors.csv\n";
+}
+
+void write_summary_files(const RunResult& run, const std::string& out_dir) {
+    namespace fs = std::filesystem;
+    fs::create_directories(out_dir);
+    const Options& o = run.options;
+    const Aggregate a = aggregate(run);
+    {
+        std::ofstream f;
+        open_or_throw(f, (fs::path(out_dir) / "summary.csv").string());
+        f << "frame,checkpoint,hit_ratio,hits,misses,background,false_hits,false_hits_strict,false_hits_checked,ms_shadows,ms_gbuffer,ms_signals,ms_render,ms_rrc,ms_post,ms_reference,"
+             "ms_brute_force,ms_cpu_frame\n";
+        for (const FrameRecord& r : run.frames) {
+            const FrameTimings& t = r.timings;
+            f << r.index << "," << (r.checkpoint ? 1 : 0) << "," << fmt("%.6f", r.hits.ratio()) << "," << r.hits.hits << "," << r.hits.misses
+              << "," << r.hits.background << "," << r.false_hits.false_hits << "," << r.false_hits.strict << "," << r.false_hits.checked << "," << fmt("%.4f", t.shadows) << "," << fmt("%.4f", t.gbuffer) << "," << fmt("%.4f", t.signals)
+              << "," << fmt("%.4f", t.render()) << "," << fmt("%.4f", t.rrc) << "," << fmt("%.4f", t.post) << ","
+              << fmt("%.4f", t.reference) << "," << fmt("%.4f", t.brute_force) << "," << fmt("%.4f", t.cpu_frame) << "\n";
+        }
+    }
+    {
+        std::ofstream f;
+        open_or_throw(f, (fs::path(out_dir) / "errors.csv").string());
+        f << "frame,signal,pixels,rmse_raw,rmse_brute_force_4x,rmse_accumulated,psnr_raw,psnr_brute_force_4x,psnr_accumulated,rmse_raw_hits,"
+             "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss\n";
+        for (const FrameRecord& r : run.frames)
+            for (const SignalErrors& e : r.errors) {
+                f << r.index << "," << e.signal << "," << e.raw.pixels << "," << fmt("%.6f", e.raw.rmse) << ","
+                  << fmt("%.6f", e.brute_force.rmse) << "," << fmt("%.6f", e.accumulated.rmse) << "," << fmt("%.3f", e.raw.psnr) << ","
+                  << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << ","
+                  << fmt("%.6f", e.raw_hits.rmse) << "," << fmt("%.6f", e.accumulated_hits.rmse) << ",";
+                if (e.signal == "soft")
+                    f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << "," << fmt("%.6f", e.fallback.rmse);
+                else
+                    f << ",,";
+                f << "\n";
+            }
+    }
+    std::ofstream f;
+    open_or_throw(f, (fs::path(out_dir) / "summary.md").string());
+    f << "# rrc-sample run\n\n";
+    f << "| setting | value |\n|---|---|\n";
+    f << "| scene | " << o.scene << " |\n| size | " << o.width << "x" << o.height << " |\n| frames | " << o.frames << " (" << o.fps
+      << " per second of scene time) |\n";
+    f << "| signals | " << signal_list(run.signals) << " |\n| reprojection | " << reprojection_name(o.reprojection) << " |\n";
+    f << "| taps k (pcf taps, env sub-pixel samples) | " << o.taps << " |\n";
+    f << "| reference | " << o.reference_samples << " samples per pixel on frames " << o.reference_every - 1 << ", "
+      << 2 * o.reference_every - 1 << ", ... and the last |\n";
+    f << "| depth test epsilon scale | " << (o.epsilon_scale > 0 ? fmt("%g", o.epsilon_scale) : std::string("library default")) << " |\n";
+    f << "| device | " << run.device << " |\n| rrc device memory | " << run.rrc_memory_bytes << " bytes |\n";
+    f << "| wall time of the frame loop (files included) | " << fmt("%.1f", run.wall_seconds) << " s |\n";
+    if (o.validation) f << "| validation messages | " << run.validation_messages << " |\n";
+    f << "\nrrc channels:\n\n";
+    for (const std::string& c : run.channels) f << "- " << c << "\n";
+    f << "\n## Results\n\n";
+    f << "- hit ratio (frames 2.." << run.frames.size() << "): mean " << fmt("%.1f", 100.0 * a.hit_mean) << "%, min "
+      << fmt("%.1f", 100.0 * a.hit_min) << "%; false hits " << a.false_hits << " of " << a.checked << " static-surface hits ("
+      << fmt("%.3f", a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0)
+      << "%: a quarter or more of the history fetched from another surface, judged against the previous frame's G-buffer; "
+      << "strict, any bilinear tap of another surface: " << a.strict << ")\n";
+    f << "- GPU time per frame (median): rendering " << fmt("%.2f", a.render) << " ms (shadow maps + G-buffer + signals), rrc "
+      << fmt("%.2f", a.rrc) << " ms, post " << fmt("%.2f", a.post) << " ms (age, PCSS fallback, compose); reference "
+      << fmt("%.0f", a.reference) << " ms per checkpoint\n";
+    f << "- the signal passes: " << fmt("%.2f", a.signals) << " ms with k = " << o.taps << " samples; brute force at 4k: "
+      << fmt("%.2f", a.brute) << " ms (checkpoints)\n";
+    if (!a.order.empty()) {
+        f << "\nError against the brute-force reference, mean over checkpoint frames (PSNR with peak 1; pcf and soft over every "
+             "surface pixel, env over the mirror sphere's pixels, RGB):\n\n";
+        f << "| signal | RMSE raw (1 frame, k) | RMSE brute force (1 frame, 4k) | RMSE accumulated | PSNR raw | PSNR 4k | PSNR accumulated | "
+             "accumulated - raw |\n|---|---|---|---|---|---|---|---|\n";
+        for (const std::string& name : a.order) {
+            const Aggregate::Sig& s = a.sig.at(name);
+            f << "| " << name << " | " << fmt("%.4f", s.rmse_raw) << " | " << fmt("%.4f", s.rmse_brute) << " | " << fmt("%.4f", s.rmse_acc)
+              << " | " << fmt("%.2f", s.psnr_raw) << " dB | " << fmt("%.2f", s.psnr_brute) << " dB | " << fmt("%.2f", s.psnr_acc) << " dB | "
+              << fmt("%+.2f", s.psnr_acc - s.psnr_raw) << " dB |\n";
+            if (name == "soft")
+                f << "| soft, displayed (accumulated + PCSS fallback) | | | " << fmt("%.4f", s.rmse_shown) << " | | | "
+                  << fmt("%.2f", s.psnr_shown) << " dB | |\n| soft, PCSS alone | | | " << fmt("%.4f", s.rmse_fallback) << " | | | | |\n";
+        }
+        f << "\nFor soft shadows \"k\" is one shadow map a frame and \"4k\" four shadow maps from random points of the light.\n";
+        f << "\nPer checkpoint:\n\n| frame | signal | pixels | RMSE raw | RMSE accumulated | RMSE raw, hits | RMSE accumulated, hits | PSNR raw | "
+             "PSNR accumulated |\n|---|---|---|---|---|---|---|---|---|\n";
+        for (const FrameRecord& r : run.frames)
+            for (const SignalErrors& e : r.errors)
+                f << "| " << r.index << " | " << e.signal << " | " << e.raw.pixels << " | " << fmt("%.4f", e.raw.rmse) << " | "
+                  << fmt("%.4f", e.accumulated.rmse) << " | " << fmt("%.4f", e.raw_hits.rmse) << " | "
+                  << fmt("%.4f", e.accumulated_hits.rmse) << " | " << fmt("%.2f", e.raw.psnr) << " | " << fmt("%.2f", e.accumulated.psnr)
+                  << " |\n";
+    }
+    f << "\nLimits of the theory: the (1 - lambda)/(1 + lambda) variance law holds for independent samples at a static pixel; "
+         "bilinear resampling of the history under motion lowers the variance further but blurs, so the accumulated signals "
+         "converge to a slightly blurred version of the reference; a stratified pattern such as a Poisson disk makes "
+         "\"4 taps ~ 16\" an approximation.  Disoccluded pixels restart from one frame's samples.\n";
+    f << "\n## Per frame\n\n| frame | hit % | render ms | rrc ms | post ms | reference ms |\n|---|---|---|---|---|---|\n";
+    for (const FrameRecord& r : run.frames)
+        f << "| " << r.index << " | " << fmt("%.1f", 100.0 * r.hits.ratio()) << " | " << fmt("%.2f", r.timings.render()) << " | "
+          << fmt("%.2f", r.timings.rrc) << " | " << fmt("%.2f", r.timings.post) << " | "
+          << (r.checkpoint ? fmt("%.0f", r.timings.reference) : std::string("")) << " |\n";
+}
+
+}  // namespace rrc_sample
