@@ -18,6 +18,7 @@ if (RRC_CH < CH_COUNT) {
                                 : imageLoad(u_confidence[RRC_CH], px).r;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);
+    w = w < RRC_FLT_MIN ? 0.0 : w;  // denormal weights count as 0 on every device (flushing or not)
 
     // -- history H, weight W (resampled) and age (nearest) at uv_prev
 #define LOAD_H(t) (CH_(_FP16) ? (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r16f[RRC_CH], t) : imageLoad(u_hist_rgba16f[RRC_CH], t)) \
@@ -63,7 +64,11 @@ if (RRC_CH < CH_COUNT) {
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;
     if (CH_(_CONFIDENCE)) {
-        blended = W_new > 0.0 ? (lambda * Wh * H + (1.0 - lambda) * w * s) / W_new : H;
+        // Both weights normalised first: a weighted mean of H and s neither
+        // underflows (w*s with a tiny w) nor overflows; each weight is formed
+        // on its own (not as 1 - the other) so a tiny one is not cancelled.
+        float inv = 1.0 / max(W_new, RRC_FLT_MIN);  // W_new < FLT_MIN keeps H below
+        blended = (lambda * Wh * inv) * H + ((1.0 - lambda) * w * inv) * s;
     } else {
         blended = lambda * H + (1.0 - lambda) * s;
     }
@@ -80,7 +85,7 @@ if (RRC_CH < CH_COUNT) {
         out_v = s;
         n_out = g.background ? 0u : 1u;
         W_out = w;
-    } else if (CH_(_CONFIDENCE) && !(W_new > 0.0)) {
+    } else if (CH_(_CONFIDENCE) && !(W_new >= RRC_FLT_MIN)) {
         out_v = H;
         n_out = n_prev;
         W_out = 0.0;
@@ -89,7 +94,9 @@ if (RRC_CH < CH_COUNT) {
         n_out = min(n_prev + 1u, CH_(_AGE_CAP));
         W_out = W_new;
     }
-    if (CH_(_FP16)) out_v = rrc_round_fp16(out_v);
+    // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp
+    // rounds to +-Inf; no history value may be infinite.
+    out_v = CH_(_FP16) ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
     imageStore(u_hist_out[RRC_CH], px, out_v);
     if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
     imageStore(u_age_out[RRC_CH], px, uvec4(n_out));

@@ -10,6 +10,10 @@
 #define RRC_FILTER_NEAREST 1u
 #define RRC_FILTER_CATMULL_ROM 2u
 
+// The largest finite fp32 value and the smallest normal one, exactly.
+const float RRC_FLT_MAX = 3.4028234663852886e38;
+const float RRC_FLT_MIN = 1.1754943508222875e-38;
+
 // Clamp to the fp16 range and round to the nearest fp16 value, ties to even,
 // so the store is exact whatever rounding the driver's conversion uses.
 vec4 rrc_round_fp16(vec4 x) {

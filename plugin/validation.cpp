@@ -4,6 +4,7 @@
 
 #include <rrc/rrc_vulkan.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -24,6 +25,26 @@ void check_struct(const T* s, rrc_struct_type type, size_t min_size, const char*
 }
 
 bool finite(float x) { return std::isfinite(x); }
+
+// Determinant of a column-major 4x4 matrix (Laplace expansion by 2x2 minors).
+double determinant4(const double m[16]) {
+    auto a = [&](int row, int col) { return m[col * 4 + row]; };
+    const double s0 = a(0, 0) * a(1, 1) - a(1, 0) * a(0, 1), s1 = a(0, 0) * a(1, 2) - a(1, 0) * a(0, 2);
+    const double s2 = a(0, 0) * a(1, 3) - a(1, 0) * a(0, 3), s3 = a(0, 1) * a(1, 2) - a(1, 1) * a(0, 2);
+    const double s4 = a(0, 1) * a(1, 3) - a(1, 1) * a(0, 3), s5 = a(0, 2) * a(1, 3) - a(1, 2) * a(0, 3);
+    const double c5 = a(2, 2) * a(3, 3) - a(3, 2) * a(2, 3), c4 = a(2, 1) * a(3, 3) - a(3, 1) * a(2, 3);
+    const double c3 = a(2, 1) * a(3, 2) - a(3, 1) * a(2, 2), c2 = a(2, 0) * a(3, 3) - a(3, 0) * a(2, 3);
+    const double c1 = a(2, 0) * a(3, 2) - a(3, 0) * a(2, 2), c0 = a(2, 0) * a(3, 1) - a(3, 0) * a(2, 1);
+    return s0 * c5 - s1 * c4 + s2 * c3 + s3 * c2 - s4 * c1 + s5 * c0;
+}
+
+// The largest lambda_eff of docs/CONVENTIONS.md's blends, ages capped at age_cap.
+double max_lambda_eff(const ChannelConfig& c) {
+    const double capped_mean = c.age_cap / (c.age_cap + 1.0);
+    if (c.blend == RRC_BLEND_RUNNING_MEAN) return capped_mean;
+    if (c.blend == RRC_BLEND_AGE_AWARE) return std::min<double>(c.lambda, capped_mean);
+    return c.lambda;
+}
 
 ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     char what[48];
@@ -53,6 +74,11 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
     out.age_cap = c.age_cap == 0 ? 255u : c.age_cap;
     out.confidence = c.confidence != 0;
+    // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
+    // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
+    // away from the signal: keep fp16 only while the largest lambda_eff the
+    // channel can reach is at most RRC_FP16_MAX_LAMBDA (docs/CONVENTIONS.md).
+    if (out.fp16 && max_lambda_eff(out) > RRC_FP16_MAX_LAMBDA) out.fp16 = false;
     return out;
 }
 
@@ -158,6 +184,11 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_f
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(f->view_proj[i]) || !std::isfinite(f->prev_view_proj[i]))
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj/prev_view_proj[%d] is not finite", i);
+        // The library inverts view_proj (frame_constants.cpp): a singular one
+        // would turn every pixel into NaN silently.
+        const double det = determinant4(f->view_proj);
+        if (!(std::fabs(det) > 0.0) || !std::isfinite(det))
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj is singular (determinant %g): CAMERA reprojection inverts it", det);
     }
     for (int i = 0; i < 2; ++i)
         if (!finite(f->jitter[i]) || !finite(f->prev_jitter[i]) || std::fabs(f->jitter[i]) > 1.0f || std::fabs(f->prev_jitter[i]) > 1.0f)

@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <random>
 #include <set>
 #include <system_error>
@@ -79,6 +80,15 @@ namespace {
 // The largest image we agree to decode (pixels); beyond it a "valid" header
 // is far more likely corrupt than real.  16384^2 is rrc's own limit.
 constexpr std::int64_t kMaxPixels = std::int64_t(16384) * 16384;
+
+// A header can promise far more pixels than its file holds (a 684-byte file
+// claiming 10 channels of 51380225x3 passes checkOpenEXRFile, which skips
+// large images when asked to save memory, and would make read_exr allocate
+// 6 GB).  Decoded float data beyond kMaxCompressionRatio times the file size
+// (deflate's limit is ~1032:1) and beyond kMinDecodeBudget is refused before
+// anything is allocated.
+constexpr std::uint64_t kMaxCompressionRatio = 4096;
+constexpr std::uint64_t kMinDecodeBudget = std::uint64_t(256) << 20;
 
 std::string errno_text(int err)
 {
@@ -188,6 +198,90 @@ std::string temporary_name_for(const fs::path& target)
     return (dir / ("." + target.filename().string() + ".tmp-" + suffix)).string();
 }
 
+// OpenEXR 3.1's C++ reader (checkOpenEXRFile's included) allocates what a
+// header attribute declares before reading it (an opaque attribute's size, a
+// stringvector element's length): a few bytes can make it allocate 2 GB.
+// And it reads typed attributes by their type, not their declared size, so a
+// wrong size desynchronises the header.  Before OpenEXR sees the bytes, walk
+// the attribute table (name\0 type\0 int32 size, value; a header ends with an
+// empty name; a multi-part file's list of headers ends with an empty header)
+// and refuse anything whose value does not fit in the file, whose size is not
+// the one its type implies, or whose inner lengths overrun the value.
+std::size_t fixed_attribute_size(const std::string& type)
+{
+    static const std::map<std::string, std::size_t> sizes = {
+        {"box2i", 16},  {"box2f", 16},   {"v2i", 8},      {"v2f", 8},         {"v2d", 16},     {"v3i", 12},
+        {"v3f", 12},    {"v3d", 24},     {"int", 4},      {"float", 4},       {"double", 8},   {"compression", 1},
+        {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1}, {"tiledesc", 9}, {"rational", 8}, {"timecode", 8},
+        {"keycode", 28}, {"chromaticities", 32}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}};
+    auto it = sizes.find(type);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+void check_attribute_sizes(const std::string& path, const std::vector<char>& data)
+{
+    const std::size_t n = data.size();
+    std::size_t pos = 8;  // magic number, version and flags
+    if (n < pos)
+        throw ExrError(path, "truncated before the header");
+    const bool multipart = (static_cast<unsigned char>(data[5]) & 0x10) != 0;  // flag 0x1000
+    auto bad = [&](const std::string& what) { throw ExrError(path, "corrupt header: " + what); };
+    auto string_at = [&](std::size_t& at, std::size_t end, const char* what) {
+        std::size_t start = at;
+        while (at < end && data[at] != 0 && at - start < 255)
+            ++at;
+        if (at >= end || data[at] != 0)
+            bad(std::string("unterminated ") + what);
+        return std::string(data.data() + start, (at++) - start);
+    };
+    auto int_at = [&](std::size_t at) {
+        std::uint32_t v = 0;
+        for (int b = 3; b >= 0; --b)
+            v = (v << 8) | static_cast<unsigned char>(data[at + b]);
+        return v;
+    };
+    for (int part = 0;; ++part) {
+        if (part > 0 && (!multipart || (pos < n && data[pos] == 0)))
+            return;  // single part, or the empty header that ends a multi-part list
+        for (;;) {
+            const std::string name = string_at(pos, n, "attribute name");
+            if (name.empty())
+                break;
+            const std::string type = string_at(pos, n, "attribute type");
+            if (n - pos < 4)
+                bad("attribute '" + name + "' has no size");
+            const std::uint32_t size = int_at(pos);
+            pos += 4;
+            if (size > n - pos)
+                bad("attribute '" + name + "' claims " + std::to_string(size) + " bytes, the file has " +
+                    std::to_string(n - pos) + " left");
+            const std::size_t end = pos + size;
+            const std::size_t fixed = fixed_attribute_size(type);
+            if (fixed && size != fixed)
+                bad("attribute '" + name + "' of type " + type + " has size " + std::to_string(size));
+            if (type == "chlist") {  // entries: name\0 + 16 bytes; an empty name ends the list
+                std::size_t at = pos;
+                while (at < end && data[at] != 0) {
+                    string_at(at, end, "channel name");
+                    at += 16;
+                }
+                if (at + 1 != end)
+                    bad("channel list of '" + name + "' does not end at its size");
+            } else if (type == "preview") {  // width, height, 4 bytes a pixel
+                if (size < 8 || std::uint64_t(int_at(pos)) * int_at(pos + 4) * 4 != size - 8)
+                    bad("preview image of '" + name + "' does not match its size");
+            } else if (type == "stringvector") {  // int32 length + bytes, repeated
+                for (std::size_t at = pos; at < end;) {
+                    if (end - at < 4 || int_at(at) > end - at - 4)
+                        bad("string vector '" + name + "' overruns its size");
+                    at += 4 + int_at(at);
+                }
+            }
+            pos = end;
+        }
+    }
+}
+
 } // namespace
 
 ExrImage read_exr(const std::string& path)
@@ -195,6 +289,7 @@ ExrImage read_exr(const std::string& path)
     std::vector<char> data = load_file(path);
     if (data.size() < 4 || !Imf::isImfMagic(data.data()))
         throw ExrError(path, "not an OpenEXR file (bad magic number)");
+    check_attribute_sizes(path, data);
     // Returns true when the file is NOT valid.  The Core library's checks are
     // left out: OpenEXR 3.1 decodes through the C++ library, checked here.
     if (Imf::checkOpenEXRFile(data.data(), data.size(), /*reduceMemory*/ true,
@@ -205,6 +300,26 @@ ExrImage read_exr(const std::string& path)
     try {
         MemoryIStream stream(data, path);
         Imf::MultiPartInputFile file(stream);
+        // Bytes decoding would allocate: 4 per sample of the image, plus
+        // OpenEXR's chunk buffers (up to 256 scanlines, DWAB's, or a tile).
+        std::uint64_t decoded = 0;
+        for (int p = 0; p < file.parts(); ++p) {
+            const Imf::Header& header = file.header(p);
+            const Imath::Box2i& dw = header.dataWindow();
+            check_window(path, dw.min.x, dw.min.y, dw.max.x, dw.max.y);
+            std::uint64_t channels = 0;
+            for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+                ++channels;
+            const std::uint64_t w = std::uint64_t(std::int64_t(dw.max.x) - dw.min.x + 1);
+            const std::uint64_t h = std::uint64_t(std::int64_t(dw.max.y) - dw.min.y + 1);
+            std::uint64_t chunk = w * 256;
+            if (header.hasTileDescription())
+                chunk = std::uint64_t(header.tileDescription().xSize) * header.tileDescription().ySize;
+            decoded += channels * 4 * (w * h + chunk);
+        }
+        if (decoded > std::max(kMinDecodeBudget, kMaxCompressionRatio * data.size()))
+            throw ExrError(path, "the header promises " + std::to_string(decoded) + " bytes of pixels in a " +
+                                     std::to_string(data.size()) + "-byte file: refused as corrupt");
         Imath::Box2i window;
         for (int p = 0; p < file.parts(); ++p) {
             const Imf::Header& header = file.header(p);

@@ -154,6 +154,14 @@ typedef uint32_t rrc_history_filter;
 typedef uint32_t rrc_history_precision;
 #define RRC_HISTORY_FP16 0 /* RGBA16F/R16F history, rounded to nearest in the shader */
 #define RRC_HISTORY_FP32 1
+/** fp16 history is kept only while the largest effective lambda a channel can
+ *  reach (FIXED: lambda; AGE_AWARE: min(lambda, cap/(cap+1)); RUNNING_MEAN:
+ *  cap/(cap+1)) is at most this; above it the channel's history is fp32.
+ *  Why: a history rounded to nearest fp16 stops moving once
+ *  (1 - lambda)|s - H| < ulp(H)/2, i.e. it may stall up to 2^-11/(1 - lambda)
+ *  of H away from the signal (bias 3.6e-2 at lambda 0.999 on a noisy signal;
+ *  docs/STABILITY.md). */
+#define RRC_FP16_MAX_LAMBDA 0.95
 
 /** Bits of the per-pixel mask. */
 #define RRC_MASK_HIT 1u
@@ -191,7 +199,7 @@ typedef struct rrc_channel_desc {
     uint32_t size;        /* sizeof(rrc_channel_desc) */
     char name[RRC_MAX_NAME]; /* non-empty, unique in the context, NUL-terminated */
     uint32_t components;  /* 1 or 4 */
-    rrc_history_precision precision; /* fp16 (default) or fp32 */
+    rrc_history_precision precision; /* fp16 (default) or fp32; fp16 above RRC_FP16_MAX_LAMBDA is fp32 */
     float lambda;         /* in [0,1); the weight of history. 0 with blend FIXED is no accumulation */
     rrc_blend blend;
     rrc_history_filter filter;

@@ -6,6 +6,23 @@
 
 namespace rrc_ref {
 
+namespace {
+
+// CONVENTIONS "fp16 history": a channel asking for fp16 keeps it only while
+// its lambda_eff stays at or below RRC_FP16_MAX_LAMBDA.  lambda_eff never
+// decreases with the age n and the age saturates at the cap, so its largest
+// value is the one at n = cap: n/(n+1) for the running mean, that or lambda,
+// whichever is smaller, for the age-aware blend, lambda for the fixed one.
+bool stalls_in_fp16(double lambda, rrc_blend blend, unsigned cap) {
+    const double at_cap = static_cast<double>(cap) / (static_cast<double>(cap) + 1.0);
+    double largest = lambda;
+    if (blend == RRC_BLEND_RUNNING_MEAN) largest = at_cap;
+    if (blend == RRC_BLEND_AGE_AWARE && at_cap < lambda) largest = at_cap;
+    return largest > RRC_FP16_MAX_LAMBDA;
+}
+
+}  // namespace
+
 Params resolve(const rrc_context_desc& ctx) {
     Params p{};
     p.width = static_cast<int>(ctx.width);
@@ -27,8 +44,9 @@ Params resolve(const rrc_context_desc& ctx) {
     p.nocache = ctx.use_nocache_mask != 0;
     for (uint32_t c = 0; c < ctx.channel_count; ++c) {
         const rrc_channel_desc& d = ctx.channels[c];
-        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16, d.lambda, d.blend,
-                              d.filter, d.age_cap != 0 ? d.age_cap : 255u, d.confidence != 0});
+        const unsigned cap = d.age_cap != 0 ? d.age_cap : 255u;
+        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16 && !stalls_in_fp16(d.lambda, d.blend, cap),
+                              d.lambda, d.blend, d.filter, cap, d.confidence != 0});
     }
     return p;
 }

@@ -13,7 +13,7 @@ namespace rrc_ref {
 
 struct ChannelParams {
     unsigned components;
-    bool fp16;
+    bool fp16;  // the history actually stored in fp16 (asked for, and not promoted to fp32)
     double lambda;
     rrc_blend blend;
     rrc_history_filter filter;

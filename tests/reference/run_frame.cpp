@@ -1,5 +1,6 @@
 // One frame of the reference: classify each pixel, run the hit test, update
 // every channel, and collect the diagnostics tests need.
+#include <cfloat>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,7 @@ Sample read_sample(const ChannelParams& ch, const rrc_channel_input& in, size_t 
         double w = in.confidence[pixel];
         s.valid = s.valid && std::isfinite(w);
         s.w = std::fmin(std::fmax(w, 0.0), 1.0);
+        if (s.w < FLT_MIN) s.w = 0.0;  // CONVENTIONS: weights under the fp32 normal range are 0
     }
     return s;
 }
@@ -159,7 +161,9 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
                 ChannelResult& out = res.channels[c];
                 for (unsigned k = 0; k < ch.components; ++k) {
                     out.exact[px * ch.components + k] = u.out[k];
-                    out.out[px * ch.components + k] = ch.fp16 ? fp16_round(u.out[k]) : u.out[k];
+                    // fp32 stores are clamped to the finite range (a no-op in exact arithmetic).
+                    out.out[px * ch.components + k] =
+                        ch.fp16 ? fp16_round(u.out[k]) : std::fmin(std::fmax(u.out[k], -FLT_MAX), FLT_MAX);
                 }
                 out.age[px] = static_cast<uint16_t>(u.age);
                 if (ch.confidence) out.weight[px] = u.weight;

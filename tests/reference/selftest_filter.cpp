@@ -133,6 +133,30 @@ TEST(Filter, Fp16HistoryIsRoundedWhenStored) {
     EXPECT_EQ(r.channels[0].exact[1], 1e6);
 }
 
+// CONVENTIONS "fp16 history": above RRC_FP16_MAX_LAMBDA (largest lambda_eff,
+// at the capped age) an fp16 request is stored in fp32.
+TEST(Filter, Fp16AboveTheLambdaLimitIsStoredInFp32) {
+    struct Case {
+        float lambda;
+        rrc_blend blend;
+        uint32_t cap;
+        bool fp16;
+    };
+    const Case cases[] = {
+        {0.95f, RRC_BLEND_FIXED, 0, true},        {0.951f, RRC_BLEND_FIXED, 0, false},
+        {0.999f, RRC_BLEND_AGE_AWARE, 19, true},  {0.999f, RRC_BLEND_AGE_AWARE, 20, false},
+        {0.6f, RRC_BLEND_AGE_AWARE, 0, true},     {0.0f, RRC_BLEND_RUNNING_MEAN, 19, true},
+        {0.0f, RRC_BLEND_RUNNING_MEAN, 0, false},  // default cap 255: 255/256
+    };
+    for (const Case& c : cases) {
+        Scene s = static_scene();
+        s.add_channel(1, c.lambda, c.blend, RRC_HISTORY_FILTER_BILINEAR, RRC_HISTORY_FP16, false, c.cap);
+        s.samples[0][0] = 0.1f;
+        FrameResult r = s.run(PreviousFrame{});
+        EXPECT_EQ(r.channels[0].out[0], c.fp16 ? 0.0999755859375 : (double)0.1f) << c.lambda << " " << c.blend << " " << c.cap;
+    }
+}
+
 TEST(Filter, RunningMeanIsTheExactMeanOverFrames) {
     Scene s = static_scene();
     s.add_channel(1, 0.0f, RRC_BLEND_RUNNING_MEAN);

@@ -1,0 +1,233 @@
+// libFuzzer target: the device-free argument validation of plugin/validation.cpp
+// (what rrc_validate_context_desc, rrc_context_create and rrc_frame_run check
+// before any Vulkan object exists).
+//
+// The bytes drive every field of a context descriptor and its channels, then
+// (if the context is valid) of a frame and its output description, then of an
+// interop device descriptor.  Pointers are NULL or point at real memory sized
+// exactly as the structs claim, so AddressSanitizer catches any read beyond
+// what a count allows.  Validation must either accept or throw rrc::Error with
+// a known code and a non-empty message; anything else aborts.
+#include "config.h"
+#include "error.h"
+#include "validation.h"
+
+#include <rrc/rrc.h>
+#include <rrc/rrc_vulkan.h>
+
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+// Floats a validator must get right: specials, bounds, and anything at all.
+float fuzz_float(FuzzedDataProvider& in) {
+    static const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 0.999f, 1e-7f, 1e-40f, 1e30f, 65504.0f,
+                                     std::numeric_limits<float>::max(), std::numeric_limits<float>::infinity(),
+                                     -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()};
+    if (in.ConsumeBool()) return specials[in.ConsumeIntegralInRange<size_t>(0, sizeof specials / sizeof specials[0] - 1)];
+    return in.ConsumeFloatingPoint<float>();
+}
+
+double fuzz_double(FuzzedDataProvider& in) {
+    if (in.ConsumeBool()) return in.ConsumeBool() ? 0.0 : 1.0;
+    return in.ConsumeFloatingPoint<double>();
+}
+
+// A struct tag: mostly the right one, sometimes anything.
+uint32_t fuzz_tag(FuzzedDataProvider& in, uint32_t right) { return in.ConsumeIntegralInRange<int>(0, 7) ? right : in.ConsumeIntegral<uint32_t>(); }
+uint32_t fuzz_size(FuzzedDataProvider& in, uint32_t right) {
+    return in.ConsumeIntegralInRange<int>(0, 7) ? right + (in.ConsumeBool() ? 0u : in.ConsumeIntegralInRange<uint32_t>(0, 64))
+                                                : in.ConsumeIntegral<uint32_t>();
+}
+// A small enum or count, now and then anything.
+uint32_t fuzz_small(FuzzedDataProvider& in, uint32_t max) {
+    return in.ConsumeIntegralInRange<int>(0, 7) ? in.ConsumeIntegralInRange<uint32_t>(0, max) : in.ConsumeIntegral<uint32_t>();
+}
+
+const int kMarker = 0;  // a non-NULL pointer validation must never follow
+const void* fuzz_next(FuzzedDataProvider& in) { return in.ConsumeIntegralInRange<int>(0, 15) ? nullptr : &kMarker; }
+
+void check_error(const rrc::Error& e) {
+    const rrc_result known[] = {RRC_ERROR_INVALID_ARGUMENT, RRC_ERROR_INVALID_STRUCT, RRC_ERROR_INCOMPATIBLE_VERSION,
+                                RRC_ERROR_UNSUPPORTED,      RRC_ERROR_MISSING_INPUT,  RRC_ERROR_SIZE_MISMATCH};
+    bool ok = false;
+    for (rrc_result r : known) ok |= e.code == r;
+    if (!ok || std::strlen(e.what()) == 0) std::abort();
+}
+
+void fuzz_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
+    const size_t n = 4;  // validation never reads pixel arrays: any real memory will do
+    std::vector<float> depth(n), reprojection(4 * n), samples(4 * n), confidence(n), values(4 * n), weight(n);
+    std::vector<uint8_t> nocache(n), mask(n);
+    std::vector<uint16_t> age(n);
+
+    rrc_frame_desc f;
+    std::memset(&f, 0, sizeof f);
+    f.type = fuzz_tag(in, RRC_STRUCT_TYPE_FRAME_DESC);
+    f.size = fuzz_size(in, sizeof f);
+    f.next = fuzz_next(in);
+    f.frame_index = in.ConsumeIntegral<uint64_t>();
+    f.reset = in.ConsumeIntegral<uint32_t>();
+    f.depth = in.ConsumeIntegralInRange<int>(0, 7) ? depth.data() : nullptr;
+    f.reprojection = in.ConsumeIntegralInRange<int>(0, 7) ? reprojection.data() : nullptr;
+    for (int i = 0; i < 16; ++i) {
+        f.view_proj[i] = i % 5 == 0 ? 1.0 : 0.0;  // identity unless the bytes say otherwise
+        f.prev_view_proj[i] = i % 5 == 0 ? 1.0 : 0.0;
+    }
+    // A few entries changed (bounded: an exhausted provider returns the range's minimum forever).
+    for (int k = 0, edits = in.ConsumeIntegralInRange<int>(0, 4); k < edits; ++k) {
+        f.view_proj[in.ConsumeIntegralInRange<int>(0, 15)] = fuzz_double(in);
+        f.prev_view_proj[in.ConsumeIntegralInRange<int>(0, 15)] = fuzz_double(in);
+    }
+    f.jitter[0] = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    f.jitter[1] = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    f.prev_jitter[0] = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    f.prev_jitter[1] = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    f.nocache = in.ConsumeBool() ? nocache.data() : nullptr;
+    // channel_count may exceed the array: validation must compare it with the
+    // context first.  The array holds min(count, 8) entries, exactly.
+    f.channel_count = in.ConsumeBool() ? (uint32_t)config.channels.size() : fuzz_small(in, 8);
+    std::unique_ptr<rrc_channel_input[]> inputs(new rrc_channel_input[std::min<uint32_t>(f.channel_count, 8) + 1]);
+    for (uint32_t i = 0; i < std::min<uint32_t>(f.channel_count, 8); ++i) {
+        rrc_channel_input& c = inputs[i];
+        std::memset(&c, 0, sizeof c);
+        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_INPUT);
+        c.size = fuzz_size(in, sizeof c);
+        c.next = fuzz_next(in);
+        c.samples = in.ConsumeIntegralInRange<int>(0, 7) ? samples.data() : nullptr;
+        c.confidence = in.ConsumeBool() ? confidence.data() : nullptr;
+    }
+    f.channels = f.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? inputs.get() : nullptr;
+
+    rrc_frame_output o;
+    std::memset(&o, 0, sizeof o);
+    o.type = fuzz_tag(in, RRC_STRUCT_TYPE_FRAME_OUTPUT);
+    o.size = fuzz_size(in, sizeof o);
+    o.next = fuzz_next(in);
+    o.mask = in.ConsumeBool() ? mask.data() : nullptr;
+    o.channel_count = in.ConsumeBool() ? (uint32_t)config.channels.size() : fuzz_small(in, 8);
+    std::unique_ptr<rrc_channel_output[]> outs(new rrc_channel_output[std::min<uint32_t>(o.channel_count, 8) + 1]);
+    for (uint32_t i = 0; i < std::min<uint32_t>(o.channel_count, 8); ++i) {
+        rrc_channel_output& c = outs[i];
+        std::memset(&c, 0, sizeof c);
+        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
+        c.size = fuzz_size(in, sizeof c);
+        c.next = fuzz_next(in);
+        c.values = in.ConsumeBool() ? values.data() : nullptr;
+        c.age = in.ConsumeBool() ? age.data() : nullptr;
+        c.weight = in.ConsumeBool() ? weight.data() : nullptr;
+    }
+    o.channels = o.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? outs.get() : nullptr;
+    try {
+        rrc::validate_frame(config, &f, in.ConsumeIntegralInRange<int>(0, 3) ? &o : nullptr);
+    } catch (const rrc::Error& e) {
+        check_error(e);
+    }
+}
+
+void fuzz_vulkan_device(FuzzedDataProvider& in) {
+    rrc_vulkan_device_desc d;
+    std::memset(&d, 0, sizeof d);
+    d.type = fuzz_tag(in, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC);
+    d.size = fuzz_size(in, sizeof d);
+    d.next = fuzz_next(in);
+    // Handles are opaque to validation: non-NULL values it must never use.
+    if (in.ConsumeBool()) d.instance = reinterpret_cast<VkInstance>(uintptr_t(0x1000));
+    if (in.ConsumeBool()) d.physical_device = reinterpret_cast<VkPhysicalDevice>(uintptr_t(0x2000));
+    if (in.ConsumeBool()) d.device = reinterpret_cast<VkDevice>(uintptr_t(0x3000));
+    if (in.ConsumeBool()) d.get_instance_proc_addr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(uintptr_t(0x4000));
+    d.vulkan_api_version = in.ConsumeIntegral<uint32_t>();
+    d.max_frames_in_flight = fuzz_small(in, 20);
+    try {
+        rrc::validate_vulkan_device_desc(&d);
+    } catch (const rrc::Error& e) {
+        check_error(e);
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    FuzzedDataProvider in(data, size);
+    rrc_context_desc d;
+    std::memset(&d, 0, sizeof d);
+    d.type = fuzz_tag(in, RRC_STRUCT_TYPE_CONTEXT_DESC);
+    d.size = fuzz_size(in, sizeof d);
+    d.next = fuzz_next(in);
+    d.api_version = in.ConsumeIntegralInRange<int>(0, 7) ? RRC_API_VERSION : in.ConsumeIntegral<uint32_t>();
+    d.width = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 64) : in.ConsumeIntegral<uint32_t>();
+    d.height = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 64) : in.ConsumeIntegral<uint32_t>();
+    d.depth_mode = fuzz_small(in, 3);
+    d.near_plane = fuzz_float(in);
+    d.far_plane = fuzz_float(in);
+    d.background_threshold = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    d.depth_format = fuzz_small(in, 3);
+    d.epsilon_scale = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    d.epsilon = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    d.tau = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+    d.reprojection = fuzz_small(in, 4);
+    if (in.ConsumeBool()) {
+        d.motion_scale[0] = fuzz_float(in);
+        d.motion_scale[1] = fuzz_float(in);
+    }
+    // The channel array holds exactly min(count, RRC_MAX_CHANNELS + 2)
+    // entries: a count beyond RRC_MAX_CHANNELS must be refused unread.
+    d.channel_count = fuzz_small(in, RRC_MAX_CHANNELS + 2);
+    const uint32_t stored = std::min<uint32_t>(d.channel_count, RRC_MAX_CHANNELS + 2);
+    std::unique_ptr<rrc_channel_desc[]> channels(new rrc_channel_desc[stored + 1]);
+    for (uint32_t i = 0; i < stored; ++i) {
+        rrc_channel_desc& c = channels[i];
+        std::memset(&c, 0, sizeof c);
+        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_DESC);
+        c.size = fuzz_size(in, sizeof c);
+        c.next = fuzz_next(in);
+        if (in.ConsumeIntegralInRange<int>(0, 7)) {
+            std::string name = in.ConsumeRandomLengthString(RRC_MAX_NAME - 1);
+            std::memcpy(c.name, name.data(), name.size());  // NUL-terminated (zeroed), may hold NULs inside
+        } else {
+            for (char& ch : c.name) ch = (char)in.ConsumeIntegral<uint8_t>();  // possibly unterminated
+        }
+        c.components = fuzz_small(in, 5);
+        c.precision = fuzz_small(in, 2);
+        c.lambda = fuzz_float(in);
+        c.blend = fuzz_small(in, 3);
+        c.filter = fuzz_small(in, 3);
+        c.age_cap = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 300) : in.ConsumeIntegral<uint32_t>();
+        c.confidence = in.ConsumeIntegral<uint8_t>() % 3;
+    }
+    d.channels = in.ConsumeIntegralInRange<int>(0, 15) ? channels.get() : nullptr;
+    d.use_nocache_mask = in.ConsumeBool();
+    std::string device = in.ConsumeRandomLengthString(32);
+    d.device_name = in.ConsumeBool() ? device.c_str() : nullptr;
+    d.enable_validation = in.ConsumeBool();
+
+    rrc::ContextConfig config;
+    bool valid = false;
+    try {
+        config = rrc::resolve_context_desc(&d);
+        valid = true;
+    } catch (const rrc::Error& e) {
+        check_error(e);
+    }
+    if (valid) {
+        // What was accepted must be within the documented limits.
+        if (config.width == 0 || config.width > RRC_MAX_EXTENT || config.height == 0 || config.height > RRC_MAX_EXTENT ||
+            config.channels.empty() || config.channels.size() > RRC_MAX_CHANNELS)
+            std::abort();
+        for (const rrc::ChannelConfig& c : config.channels)
+            if (!(c.lambda >= 0.0f && c.lambda < 1.0f) || (c.components != 1 && c.components != 4) || c.age_cap == 0 ||
+                c.age_cap > RRC_MAX_AGE_CAP || c.name.empty())
+                std::abort();
+        fuzz_frame(in, config);
+    }
+    fuzz_vulkan_device(in);
+    return 0;
+}

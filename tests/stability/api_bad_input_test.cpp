@@ -1,0 +1,486 @@
+// Bad input at every entry point of the C API (issue 4), beyond the
+// descriptor cases of tests/api_validation_test.cpp: each case is a test that
+// checks the specific code, a message naming the field, outputs left exactly
+// as they were, and the context's history intact (the next good frame hits
+// everywhere with the age one higher, so no frame of a refused call ran).
+// Leaks are LeakSanitizer's job (the sanitizer build runs this file).
+//
+// Frame-level cases run twice: through rrc_frame_run, and through
+// rrc_frame_run_batch as frames[1] of three (the message must then say
+// "frames[1]: ...", and frames[0] must not have run either).
+#include "stability_report.h"
+#include "stability_util.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+
+using namespace rrc_test;
+
+namespace {
+
+constexpr uint32_t kW = 16, kH = 8, kN = kW * kH;
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+
+// Everything a frame call passes, good by default; cases spoil one thing.
+struct Call {
+    std::vector<float> depth = std::vector<float>(kN, 0.5f), clip = std::vector<float>(4 * kN), s1 = std::vector<float>(kN, 1.0f),
+                       s4 = std::vector<float>(4 * kN, 1.0f), conf = std::vector<float>(kN, 1.0f);
+    std::vector<uint8_t> nocache = std::vector<uint8_t>(kN, 0);
+    rrc_channel_input inputs[2];
+    rrc_frame_desc frame;
+    // Outputs with sentinel contents.
+    std::vector<float> out1 = std::vector<float>(kN, -7.0f), out4 = std::vector<float>(4 * kN, -7.0f), weight = std::vector<float>(kN, -7.0f);
+    std::vector<uint16_t> age1 = std::vector<uint16_t>(kN, 777), age4 = std::vector<uint16_t>(kN, 777);
+    std::vector<uint8_t> mask = std::vector<uint8_t>(kN, 0xEE);
+    rrc_channel_output outs[2];
+    rrc_frame_output output;
+
+    Call() {
+        for (uint32_t j = 0; j < kH; ++j)  // a static frame: each pixel's own clip position
+            for (uint32_t i = 0; i < kW; ++i) {
+                float* c = &clip[4 * (j * kW + i)];
+                c[0] = 2.0f * (i + 0.5f) / kW - 1.0f;
+                c[1] = 2.0f * (j + 0.5f) / kH - 1.0f;
+                c[2] = 0.5f;
+                c[3] = 1.0f;
+            }
+        inputs[0] = channel_input(s1.data(), conf.data());
+        inputs[1] = channel_input(s4.data());
+        frame = frame_desc();
+        frame.depth = depth.data();
+        frame.reprojection = clip.data();
+        frame.nocache = nocache.data();
+        frame.channel_count = 2;
+        frame.channels = inputs;
+        for (int c = 0; c < 2; ++c) {
+            std::memset(&outs[c], 0, sizeof outs[c]);
+            outs[c].type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
+            outs[c].size = sizeof outs[c];
+        }
+        outs[0].values = out1.data();
+        outs[0].age = age1.data();
+        outs[0].weight = weight.data();
+        outs[1].values = out4.data();
+        outs[1].age = age4.data();
+        std::memset(&output, 0, sizeof output);
+        output.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+        output.size = sizeof output;
+        output.mask = mask.data();
+        output.channel_count = 2;
+        output.channels = outs;
+        output.stats.hits = 4242;
+    }
+    Call(const Call&) = delete;
+
+    bool outputs_untouched() const {
+        return out1 == std::vector<float>(kN, -7.0f) && out4 == std::vector<float>(4 * kN, -7.0f) &&
+               weight == std::vector<float>(kN, -7.0f) && age1 == std::vector<uint16_t>(kN, 777) &&
+               age4 == std::vector<uint16_t>(kN, 777) && mask == std::vector<uint8_t>(kN, 0xEE) && output.stats.hits == 4242;
+    }
+};
+
+// One context for all cases: channel 0 has confidence (1 component, fp32),
+// channel 1 has none (4 components, fp16); PREV_CLIP and a do-not-cache mask,
+// so every optional input is required somewhere.
+class Shared {
+public:
+    static std::unique_ptr<Shared>& instance() {
+        static std::unique_ptr<Shared> s;
+        return s;
+    }
+    static Shared& get() {
+        if (!instance()) instance().reset(new Shared);
+        return *instance();
+    }
+    rrc_context* ctx() { return ctx_->get(); }
+    // Runs a good frame; returns false unless it hit everywhere with the age
+    // one above the previous good frame's.
+    ::testing::AssertionResult good_frame_continues_history() {
+        Call call;
+        rrc_result r = rrc_frame_run(ctx(), &call.frame, &call.output);
+        if (r != RRC_SUCCESS) return ::testing::AssertionFailure() << "good frame failed: " << rrc_last_error();
+        const uint16_t want = (uint16_t)std::min<uint32_t>(++frames_, 255);
+        if (frames_ > 1 && call.output.stats.hits != kN) return ::testing::AssertionFailure() << call.output.stats.hits << " hits";
+        if (call.age1 != std::vector<uint16_t>(kN, want) || call.age4 != std::vector<uint16_t>(kN, want))
+            return ::testing::AssertionFailure() << "age " << call.age1[0] << ", expected " << want << ": a refused call ran a frame";
+        return ::testing::AssertionSuccess();
+    }
+
+private:
+    Shared() {
+        channels_ = {channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
+                     channel("color", 4, 0.5f, RRC_HISTORY_FP16)};
+        rrc_context_desc d = context_desc(kW, kH, channels_);
+        d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+        d.use_nocache_mask = 1;
+        ctx_.reset(new Context(d));
+        EXPECT_TRUE(good_frame_continues_history());
+    }
+    std::vector<rrc_channel_desc> channels_;
+    std::unique_ptr<Context> ctx_;
+    uint32_t frames_ = 0;
+};
+
+// Destroys the shared context inside the test program, so its destructor's
+// checks (validation messages, leaks reported at destruction) still count.
+class SharedTeardown : public ::testing::Environment {
+public:
+    void TearDown() override { Shared::instance().reset(); }
+};
+const ::testing::Environment* const kSharedTeardown = ::testing::AddGlobalTestEnvironment(new SharedTeardown);
+
+// One summary row for the whole file: every test ends with done().
+void done(const char* suite) {
+    static int passed = 0, failed = 0;
+    (::testing::Test::HasFailure() ? failed : passed) += 1;
+    rrc_stab::report("bad input at the C API", "api_bad_input_test.cpp: frame cases via rrc_frame_run and as frames[1] of a batch, "
+                     "batch arguments, NULL/destroyed/foreign handles, queries, create, camera matrices",
+                     "specific code, message naming the field, outputs untouched, history intact",
+                     rrc_stab::format("%d tests passed, %d failed (last: %s)", passed, failed, suite));
+}
+
+struct FrameCase {
+    const char* name;
+    rrc_result code;
+    const char* field;  // must appear in the message
+    std::function<void(Call&)> spoil;
+};
+
+std::vector<FrameCase> frame_cases() {
+    return {
+        {"frame_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.type", [](Call& c) { c.frame.type = RRC_STRUCT_TYPE_CONTEXT_DESC; }},
+        {"frame_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.size", [](Call& c) { c.frame.size = 12; }},
+        {"frame_next_set", RRC_ERROR_INVALID_STRUCT, "frame.next", [](Call& c) { c.frame.next = &c; }},
+        {"depth_null", RRC_ERROR_MISSING_INPUT, "frame.depth", [](Call& c) { c.frame.depth = nullptr; }},
+        {"reprojection_null", RRC_ERROR_MISSING_INPUT, "frame.reprojection", [](Call& c) { c.frame.reprojection = nullptr; }},
+        {"nocache_null", RRC_ERROR_MISSING_INPUT, "frame.nocache", [](Call& c) { c.frame.nocache = nullptr; }},
+        {"channel_count_zero", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 0; }},
+        {"channel_count_too_many", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 3; }},
+        {"channels_null", RRC_ERROR_MISSING_INPUT, "frame.channels", [](Call& c) { c.frame.channels = nullptr; }},
+        {"channel_input_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].type", [](Call& c) { c.inputs[1].type = 0; }},
+        {"channel_input_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].size", [](Call& c) { c.inputs[1].size = 8; }},
+        {"channel_input_next_set", RRC_ERROR_INVALID_STRUCT, "frame.channels[0].next", [](Call& c) { c.inputs[0].next = &c; }},
+        {"samples_null", RRC_ERROR_MISSING_INPUT, "frame.channels[1].samples", [](Call& c) { c.inputs[1].samples = nullptr; }},
+        {"confidence_null", RRC_ERROR_MISSING_INPUT, "frame.channels[0].confidence", [](Call& c) { c.inputs[0].confidence = nullptr; }},
+        {"jitter_nan", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[1] = kNaN; }},
+        {"jitter_beyond_a_pixel", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[0] = 1.5f; }},
+        {"prev_jitter_inf", RRC_ERROR_INVALID_ARGUMENT, "prev_jitter", [](Call& c) { c.frame.prev_jitter[0] = -kInf; }},
+        {"output_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.type", [](Call& c) { c.output.type = RRC_STRUCT_TYPE_FRAME_DESC; }},
+        {"output_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.size", [](Call& c) { c.output.size = 4; }},
+        {"output_next_set", RRC_ERROR_INVALID_STRUCT, "output.next", [](Call& c) { c.output.next = &c; }},
+        {"output_channel_count_mismatch", RRC_ERROR_SIZE_MISMATCH, "output.channel_count", [](Call& c) { c.output.channel_count = 1; }},
+        {"output_channels_null", RRC_ERROR_INVALID_ARGUMENT, "output.channels", [](Call& c) { c.output.channels = nullptr; }},
+        {"output_channel_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.channels[1].type", [](Call& c) { c.outs[1].type = 99; }},
+        {"output_channel_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.channels[0].size", [](Call& c) { c.outs[0].size = 1; }},
+        {"output_weight_without_confidence", RRC_ERROR_INVALID_ARGUMENT, "output.channels[1].weight",
+         [](Call& c) { c.outs[1].weight = c.weight.data(); }},
+    };
+}
+
+// ctest shows the parameter: print its name, not its bytes.
+void PrintTo(const FrameCase& c, std::ostream* os) { *os << c.name; }
+
+class FrameRun : public ::testing::TestWithParam<FrameCase> {};
+
+TEST_P(FrameRun, RefusedUntouchedHistoryIntact) {
+    const FrameCase& fc = GetParam();
+    Shared& shared = Shared::get();
+    Call call;
+    fc.spoil(call);
+    EXPECT_EQ(rrc_frame_run(shared.ctx(), &call.frame, &call.output), fc.code) << rrc_last_error();
+    EXPECT_NE(std::string(rrc_last_error()).find(fc.field), std::string::npos) << rrc_last_error();
+    EXPECT_STREQ(rrc_context_last_error(shared.ctx()), rrc_last_error());
+    EXPECT_TRUE(call.outputs_untouched());
+    EXPECT_TRUE(shared.good_frame_continues_history());
+    done("FrameRun.RefusedUntouchedHistoryIntact");
+}
+
+INSTANTIATE_TEST_SUITE_P(Api, FrameRun, ::testing::ValuesIn(frame_cases()),
+                         [](const ::testing::TestParamInfo<FrameCase>& i) { return std::string(i.param.name); });
+
+class FrameRunBatch : public ::testing::TestWithParam<FrameCase> {};
+
+TEST_P(FrameRunBatch, RefusedAsFrameOneOfThree) {
+    const FrameCase& fc = GetParam();
+    Shared& shared = Shared::get();
+    Call a, b, c;
+    fc.spoil(b);
+    rrc_frame_desc frames[3] = {a.frame, b.frame, c.frame};
+    rrc_frame_output outputs[3] = {a.output, b.output, c.output};
+    EXPECT_EQ(rrc_frame_run_batch(shared.ctx(), 3, frames, outputs), fc.code) << rrc_last_error();
+    const std::string message = rrc_last_error();
+    EXPECT_NE(message.find(std::string("frames[1]: ")), std::string::npos) << message;
+    EXPECT_NE(message.find(fc.field), std::string::npos) << message;
+    EXPECT_TRUE(a.outputs_untouched() && b.outputs_untouched() && c.outputs_untouched());
+    for (auto& o : outputs) EXPECT_EQ(o.stats.hits, 4242u);
+    EXPECT_TRUE(shared.good_frame_continues_history());
+    done("FrameRunBatch.RefusedAsFrameOneOfThree");
+}
+
+INSTANTIATE_TEST_SUITE_P(Api, FrameRunBatch, ::testing::ValuesIn(frame_cases()),
+                         [](const ::testing::TestParamInfo<FrameCase>& i) { return std::string(i.param.name); });
+
+// ---- rrc_frame_run_batch's own arguments --------------------------------
+
+TEST(ApiBatch, CountZero) {
+    Call call;
+    EXPECT_EQ(rrc_frame_run_batch(Shared::get().ctx(), 0, &call.frame, &call.output), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("count"), std::string::npos) << rrc_last_error();
+    EXPECT_TRUE(call.outputs_untouched());
+    EXPECT_TRUE(Shared::get().good_frame_continues_history());
+    done("ApiBatch.CountZero");
+}
+
+TEST(ApiBatch, CountAbsurd) {
+    Call call;  // one frame behind a count of 2^32 - 1: must be refused before anything is read
+    EXPECT_EQ(rrc_frame_run_batch(Shared::get().ctx(), 0xFFFFFFFFu, &call.frame, &call.output), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("count"), std::string::npos) << rrc_last_error();
+    EXPECT_TRUE(call.outputs_untouched());
+    EXPECT_TRUE(Shared::get().good_frame_continues_history());
+    done("ApiBatch.CountAbsurd");
+}
+
+TEST(ApiBatch, FramesNull) {
+    Call call;
+    EXPECT_EQ(rrc_frame_run_batch(Shared::get().ctx(), 2, nullptr, &call.output), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("frames"), std::string::npos) << rrc_last_error();
+    EXPECT_TRUE(call.outputs_untouched());
+    EXPECT_TRUE(Shared::get().good_frame_continues_history());
+    done("ApiBatch.FramesNull");
+}
+
+// A batch whose staging memory exceeds what the device can allocate in one
+// piece (65,536 frames of 512x512: 128 GiB of inputs) fails cleanly:
+// OUT_OF_MEMORY, outputs untouched, history intact, the context usable.
+TEST(ApiBatch, StagingBeyondTheDeviceFailsCleanly) {
+    const uint32_t W = 512, H = 512, count = 65536;
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    Context ctx(rrc_stab::static_desc(W, H, channels));
+    ASSERT_TRUE(ctx);
+    rrc_stab::FrameData f = rrc_stab::static_frame(W, H, 0);
+    f.samples = {std::vector<float>(W * H, 1.0f)};
+    ASSERT_EQ(rrc_stab::run_batch(ctx.get(), ctx.desc(), {f, f}).back().stats.hits, (uint64_t)W * H);
+    rrc_channel_input in = channel_input(f.samples[0].data());
+    rrc_frame_desc d = frame_desc();
+    d.depth = f.depth.data();
+    std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
+    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
+    d.channel_count = 1;
+    d.channels = &in;
+    std::vector<rrc_frame_desc> frames(count, d);
+    std::vector<uint8_t> mask(W * H, 0xEE);
+    rrc_frame_output o;
+    std::memset(&o, 0, sizeof o);
+    o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+    o.size = sizeof o;
+    o.mask = mask.data();
+    std::vector<rrc_frame_output> outputs(count, o);
+    EXPECT_EQ(rrc_frame_run_batch(ctx.get(), count, frames.data(), outputs.data()), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
+    EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(mask, std::vector<uint8_t>(W * H, 0xEE));
+    rrc_test::FrameResult after = ctx.run(d);
+    EXPECT_EQ(after.stats.hits, (uint64_t)W * H);
+    EXPECT_EQ(after.age[0], std::vector<uint16_t>(W * H, 3)) << "the refused batch must not have run";
+    done("ApiBatch.StagingBeyondTheDeviceFailsCleanly");
+}
+
+// ---- handles --------------------------------------------------------------
+
+TEST(ApiHandle, NullContextEverywhere) {
+    Call call;
+    char name[64] = "sentinel";
+    uint64_t count = 99;
+    EXPECT_EQ(rrc_frame_run(nullptr, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_last_error()).find("context is NULL"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(rrc_frame_run_batch(nullptr, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_device_name(nullptr, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_validation_messages(nullptr, &count), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_STREQ(name, "sentinel");
+    EXPECT_EQ(count, 99u);
+    EXPECT_TRUE(call.outputs_untouched());
+    EXPECT_NE(std::string(rrc_context_last_error(nullptr)), "");  // a message, never a crash
+    done("ApiHandle.NullContextEverywhere");
+}
+
+// A destroyed handle is detected (the library tracks live contexts) and a
+// second destroy is ignored: calls in the wrong order fail, never crash.
+TEST(ApiHandle, DestroyedContextEverywhere) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+    rrc_context* ctx = nullptr;
+    ASSERT_EQ(rrc_context_create(&d, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context_destroy(ctx);
+    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
+    f.samples = {std::vector<float>(16, 1.0f)};
+    rrc_channel_input in = channel_input(f.samples[0].data());
+    rrc_frame_desc frame = frame_desc();
+    frame.depth = f.depth.data();
+    frame.channel_count = 1;
+    frame.channels = &in;
+    char name[64] = "sentinel";
+    uint64_t count = 99;
+    EXPECT_EQ(rrc_frame_run(ctx, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(rrc_frame_run_batch(ctx, 1, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_device_name(ctx, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_validation_messages(ctx, &count), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_context_last_error(ctx)).find("not a live"), std::string::npos);
+    EXPECT_STREQ(name, "sentinel");
+    EXPECT_EQ(count, 99u);
+    rrc_context_destroy(ctx);  // twice: ignored
+    done("ApiHandle.DestroyedContextEverywhere");
+}
+
+TEST(ApiHandle, ForeignPointerEverywhere) {
+    alignas(64) unsigned char garbage[512];
+    std::memset(garbage, 0x5A, sizeof garbage);
+    auto* fake = reinterpret_cast<rrc_context*>(garbage);
+    Call call;
+    char name[64] = "sentinel";
+    uint64_t count = 99;
+    EXPECT_EQ(rrc_frame_run_batch(fake, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_device_name(fake, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_validation_messages(fake, &count), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_context_last_error(fake)).find("not a live"), std::string::npos);
+    rrc_context_destroy(fake);  // ignored, never freed
+    EXPECT_EQ(garbage[100], 0x5A);
+    EXPECT_STREQ(name, "sentinel");
+    EXPECT_EQ(count, 99u);
+    EXPECT_TRUE(call.outputs_untouched());
+    done("ApiHandle.ForeignPointerEverywhere");
+}
+
+// ---- queries --------------------------------------------------------------
+
+TEST(ApiQuery, DeviceNameNullBuffer) {
+    EXPECT_EQ(rrc_context_device_name(Shared::get().ctx(), nullptr, 64), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("out_name"), std::string::npos) << rrc_last_error();
+    done("ApiQuery.DeviceNameNullBuffer");
+}
+
+TEST(ApiQuery, DeviceNameZeroCapacity) {
+    char name[8] = "keep";
+    EXPECT_EQ(rrc_context_device_name(Shared::get().ctx(), name, 0), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("capacity"), std::string::npos) << rrc_last_error();
+    EXPECT_STREQ(name, "keep");
+    done("ApiQuery.DeviceNameZeroCapacity");
+}
+
+TEST(ApiQuery, DeviceNameOneByteShort) {
+    char name[256];
+    ASSERT_EQ(rrc_context_device_name(Shared::get().ctx(), name, sizeof name), RRC_SUCCESS);
+    const size_t need = std::strlen(name) + 1;
+    std::vector<char> buffer(need, 'x');
+    EXPECT_EQ(rrc_context_device_name(Shared::get().ctx(), buffer.data(), need - 1), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("capacity"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(buffer, std::vector<char>(need, 'x')) << "nothing may be written on error";
+    EXPECT_EQ(rrc_context_device_name(Shared::get().ctx(), buffer.data(), need), RRC_SUCCESS);
+    EXPECT_STREQ(buffer.data(), name);
+    done("ApiQuery.DeviceNameOneByteShort");
+}
+
+TEST(ApiQuery, ValidationMessagesNullCount) {
+    EXPECT_EQ(rrc_context_validation_messages(Shared::get().ctx(), nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("out_count"), std::string::npos) << rrc_last_error();
+    uint64_t count = 99;
+    EXPECT_EQ(rrc_context_validation_messages(Shared::get().ctx(), &count), RRC_SUCCESS);
+    EXPECT_EQ(count, 0u) << "the validation layer reported something";
+    done("ApiQuery.ValidationMessagesNullCount");
+}
+
+// A successful call clears rrc_last_error; the per-context message is that
+// context's own.
+TEST(ApiQuery, LastErrorIsClearedBySuccessAndKeptPerContext) {
+    Call bad;
+    bad.frame.depth = nullptr;
+    EXPECT_EQ(rrc_frame_run(Shared::get().ctx(), &bad.frame, &bad.output), RRC_ERROR_MISSING_INPUT);
+    EXPECT_NE(std::string(rrc_last_error()), "");
+    uint64_t count = 0;
+    EXPECT_EQ(rrc_context_validation_messages(Shared::get().ctx(), &count), RRC_SUCCESS);
+    EXPECT_STREQ(rrc_last_error(), "");
+    EXPECT_NE(std::string(rrc_context_last_error(Shared::get().ctx())).find("frame.depth"), std::string::npos);
+    EXPECT_TRUE(Shared::get().good_frame_continues_history());
+    done("ApiQuery.LastErrorIsClearedBySuccessAndKeptPerContext");
+}
+
+// ---- create ---------------------------------------------------------------
+
+TEST(ApiCreate, NullDescLeavesOutputUntouched) {
+    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
+    rrc_context* out = sentinel;
+    EXPECT_EQ(rrc_context_create(nullptr, &out), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("desc"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(out, sentinel);
+    done("ApiCreate.NullDescLeavesOutputUntouched");
+}
+
+// The largest valid extent with the widest inputs: needs far more than the
+// device can allocate (a 16384x16384 RGBA32F image is 4 GiB): OUT_OF_MEMORY
+// with a message, quickly, nothing left behind.
+TEST(ApiCreate, LargestExtentBeyondTheDeviceFailsCleanly) {
+    std::vector<rrc_channel_desc> channels = {channel("a", 4, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
+                                              channel("b", 4, 0.5f, RRC_HISTORY_FP32)};
+    rrc_context_desc d = context_desc(RRC_MAX_EXTENT, RRC_MAX_EXTENT, channels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    ASSERT_EQ(rrc_validate_context_desc(&d), RRC_SUCCESS) << rrc_last_error();
+    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
+    rrc_context* out = sentinel;
+    EXPECT_EQ(rrc_context_create(&d, &out), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
+    EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(out, sentinel);
+    done("ApiCreate.LargestExtentBeyondTheDeviceFailsCleanly");
+}
+
+// A singular view-projection cannot be inverted: CAMERA frames refuse it by name.
+TEST(ApiCamera, SingularViewProjection) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    Context ctx(rrc_stab::static_desc(4, 4, channels));
+    ASSERT_TRUE(ctx);
+    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
+    f.samples = {std::vector<float>(16, 1.0f)};
+    rrc_channel_input in = channel_input(f.samples[0].data());
+    rrc_frame_desc d = frame_desc();
+    d.depth = f.depth.data();
+    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
+    d.channel_count = 1;
+    d.channels = &in;  // view_proj left all zero
+    std::vector<uint8_t> mask(16, 0xEE);
+    rrc_frame_output o;
+    std::memset(&o, 0, sizeof o);
+    o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+    o.size = sizeof o;
+    o.mask = mask.data();
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &d, &o), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("frame.view_proj"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(mask, std::vector<uint8_t>(16, 0xEE));
+    d.view_proj[0] = d.view_proj[5] = d.view_proj[10] = 1.0;  // rank 3: still singular
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &d, &o), RRC_ERROR_INVALID_ARGUMENT);
+    d.view_proj[15] = 1.0;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &d, &o), RRC_SUCCESS) << rrc_last_error();
+    done("ApiCamera.SingularViewProjection");
+}
+
+TEST(ApiCamera, NonFiniteMatrices) {
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    Context ctx(rrc_stab::static_desc(4, 4, channels));
+    ASSERT_TRUE(ctx);
+    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
+    f.samples = {std::vector<float>(16, 1.0f)};
+    f.prev_view_proj[7] = std::numeric_limits<double>::quiet_NaN();
+    std::vector<rrc_stab::FrameData> frames = {f};
+    rrc_channel_input in = channel_input(f.samples[0].data());
+    rrc_frame_desc d = frame_desc();
+    d.depth = f.depth.data();
+    std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
+    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
+    d.channel_count = 1;
+    d.channels = &in;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &d, nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("view_proj"), std::string::npos) << rrc_last_error();
+    done("ApiCamera.NonFiniteMatrices");
+}
+
+}  // namespace
