@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -31,6 +33,8 @@ using rrc_cli::ParseResult;
 using rrc_cli::SignalOptions;
 
 namespace {
+
+using namespace rrc_cli_test;
 
 ParseResult parse(std::initializer_list<const char*> args)
 {
@@ -54,50 +58,6 @@ void expect_error(const ParseResult& r, const std::string& fragment)
     EXPECT_NE(r.error.find(fragment), std::string::npos) << "error '" << r.error << "' lacks '" << fragment << "'";
 }
 
-// A fresh directory per test.
-class TempDir {
-public:
-    TempDir()
-    {
-        static std::atomic<int> counter{0};
-        path_ = fs::path(testing::TempDir()) /
-                ("rrc_cli_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) +
-                 "_" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir()
-    {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
-
-std::vector<std::string> dir_entries(const fs::path& dir)
-{
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir))
-        names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
-std::vector<char> file_bytes(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return std::vector<char>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void write_bytes(const std::string& path, const std::vector<char>& bytes)
-{
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
 
 rrc_exr::ExrImage sample_image(int w, int h)
 {
@@ -203,22 +163,6 @@ void write_static_sequence(const std::string& pattern, int first, int last, cons
     }
 }
 
-int run_tool(std::initializer_list<std::string> args, std::string* out_text = nullptr,
-             std::string* err_text = nullptr)
-{
-    std::vector<std::string> storage = {"rrc-accumulate"};
-    storage.insert(storage.end(), args.begin(), args.end());
-    std::vector<const char*> argv;
-    for (const std::string& s : storage)
-        argv.push_back(s.c_str());
-    std::ostringstream out, err;
-    int rc = rrc_cli::accumulate_main(static_cast<int>(argv.size()), argv.data(), out, err);
-    if (out_text)
-        *out_text = out.str();
-    if (err_text)
-        *err_text = err.str();
-    return rc;
-}
 
 } // namespace
 
