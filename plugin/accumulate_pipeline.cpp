@@ -10,7 +10,16 @@ namespace rrc {
 namespace {
 
 // Specialization constant ids (compute/rrc_reproject.glsl, rrc_accumulate.comp).
-enum : uint32_t { kSource = 0, kDepthMode = 1, kEpsKind = 2, kHasNocache = 3, kChannelCount = 4, kInterop = 5, kGroupXId = 100, kGroupYId = 101 };
+enum : uint32_t {
+    kSource = 0,
+    kDepthMode = 1,
+    kEpsKind = 2,
+    kHasNocache = 3,
+    kChannelCount = 4,
+    kInterop = 5,
+    kGroupXId = 100,
+    kGroupYId = 101
+};
 // Per-channel property k of slot c has id 16 + 4*k + c.
 enum : uint32_t { kComponents = 0, kFp16, kBlend, kFilter, kConfidenceOn, kLambda, kAgeCap };
 uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return 16 + 4 * property + slot; }
@@ -31,8 +40,7 @@ struct SpecBuilder {
 
 }  // namespace
 
-AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c, bool interop, uint32_t sets,
-                                       VkPipelineCache cache)
+AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c, bool interop, uint32_t sets, VkPipelineCache cache)
     : dev_(dev) {
     auto& vk = dev.vk;
     try {
@@ -46,8 +54,8 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         for (uint32_t b = 0; b < kBindingCount; ++b) {
             if (b > kDepthOut && b < kFirstChannelBinding) continue;
             bool sampled = is_sampled_binding(b);
-            bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                binding_count(b), VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
+            bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, binding_count(b),
+                                VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
         }
         VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         lci.bindingCount = (uint32_t)bindings.size();

@@ -10,12 +10,32 @@
 namespace rrc {
 
 enum Binding : uint32_t {
-    kDepth = 0, kPrevDepth = 1, kReproj = 2, kMotion = 3, kNocache = 4, kMask = 5,
-    kHostDepth = 6, kHostReproj = 7, kHostNocache = 8, kDepthOut = 9,  // interop
+    kDepth = 0,
+    kPrevDepth = 1,
+    kReproj = 2,
+    kMotion = 3,
+    kNocache = 4,
+    kMask = 5,
+    kHostDepth = 6,
+    kHostReproj = 7,
+    kHostNocache = 8,
+    kDepthOut = 9,  // interop
     // per channel, arrays of RRC_MAX_CHANNELS
-    kSample1 = 10, kSample4, kConfidence, kHistR16f, kHistRgba16f, kHistR32f, kHistRgba32f, kAge, kWeight,
-    kHistOut, kAgeOut, kWeightOut,
-    kHostSamples = 22, kHostConfidence = 23, kHostOut = 24,  // interop
+    kSample1 = 10,
+    kSample4,
+    kConfidence,
+    kHistR16f,
+    kHistRgba16f,
+    kHistR32f,
+    kHistRgba32f,
+    kAge,
+    kWeight,
+    kHistOut,
+    kAgeOut,
+    kWeightOut,
+    kHostSamples = 22,
+    kHostConfidence = 23,
+    kHostOut = 24,  // interop
 };
 constexpr uint32_t kFirstChannelBinding = kSample1, kLastBinding = kHostOut, kBindingCount = kLastBinding + 1;
 
@@ -48,8 +68,7 @@ static_assert(sizeof(FramePushConstants) == 124, "must match the GLSL push-const
 class AccumulatePipeline {
 public:
     static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // SPEC §8: wide groups win on lavapipe
-    AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets,
-                       VkPipelineCache cache = VK_NULL_HANDLE);
+    AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
     AccumulatePipeline(const AccumulatePipeline&) = delete;
     AccumulatePipeline& operator=(const AccumulatePipeline&) = delete;

@@ -29,8 +29,10 @@ size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].b
 void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint32_t p) {
     const uint32_t prev = 1 - p;
     const VkFormat f = h.history[prev].format;
-    Binding read = f == VK_FORMAT_R16_SFLOAT ? kHistR16f : f == VK_FORMAT_R16G16B16A16_SFLOAT ? kHistRgba16f
-                 : f == VK_FORMAT_R32_SFLOAT ? kHistR32f : kHistRgba32f;
+    Binding read = f == VK_FORMAT_R16_SFLOAT            ? kHistR16f
+                   : f == VK_FORMAT_R16G16B16A16_SFLOAT ? kHistRgba16f
+                   : f == VK_FORMAT_R32_SFLOAT          ? kHistR32f
+                                                        : kHistRgba32f;
     v.view[read][s] = h.history[prev].view;
     v.view[kAge][s] = h.age[prev].view;
     if (h.weight[prev].view) v.view[kWeight][s] = h.weight[prev].view;
@@ -40,8 +42,9 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint3
 }
 
 Placeholders::Placeholders(VulkanDevice& dev) {
-    const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT,
-                                VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R16_UINT};
+    const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,       VK_FORMAT_R32G32B32A32_SFLOAT,
+                                VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT,
+                                VK_FORMAT_R16_UINT};
     for (VkFormat f : formats) read_.emplace_back(dev, f, 1, 1);
     write_.emplace_back(dev, VK_FORMAT_R32_SFLOAT, 1, 1);
     write_.emplace_back(dev, VK_FORMAT_R16_UINT, 1, 1);

@@ -68,8 +68,7 @@ InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_dev
     placeholders_.reset(new Placeholders(*dev_));
     for (auto& img : depth_) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config.width, config.height);
     mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config.width, config.height);
-    for (const ChannelConfig& c : config_.channels)
-        channels_.emplace_back(new ChannelHistory(*dev_, c, config.width, config.height));
+    for (const ChannelConfig& c : config_.channels) channels_.emplace_back(new ChannelHistory(*dev_, c, config.width, config.height));
     for (uint32_t i = 0; i < in_flight + 1; ++i) ring_.push_back(pipeline_->allocate_set());
 }
 

@@ -197,8 +197,7 @@ void StandaloneContext::for_each_readback(const rrc_frame_output* out, uint32_t 
     }
 }
 
-void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* out, uint32_t slot, uint32_t parity,
-                               bool prev_valid) {
+void StandaloneContext::record(const rrc_frame_desc& f, const rrc_frame_output* out, uint32_t slot, uint32_t parity, bool prev_valid) {
     auto& vk = dev_->vk;
     std::vector<const GpuImage*> inputs = {&depth_[parity], &reprojection_, &nocache_};
     for (auto& ch : channels_) inputs.insert(inputs.end(), {&ch.samples, &ch.confidence});
@@ -327,8 +326,7 @@ void StandaloneContext::run_frames(uint32_t count, const rrc_frame_desc* frames,
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
     // Frame i writes the image set of parity parity_ ^ (i & 1) and reads the other.
-    for (uint32_t i = 0; i < count; ++i)
-        record(frames[i], outputs ? &outputs[i] : nullptr, i, parity_ ^ (i & 1u), have_previous_ || i > 0);
+    for (uint32_t i = 0; i < count; ++i) record(frames[i], outputs ? &outputs[i] : nullptr, i, parity_ ^ (i & 1u), have_previous_ || i > 0);
     VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
     for (uint32_t i = 0; i < count; ++i) read_back(outputs ? &outputs[i] : nullptr, i, parity_ ^ (i & 1u));

@@ -30,7 +30,7 @@ public:
 
 private:
     struct Channel {
-        GpuImage samples, confidence;         // this frame's inputs
+        GpuImage samples, confidence;  // this frame's inputs
         std::unique_ptr<ChannelHistory> state;
     };
     void create_images();
@@ -53,14 +53,14 @@ private:
     GpuImage reprojection_, nocache_, mask_;
     std::vector<Channel> channels_;
     std::unique_ptr<Placeholders> placeholders_;
-    HostBuffer upload_, readback_;    // batch_capacity_ regions of *_bytes_ each
+    HostBuffer upload_, readback_;  // batch_capacity_ regions of *_bytes_ each
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;
     VkDescriptorSet sets_[2] = {};
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
-    uint32_t parity_ = 0;     // the image set this frame writes
+    uint32_t parity_ = 0;  // the image set this frame writes
     bool have_previous_ = false;
 };
 

@@ -17,8 +17,7 @@ namespace {
 template <typename T>
 void check_struct(const T* s, rrc_struct_type type, size_t min_size, const char* what) {
     if (!s) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what);
-    if (s->type != type)
-        fail(RRC_ERROR_INVALID_STRUCT, "%s.type is 0x%08x, expected 0x%08x", what, (unsigned)s->type, (unsigned)type);
+    if (s->type != type) fail(RRC_ERROR_INVALID_STRUCT, "%s.type is 0x%08x, expected 0x%08x", what, (unsigned)s->type, (unsigned)type);
     if (s->size < min_size)
         fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, smaller than the smallest known (%zu)", what, (unsigned)s->size, min_size);
     if (s->next) fail(RRC_ERROR_INVALID_STRUCT, "%s.next must be NULL (no extension is defined yet)", what);
@@ -55,8 +54,7 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (len == 0) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is empty", what);
     if (len == RRC_MAX_NAME) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is not NUL-terminated within %d bytes", what, RRC_MAX_NAME);
     out.name.assign(c.name, len);
-    if (c.components != 1 && c.components != 4)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.components is %u, must be 1 or 4", what, c.components);
+    if (c.components != 1 && c.components != 4) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.components is %u, must be 1 or 4", what, c.components);
     out.components = c.components;
     if (c.precision != RRC_HISTORY_FP16 && c.precision != RRC_HISTORY_FP32)
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.precision is %u, not an rrc_history_precision", what, c.precision);
@@ -64,14 +62,12 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (!(c.lambda >= 0.0f && c.lambda < 1.0f))
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.lambda is %g, must be in [0, 1)", what, (double)c.lambda);
     out.lambda = c.lambda;
-    if (c.blend > RRC_BLEND_RUNNING_MEAN)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
+    if (c.blend > RRC_BLEND_RUNNING_MEAN) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
     out.blend = c.blend;
     if (c.filter > RRC_HISTORY_FILTER_CATMULL_ROM)
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
     out.filter = c.filter;
-    if (c.age_cap > RRC_MAX_AGE_CAP)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
+    if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
     out.age_cap = c.age_cap == 0 ? 255u : c.age_cap;
     out.confidence = c.confidence != 0;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
@@ -152,8 +148,7 @@ ContextConfig resolve_context_desc(const rrc_context_desc* d) {
     if (d->motion_scale[0] == 0.0f && d->motion_scale[1] == 0.0f) {
         c.motion_scale = {1.0f, 1.0f};
     } else {
-        if (!finite(d->motion_scale[0]) || !finite(d->motion_scale[1]))
-            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale is not finite");
+        if (!finite(d->motion_scale[0]) || !finite(d->motion_scale[1])) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale is not finite");
         c.motion_scale = {d->motion_scale[0], d->motion_scale[1]};
     }
 
@@ -179,7 +174,9 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_f
     if (!f->depth) fail(RRC_ERROR_MISSING_INPUT, "frame.depth is NULL");
     if (c.reprojection != RRC_REPROJECTION_CAMERA && !f->reprojection)
         fail(RRC_ERROR_MISSING_INPUT, "frame.reprojection is NULL but the context reprojects from %s",
-             c.reprojection == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP" : c.reprojection == RRC_REPROJECTION_MOTION ? "MOTION" : "MOTION_DEPTH");
+             c.reprojection == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP"
+             : c.reprojection == RRC_REPROJECTION_MOTION  ? "MOTION"
+                                                          : "MOTION_DEPTH");
     if (c.reprojection == RRC_REPROJECTION_CAMERA) {
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(f->view_proj[i]) || !std::isfinite(f->prev_view_proj[i]))
@@ -193,7 +190,8 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_f
     for (int i = 0; i < 2; ++i)
         if (!finite(f->jitter[i]) || !finite(f->prev_jitter[i]) || std::fabs(f->jitter[i]) > 1.0f || std::fabs(f->prev_jitter[i]) > 1.0f)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.jitter/prev_jitter[%d] must be finite and within [-1, 1] pixels", i);
-    if (c.use_nocache && !f->nocache) fail(RRC_ERROR_MISSING_INPUT, "frame.nocache is NULL but the context was created with use_nocache_mask");
+    if (c.use_nocache && !f->nocache)
+        fail(RRC_ERROR_MISSING_INPUT, "frame.nocache is NULL but the context was created with use_nocache_mask");
     if (f->channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f->channel_count, c.channels.size());
     if (!f->channels) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
@@ -209,7 +207,8 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_f
     check_struct(out, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output), "output");
     if (out->channel_count != 0 && out->channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "output.channel_count is %u, must be 0 or the context's %zu", out->channel_count, c.channels.size());
-    if (out->channel_count && !out->channels) fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", out->channel_count);
+    if (out->channel_count && !out->channels)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", out->channel_count);
     for (uint32_t i = 0; i < out->channel_count; ++i) {
         char what[48];
         std::snprintf(what, sizeof what, "output.channels[%u]", i);

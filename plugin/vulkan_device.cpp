@@ -21,8 +21,9 @@ void load_loader() {
     std::lock_guard<std::mutex> lock(g_volk_mutex);
     if (g_volk_ready) return;
     if (volkInitialize() != VK_SUCCESS)
-        fail(RRC_ERROR_DEVICE, "the Vulkan loader (libvulkan.so.1) could not be loaded: install libvulkan1 and a driver "
-                               "(mesa-vulkan-drivers provides lavapipe)");
+        fail(RRC_ERROR_DEVICE,
+             "the Vulkan loader (libvulkan.so.1) could not be loaded: install libvulkan1 and a driver "
+             "(mesa-vulkan-drivers provides lavapipe)");
     g_volk_ready = true;
 }
 
@@ -68,9 +69,8 @@ void VulkanDevice::check(VkResult r, const char* what) {
     fail(RRC_ERROR_DEVICE, "%s failed (VkResult %d)", what, (int)r);
 }
 
-VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                       VkDebugUtilsMessageTypeFlagsEXT,
-                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                                        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* m = static_cast<Messages*>(user);
     if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
         m->count.fetch_add(1);
@@ -79,8 +79,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::on_message(VkDebugUtilsMessageSever
     return VK_FALSE;
 }
 
-VulkanDevice::VulkanDevice(const std::string& device_filter, bool validation, Log log)
-    : messages_(new Messages) {
+VulkanDevice::VulkanDevice(const std::string& device_filter, bool validation, Log log) : messages_(new Messages) {
     messages_->log = log;
     load_loader();
     try {
@@ -228,8 +227,9 @@ void VulkanDevice::check_physical_device() {
     if (p.limits.maxPerStageDescriptorStorageImages < 59)  // bindings 0-5, 9, 10-21 and 24 (x4)
         fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs 59", name.c_str(),
              p.limits.maxPerStageDescriptorStorageImages);
-    const VkFormat needed[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT,
-                               VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R16_UINT};
+    const VkFormat needed[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,       VK_FORMAT_R32G32B32A32_SFLOAT,
+                               VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT,
+                               VK_FORMAT_R16_UINT};
     for (VkFormat fmt : needed) {
         VkFormatProperties fp;
         fi.GetPhysicalDeviceFormatProperties(physical, fmt, &fp);

@@ -32,7 +32,12 @@ std::vector<DescCase> desc_cases() {
         {"zero_version", [](D& d, C&) { d.api_version = 0x7FFFFFFF; }, RRC_ERROR_INCOMPATIBLE_VERSION, "api_version"},
         {"zero_width", [](D& d, C&) { d.width = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.width"},
         {"zero_height", [](D& d, C&) { d.height = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.height"},
-        {"absurd_size", [](D& d, C&) { d.width = 1u << 20; d.height = 1u << 20; }, RRC_ERROR_INVALID_ARGUMENT, "desc.width"},
+        {"absurd_size",
+         [](D& d, C&) {
+             d.width = 1u << 20;
+             d.height = 1u << 20;
+         },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.width"},
         {"absurd_height", [](D& d, C&) { d.height = RRC_MAX_EXTENT + 1; }, RRC_ERROR_INVALID_ARGUMENT, "desc.height"},
         {"depth_mode", [](D& d, C&) { d.depth_mode = 3; }, RRC_ERROR_INVALID_ARGUMENT, "desc.depth_mode"},
         {"depth_format", [](D& d, C&) { d.depth_format = 17; }, RRC_ERROR_INVALID_ARGUMENT, "desc.depth_format"},
@@ -43,13 +48,25 @@ std::vector<DescCase> desc_cases() {
         {"tau_negative", [](D& d, C&) { d.tau = -0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "desc.tau"},
         {"background_nan", [](D& d, C&) { d.background_threshold = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold"},
         {"motion_needs_near",
-         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 0; d.far_plane = 100; },
+         [](D& d, C&) {
+             d.reprojection = RRC_REPROJECTION_MOTION;
+             d.near_plane = 0;
+             d.far_plane = 100;
+         },
          RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane"},
         {"motion_far_below_near",
-         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 1; d.far_plane = 0.5f; },
+         [](D& d, C&) {
+             d.reprojection = RRC_REPROJECTION_MOTION;
+             d.near_plane = 1;
+             d.far_plane = 0.5f;
+         },
          RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
         {"motion_infinite_far_standard",
-         [](D& d, C&) { d.reprojection = RRC_REPROJECTION_MOTION; d.near_plane = 1; d.far_plane = kInf; },
+         [](D& d, C&) {
+             d.reprojection = RRC_REPROJECTION_MOTION;
+             d.near_plane = 1;
+             d.far_plane = kInf;
+         },
          RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
         {"motion_scale_nan", [](D& d, C&) { d.motion_scale[0] = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale"},
         {"no_channels", [](D& d, C&) { d.channel_count = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count"},
@@ -127,8 +144,7 @@ TEST(Api, ForeignHandleIsDetectedWithoutDereferencing) {
 // Frame-level errors on a live context: each refused, outputs untouched.
 TEST(Api, BadFramesLeaveOutputsUntouched) {
     const uint32_t W = 16, H = 8;
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED,
-                                                      RRC_HISTORY_FILTER_BILINEAR, 0, 1)};
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)};
     rrc_context_desc d = context_desc(W, H, channels);
     d.reprojection = RRC_REPROJECTION_PREV_CLIP;
     d.use_nocache_mask = 1;
@@ -171,11 +187,23 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
         {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.jitter[1] = kNaN; }},
         {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.prev_jitter[0] = 3.0f; }},
         {"samples", RRC_ERROR_MISSING_INPUT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.samples = nullptr; f.channels = &i; }},
+         [&](rrc_frame_desc& f, rrc_channel_input& i) {
+             i = in;
+             i.samples = nullptr;
+             f.channels = &i;
+         }},
         {"confidence", RRC_ERROR_MISSING_INPUT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.confidence = nullptr; f.channels = &i; }},
+         [&](rrc_frame_desc& f, rrc_channel_input& i) {
+             i = in;
+             i.confidence = nullptr;
+             f.channels = &i;
+         }},
         {"frame.channels[0].type", RRC_ERROR_INVALID_STRUCT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) { i = in; i.type = 1; f.channels = &i; }},
+         [&](rrc_frame_desc& f, rrc_channel_input& i) {
+             i = in;
+             i.type = 1;
+             f.channels = &i;
+         }},
     };
     // A first good frame, so a later failure has history to preserve.
     FrameResult before = ctx.run(good());

@@ -46,42 +46,162 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-    auto ch = [](const char* n, uint32_t comps, float lambda, rrc_history_precision p, rrc_blend b, rrc_history_filter f,
-                 uint32_t cap = 0, uint32_t conf = 0) { return channel(n, comps, lambda, p, b, f, cap, conf); };
+    auto ch = [](const char* n, uint32_t comps, float lambda, rrc_history_precision p, rrc_blend b, rrc_history_filter f, uint32_t cap = 0,
+                 uint32_t conf = 0) { return channel(n, comps, lambda, p, b, f, cap, conf); };
     const auto fp16 = RRC_HISTORY_FP16, fp32 = RRC_HISTORY_FP32;
     const auto fixed = RRC_BLEND_FIXED, age = RRC_BLEND_AGE_AWARE, mean = RRC_BLEND_RUNNING_MEAN;
     const auto bil = RRC_HISTORY_FILTER_BILINEAR, nea = RRC_HISTORY_FILTER_NEAREST, cr = RRC_HISTORY_FILTER_CATMULL_ROM;
     return {
-        {"prev_clip_standard_float32", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 100, true, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, cr)}, true},
-        {"prev_clip_reversed_infinite", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, kInf, true, true, 0,
-         {ch("soft", 1, 0.0f, fp16, mean, nea, 16), ch("env", 4, 0.8f, fp32, fixed, bil, 0, 1)}, true},
-        {"prev_clip_reversed_finite", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 100, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp32, age, cr, 0, 1)}, true},
-        {"prev_clip_linear", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 100, true, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("soft", 1, 0.0f, fp32, mean, bil, 8)}, true},
-        {"prev_clip_standard_unorm16", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM16, 100, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, bil)}, false},
-        {"prev_clip_standard_unorm24", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM24, 100, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, bil)}, false},
-        {"motion_depth_reversed", RRC_REPROJECTION_MOTION_DEPTH, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 100, true, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, fixed, bil)}, true},
-        {"motion_depth_linear", RRC_REPROJECTION_MOTION_DEPTH, RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 100, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp32, age, bil)}, true},
-        {"motion_standard_linearised", RRC_REPROJECTION_MOTION, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 100, true, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil)}, false},
-        {"motion_reversed_infinite", RRC_REPROJECTION_MOTION, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, kInf, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, cr)}, false},
-        {"motion_linear", RRC_REPROJECTION_MOTION, RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 100, true, false, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, nea)}, false},
-        {"camera_standard", RRC_REPROJECTION_CAMERA, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 100, false, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil)}, false},
-        {"camera_reversed_infinite", RRC_REPROJECTION_CAMERA, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, kInf, false, false, 0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil)}, false},
-        {"camera_linear", RRC_REPROJECTION_CAMERA, RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 100, false, true, 0,
-         {ch("pcf", 1, 0.6f, fp32, mean, bil, 32)}, false},
-        {"invalid_samples", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 100, true, false, 0.03,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)}, true},
+        {"prev_clip_standard_float32",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_STANDARD,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, cr)},
+         true},
+        {"prev_clip_reversed_infinite",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         kInf,
+         true,
+         true,
+         0,
+         {ch("soft", 1, 0.0f, fp16, mean, nea, 16), ch("env", 4, 0.8f, fp32, fixed, bil, 0, 1)},
+         true},
+        {"prev_clip_reversed_finite",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, age, cr, 0, 1)},
+         true},
+        {"prev_clip_linear",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_LINEAR,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("soft", 1, 0.0f, fp32, mean, bil, 8)},
+         true},
+        {"prev_clip_standard_unorm16",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_STANDARD,
+         RRC_DEPTH_FORMAT_UNORM16,
+         100,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp16, fixed, bil)},
+         false},
+        {"prev_clip_standard_unorm24",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_STANDARD,
+         RRC_DEPTH_FORMAT_UNORM24,
+         100,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp16, fixed, bil)},
+         false},
+        {"motion_depth_reversed",
+         RRC_REPROJECTION_MOTION_DEPTH,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, fixed, bil)},
+         true},
+        {"motion_depth_linear",
+         RRC_REPROJECTION_MOTION_DEPTH,
+         RRC_DEPTH_MODE_LINEAR,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, age, bil)},
+         true},
+        {"motion_standard_linearised",
+         RRC_REPROJECTION_MOTION,
+         RRC_DEPTH_MODE_STANDARD,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil)},
+         false},
+        {"motion_reversed_infinite",
+         RRC_REPROJECTION_MOTION,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         kInf,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp16, fixed, cr)},
+         false},
+        {"motion_linear",
+         RRC_REPROJECTION_MOTION,
+         RRC_DEPTH_MODE_LINEAR,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, nea)},
+         false},
+        {"camera_standard",
+         RRC_REPROJECTION_CAMERA,
+         RRC_DEPTH_MODE_STANDARD,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         false,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil)},
+         false},
+        {"camera_reversed_infinite",
+         RRC_REPROJECTION_CAMERA,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         kInf,
+         false,
+         false,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil)},
+         false},
+        {"camera_linear",
+         RRC_REPROJECTION_CAMERA,
+         RRC_DEPTH_MODE_LINEAR,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         false,
+         true,
+         0,
+         {ch("pcf", 1, 0.6f, fp32, mean, bil, 32)},
+         false},
+        {"invalid_samples",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_REVERSED,
+         RRC_DEPTH_FORMAT_FLOAT32,
+         100,
+         true,
+         false,
+         0.03,
+         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)},
+         true},
     };
 }
 
@@ -149,9 +269,9 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
                 }
             } else if (k.mask[i] != r.mask[i]) {
                 ++row.mask_mismatch;
-                ADD_FAILURE_AT(__FILE__, __LINE__) << c.name << " frame " << t << " pixel (" << i % W << "," << i / W << ") mask "
-                                                   << int(k.mask[i]) << " reference " << int(r.mask[i]) << " diff " << r.diff[i]
-                                                   << " eps " << r.eps[i];
+                ADD_FAILURE_AT(__FILE__, __LINE__)
+                    << c.name << " frame " << t << " pixel (" << i % W << "," << i / W << ") mask " << int(k.mask[i]) << " reference "
+                    << int(r.mask[i]) << " diff " << r.diff[i] << " eps " << r.eps[i];
                 continue;
             }
             if (r.near_nearest_edge[i]) {
@@ -181,8 +301,8 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
                         ++fp16_values;
                         fp16_exact += err == 0 ? 1 : 0;
                     }
-                    EXPECT_LE(err, arithmetic + position) << c.name << " frame " << t << " pixel " << i << " channel " << ch
-                                                          << " kernel " << kv << " reference " << rv << " spread " << spread;
+                    EXPECT_LE(err, arithmetic + position) << c.name << " frame " << t << " pixel " << i << " channel " << ch << " kernel "
+                                                          << kv << " reference " << rv << " spread " << spread;
                     EXPECT_TRUE(std::isfinite(kv)) << c.name << " pixel " << i;
                 }
                 if (c.channels[ch].confidence) {
@@ -210,11 +330,12 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
         }
     }
     row.fp16_exact_ratio = fp16_values ? double(fp16_exact) / fp16_values : 1.0;
-    std::printf("%-30s compared %lld/%lld near-threshold %lld (flipped %lld) near-edge %lld mask-mismatch %lld hits %lld false %lld strict %lld "
-                "max fp32 err %.3g max fp16 steps %.3g position ratio %.3g\n",
-                c.name, (long long)row.compared, (long long)row.pixels, (long long)row.near_threshold, (long long)row.flips_in_margin,
-                (long long)row.near_edge, (long long)row.mask_mismatch, (long long)row.hits, (long long)row.false_hits, (long long)row.strict_false_hits,
-                row.max_fp32_error, row.max_fp16_steps, row.max_position_ratio);
+    std::printf(
+        "%-30s compared %lld/%lld near-threshold %lld (flipped %lld) near-edge %lld mask-mismatch %lld hits %lld false %lld strict %lld "
+        "max fp32 err %.3g max fp16 steps %.3g position ratio %.3g\n",
+        c.name, (long long)row.compared, (long long)row.pixels, (long long)row.near_threshold, (long long)row.flips_in_margin,
+        (long long)row.near_edge, (long long)row.mask_mismatch, (long long)row.hits, (long long)row.false_hits,
+        (long long)row.strict_false_hits, row.max_fp32_error, row.max_fp16_steps, row.max_position_ratio);
     if (c.zero_false_hits) EXPECT_EQ(row.false_hits, 0) << c.name;
     EXPECT_GT(row.hits, 0) << c.name << ": a case without hits tests nothing";
     EXPECT_GT(row.compared, row.pixels * 9 / 10) << c.name << ": too few pixels compared";

@@ -60,7 +60,7 @@ struct ExrChannelInfo {
 
 /** What the header says, without decoding pixels. */
 struct ExrInfo {
-    int width = 0;  /* of the data window */
+    int width = 0; /* of the data window */
     int height = 0;
     int parts = 0;
     std::vector<ExrChannelInfo> channels; /* sorted by name */
@@ -117,6 +117,6 @@ void write_exr(const std::string& path, const ExrImage& image, const WriteOption
  *  (OpenEXR's default), n > 0 = n threads.  A process-wide setting. */
 void set_thread_count(int threads);
 
-} // namespace rrc_exr
+}  // namespace rrc_exr
 
 #endif

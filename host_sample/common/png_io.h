@@ -31,6 +31,6 @@ void write_png(const std::string& path, const RgbImage& image);
 /** Reads any image OpenImageIO reads as 8-bit RGB (tests). */
 RgbImage read_png(const std::string& path);
 
-} // namespace rrc_png
+}  // namespace rrc_png
 
 #endif

@@ -20,8 +20,8 @@
 #include <utility>
 
 #if defined(__unix__) || defined(__APPLE__)
-#include <sys/stat.h>
-#define RRC_CLI_HAVE_STAT 1
+#    include <sys/stat.h>
+#    define RRC_CLI_HAVE_STAT 1
 #endif
 
 namespace fs = std::filesystem;
@@ -35,18 +35,14 @@ using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 // Every rrc_ call goes through here: "RRC_ERROR_X : message".
-void check(rrc_result r)
-{
-    if (r != RRC_SUCCESS)
-        throw CliError(std::string(rrc_result_to_string(r)) + " : " + rrc_last_error());
+void check(rrc_result r) {
+    if (r != RRC_SUCCESS) throw CliError(std::string(rrc_result_to_string(r)) + " : " + rrc_last_error());
 }
 
-std::string normalised(const std::string& p)
-{
+std::string normalised(const std::string& p) {
     std::error_code ec;
     fs::path abs = fs::absolute(p, ec);
-    if (ec)
-        return fs::path(p).lexically_normal().string();
+    if (ec) return fs::path(p).lexically_normal().string();
     fs::path canon = fs::weakly_canonical(abs, ec);
     return (ec ? abs : canon).lexically_normal().string();
 }
@@ -56,12 +52,10 @@ struct LogSink {
     bool verbose;
 };
 
-void log_to_stream(void* user, rrc_log_level level, const char* message)
-{
+void log_to_stream(void* user, rrc_log_level level, const char* message) {
     const LogSink* sink = static_cast<const LogSink*>(user);
     // Errors are also returned (and printed once by check()): only verbose shows both.
-    if ((level == RRC_LOG_INFO || level == RRC_LOG_ERROR) && !sink->verbose)
-        return;
+    if ((level == RRC_LOG_INFO || level == RRC_LOG_ERROR) && !sink->verbose) return;
     const char* tag = level == RRC_LOG_INFO      ? "info"
                       : level == RRC_LOG_WARNING ? "warning"
                       : level == RRC_LOG_ERROR   ? "error"
@@ -73,15 +67,13 @@ struct ContextDeleter {
     void operator()(rrc_context* c) const { rrc_context_destroy(c); }
 };
 
-std::string format(const char* fmt, double a, double b = 0, double c = 0)
-{
+std::string format(const char* fmt, double a, double b = 0, double c = 0) {
     char buf[256];
     std::snprintf(buf, sizeof buf, fmt, a, b, c);
     return buf;
 }
 
-rrc_exr::ExrInfo header_of(const std::string& path)
-{
+rrc_exr::ExrInfo header_of(const std::string& path) {
     try {
         return rrc_exr::read_exr_info(path);
     } catch (const rrc_exr::ExrError& e) {
@@ -89,8 +81,7 @@ rrc_exr::ExrInfo header_of(const std::string& path)
     }
 }
 
-void verify_blocks(const std::string& path)
-{
+void verify_blocks(const std::string& path) {
     try {
         rrc_exr::verify_exr_chunks(path);
     } catch (const rrc_exr::ExrError& e) {
@@ -98,11 +89,10 @@ void verify_blocks(const std::string& path)
     }
 }
 
-} // namespace
+}  // namespace
 
-void check_no_overwrite(const Options& o)
-{
-    std::map<std::string, std::string> inputs; // normalised -> as given
+void check_no_overwrite(const Options& o) {
+    std::map<std::string, std::string> inputs;  // normalised -> as given
 #ifdef RRC_CLI_HAVE_STAT
     std::map<std::pair<dev_t, ino_t>, std::string> input_ids;
 #endif
@@ -110,50 +100,41 @@ void check_no_overwrite(const Options& o)
         inputs.emplace(normalised(p), p);
 #ifdef RRC_CLI_HAVE_STAT
         struct stat st;
-        if (::stat(p.c_str(), &st) == 0)
-            input_ids.emplace(std::make_pair(st.st_dev, st.st_ino), p);
+        if (::stat(p.c_str(), &st) == 0) input_ids.emplace(std::make_pair(st.st_dev, st.st_ino), p);
 #endif
     };
     for (int64_t f = o.first_frame; f <= o.last_frame; ++f) {
         add_input(format_frame_path(o.input_pattern, f));
-        if (!o.reference_pattern.empty())
-            add_input(format_frame_path(o.reference_pattern, f));
+        if (!o.reference_pattern.empty()) add_input(format_frame_path(o.reference_pattern, f));
     }
-    if (!o.camera_file.empty())
-        add_input(o.camera_file);
+    if (!o.camera_file.empty()) add_input(o.camera_file);
 
-    std::map<std::string, std::string> outputs; // normalised -> what it is
+    std::map<std::string, std::string> outputs;  // normalised -> what it is
     auto check_output = [&](const std::string& out, const std::string& what) {
         const std::string norm = normalised(out);
         std::string clash;
-        if (auto it = inputs.find(norm); it != inputs.end())
-            clash = it->second;
+        if (auto it = inputs.find(norm); it != inputs.end()) clash = it->second;
 #ifdef RRC_CLI_HAVE_STAT
         struct stat st;
         if (clash.empty() && ::stat(out.c_str(), &st) == 0)
-            if (auto it = input_ids.find(std::make_pair(st.st_dev, st.st_ino)); it != input_ids.end())
-                clash = it->second;
+            if (auto it = input_ids.find(std::make_pair(st.st_dev, st.st_ino)); it != input_ids.end()) clash = it->second;
 #endif
         if (!clash.empty())
-            throw CliError(what + " '" + out + "' is the input '" + clash +
-                           "'; inputs are never overwritten: choose another output name");
+            throw CliError(what + " '" + out + "' is the input '" + clash + "'; inputs are never overwritten: choose another output name");
         if (auto [it, inserted] = outputs.emplace(norm, what); !inserted)
             throw CliError(what + " '" + out + "' is also the " + it->second + ": choose distinct output names");
     };
     for (int64_t f = o.first_frame; f <= o.last_frame; ++f) {
         check_output(format_frame_path(o.output_pattern, f), "output (frame " + std::to_string(f) + ")");
         if (!o.coherence_pattern.empty())
-            check_output(format_frame_path(o.coherence_pattern, f),
-                         "coherence map (frame " + std::to_string(f) + ")");
+            check_output(format_frame_path(o.coherence_pattern, f), "coherence map (frame " + std::to_string(f) + ")");
     }
-    if (!o.reference_pattern.empty())
-        check_output(metrics_path(o), "metrics file");
+    if (!o.reference_pattern.empty()) check_output(metrics_path(o), "metrics file");
 }
 
 namespace {
 
-std::string clock_text(double seconds)
-{
+std::string clock_text(double seconds) {
     const long s = static_cast<long>(std::lround(std::max(0.0, seconds)));
     char buf[32];
     if (s >= 3600)
@@ -167,39 +148,29 @@ std::string clock_text(double seconds)
 class ProgressReport {
 public:
     ProgressReport(std::ostream& out, Progress mode, bool quiet, int64_t total)
-        : out_(out), bar_(mode == Progress::Bar), quiet_(quiet), total_(total), start_(Clock::now())
-    {
-    }
-    void frame(int64_t f, int64_t done, const std::string& details)
-    {
-        if (quiet_)
-            return;
+        : out_(out), bar_(mode == Progress::Bar), quiet_(quiet), total_(total), start_(Clock::now()) {}
+    void frame(int64_t f, int64_t done, const std::string& details) {
+        if (quiet_) return;
         const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
         const double eta = done ? elapsed / static_cast<double>(done) * static_cast<double>(total_ - done) : 0.0;
         if (!bar_) {
-            out_ << "frame " << f << ": " << details << " [" << done << "/" << total_ << ", ETA "
-                 << clock_text(eta) << "]\n"
-                 << std::flush;
+            out_ << "frame " << f << ": " << details << " [" << done << "/" << total_ << ", ETA " << clock_text(eta) << "]\n" << std::flush;
             return;
         }
         constexpr int kWidth = 28;
         const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
         std::string line = "\r[" + std::string(static_cast<std::size_t>(filled), '#') +
-                           std::string(static_cast<std::size_t>(kWidth - filled), '-') + "] " +
-                           std::to_string(done) + "/" + std::to_string(total_) + " frames, frame " +
-                           std::to_string(f) + ": " + details + ", ETA " + clock_text(eta);
+                           std::string(static_cast<std::size_t>(kWidth - filled), '-') + "] " + std::to_string(done) + "/" +
+                           std::to_string(total_) + " frames, frame " + std::to_string(f) + ": " + details + ", ETA " + clock_text(eta);
         const std::size_t shown = line.size();
-        if (shown < last_length_)
-            line += std::string(last_length_ - shown, ' '); // erase what the last line left
+        if (shown < last_length_) line += std::string(last_length_ - shown, ' ');  // erase what the last line left
         last_length_ = shown;
         out_ << line << std::flush;
         drawn_ = true;
     }
     // Ends the bar's line (before the summary or an error).
-    void finish()
-    {
-        if (drawn_)
-            out_ << "\n" << std::flush;
+    void finish() {
+        if (drawn_) out_ << "\n" << std::flush;
         drawn_ = false;
     }
 
@@ -218,17 +189,11 @@ struct MetricSums {
     uint64_t values = 0;
 };
 
-double psnr_db(double mse, double peak)
-{
-    return mse > 0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity();
-}
+double psnr_db(double mse, double peak) { return mse > 0 ? 10.0 * std::log10(peak * peak / mse) : std::numeric_limits<double>::infinity(); }
 
-std::string number(double v, const char* fmt = "%.6g")
-{
-    if (std::isinf(v))
-        return v > 0 ? "inf" : "-inf";
-    if (std::isnan(v))
-        return "nan";
+std::string number(double v, const char* fmt = "%.6g") {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    if (std::isnan(v)) return "nan";
     char buf[64];
     std::snprintf(buf, sizeof buf, fmt, v);
     return buf;
@@ -237,22 +202,18 @@ std::string number(double v, const char* fmt = "%.6g")
 // Compares the raw input and the accumulated output of signal k with the
 // reference, over pixels where all three are finite (every component but A).
 MetricSums measure(const SignalLayout& s, const std::vector<float>& input, const std::vector<float>& output,
-                   const rrc_exr::ExrImage& reference, const std::string& ref_path)
-{
+                   const rrc_exr::ExrImage& reference, const std::string& ref_path) {
     MetricSums m;
     const std::size_t n = reference.pixel_count();
     const std::vector<std::string> names = metric_channels(s);
     std::vector<std::vector<float>> ref;
-    for (const std::string& name : names)
-        ref.push_back(reference.as_float(name, ref_path));
+    for (const std::string& name : names) ref.push_back(reference.as_float(name, ref_path));
     const std::size_t stride = s.rrc_components;
     for (std::size_t i = 0; i < n; ++i) {
         bool finite = true;
         for (std::size_t c = 0; c < names.size(); ++c)
-            finite = finite && std::isfinite(ref[c][i]) && std::isfinite(input[i * stride + c]) &&
-                     std::isfinite(output[i * stride + c]);
-        if (!finite)
-            continue;
+            finite = finite && std::isfinite(ref[c][i]) && std::isfinite(input[i * stride + c]) && std::isfinite(output[i * stride + c]);
+        if (!finite) continue;
         for (std::size_t c = 0; c < names.size(); ++c) {
             const double r = ref[c][i], a = input[i * stride + c] - r, b = output[i * stride + c] - r;
             m.input_sse += a * a;
@@ -263,19 +224,17 @@ MetricSums measure(const SignalLayout& s, const std::vector<float>& input, const
     return m;
 }
 
-void write_text_atomically(const std::string& path, const std::string& text)
-{
+void write_text_atomically(const std::string& path, const std::string& text) {
     const fs::path target(path);
     const fs::path dir = target.parent_path();
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
         fs::create_directories(dir, ec);
-        if (ec)
-            throw CliError("cannot create the directory '" + dir.string() + "': " + ec.message());
+        if (ec) throw CliError("cannot create the directory '" + dir.string() + "': " + ec.message());
     }
-    const std::string tmp = (dir / ("." + target.filename().string() + ".tmp-" +
-                                    std::to_string(std::chrono::steady_clock::now().time_since_epoch().count())))
-                                .string();
+    const std::string tmp =
+        (dir / ("." + target.filename().string() + ".tmp-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count())))
+            .string();
     {
         std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
         os << text;
@@ -294,21 +253,18 @@ void write_text_atomically(const std::string& path, const std::string& text)
     }
 }
 
-void ensure_parent_directory(const std::string& path)
-{
+void ensure_parent_directory(const std::string& path) {
     const fs::path dir = fs::path(path).parent_path();
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
         fs::create_directories(dir, ec);
-        if (ec)
-            throw CliError("cannot create the output directory '" + dir.string() + "': " + ec.message());
+        if (ec) throw CliError("cannot create the output directory '" + dir.string() + "': " + ec.message());
     }
 }
 
-} // namespace
+}  // namespace
 
-int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
-{
+int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
     LogSink sink{&err, o.verbose};
     std::unique_ptr<rrc_context, ContextDeleter> context;
     ProgressReport progress(out, o.progress, o.quiet, o.last_frame - o.first_frame + 1);
@@ -335,21 +291,18 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                 const std::string ref = format_frame_path(o.reference_pattern, f);
                 const rrc_exr::ExrInfo ri = header_of(ref);
                 if (ri.width != layout.width || ri.height != layout.height)
-                    throw CliError(ref + ": the reference frame is " + std::to_string(ri.width) + "x" +
-                                   std::to_string(ri.height) + ", the input " + std::to_string(layout.width) + "x" +
-                                   std::to_string(layout.height));
+                    throw CliError(ref + ": the reference frame is " + std::to_string(ri.width) + "x" + std::to_string(ri.height) +
+                                   ", the input " + std::to_string(layout.width) + "x" + std::to_string(layout.height));
                 for (const RequiredChannel& r : reference_channels)
                     if (!ri.has(r.name))
-                        throw CliError(ref + ": missing channel '" + r.name + "' (" + r.reason +
-                                       "); the file has: " + list_channels(ri));
+                        throw CliError(ref + ": missing channel '" + r.name + "' (" + r.reason + "); the file has: " + list_channels(ri));
                 verify_blocks(ref);
             }
         }
         check_no_overwrite(o);
         std::map<int64_t, CameraFrame> cameras;
         if (!o.camera_file.empty())
-            cameras = load_camera_file(o.camera_file, o.first_frame, o.last_frame,
-                                       layout.reprojection == RRC_REPROJECTION_CAMERA);
+            cameras = load_camera_file(o.camera_file, o.first_frame, o.last_frame, layout.reprojection == RRC_REPROJECTION_CAMERA);
         const std::set<int64_t> cuts(o.cuts.begin(), o.cuts.end());
 
         std::vector<rrc_channel_desc> channel_descs;
@@ -385,13 +338,11 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                 throw CliError(e.what());
             }
             for (const RequiredChannel& r : required_channels(layout))
-                if (!image.has(r.name))
-                    throw CliError(in_path + ": missing channel '" + r.name + "' (" + r.reason + ")");
+                if (!image.has(r.name)) throw CliError(in_path + ": missing channel '" + r.name + "' (" + r.reason + ")");
             const FrameData data = load_frame(image, in_path, layout);
-            image = rrc_exr::ExrImage{}; // the arrays are in `data` now
+            image = rrc_exr::ExrImage{};  // the arrays are in `data` now
             rrc_exr::ExrImage reference;
-            const std::string ref_path =
-                o.reference_pattern.empty() ? std::string() : format_frame_path(o.reference_pattern, f);
+            const std::string ref_path = o.reference_pattern.empty() ? std::string() : format_frame_path(o.reference_pattern, f);
             if (!ref_path.empty()) {
                 try {
                     reference = rrc_exr::read_exr(ref_path);
@@ -403,10 +354,8 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
             }
 
             CameraFrame camera;
-            if (auto it = cameras.find(f); it != cameras.end())
-                camera = it->second;
-            if (f == o.first_frame)
-                previous_camera = camera;
+            if (auto it = cameras.find(f); it != cameras.end()) camera = it->second;
+            if (f == o.first_frame) previous_camera = camera;
 
             std::vector<rrc_channel_input> inputs(k);
             for (std::size_t s = 0; s < k; ++s) {
@@ -444,8 +393,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
             for (std::size_t s = 0; s < k; ++s) {
                 result.values[s].assign(n * layout.signals[s].rrc_components, 0.0f);
                 result.age[s].assign(n, 0);
-                if (layout.signals[s].confidence)
-                    result.weight[s].assign(n, 0.0f);
+                if (layout.signals[s].confidence) result.weight[s].assign(n, 0.0f);
                 outputs[s] = rrc_channel_output{};
                 outputs[s].type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
                 outputs[s].size = sizeof(rrc_channel_output);
@@ -484,8 +432,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                     throw CliError(e.what());
                 }
             }
-            if (first_written < 0)
-                first_written = f;
+            if (first_written < 0) first_written = f;
             last_written = f;
 
             const rrc_frame_stats& st = output.stats;
@@ -496,12 +443,10 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                 ++ratio_count;
             }
             std::string details = "hit " + (tested ? format("%.1f%%", ratio) : std::string("n/a"));
-            if (frame.reset)
-                details += " (cut)";
+            if (frame.reset) details += " (cut)";
             if (!ref_path.empty()) {
                 for (std::size_t s = 0; s < k; ++s) {
-                    const MetricSums m =
-                        measure(layout.signals[s], data.samples[s], result.values[s], reference, ref_path);
+                    const MetricSums m = measure(layout.signals[s], data.samples[s], result.values[s], reference, ref_path);
                     metric_totals[s].input_sse += m.input_sse;
                     metric_totals[s].output_sse += m.output_sse;
                     metric_totals[s].values += m.values;
@@ -509,8 +454,8 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                     const double out_mse = m.values ? m.output_sse / double(m.values) : 0.0;
                     csv += std::to_string(f) + "," + layout.signals[s].options.layer + "," +
                            (tested ? number(ratio / 100.0) : std::string()) + "," + std::to_string(m.values) + "," +
-                           number(std::sqrt(in_mse)) + "," + number(psnr_db(in_mse, o.psnr_peak)) + "," +
-                           number(std::sqrt(out_mse)) + "," + number(psnr_db(out_mse, o.psnr_peak)) + "\n";
+                           number(std::sqrt(in_mse)) + "," + number(psnr_db(in_mse, o.psnr_peak)) + "," + number(std::sqrt(out_mse)) + "," +
+                           number(psnr_db(out_mse, o.psnr_peak)) + "\n";
                     if (s == 0)
                         details += ", PSNR " + number(psnr_db(in_mse, o.psnr_peak), "%.1f") + " -> " +
                                    number(psnr_db(out_mse, o.psnr_peak), "%.1f") + " dB";
@@ -518,8 +463,8 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
             }
             details += format(", %.2f ms (rrc_frame_run), %.1f ms total", run_ms, ms_since(t_frame));
             if (st.invalid_samples || st.invalid_geometry)
-                details += ", " + std::to_string(st.invalid_samples) + " invalid samples, " +
-                           std::to_string(st.invalid_geometry) + " invalid geometry";
+                details += ", " + std::to_string(st.invalid_samples) + " invalid samples, " + std::to_string(st.invalid_geometry) +
+                           " invalid geometry";
             ++processed;
             progress.frame(f, processed, details);
             previous_camera = camera;
@@ -536,19 +481,16 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
                 const MetricSums& m = metric_totals[s];
                 const double in_mse = m.values ? m.input_sse / double(m.values) : 0.0;
                 const double out_mse = m.values ? m.output_sse / double(m.values) : 0.0;
-                out << "rrc-accumulate: " << layout.signals[s].options.layer << " against the reference over "
-                    << processed << (processed == 1 ? " frame" : " frames") << ": input RMSE "
-                    << number(std::sqrt(in_mse), "%.4g") << " (PSNR " << number(psnr_db(in_mse, o.psnr_peak), "%.2f")
-                    << " dB), accumulated RMSE " << number(std::sqrt(out_mse), "%.4g") << " (PSNR "
-                    << number(psnr_db(out_mse, o.psnr_peak), "%.2f") << " dB); per frame in " << csv_path << "\n";
+                out << "rrc-accumulate: " << layout.signals[s].options.layer << " against the reference over " << processed
+                    << (processed == 1 ? " frame" : " frames") << ": input RMSE " << number(std::sqrt(in_mse), "%.4g") << " (PSNR "
+                    << number(psnr_db(in_mse, o.psnr_peak), "%.2f") << " dB), accumulated RMSE " << number(std::sqrt(out_mse), "%.4g")
+                    << " (PSNR " << number(psnr_db(out_mse, o.psnr_peak), "%.2f") << " dB); per frame in " << csv_path << "\n";
             }
         }
         out << "rrc-accumulate: " << processed << (processed == 1 ? " frame" : " frames") << ", mean hit ratio "
             << (ratio_count ? format("%.1f%%", ratio_sum / static_cast<double>(ratio_count)) : std::string("n/a"))
-            << " (frames after the first)" << format(", total %.2f s", ms_since(t_start) / 1000.0)
-            << ", device " << device;
-        if (o.validation || validation_messages)
-            out << ", " << validation_messages << " validation messages";
+            << " (frames after the first)" << format(", total %.2f s", ms_since(t_start) / 1000.0) << ", device " << device;
+        if (o.validation || validation_messages) out << ", " << validation_messages << " validation messages";
         out << "\n" << std::flush;
         context.reset();
         if (validation_messages) {
@@ -571,8 +513,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err)
     return kExitError;
 }
 
-int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::ostream& err, bool out_is_terminal)
-{
+int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::ostream& err, bool out_is_terminal) {
     if (argc <= 1) {
         err << usage_text();
         return kExitUsage;
@@ -587,9 +528,8 @@ int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::o
         return kExitOk;
     }
     Options options = parsed.options;
-    if (options.progress == Progress::Auto)
-        options.progress = out_is_terminal ? Progress::Bar : Progress::Lines;
+    if (options.progress == Progress::Auto) options.progress = out_is_terminal ? Progress::Bar : Progress::Lines;
     return run_accumulate(options, out, err);
 }
 
-} // namespace rrc_cli
+}  // namespace rrc_cli

@@ -30,9 +30,8 @@ int run_accumulate(const Options& options, std::ostream& out, std::ostream& err)
 /** main(): parse_arguments, --help, run_accumulate.  Without arguments the
  *  usage goes to `err` and the status is kExitUsage.  `out_is_terminal`
  *  turns --progress auto into a progress bar. */
-int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
-                    bool out_is_terminal = false);
+int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::ostream& err, bool out_is_terminal = false);
 
-} // namespace rrc_cli
+}  // namespace rrc_cli
 
 #endif

@@ -36,31 +36,25 @@ namespace {
 
 using namespace rrc_cli_test;
 
-ParseResult parse(std::initializer_list<const char*> args)
-{
+ParseResult parse(std::initializer_list<const char*> args) {
     std::vector<const char*> argv = {"rrc-accumulate"};
     argv.insert(argv.end(), args.begin(), args.end());
     return parse_arguments(static_cast<int>(argv.size()), argv.data());
 }
 
 // The three required options plus `extra`.
-ParseResult parse_with(std::initializer_list<const char*> extra)
-{
-    std::vector<const char*> argv = {"rrc-accumulate", "--input", "in/f_%04d.exr", "--output", "out/o_%04d.exr",
-                                     "--frames", "1-3"};
+ParseResult parse_with(std::initializer_list<const char*> extra) {
+    std::vector<const char*> argv = {"rrc-accumulate", "--input", "in/f_%04d.exr", "--output", "out/o_%04d.exr", "--frames", "1-3"};
     argv.insert(argv.end(), extra.begin(), extra.end());
     return parse_arguments(static_cast<int>(argv.size()), argv.data());
 }
 
-void expect_error(const ParseResult& r, const std::string& fragment)
-{
+void expect_error(const ParseResult& r, const std::string& fragment) {
     EXPECT_FALSE(r.ok());
     EXPECT_NE(r.error.find(fragment), std::string::npos) << "error '" << r.error << "' lacks '" << fragment << "'";
 }
 
-
-rrc_exr::ExrImage sample_image(int w, int h)
-{
+rrc_exr::ExrImage sample_image(int w, int h) {
     rrc_exr::ExrImage img;
     img.width = w;
     img.height = h;
@@ -73,8 +67,7 @@ rrc_exr::ExrImage sample_image(int w, int h)
         b.push_back(1.0f / float(i + 1));
         u.push_back(static_cast<uint32_t>(i * 2654435761u));
     }
-    if (n < 5)
-        return img;
+    if (n < 5) return img;
     // Values a format could mangle.
     a[0] = std::numeric_limits<float>::infinity();
     a[1] = -0.0f;
@@ -85,8 +78,7 @@ rrc_exr::ExrImage sample_image(int w, int h)
     return img;
 }
 
-bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b)
-{
+bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
@@ -94,26 +86,23 @@ bool bitwise_equal(const std::vector<float>& a, const std::vector<float>& b)
 
 struct SceneOptions {
     int w = 16, h = 12;
-    bool motion = false;   // mv.X/mv.Y(/mv.Z) instead of prevclip
+    bool motion = false;  // mv.X/mv.Y(/mv.Z) instead of prevclip
     bool motion_z = true;
-    bool rgb_only = false; // color.R/G/B without A
+    bool rgb_only = false;  // color.R/G/B without A
     bool conf = false;
-    const char* drop = nullptr; // a channel left out of frame `drop_frame`
+    const char* drop = nullptr;  // a channel left out of frame `drop_frame`
     int drop_frame = -1;
 };
 
 // A static camera looking at a plane at standard NDC depth 0.5: every pixel
 // reprojects onto itself, so every pixel after the first frame is a hit.
-void write_static_sequence(const std::string& pattern, int first, int last, const SceneOptions& s)
-{
+void write_static_sequence(const std::string& pattern, int first, int last, const SceneOptions& s) {
     for (int f = first; f <= last; ++f) {
         rrc_exr::ExrImage img;
         img.width = s.w;
         img.height = s.h;
         const std::size_t n = std::size_t(s.w) * s.h;
-        auto ch = [&](const std::string& name) -> std::vector<float>& {
-            return img.channels[name] = std::vector<float>(n, 0.0f);
-        };
+        auto ch = [&](const std::string& name) -> std::vector<float>& { return img.channels[name] = std::vector<float>(n, 0.0f); };
         auto& z = ch("Z");
         std::vector<float>* px = nullptr;
         std::vector<float>* py = nullptr;
@@ -122,8 +111,7 @@ void write_static_sequence(const std::string& pattern, int first, int last, cons
         if (s.motion) {
             ch("mv.X");
             ch("mv.Y");
-            if (s.motion_z)
-                ch("mv.Z");
+            if (s.motion_z) ch("mv.Z");
         } else {
             px = &ch("prevclip.X");
             py = &ch("prevclip.Y");
@@ -150,28 +138,23 @@ void write_static_sequence(const std::string& pattern, int first, int last, cons
                 r[k] = 0.25f * f;
                 g[k] = 0.5f;
                 b[k] = float(i) / s.w;
-                if (a)
-                    (*a)[k] = 1.0f;
-                if (conf)
-                    (*conf)[k] = 1.0f;
+                if (a) (*a)[k] = 1.0f;
+                if (conf) (*conf)[k] = 1.0f;
             }
-        if (s.drop && f == s.drop_frame)
-            img.channels.erase(s.drop);
+        if (s.drop && f == s.drop_frame) img.channels.erase(s.drop);
         const std::string path = rrc_cli::format_frame_path(pattern, f);
         fs::create_directories(fs::path(path).parent_path());
         rrc_exr::write_exr(path, img);
     }
 }
 
-
-} // namespace
+}  // namespace
 
 // ======================================================================
 // Option parser
 // ======================================================================
 
-TEST(AccumulateOptions, RequiredOnlyGivesDefaults)
-{
+TEST(AccumulateOptions, RequiredOnlyGivesDefaults) {
     ParseResult r = parse_with({});
     ASSERT_TRUE(r.ok()) << r.error;
     const Options& o = r.options;
@@ -199,14 +182,44 @@ TEST(AccumulateOptions, RequiredOnlyGivesDefaults)
     EXPECT_FALSE(o.help);
 }
 
-TEST(AccumulateOptions, EveryOptionParsed)
-{
-    ParseResult r = parse({"--input", "a/%d.exr", "--frames", "7-19", "--output", "b/%05d.exr", "--depth-mode",
-                           "reversed", "--depth-format", "unorm24", "--epsilon", "1e-6", "--epsilon-scale", "2",
-                           "--tau", "0.05", "--background-threshold", "5000", "--near", "0.1", "--far", "inf",
-                           "--reproject", "motion", "--motion-scale", "0.0078125,-0.0104166", "--camera", "cam.json",
-                           "--signal", "shadow:lambda=0.8,blend=age_aware,filter=catmull_rom,history=fp32,max_age=64",
-                           "--signal", "color", "--device", "llvmpipe", "--validation", "--quiet", "--verbose"});
+TEST(AccumulateOptions, EveryOptionParsed) {
+    ParseResult r = parse({"--input",
+                           "a/%d.exr",
+                           "--frames",
+                           "7-19",
+                           "--output",
+                           "b/%05d.exr",
+                           "--depth-mode",
+                           "reversed",
+                           "--depth-format",
+                           "unorm24",
+                           "--epsilon",
+                           "1e-6",
+                           "--epsilon-scale",
+                           "2",
+                           "--tau",
+                           "0.05",
+                           "--background-threshold",
+                           "5000",
+                           "--near",
+                           "0.1",
+                           "--far",
+                           "inf",
+                           "--reproject",
+                           "motion",
+                           "--motion-scale",
+                           "0.0078125,-0.0104166",
+                           "--camera",
+                           "cam.json",
+                           "--signal",
+                           "shadow:lambda=0.8,blend=age_aware,filter=catmull_rom,history=fp32,max_age=64",
+                           "--signal",
+                           "color",
+                           "--device",
+                           "llvmpipe",
+                           "--validation",
+                           "--quiet",
+                           "--verbose"});
     ASSERT_TRUE(r.ok()) << r.error;
     const Options& o = r.options;
     EXPECT_EQ(o.input_pattern, "a/%d.exr");
@@ -239,8 +252,7 @@ TEST(AccumulateOptions, EveryOptionParsed)
     EXPECT_TRUE(o.verbose);
 }
 
-TEST(AccumulateOptions, EnumValues)
-{
+TEST(AccumulateOptions, EnumValues) {
     EXPECT_EQ(parse_with({"--depth-mode", "standard"}).options.depth_mode, RRC_DEPTH_MODE_STANDARD);
     EXPECT_EQ(parse_with({"--depth-mode", "linear"}).options.depth_mode, RRC_DEPTH_MODE_LINEAR);
     EXPECT_EQ(parse_with({"--depth-format", "float32"}).options.depth_format, RRC_DEPTH_FORMAT_FLOAT32);
@@ -251,10 +263,8 @@ TEST(AccumulateOptions, EnumValues)
     EXPECT_EQ(cam.options.reproject, rrc_cli::Reproject::Camera);
 }
 
-TEST(AccumulateOptions, InlineValues)
-{
-    ParseResult r = parse({"--input=i_%03d.exr", "--output=o_%03d.exr", "--frames=4", "--epsilon=0.001",
-                           "--signal=shadow:lambda=0.5"});
+TEST(AccumulateOptions, InlineValues) {
+    ParseResult r = parse({"--input=i_%03d.exr", "--output=o_%03d.exr", "--frames=4", "--epsilon=0.001", "--signal=shadow:lambda=0.5"});
     ASSERT_TRUE(r.ok()) << r.error;
     EXPECT_EQ(r.options.input_pattern, "i_%03d.exr");
     EXPECT_EQ(r.options.first_frame, 4);
@@ -265,41 +275,70 @@ TEST(AccumulateOptions, InlineValues)
     expect_error(parse_with({"--quiet=1"}), "--quiet");
 }
 
-TEST(AccumulateOptions, HelpNeedsNothingElse)
-{
+TEST(AccumulateOptions, HelpNeedsNothingElse) {
     ParseResult r = parse({"--help"});
     ASSERT_TRUE(r.ok()) << r.error;
     EXPECT_TRUE(r.options.help);
     EXPECT_TRUE(parse({"-h"}).options.help);
 }
 
-TEST(AccumulateOptions, UsageDocumentsEveryOption)
-{
+TEST(AccumulateOptions, UsageDocumentsEveryOption) {
     const std::string u = rrc_cli::usage_text();
-    for (const char* opt : {"--input", "--output", "--frames", "--depth-mode", "--depth-format", "--epsilon",
-                            "--epsilon-scale", "--tau", "--background-threshold", "--near", "--far", "--reproject",
-                            "--motion-scale", "--camera", "--signal", "--device", "--validation", "--quiet",
-                            "--verbose", "--help", "lambda=", "blend=", "filter=", "history=", "max_age=",
-                            "age_aware", "running_mean", "catmull_rom", "nearest", "unorm16", "unorm24", "prev_clip",
-                            "rrc.mask", ".age", "nocache.Y", "jitter", "view_proj", "mv.Z", "prevclip"})
+    for (const char* opt : {"--input",
+                            "--output",
+                            "--frames",
+                            "--depth-mode",
+                            "--depth-format",
+                            "--epsilon",
+                            "--epsilon-scale",
+                            "--tau",
+                            "--background-threshold",
+                            "--near",
+                            "--far",
+                            "--reproject",
+                            "--motion-scale",
+                            "--camera",
+                            "--signal",
+                            "--device",
+                            "--validation",
+                            "--quiet",
+                            "--verbose",
+                            "--help",
+                            "lambda=",
+                            "blend=",
+                            "filter=",
+                            "history=",
+                            "max_age=",
+                            "age_aware",
+                            "running_mean",
+                            "catmull_rom",
+                            "nearest",
+                            "unorm16",
+                            "unorm24",
+                            "prev_clip",
+                            "rrc.mask",
+                            ".age",
+                            "nocache.Y",
+                            "jitter",
+                            "view_proj",
+                            "mv.Z",
+                            "prevclip"})
         EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
 }
 
-TEST(AccumulateOptions, MissingRequired)
-{
+TEST(AccumulateOptions, MissingRequired) {
     expect_error(parse({"--output", "o_%d.exr", "--frames", "1-2"}), "--input");
     expect_error(parse({"--input", "i_%d.exr", "--frames", "1-2"}), "--output");
     expect_error(parse({"--input", "i_%d.exr", "--output", "o_%d.exr"}), "--frames");
     expect_error(parse_with({"--reproject", "camera"}), "--camera");
 }
 
-TEST(AccumulateOptions, BadOptionsNameTheOption)
-{
+TEST(AccumulateOptions, BadOptionsNameTheOption) {
     expect_error(parse_with({"--bogus"}), "--bogus");
     expect_error(parse_with({"-x"}), "-x");
     expect_error(parse_with({"stray"}), "stray");
-    expect_error(parse_with({"--epsilon"}), "--epsilon");              // no value
-    expect_error(parse_with({"--camera", "--quiet"}), "--camera");     // an option is not a value
+    expect_error(parse_with({"--epsilon"}), "--epsilon");           // no value
+    expect_error(parse_with({"--camera", "--quiet"}), "--camera");  // an option is not a value
     expect_error(parse_with({"--epsilon", "abc"}), "--epsilon");
     expect_error(parse_with({"--epsilon", "-1"}), "--epsilon");
     expect_error(parse_with({"--epsilon", "0"}), "--epsilon");
@@ -323,12 +362,11 @@ TEST(AccumulateOptions, BadOptionsNameTheOption)
     expect_error(parse_with({"--camera", ""}), "--camera");
     expect_error(parse_with({"--device", ""}), "--device");
     expect_error(parse_with({"--depth-mode", "linear", "--depth-mode", "reversed"}), "--depth-mode");
-    expect_error(parse_with({"--frames", "2-4"}), "--frames"); // given twice
+    expect_error(parse_with({"--frames", "2-4"}), "--frames");  // given twice
     expect_error(parse({"--input", "f_%04d.exr", "--output", "f_%04d.exr", "--frames", "1"}), "--output");
 }
 
-TEST(AccumulateOptions, Patterns)
-{
+TEST(AccumulateOptions, Patterns) {
     std::string err;
     EXPECT_TRUE(rrc_cli::validate_pattern("frames/f_%04d.exr", err)) << err;
     EXPECT_TRUE(rrc_cli::validate_pattern("f%d", err)) << err;
@@ -355,8 +393,7 @@ TEST(AccumulateOptions, Patterns)
     expect_error(parse({"--input", "f_%d.exr", "--output", "o_%s.exr", "--frames", "1"}), "--output");
 }
 
-TEST(AccumulateOptions, FrameRanges)
-{
+TEST(AccumulateOptions, FrameRanges) {
     int64_t a = -1, b = -1;
     std::string err;
     EXPECT_TRUE(rrc_cli::parse_frame_range("10-20", a, b, err));
@@ -371,16 +408,15 @@ TEST(AccumulateOptions, FrameRanges)
     EXPECT_TRUE(rrc_cli::parse_frame_range("0012-0013", a, b, err));
     EXPECT_EQ(a, 12);
     EXPECT_EQ(b, 13);
-    for (const char* bad : {"5-3", "-3", "a-b", "1-", "-", "", "1-2-3", "1 - 2", "+1-2", "1.5-3",
-                            "99999999999999999999-1", "0-1000000000"}) {
+    for (const char* bad :
+         {"5-3", "-3", "a-b", "1-", "-", "", "1-2-3", "1 - 2", "+1-2", "1.5-3", "99999999999999999999-1", "0-1000000000"}) {
         EXPECT_FALSE(rrc_cli::parse_frame_range(bad, a, b, err)) << bad;
         EXPECT_NE(err.find("--frames"), std::string::npos) << err;
         expect_error(parse({"--input", "i%d", "--output", "o%d", "--frames", bad}), "--frames");
     }
 }
 
-TEST(AccumulateOptions, SignalSpecs)
-{
+TEST(AccumulateOptions, SignalSpecs) {
     SignalOptions s;
     std::string err;
     ASSERT_TRUE(rrc_cli::parse_signal_spec("shadow", s, err)) << err;
@@ -397,8 +433,7 @@ TEST(AccumulateOptions, SignalSpecs)
     EXPECT_EQ(s.filter, RRC_HISTORY_FILTER_NEAREST);
     EXPECT_FLOAT_EQ(s.lambda, 0.6f);
 
-    ASSERT_TRUE(rrc_cli::parse_signal_spec("a:lambda=0,max_age=65535,history=fp16,filter=bilinear,blend=fixed", s, err))
-        << err;
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("a:lambda=0,max_age=65535,history=fp16,filter=bilinear,blend=fixed", s, err)) << err;
     EXPECT_EQ(s.lambda, 0.0f);
     EXPECT_EQ(s.max_age, 65535u);
 
@@ -443,28 +478,24 @@ TEST(AccumulateOptions, SignalSpecs)
     EXPECT_TRUE(rrc_cli::parse_signal_spec(std::string(RRC_MAX_NAME - 1, 'x'), s, err)) << err;
 }
 
-TEST(AccumulateOptions, SignalList)
-{
+TEST(AccumulateOptions, SignalList) {
     ParseResult r = parse_with({"--signal", "a", "--signal", "b:lambda=0.9", "--signal", "c", "--signal", "d"});
     ASSERT_TRUE(r.ok()) << r.error;
     ASSERT_EQ(r.options.signals.size(), 4u);
     EXPECT_FLOAT_EQ(r.options.signals[1].lambda, 0.9f);
     expect_error(parse_with({"--signal", "a", "--signal", "a:lambda=0.1"}), "twice");
-    expect_error(parse_with({"--signal", "a", "--signal", "b", "--signal", "c", "--signal", "d", "--signal", "e"}),
-                 "at most");
+    expect_error(parse_with({"--signal", "a", "--signal", "b", "--signal", "c", "--signal", "d", "--signal", "e"}), "at most");
 }
 
 // ======================================================================
 // rrc_exr_io
 // ======================================================================
 
-TEST(ExrIo, RoundTripIsExact)
-{
+TEST(ExrIo, RoundTripIsExact) {
     TempDir dir;
     const rrc_exr::ExrImage img = sample_image(37, 23);
-    for (rrc_exr::Compression c : {rrc_exr::Compression::Zip, rrc_exr::Compression::None,
-                                   rrc_exr::Compression::Piz, rrc_exr::Compression::Zips,
-                                   rrc_exr::Compression::Rle}) {
+    for (rrc_exr::Compression c : {rrc_exr::Compression::Zip, rrc_exr::Compression::None, rrc_exr::Compression::Piz,
+                                   rrc_exr::Compression::Zips, rrc_exr::Compression::Rle}) {
         rrc_exr::set_thread_count(c == rrc_exr::Compression::Zip ? 2 : 0);
         rrc_exr::WriteOptions wo;
         wo.compression = c;
@@ -483,11 +514,10 @@ TEST(ExrIo, RoundTripIsExact)
         EXPECT_EQ(back.attributes.at("comment"), "rrc round trip");
     }
     rrc_exr::set_thread_count(0);
-    EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"round.exr"}); // no temporary left
+    EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"round.exr"});  // no temporary left
 }
 
-TEST(ExrIo, HeaderInfoAndChannelNames)
-{
+TEST(ExrIo, HeaderInfoAndChannelNames) {
     TempDir dir;
     const rrc_exr::ExrImage img = sample_image(5, 4);
     rrc_exr::write_exr(dir / "a.exr", img);
@@ -511,8 +541,7 @@ TEST(ExrIo, HeaderInfoAndChannelNames)
     EXPECT_THROW(img.as_float("nope", "x.exr"), rrc_exr::ExrError);
 }
 
-TEST(ExrIo, OverwriteReplacesAtomically)
-{
+TEST(ExrIo, OverwriteReplacesAtomically) {
     TempDir dir;
     const std::string path = dir / "f.exr";
     rrc_exr::write_exr(path, sample_image(4, 4));
@@ -525,8 +554,7 @@ TEST(ExrIo, OverwriteReplacesAtomically)
     EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"f.exr"});
 }
 
-TEST(ExrIo, WriteErrorsLeaveNothing)
-{
+TEST(ExrIo, WriteErrorsLeaveNothing) {
     TempDir dir;
     const std::string path = dir / "keep.exr";
     rrc_exr::write_exr(path, sample_image(4, 3));
@@ -549,7 +577,7 @@ TEST(ExrIo, WriteErrorsLeaveNothing)
     rrc_exr::ExrImage nochannels;
     nochannels.width = nochannels.height = 2;
     EXPECT_THROW(rrc_exr::write_exr(path, nochannels), rrc_exr::ExrError);
-    rrc_exr::ExrImage clash = sample_image(4, 3); // "channels" is a standard attribute of another type
+    rrc_exr::ExrImage clash = sample_image(4, 3);  // "channels" is a standard attribute of another type
     clash.attributes["channels"] = "x";
     EXPECT_THROW(rrc_exr::write_exr(path, clash), rrc_exr::ExrError);
     EXPECT_THROW(rrc_exr::write_exr(dir / "no/such/dir/f.exr", sample_image(2, 2)), rrc_exr::ExrError);
@@ -559,8 +587,7 @@ TEST(ExrIo, WriteErrorsLeaveNothing)
     EXPECT_EQ(dir_entries(dir.path()), std::vector<std::string>{"keep.exr"});
 }
 
-TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors)
-{
+TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors) {
     TempDir dir;
     const std::string good = dir / "good.exr";
     rrc_exr::ExrImage big = sample_image(64, 64);
@@ -569,25 +596,23 @@ TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors)
     ASSERT_GT(bytes.size(), 1000u);
 
     std::vector<std::string> bad_files;
-    for (std::size_t keep : {bytes.size() - 1, bytes.size() / 2, std::size_t(400), std::size_t(100),
-                             std::size_t(20), std::size_t(4), std::size_t(0)}) {
+    for (std::size_t keep :
+         {bytes.size() - 1, bytes.size() / 2, std::size_t(400), std::size_t(100), std::size_t(20), std::size_t(4), std::size_t(0)}) {
         const std::string p = dir / ("trunc_" + std::to_string(keep) + ".exr");
         write_bytes(p, std::vector<char>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(keep)));
         bad_files.push_back(p);
     }
     std::vector<char> garbage(4096);
     uint32_t x = 12345;
-    for (char& c : garbage)
-        c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
+    for (char& c : garbage) c = static_cast<char>((x = x * 1664525u + 1013904223u) >> 24);
     write_bytes(dir / "garbage.exr", garbage);
     bad_files.push_back(dir / "garbage.exr");
-    std::vector<char> magic_garbage = garbage; // valid magic, garbage after
+    std::vector<char> magic_garbage = garbage;  // valid magic, garbage after
     std::memcpy(magic_garbage.data(), bytes.data(), 8);
     write_bytes(dir / "magic_garbage.exr", magic_garbage);
     bad_files.push_back(dir / "magic_garbage.exr");
-    std::vector<char> corrupt = bytes; // a valid header with a corrupted offset table and pixels
-    for (std::size_t i = bytes.size() / 3; i < bytes.size(); i += 7)
-        corrupt[i] = static_cast<char>(~corrupt[i]);
+    std::vector<char> corrupt = bytes;  // a valid header with a corrupted offset table and pixels
+    for (std::size_t i = bytes.size() / 3; i < bytes.size(); i += 7) corrupt[i] = static_cast<char>(~corrupt[i]);
     write_bytes(dir / "corrupt.exr", corrupt);
     bad_files.push_back(dir / "corrupt.exr");
     std::ofstream(dir / "text.exr") << "this is not an image\n";
@@ -603,8 +628,7 @@ TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors)
         }
     }
     // The header-only reader refuses what has no valid header.
-    for (const char* name : {"trunc_20.exr", "trunc_4.exr", "trunc_0.exr", "garbage.exr", "text.exr",
-                             "magic_garbage.exr"}) {
+    for (const char* name : {"trunc_20.exr", "trunc_4.exr", "trunc_0.exr", "garbage.exr", "text.exr", "magic_garbage.exr"}) {
         try {
             rrc_exr::read_exr_info(dir / name);
             ADD_FAILURE() << "read_exr_info accepted " << name;
@@ -614,8 +638,7 @@ TEST(ExrIo, TruncatedAndGarbageFilesGiveClearErrors)
     }
 }
 
-TEST(ExrIo, MissingFileAndDirectory)
-{
+TEST(ExrIo, MissingFileAndDirectory) {
     TempDir dir;
     for (const std::string& p : {dir / "nope.exr", dir.path().string()}) {
         EXPECT_THROW(rrc_exr::read_exr(p), rrc_exr::ExrError);
@@ -633,20 +656,18 @@ TEST(ExrIo, MissingFileAndDirectory)
 // The tool's checks (no device needed: they fail before rrc_context_create)
 // ======================================================================
 
-TEST(AccumulateTool, HelpAndUsageErrors)
-{
+TEST(AccumulateTool, HelpAndUsageErrors) {
     std::string out, err;
     EXPECT_EQ(run_tool({"--help"}, &out, &err), rrc_cli::kExitOk);
     EXPECT_NE(out.find("--signal"), std::string::npos);
-    EXPECT_EQ(run_tool({}, &out, &err), rrc_cli::kExitUsage); // no argument: the usage, on stderr
+    EXPECT_EQ(run_tool({}, &out, &err), rrc_cli::kExitUsage);  // no argument: the usage, on stderr
     EXPECT_NE(err.find("Usage: rrc-accumulate"), std::string::npos) << err;
     EXPECT_EQ(run_tool({"--frames", "x"}, &out, &err), rrc_cli::kExitUsage);
     EXPECT_NE(err.find("rrc-accumulate: "), std::string::npos) << err;
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
 }
 
-TEST(AccumulateTool, RefusesToOverwriteInputs)
-{
+TEST(AccumulateTool, RefusesToOverwriteInputs) {
     TempDir dir;
     write_static_sequence(dir / "f_%02d.exr", 1, 3, {});
     const std::vector<char> before = file_bytes(dir / "f_02.exr");
@@ -654,26 +675,21 @@ TEST(AccumulateTool, RefusesToOverwriteInputs)
     // Frame 2's output is frame 2's input, spelled differently.
     const std::string in = dir / "f_%02d.exr";
     const std::string out = (dir.path() / "." / "f_%02d.exr").string();
-    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-3", "--quiet"}, nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-3", "--quiet"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
     // Another pattern naming the same files.
     const std::string shifted = dir / "f_0%d.exr";
-    EXPECT_EQ(run_tool({"--input", in, "--output", shifted, "--frames", "1-3"}, nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(run_tool({"--input", in, "--output", shifted, "--frames", "1-3"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
     EXPECT_EQ(file_bytes(dir / "f_02.exr"), before);
     // The camera file is an input too.
     std::ofstream(dir / "cam_2.json") << "{}";
-    EXPECT_EQ(run_tool({"--input", in, "--output", dir / "cam_%d.json", "--frames", "1-3", "--camera",
-                        dir / "cam_2.json"},
-                       nullptr, &err),
+    EXPECT_EQ(run_tool({"--input", in, "--output", dir / "cam_%d.json", "--frames", "1-3", "--camera", dir / "cam_2.json"}, nullptr, &err),
               rrc_cli::kExitError);
     EXPECT_NE(err.find("never overwritten"), std::string::npos) << err;
 }
 
-TEST(AccumulateTool, NamesTheMissingChannelOrFile)
-{
+TEST(AccumulateTool, NamesTheMissingChannelOrFile) {
     TempDir dir;
     const std::string in = dir / "f_%d.exr", out = dir / "out/o_%d.exr";
     SceneOptions s;
@@ -687,8 +703,7 @@ TEST(AccumulateTool, NamesTheMissingChannelOrFile)
     EXPECT_FALSE(fs::exists(dir / "out")) << "processing started before the check";
 
     // mv.* for --reproject motion.
-    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--reproject", "motion"}, nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--reproject", "motion"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("'mv.X'"), std::string::npos) << err;
 
     // A frame of the range that does not exist.
@@ -697,15 +712,13 @@ TEST(AccumulateTool, NamesTheMissingChannelOrFile)
     EXPECT_NE(err.find("no such file"), std::string::npos) << err;
 
     // An unknown --signal layer.
-    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--signal", "albedo"}, nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2", "--signal", "albedo"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("'albedo'"), std::string::npos) << err;
 
     // A frame whose size differs.
     rrc_exr::ExrImage small = rrc_exr::read_exr(dir / "f_1.exr");
     small.height = 1;
-    for (auto& kv : small.channels)
-        kv.second.resize(std::size_t(small.width));
+    for (auto& kv : small.channels) kv.second.resize(std::size_t(small.width));
     rrc_exr::write_exr(dir / "f_2.exr", small);
     EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-2"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("f_2.exr"), std::string::npos) << err;
@@ -713,23 +726,20 @@ TEST(AccumulateTool, NamesTheMissingChannelOrFile)
     EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
-TEST(AccumulateTool, MotionWithoutDepthChangeNeedsPlanes)
-{
+TEST(AccumulateTool, MotionWithoutDepthChangeNeedsPlanes) {
     TempDir dir;
     SceneOptions s;
     s.motion = true;
     s.motion_z = false;
     write_static_sequence(dir / "f_%d.exr", 1, 2, s);
     std::string err;
-    EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject",
-                        "motion"},
-                       nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(
+        run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject", "motion"}, nullptr, &err),
+        rrc_cli::kExitError);
     EXPECT_NE(err.find("--near"), std::string::npos) << err;
 }
 
-TEST(AccumulateTool, CameraFileErrors)
-{
+TEST(AccumulateTool, CameraFileErrors) {
     TempDir dir;
     write_static_sequence(dir / "f_%d.exr", 1, 2, {});
     struct Case {
@@ -737,21 +747,21 @@ TEST(AccumulateTool, CameraFileErrors)
         const char* fragment;
     };
     const std::string vp = "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]";
-    for (const Case& c : std::initializer_list<Case>{
-             {"{", "invalid JSON"},
-             {"[]", "expected an object"},
-             {"{\"one\": {}}", "frame numbers"},
-             {"{\"-1\": {}}", "frame numbers"},
-             {"{\"1\": 5}", "expected an object"},
-             {"{\"1\": {\"view_proj\": [1,2,3]}}", "16 numbers"},
-             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,\"x\"]}}", "not a number"},
-             {"{\"1\": {\"jitter\": [0.5]}}", "jitter"},
-             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}}", "frame 2"},
-             {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}, \"01\": {}}", "twice"}}) {
+    for (const Case& c :
+         std::initializer_list<Case>{{"{", "invalid JSON"},
+                                     {"[]", "expected an object"},
+                                     {"{\"one\": {}}", "frame numbers"},
+                                     {"{\"-1\": {}}", "frame numbers"},
+                                     {"{\"1\": 5}", "expected an object"},
+                                     {"{\"1\": {\"view_proj\": [1,2,3]}}", "16 numbers"},
+                                     {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,\"x\"]}}", "not a number"},
+                                     {"{\"1\": {\"jitter\": [0.5]}}", "jitter"},
+                                     {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}}", "frame 2"},
+                                     {"{\"1\": {\"view_proj\": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}, \"01\": {}}", "twice"}}) {
         std::ofstream(dir / "cam.json", std::ios::trunc) << c.json;
         std::string err;
-        EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2",
-                            "--reproject", "camera", "--camera", dir / "cam.json"},
+        EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject", "camera",
+                            "--camera", dir / "cam.json"},
                            nullptr, &err),
                   rrc_cli::kExitError)
             << c.json;
@@ -759,8 +769,8 @@ TEST(AccumulateTool, CameraFileErrors)
         EXPECT_NE(err.find("cam.json"), std::string::npos) << err;
     }
     std::string err;
-    EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject",
-                        "camera", "--camera", dir / "missing.json"},
+    EXPECT_EQ(run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject", "camera", "--camera",
+                        dir / "missing.json"},
                        nullptr, &err),
               rrc_cli::kExitError);
     EXPECT_NE(err.find("missing.json"), std::string::npos) << err;
@@ -776,8 +786,7 @@ TEST(AccumulateTool, CameraFileErrors)
     EXPECT_EQ(frames[2].view_proj[15], 1.0);
 }
 
-TEST(AccumulateTool, LayoutDiscovery)
-{
+TEST(AccumulateTool, LayoutDiscovery) {
     TempDir dir;
     SceneOptions s;
     s.rgb_only = true;
@@ -788,7 +797,7 @@ TEST(AccumulateTool, LayoutDiscovery)
     const rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, dir / "f_1.exr", o);
     EXPECT_EQ(layout.reprojection, RRC_REPROJECTION_PREV_CLIP);
     EXPECT_FALSE(layout.nocache);
-    ASSERT_EQ(layout.signals.size(), 2u); // color, shadow: alphabetical
+    ASSERT_EQ(layout.signals.size(), 2u);  // color, shadow: alphabetical
     EXPECT_EQ(layout.signals[0].options.layer, "color");
     EXPECT_EQ(layout.signals[0].rrc_components, 4u);
     EXPECT_EQ(layout.signals[0].components, (std::vector<std::string>{"R", "G", "B"}));
@@ -832,9 +841,8 @@ TEST(AccumulateTool, LayoutDiscovery)
     result.weight = {std::vector<float>(n, 0.75f), {}};
     result.mask.assign(n, RRC_MASK_HIT | RRC_MASK_REFRESHED);
     const rrc_exr::ExrImage img = rrc_cli::make_output_image(layout, result);
-    EXPECT_EQ(rrc_exr::channel_names(img),
-              (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "color.weight", "rrc.mask",
-                                        "shadow.Y", "shadow.age"}));
+    EXPECT_EQ(rrc_exr::channel_names(img), (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "color.weight",
+                                                                     "rrc.mask", "shadow.Y", "shadow.age"}));
     EXPECT_EQ(img.channels.at("rrc.mask")[0], 3.0f);
     EXPECT_EQ(img.channels.at("shadow.age")[0], 65535.0f);
     EXPECT_EQ(img.channels.at("color.weight")[0], 0.75f);
@@ -850,10 +858,9 @@ TEST(AccumulateTool, LayoutDiscovery)
         rrc_exr::write_exr(dir / "mask.exr", with_mask);
         const rrc_cli::SequenceLayout ml = rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "mask.exr"), "m", o);
         EXPECT_TRUE(ml.nocache);
-        EXPECT_EQ(ml.signals.size(), 2u); // nocache is not a signal
+        EXPECT_EQ(ml.signals.size(), 2u);  // nocache is not a signal
         bool required = false;
-        for (const rrc_cli::RequiredChannel& r : rrc_cli::required_channels(ml))
-            required = required || r.name == "nocache.Y";
+        for (const rrc_cli::RequiredChannel& r : rrc_cli::required_channels(ml)) required = required || r.name == "nocache.Y";
         EXPECT_TRUE(required);
         const rrc_cli::FrameData md = rrc_cli::load_frame(rrc_exr::read_exr(dir / "mask.exr"), "m", ml);
         ASSERT_EQ(md.nocache.size(), n);
@@ -867,14 +874,12 @@ TEST(AccumulateTool, LayoutDiscovery)
 
     // Five layers without --signal is too many.
     rrc_exr::ExrImage many = rrc_exr::read_exr(dir / "f_1.exr");
-    for (const char* l : {"a.Y", "b.Y", "c.Y"})
-        many.channels[l] = std::vector<float>(n, 0.0f);
+    for (const char* l : {"a.Y", "b.Y", "c.Y"}) many.channels[l] = std::vector<float>(n, 0.0f);
     many.channels["d.X"] = many.channels["d.Y"] = std::vector<float>(n, 0.0f);
     rrc_exr::write_exr(dir / "many.exr", many);
-    EXPECT_THROW(rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "many.exr"), "many.exr", o),
-                 rrc_cli::CliError);
+    EXPECT_THROW(rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "many.exr"), "many.exr", o), rrc_cli::CliError);
     o.signals.resize(1);
-    o.signals[0].layer = "d"; // d.X + d.Y is neither Y nor RGB
+    o.signals[0].layer = "d";  // d.X + d.Y is neither Y nor RGB
     try {
         rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "many.exr"), "many.exr", o);
         ADD_FAILURE() << "layer d accepted";
@@ -887,15 +892,14 @@ TEST(AccumulateTool, LayoutDiscovery)
 // End to end through the library (skipped when no Vulkan device exists)
 // ======================================================================
 
-TEST(AccumulateTool, StaticSequenceEndToEnd)
-{
+TEST(AccumulateTool, StaticSequenceEndToEnd) {
     TempDir dir;
     SceneOptions s;
     s.rgb_only = true;
     write_static_sequence(dir / "in/f_%03d.exr", 5, 7, s);
     std::string out, err;
-    const int rc = run_tool({"--input", dir / "in/f_%03d.exr", "--output", dir / "out/acc_%03d.exr", "--frames",
-                             "5-7", "--signal", "shadow:history=fp32", "--signal", "color:history=fp32,lambda=0.5"},
+    const int rc = run_tool({"--input", dir / "in/f_%03d.exr", "--output", dir / "out/acc_%03d.exr", "--frames", "5-7", "--signal",
+                             "shadow:history=fp32", "--signal", "color:history=fp32,lambda=0.5"},
                             &out, &err);
     ASSERT_EQ(rc, 0) << err;  // the suite runs on lavapipe: no device is a failure
     EXPECT_NE(out.find("frame 5:"), std::string::npos) << out;
@@ -908,8 +912,7 @@ TEST(AccumulateTool, StaticSequenceEndToEnd)
     for (int f = 5; f <= 7; ++f) {
         res.push_back(rrc_exr::read_exr(rrc_cli::format_frame_path(dir / "out/acc_%03d.exr", f)));
         EXPECT_EQ(rrc_exr::channel_names(res.back()),
-                  (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "rrc.mask", "shadow.Y",
-                                            "shadow.age"}));
+                  (std::vector<std::string>{"color.B", "color.G", "color.R", "color.age", "rrc.mask", "shadow.Y", "shadow.age"}));
     }
     // Frame 5 is a full miss: out = sample, age 1.
     for (std::size_t i = 0; i < n; ++i) {
@@ -927,6 +930,5 @@ TEST(AccumulateTool, StaticSequenceEndToEnd)
         EXPECT_NEAR(res[1].channels["color.G"][i], 0.5f, 1e-4f);
     }
     // The inputs are untouched and nothing else was written.
-    EXPECT_EQ(dir_entries(dir.path() / "out"),
-              (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
+    EXPECT_EQ(dir_entries(dir.path() / "out"), (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
 }

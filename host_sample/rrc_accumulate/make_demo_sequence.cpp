@@ -11,9 +11,9 @@
 // (column-major, Vulkan clip: y down, z in [0,1]) and a zero jitter.
 #include <exr_io.h>
 
-#include <glm/glm.hpp>
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/glm.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -31,20 +31,18 @@ constexpr double kNear = 0.1, kFar = 100.0, kPlaneHalf = 20.0;
 const glm::dvec3 kSphere(0.0, 1.0, 0.0);
 constexpr double kRadius = 1.0;
 
-glm::dmat4 view_proj(int frame, int w, int h)
-{
-    const double angle = 0.5 + 0.012 * frame; // slow orbit
+glm::dmat4 view_proj(int frame, int w, int h) {
+    const double angle = 0.5 + 0.012 * frame;  // slow orbit
     const glm::dvec3 eye(6.0 * std::sin(angle), 2.5 + 0.02 * frame, 6.0 * std::cos(angle));
     const glm::dmat4 view = glm::lookAtRH(eye, glm::dvec3(0.0, 0.8, 0.0), glm::dvec3(0.0, 1.0, 0.0));
     // Reversed Z: near and far swapped give z = 1 at near, 0 at far.
     glm::dmat4 proj = glm::perspectiveRH_ZO(glm::radians(45.0), double(w) / h, kFar, kNear);
-    proj[1][1] = -proj[1][1]; // Vulkan: NDC y points down
+    proj[1][1] = -proj[1][1];  // Vulkan: NDC y points down
     return proj * view;
 }
 
 // Nearest hit along the ray: t, or -1.  Sets the normal and the object id.
-double trace(const glm::dvec3& o, const glm::dvec3& d, glm::dvec3& n, int& id)
-{
+double trace(const glm::dvec3& o, const glm::dvec3& d, glm::dvec3& n, int& id) {
     double best = -1.0;
     const glm::dvec3 oc = o - kSphere;
     const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - kRadius * kRadius, disc = b * b - c;
@@ -68,36 +66,39 @@ double trace(const glm::dvec3& o, const glm::dvec3& d, glm::dvec3& n, int& id)
     return best;
 }
 
-bool parse_int(const char* s, int& out)
-{
+bool parse_int(const char* s, int& out) {
     char* end = nullptr;
     long v = std::strtol(s, &end, 10);
-    if (!*s || *end || v < 0 || v > 100000)
-        return false;
+    if (!*s || *end || v < 0 || v > 100000) return false;
     out = static_cast<int>(v);
     return true;
 }
 
-} // namespace
+}  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
     std::string dir;
     int frames = 24, first = 1, width = 128, height = 96, seed = 1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
         bool ok = true;
-        if (a == "--frames" && v) ok = parse_int(argv[++i], frames) && frames >= 1;
-        else if (a == "--first" && v) ok = parse_int(argv[++i], first);
-        else if (a == "--seed" && v) ok = parse_int(argv[++i], seed);
-        else if (a == "--size" && v) ok = std::sscanf(argv[++i], "%dx%d", &width, &height) == 2 &&
-                                           width >= 1 && height >= 1 && width <= 4096 && height <= 4096;
-        else if (a[0] != '-' && dir.empty()) dir = a;
-        else ok = false;
+        if (a == "--frames" && v)
+            ok = parse_int(argv[++i], frames) && frames >= 1;
+        else if (a == "--first" && v)
+            ok = parse_int(argv[++i], first);
+        else if (a == "--seed" && v)
+            ok = parse_int(argv[++i], seed);
+        else if (a == "--size" && v)
+            ok = std::sscanf(argv[++i], "%dx%d", &width, &height) == 2 && width >= 1 && height >= 1 && width <= 4096 && height <= 4096;
+        else if (a[0] != '-' && dir.empty())
+            dir = a;
+        else
+            ok = false;
         if (!ok) {
-            std::fprintf(stderr, "rrc-make-demo-sequence: bad argument '%s'\nusage: rrc-make-demo-sequence DIR "
-                                 "[--frames N (24)] [--first F (1)] [--size WxH (128x96)] [--seed S (1)]\n",
+            std::fprintf(stderr,
+                         "rrc-make-demo-sequence: bad argument '%s'\nusage: rrc-make-demo-sequence DIR "
+                         "[--frames N (24)] [--first F (1)] [--size WxH (128x96)] [--seed S (1)]\n",
                          a.c_str());
             return 2;
         }
@@ -122,8 +123,8 @@ int main(int argc, char** argv)
             rrc_exr::ExrImage img;
             img.width = width;
             img.height = height;
-            for (const char* c : {"Z", "prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W", "mv.X", "mv.Y",
-                                  "mv.Z", "shadow.Y", "color.R", "color.G", "color.B", "color.A"})
+            for (const char* c : {"Z", "prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W", "mv.X", "mv.Y", "mv.Z", "shadow.Y",
+                                  "color.R", "color.G", "color.B", "color.A"})
                 img.channels[c].assign(n, 0.0f);
             auto set = [&](const char* c, std::size_t i, double v) { img.channels[c][i] = float(v); };
 
@@ -138,7 +139,7 @@ int main(int argc, char** argv)
                     const double t = trace(o, d, nrm, id);
                     glm::dvec3 rgb;
                     double vis;
-                    if (t < 0.0) { // background: depth 0, reprojects onto itself
+                    if (t < 0.0) {  // background: depth 0, reprojects onto itself
                         set("prevclip.X", idx, ndc.x);
                         set("prevclip.Y", idx, ndc.y);
                         set("prevclip.W", idx, 1.0);
@@ -191,11 +192,11 @@ int main(int argc, char** argv)
         std::FILE* fp = std::fopen(cam.c_str(), "wb");
         if (!fp || std::fwrite(json.data(), 1, json.size(), fp) != json.size() || std::fclose(fp) != 0)
             throw std::runtime_error(cam + ": cannot write");
-        std::printf("wrote %d frames %dx%d to %s (reversed-Z float depth, near %g, far %g)\n"
-                    "try: rrc-accumulate --input %s/frame_%%04d.exr --frames %d-%d --output OUT/acc_%%04d.exr "
-                    "--depth-mode reversed --camera %s\n",
-                    frames, width, height, dir.c_str(), kNear, kFar, dir.c_str(), first, first + frames - 1,
-                    cam.c_str());
+        std::printf(
+            "wrote %d frames %dx%d to %s (reversed-Z float depth, near %g, far %g)\n"
+            "try: rrc-accumulate --input %s/frame_%%04d.exr --frames %d-%d --output OUT/acc_%%04d.exr "
+            "--depth-mode reversed --camera %s\n",
+            frames, width, height, dir.c_str(), kNear, kFar, dir.c_str(), first, first + frames - 1, cam.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rrc-make-demo-sequence: %s\n", e.what());
         return 1;

@@ -52,50 +52,43 @@ using namespace rrc_cli_test;
 
 const std::string kLayer = "ViewLayer.";
 
-
-
 std::string frame_path(const std::string& pattern, int f) { return rrc_cli::format_frame_path(pattern, f); }
 
-void expect_contains(const std::string& text, const std::string& fragment)
-{
+void expect_contains(const std::string& text, const std::string& fragment) {
     EXPECT_NE(text.find(fragment), std::string::npos) << "'" << text << "' lacks '" << fragment << "'";
 }
 
 // ---- a synthetic sequence in Blender 3.x's conventions ------------------
 
-rrc_scene::SceneConfig blender_scene_config(int w, int h)
-{
+rrc_scene::SceneConfig blender_scene_config(int w, int h) {
     rrc_scene::SceneConfig sc;
     sc.width = w;
     sc.height = h;
     sc.depth_mode = RRC_DEPTH_MODE_LINEAR;
-    sc.linear_background = 1e10f; // Blender's sky
-    sc.jitter = false;            // Blender's Depth is the pixel-centre sample (docs/OFFLINE.md)
+    sc.linear_background = 1e10f;  // Blender's sky
+    sc.jitter = false;             // Blender's Depth is the pixel-centre sample (docs/OFFLINE.md)
     return sc;
 }
 
 struct BlenderWrite {
-    bool half_combined_odd = true; // Combined as HALF in odd frames, FLOAT in even ones
-    bool multipart_even = true;    // even frames: one part per layer
-    std::string drop;              // a channel left out of frame drop_frame
+    bool half_combined_odd = true;  // Combined as HALF in odd frames, FLOAT in even ones
+    bool multipart_even = true;     // even frames: one part per layer
+    std::string drop;               // a channel left out of frame drop_frame
     int drop_frame = -1;
-    bool truth = false;            // the noise-free signals (a converged reference)
+    bool truth = false;  // the noise-free signals (a converged reference)
 };
 
 // Frame t of `scene` as Blender 3.x writes it: Combined.R/G/B/A (signal4),
 // Shadow.X (signal1, a one-channel pass), Depth.Z (planar depth, sky 1e10),
 // Vector.X/Y (previous minus current, pixels, y up; zero on the sky),
 // Vector.Z/W (current minus next, same units), IndexOB.X.
-rrc_exr::ExrImage blender_frame(const rrc_scene::Scene& scene, const rrc_scene::Frame& fr, const BlenderWrite& opt)
-{
+rrc_exr::ExrImage blender_frame(const rrc_scene::Scene& scene, const rrc_scene::Frame& fr, const BlenderWrite& opt) {
     const int W = fr.width, H = fr.height;
     const std::size_t n = std::size_t(W) * H;
     rrc_exr::ExrImage img;
     img.width = W;
     img.height = H;
-    auto ch = [&](const std::string& name) -> std::vector<float>& {
-        return img.channels[kLayer + name] = std::vector<float>(n, 0.0f);
-    };
+    auto ch = [&](const std::string& name) -> std::vector<float>& { return img.channels[kLayer + name] = std::vector<float>(n, 0.0f); };
     auto &cr = ch("Combined.R"), &cg = ch("Combined.G"), &cb = ch("Combined.B"), &ca = ch("Combined.A");
     auto& shadow = ch("Shadow.X");
     auto& depth = ch("Depth.Z");
@@ -113,8 +106,7 @@ rrc_exr::ExrImage blender_frame(const rrc_scene::Scene& scene, const rrc_scene::
         depth[i] = fr.depth[i];
         const int32_t id = fr.object_id[i];
         index[i] = float(id + 1);
-        if (id < 0)
-            continue; // Blender: zero vectors on the sky
+        if (id < 0) continue;  // Blender: zero vectors on the sky
         vx[i] = float(double(fr.motion[3 * i]) * W);
         vy[i] = float(-double(fr.motion[3 * i + 1]) * H);
         const glm::dvec3 p_next = scene.model(id, fr.index + 1).to_world(fr.object_pos[i]);
@@ -123,20 +115,16 @@ rrc_exr::ExrImage blender_frame(const rrc_scene::Scene& scene, const rrc_scene::
         vz[i] = float((ux - (c.x / c.w + 1.0) / 2.0) * W);
         vw[i] = float(-(uy - (c.y / c.w + 1.0) / 2.0) * H);
     }
-    if (opt.drop_frame == fr.index)
-        img.channels.erase(opt.drop);
+    if (opt.drop_frame == fr.index) img.channels.erase(opt.drop);
     return img;
 }
 
-void write_blender_sequence(const rrc_scene::Scene& scene, const std::string& pattern, int first, int last,
-                            const BlenderWrite& opt = {})
-{
+void write_blender_sequence(const rrc_scene::Scene& scene, const std::string& pattern, int first, int last, const BlenderWrite& opt = {}) {
     for (int t = first; t <= last; ++t) {
         const rrc_scene::Frame fr = scene.render(t);
         rrc_exr::WriteOptions wo;
         if (opt.half_combined_odd && (t & 1))
-            for (const char* c : {"Combined.R", "Combined.G", "Combined.B", "Combined.A"})
-                wo.half_channels.push_back(kLayer + c);
+            for (const char* c : {"Combined.R", "Combined.G", "Combined.B", "Combined.A"}) wo.half_channels.push_back(kLayer + c);
         wo.multipart_by_layer = opt.multipart_even && !(t & 1);
         const std::string path = frame_path(pattern, t);
         fs::create_directories(fs::path(path).parent_path());
@@ -144,31 +132,26 @@ void write_blender_sequence(const rrc_scene::Scene& scene, const std::string& pa
     }
 }
 
-std::vector<float> interleave(const rrc_exr::ExrImage& img, const std::vector<std::string>& names)
-{
+std::vector<float> interleave(const rrc_exr::ExrImage& img, const std::vector<std::string>& names) {
     const std::size_t n = img.pixel_count(), k = names.size();
     std::vector<float> out(n * k);
     for (std::size_t c = 0; c < k; ++c) {
         const std::vector<float>& v = img.channels.at(names[c]);
-        for (std::size_t i = 0; i < n; ++i)
-            out[i * k + c] = v[i];
+        for (std::size_t i = 0; i < n; ++i) out[i * k + c] = v[i];
     }
     return out;
 }
 
-const std::vector<std::string> kCombined = {kLayer + "Combined.R", kLayer + "Combined.G", kLayer + "Combined.B",
-                                            kLayer + "Combined.A"};
+const std::vector<std::string> kCombined = {kLayer + "Combined.R", kLayer + "Combined.G", kLayer + "Combined.B", kLayer + "Combined.A"};
 
-} // namespace
+}  // namespace
 
 // ======================================================================
 // Options
 // ======================================================================
 
-TEST(OfflineOptions, BlenderPresetSetsWhatBlenderWrites)
-{
-    const char* argv[] = {"rrc-accumulate", "--preset", "blender", "--input", "f_%04d.exr", "--frames", "1-3",
-                          "--output", "o/%04d.exr"};
+TEST(OfflineOptions, BlenderPresetSetsWhatBlenderWrites) {
+    const char* argv[] = {"rrc-accumulate", "--preset", "blender", "--input", "f_%04d.exr", "--frames", "1-3", "--output", "o/%04d.exr"};
     const rrc_cli::ParseResult r = rrc_cli::parse_arguments(9, argv);
     ASSERT_TRUE(r.ok()) << r.error;
     EXPECT_EQ(r.options.preset, "blender");
@@ -177,11 +160,12 @@ TEST(OfflineOptions, BlenderPresetSetsWhatBlenderWrites)
     EXPECT_EQ(r.options.motion_units, rrc_cli::MotionUnits::Pixels);
     EXPECT_TRUE(r.options.motion_y_up);
     EXPECT_EQ(r.options.tau, rrc_cli::kBlenderPresetTau);
-    EXPECT_EQ(r.options.background_threshold, 0.0f); // the library's 1e10: Blender's sky
+    EXPECT_EQ(r.options.background_threshold, 0.0f);  // the library's 1e10: Blender's sky
 
     // Explicit options win over the preset.
-    const char* argv2[] = {"rrc-accumulate", "--tau", "0.05", "--preset", "blender", "--input", "f_%04d.exr",
-                           "--frames", "1-3", "--output", "o/%04d.exr", "--motion-y", "down", "--motion-units", "uv"};
+    const char* argv2[] = {"rrc-accumulate", "--tau",          "0.05", "--preset", "blender",    "--input",
+                           "f_%04d.exr",     "--frames",       "1-3",  "--output", "o/%04d.exr", "--motion-y",
+                           "down",           "--motion-units", "uv"};
     const rrc_cli::ParseResult r2 = rrc_cli::parse_arguments(15, argv2);
     ASSERT_TRUE(r2.ok()) << r2.error;
     EXPECT_FLOAT_EQ(r2.options.tau, 0.05f);
@@ -189,21 +173,36 @@ TEST(OfflineOptions, BlenderPresetSetsWhatBlenderWrites)
     EXPECT_EQ(r2.options.motion_units, rrc_cli::MotionUnits::Uv);
 }
 
-TEST(OfflineOptions, NewOptionsParseAndRefuseBadValues)
-{
+TEST(OfflineOptions, NewOptionsParseAndRefuseBadValues) {
     auto parse = [](std::vector<std::string> extra) {
-        std::vector<std::string> args = {"rrc-accumulate", "--input", "in/f_%04d.exr", "--output", "out/o_%04d.exr",
-                                         "--frames", "1-9"};
+        std::vector<std::string> args = {"rrc-accumulate", "--input", "in/f_%04d.exr", "--output", "out/o_%04d.exr", "--frames", "1-9"};
         args.insert(args.end(), extra.begin(), extra.end());
         std::vector<const char*> argv;
-        for (const std::string& s : args)
-            argv.push_back(s.c_str());
+        for (const std::string& s : args) argv.push_back(s.c_str());
         return rrc_cli::parse_arguments(int(argv.size()), argv.data());
     };
-    rrc_cli::ParseResult r =
-        parse({"--depth-channel", "L.Depth.Z", "--motion-channels", "L.V.X,L.V.Y", "--prevclip-channels", "a,b,c,d",
-               "--nocache-channel", "m.Y", "--cut", "3,5", "--cut", "7", "--coherence", "c/%d.png", "--reference",
-               "ref/%04d.exr", "--metrics", "m.csv", "--psnr-peak", "2", "--progress", "bar"});
+    rrc_cli::ParseResult r = parse({"--depth-channel",
+                                    "L.Depth.Z",
+                                    "--motion-channels",
+                                    "L.V.X,L.V.Y",
+                                    "--prevclip-channels",
+                                    "a,b,c,d",
+                                    "--nocache-channel",
+                                    "m.Y",
+                                    "--cut",
+                                    "3,5",
+                                    "--cut",
+                                    "7",
+                                    "--coherence",
+                                    "c/%d.png",
+                                    "--reference",
+                                    "ref/%04d.exr",
+                                    "--metrics",
+                                    "m.csv",
+                                    "--psnr-peak",
+                                    "2",
+                                    "--progress",
+                                    "bar"});
     ASSERT_TRUE(r.ok()) << r.error;
     EXPECT_EQ(r.options.depth_channel, "L.Depth.Z");
     EXPECT_EQ(r.options.motion_channels, (std::vector<std::string>{"L.V.X", "L.V.Y"}));
@@ -246,9 +245,9 @@ TEST(OfflineOptions, NewOptionsParseAndRefuseBadValues)
         expect_contains(bad.error, b.fragment);
     }
     const std::string usage = rrc_cli::usage_text();
-    for (const char* opt : {"--preset", "--view-layer", "--depth-channel", "--motion-channels", "--prevclip-channels",
-                            "--nocache-channel", "--motion-units", "--motion-y", "--cut", "--coherence", "--reference",
-                            "--metrics", "--psnr-peak", "--progress", "Vector.X", "Depth.Z", "1e10"})
+    for (const char* opt :
+         {"--preset", "--view-layer", "--depth-channel", "--motion-channels", "--prevclip-channels", "--nocache-channel", "--motion-units",
+          "--motion-y", "--cut", "--coherence", "--reference", "--metrics", "--psnr-peak", "--progress", "Vector.X", "Depth.Z", "1e10"})
         expect_contains(usage, opt);
     EXPECT_EQ(usage.find("@TAU@"), std::string::npos);
 }
@@ -260,27 +259,24 @@ TEST(OfflineOptions, NewOptionsParseAndRefuseBadValues)
 // The tool reads the Blender-convention files; the reference gets the
 // analytic scene's SPEC-convention data (LINEAR depth, uv_prev - uv in uv
 // units, y down) and the kernel's own previous output, one frame at a time.
-TEST(BlenderConvention, PresetMatchesTheReference)
-{
+TEST(BlenderConvention, PresetMatchesTheReference) {
     TempDir dir;
     const int W = 64, H = 40, first = 1, last = 6;
     const rrc_scene::Scene scene(blender_scene_config(W, H));
     write_blender_sequence(scene, dir / "in/frame_%04d.exr", first, last);
-    ASSERT_EQ(rrc_exr::read_exr_info(dir / "in/frame_0002.exr").parts, 5); // multi-part frames are read too
+    ASSERT_EQ(rrc_exr::read_exr_info(dir / "in/frame_0002.exr").parts, 5);  // multi-part frames are read too
     EXPECT_EQ(rrc_exr::read_exr_info(dir / "in/frame_0001.exr").channels[0].type, rrc_exr::PixelType::Half);
 
     std::string out, err;
     ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/frame_%04d.exr", "--frames", "1-6", "--output",
-                        dir / "out/acc_%04d.exr", "--signal",
-                        "ViewLayer.Combined:lambda=0.8,blend=age_aware,history=fp32", "--signal",
+                        dir / "out/acc_%04d.exr", "--signal", "ViewLayer.Combined:lambda=0.8,blend=age_aware,history=fp32", "--signal",
                         "ViewLayer.Shadow:lambda=0.6", "--quiet"},
                        &out, &err),
               rrc_cli::kExitOk)
         << err;
 
-    std::vector<rrc_channel_desc> channels = {
-        rrc_test::channel("ViewLayer.Combined", 4, 0.8f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE),
-        rrc_test::channel("ViewLayer.Shadow", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED)};
+    std::vector<rrc_channel_desc> channels = {rrc_test::channel("ViewLayer.Combined", 4, 0.8f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE),
+                                              rrc_test::channel("ViewLayer.Shadow", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED)};
     rrc_context_desc ctx = rrc_test::context_desc(W, H, channels);
     ctx.depth_mode = RRC_DEPTH_MODE_LINEAR;
     ctx.reprojection = RRC_REPROJECTION_MOTION;
@@ -293,9 +289,8 @@ TEST(BlenderConvention, PresetMatchesTheReference)
         const rrc_exr::ExrImage in = rrc_exr::read_exr(frame_path(dir / "in/frame_%04d.exr", t));
         const rrc_exr::ExrImage res = rrc_exr::read_exr(frame_path(dir / "out/acc_%04d.exr", t));
         ASSERT_EQ(rrc_exr::channel_names(res),
-                  (std::vector<std::string>{"ViewLayer.Combined.A", "ViewLayer.Combined.B", "ViewLayer.Combined.G",
-                                            "ViewLayer.Combined.R", "ViewLayer.Combined.age", "ViewLayer.Shadow.X",
-                                            "ViewLayer.Shadow.age", "rrc.mask"}));
+                  (std::vector<std::string>{"ViewLayer.Combined.A", "ViewLayer.Combined.B", "ViewLayer.Combined.G", "ViewLayer.Combined.R",
+                                            "ViewLayer.Combined.age", "ViewLayer.Shadow.X", "ViewLayer.Shadow.age", "rrc.mask"}));
         // SPEC-convention inputs: the scene's own depth and motion, the file's samples (half-rounded in odd frames).
         const std::size_t n = std::size_t(W) * H;
         std::vector<float> motion(2 * n);
@@ -305,8 +300,7 @@ TEST(BlenderConvention, PresetMatchesTheReference)
         }
         const std::vector<float> combined = interleave(in, kCombined);
         const std::vector<float>& shadow = in.channels.at(kLayer + "Shadow.X");
-        std::vector<rrc_channel_input> inputs = {rrc_test::channel_input(combined.data()),
-                                                 rrc_test::channel_input(shadow.data())};
+        std::vector<rrc_channel_input> inputs = {rrc_test::channel_input(combined.data()), rrc_test::channel_input(shadow.data())};
         rrc_frame_desc fd = rrc_test::frame_desc();
         fd.frame_index = uint64_t(t);
         fd.depth = fr.depth.data();
@@ -318,34 +312,29 @@ TEST(BlenderConvention, PresetMatchesTheReference)
         const std::vector<float> k_comb = interleave(res, kCombined);
         const std::vector<float>& k_shadow = res.channels.at(kLayer + "Shadow.X");
         const std::vector<float>& k_mask = res.channels.at("rrc.mask");
-        const std::vector<float>* k_age[2] = {&res.channels.at(kLayer + "Combined.age"),
-                                              &res.channels.at(kLayer + "Shadow.age")};
+        const std::vector<float>* k_age[2] = {&res.channels.at(kLayer + "Combined.age"), &res.channels.at(kLayer + "Shadow.age")};
         const std::vector<float>* k_vals[2] = {&k_comb, &k_shadow};
         for (std::size_t i = 0; i < n; ++i) {
             ++pixels;
             const int km = int(k_mask[i]);
             if (r.near_threshold[i]) {
                 ++near;
-                if (km != r.mask[i])
-                    continue; // a legitimate flip at the tolerance
+                if (km != r.mask[i]) continue;  // a legitimate flip at the tolerance
             }
-            ASSERT_EQ(km, int(r.mask[i])) << "frame " << t << " pixel (" << i % W << "," << i / W << ") diff "
-                                          << r.diff[i] << " eps " << r.eps[i];
-            if (r.near_nearest_edge[i])
-                continue;
+            ASSERT_EQ(km, int(r.mask[i])) << "frame " << t << " pixel (" << i % W << "," << i / W << ") diff " << r.diff[i] << " eps "
+                                          << r.eps[i];
+            if (r.near_nearest_edge[i]) continue;
             ++compared;
             for (int c = 0; c < 2; ++c) {
                 const unsigned m = channels[c].components;
                 EXPECT_EQ((*k_age[c])[i], float(r.channels[c].age[i])) << "frame " << t << " pixel " << i;
                 for (unsigned q = 0; q < m; ++q) {
                     const double kv = (*k_vals[c])[m * i + q], rv = r.channels[c].out[m * i + q];
-                    const double spread =
-                        prev.valid ? rrc_test::history_spread(prev.channels[c].history, m, q, W, H, r.uv_prev_x[i],
-                                                              r.uv_prev_y[i], fd.prev_jitter)
-                                   : 0.0;
+                    const double spread = prev.valid ? rrc_test::history_spread(prev.channels[c].history, m, q, W, H, r.uv_prev_x[i],
+                                                                                r.uv_prev_y[i], fd.prev_jitter)
+                                                     : 0.0;
                     const double tol =
-                        rrc_test::arithmetic_tolerance(rv, r.channels[c].exact[m * i + q],
-                                                       channels[c].precision == RRC_HISTORY_FP16) +
+                        rrc_test::arithmetic_tolerance(rv, r.channels[c].exact[m * i + q], channels[c].precision == RRC_HISTORY_FP16) +
                         rrc_test::position_tolerance(spread, W, H);
                     ASSERT_LE(std::fabs(kv - rv), tol) << "frame " << t << " pixel " << i << " channel " << c;
                 }
@@ -361,35 +350,51 @@ TEST(BlenderConvention, PresetMatchesTheReference)
         prev.channels.resize(2);
         prev.channels[0].history = k_comb;
         prev.channels[1].history = k_shadow;
-        for (int c = 0; c < 2; ++c)
-            prev.channels[c].age.assign(k_age[c]->begin(), k_age[c]->end());
+        for (int c = 0; c < 2; ++c) prev.channels[c].age.assign(k_age[c]->begin(), k_age[c]->end());
     }
-    std::printf("Blender convention: compared %lld of %lld pixel-frames, %lld near the tolerance, hit ratio %.1f%%\n",
-                (long long)compared, (long long)pixels, (long long)near, 100.0 * double(hits) / double(tested));
+    std::printf("Blender convention: compared %lld of %lld pixel-frames, %lld near the tolerance, hit ratio %.1f%%\n", (long long)compared,
+                (long long)pixels, (long long)near, 100.0 * double(hits) / double(tested));
     EXPECT_GT(compared, pixels * 9 / 10);
     EXPECT_GT(hits, tested * 7 / 10) << "the mapping should make most pixels hit";
 }
 
 // The same files read through the channel options alone give the same bits:
 // any channel can be mapped by name.
-TEST(BlenderConvention, ChannelOptionsReproduceThePreset)
-{
+TEST(BlenderConvention, ChannelOptionsReproduceThePreset) {
     TempDir dir;
     rrc_scene::SceneConfig sc = blender_scene_config(48, 32);
-    sc.camera_speed = 3.0; // enough vertical motion for the y sign to matter
+    sc.camera_speed = 3.0;  // enough vertical motion for the y sign to matter
     const rrc_scene::Scene scene(sc);
     write_blender_sequence(scene, dir / "in/f_%d.exr", 1, 3);
     const std::string tau = std::to_string(rrc_cli::kBlenderPresetTau);
     std::string err;
-    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output",
-                        dir / "a/%d.exr", "--quiet"},
+    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output", dir / "a/%d.exr", "--quiet"},
                        nullptr, &err),
               0)
         << err;
-    ASSERT_EQ(run_tool({"--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output", dir / "b/%d.exr",
-                        "--depth-mode", "linear", "--reproject", "motion", "--depth-channel", "ViewLayer.Depth.Z",
-                        "--motion-channels", "ViewLayer.Vector.X,ViewLayer.Vector.Y", "--motion-units", "pixels",
-                        "--motion-y", "up", "--tau", tau, "--signal", "ViewLayer.Combined", "--quiet"},
+    ASSERT_EQ(run_tool({"--input",
+                        dir / "in/f_%d.exr",
+                        "--frames",
+                        "1-3",
+                        "--output",
+                        dir / "b/%d.exr",
+                        "--depth-mode",
+                        "linear",
+                        "--reproject",
+                        "motion",
+                        "--depth-channel",
+                        "ViewLayer.Depth.Z",
+                        "--motion-channels",
+                        "ViewLayer.Vector.X,ViewLayer.Vector.Y",
+                        "--motion-units",
+                        "pixels",
+                        "--motion-y",
+                        "up",
+                        "--tau",
+                        tau,
+                        "--signal",
+                        "ViewLayer.Combined",
+                        "--quiet"},
                        nullptr, &err),
               0)
         << err;
@@ -397,18 +402,18 @@ TEST(BlenderConvention, ChannelOptionsReproduceThePreset)
         const rrc_exr::ExrImage a = rrc_exr::read_exr(frame_path(dir / "a/%d.exr", f));
         const rrc_exr::ExrImage b = rrc_exr::read_exr(frame_path(dir / "b/%d.exr", f));
         EXPECT_EQ(a.channels, b.channels) << "frame " << f;
-        EXPECT_EQ(rrc_exr::channel_names(a).size(), 6u); // the preset accumulates Combined alone
+        EXPECT_EQ(rrc_exr::channel_names(a).size(), 6u);  // the preset accumulates Combined alone
     }
     // The vectors read the wrong way round (current minus previous) lose hits,
     // and the y sign reaches the result (PresetMatchesTheReference checks the
     // mapping pixel by pixel; at this size most wrong positions still pass
     // the relative depth test, so hit counts alone discriminate little).
-    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output",
-                        dir / "c/%d.exr", "--motion-scale", "-1,-1", "--quiet"},
+    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output", dir / "c/%d.exr",
+                        "--motion-scale", "-1,-1", "--quiet"},
                        nullptr, &err),
               0);
-    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output",
-                        dir / "d/%d.exr", "--motion-y", "down", "--quiet"},
+    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output", dir / "d/%d.exr",
+                        "--motion-y", "down", "--quiet"},
                        nullptr, &err),
               0);
     auto hits = [&](const std::string& pattern) {
@@ -420,34 +425,31 @@ TEST(BlenderConvention, ChannelOptionsReproduceThePreset)
     EXPECT_NE(rrc_exr::read_exr(dir / "a/3.exr").channels, rrc_exr::read_exr(dir / "d/3.exr").channels);
 }
 
-TEST(BlenderConvention, ViewLayerDiscovery)
-{
+TEST(BlenderConvention, ViewLayerDiscovery) {
     TempDir dir;
     const rrc_scene::Scene scene(blender_scene_config(24, 16));
     const rrc_scene::Frame fr = scene.render(1);
     rrc_exr::ExrImage img = blender_frame(scene, fr, {});
     // A second view layer with its own passes.
     std::map<std::string, std::vector<float>> second;
-    for (const auto& kv : img.channels)
-        second["Background." + kv.first.substr(kLayer.size())] = kv.second;
+    for (const auto& kv : img.channels) second["Background." + kv.first.substr(kLayer.size())] = kv.second;
     img.channels.insert(second.begin(), second.end());
     rrc_exr::write_exr(dir / "two_1.exr", img);
     std::string err;
-    EXPECT_EQ(run_tool({"--preset", "blender", "--input", dir / "two_%d.exr", "--frames", "1", "--output",
-                        dir / "o/%d.exr"},
-                      nullptr, &err),
-              rrc_cli::kExitError);
+    EXPECT_EQ(
+        run_tool({"--preset", "blender", "--input", dir / "two_%d.exr", "--frames", "1", "--output", dir / "o/%d.exr"}, nullptr, &err),
+        rrc_cli::kExitError);
     expect_contains(err, "several view layers");
     expect_contains(err, "'Background'");
     expect_contains(err, "--view-layer");
-    EXPECT_EQ(run_tool({"--preset", "blender", "--view-layer", "Background", "--input", dir / "two_%d.exr", "--frames",
-                        "1", "--output", dir / "o/%d.exr", "--quiet"},
+    EXPECT_EQ(run_tool({"--preset", "blender", "--view-layer", "Background", "--input", dir / "two_%d.exr", "--frames", "1", "--output",
+                        dir / "o/%d.exr", "--quiet"},
                        nullptr, &err),
               rrc_cli::kExitOk)
         << err;
     EXPECT_TRUE(rrc_exr::read_exr(dir / "o/1.exr").has("Background.Combined.R"));
-    EXPECT_EQ(run_tool({"--preset", "blender", "--view-layer", "Nope", "--input", dir / "two_%d.exr", "--frames", "1",
-                        "--output", dir / "p/%d.exr"},
+    EXPECT_EQ(run_tool({"--preset", "blender", "--view-layer", "Nope", "--input", dir / "two_%d.exr", "--frames", "1", "--output",
+                        dir / "p/%d.exr"},
                        nullptr, &err),
               rrc_cli::kExitError);
     expect_contains(err, "'Nope.Depth.Z'");
@@ -456,9 +458,7 @@ TEST(BlenderConvention, ViewLayerDiscovery)
     rrc_exr::ExrImage nodepth = blender_frame(scene, fr, {});
     nodepth.channels.erase(kLayer + "Depth.Z");
     rrc_exr::write_exr(dir / "nz_1.exr", nodepth);
-    EXPECT_EQ(run_tool({"--preset", "blender", "--input", dir / "nz_%d.exr", "--frames", "1", "--output",
-                        dir / "q/%d.exr"},
-                       nullptr, &err),
+    EXPECT_EQ(run_tool({"--preset", "blender", "--input", dir / "nz_%d.exr", "--frames", "1", "--output", dir / "q/%d.exr"}, nullptr, &err),
               rrc_cli::kExitError);
     expect_contains(err, "Depth.Z");
     expect_contains(err, "the file has: ViewLayer.Combined.A");
@@ -471,16 +471,13 @@ TEST(BlenderConvention, ViewLayerDiscovery)
 
 class BadInput : public ::testing::Test {
 protected:
-    void SetUp() override
-    {
+    void SetUp() override {
         scene_ = std::make_unique<rrc_scene::Scene>(blender_scene_config(32, 20));
         in_ = dir_ / "in/frame_%04d.exr";
         out_ = dir_ / "out/acc_%04d.exr";
     }
-    int run(std::vector<std::string> extra = {}, const std::string& frames = "1-5")
-    {
-        std::vector<std::string> args = {"--preset", "blender", "--input", in_, "--frames", frames, "--output", out_,
-                                         "--quiet"};
+    int run(std::vector<std::string> extra = {}, const std::string& frames = "1-5") {
+        std::vector<std::string> args = {"--preset", "blender", "--input", in_, "--frames", frames, "--output", out_, "--quiet"};
         args.insert(args.end(), extra.begin(), extra.end());
         return run_tool(args, &out_text_, &err_);
     }
@@ -489,8 +486,7 @@ protected:
     std::string in_, out_, out_text_, err_;
 };
 
-TEST_F(BadInput, MissingChannelListsTheChannelsTheFileHas)
-{
+TEST_F(BadInput, MissingChannelListsTheChannelsTheFileHas) {
     BlenderWrite w;
     w.drop = kLayer + "Vector.Y";
     w.drop_frame = 3;
@@ -507,8 +503,7 @@ TEST_F(BadInput, MissingChannelListsTheChannelsTheFileHas)
     expect_contains(err_, "the file has: ");
 }
 
-TEST_F(BadInput, FramesOfDifferentSizes)
-{
+TEST_F(BadInput, FramesOfDifferentSizes) {
     write_blender_sequence(*scene_, in_, 1, 5);
     const rrc_scene::Scene small(blender_scene_config(32, 19));
     write_blender_sequence(small, in_, 4, 4);
@@ -517,8 +512,7 @@ TEST_F(BadInput, FramesOfDifferentSizes)
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-TEST_F(BadInput, MissingFrameInTheRange)
-{
+TEST_F(BadInput, MissingFrameInTheRange) {
     write_blender_sequence(*scene_, in_, 1, 5);
     fs::remove(frame_path(in_, 3));
     EXPECT_EQ(run(), rrc_cli::kExitError);
@@ -526,8 +520,7 @@ TEST_F(BadInput, MissingFrameInTheRange)
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-TEST_F(BadInput, TruncatedFileIsFoundBeforeAnyOutput)
-{
+TEST_F(BadInput, TruncatedFileIsFoundBeforeAnyOutput) {
     write_blender_sequence(*scene_, in_, 1, 5);
     for (double keep : {0.9, 0.5}) {
         write_blender_sequence(*scene_, in_, 4, 4);
@@ -540,11 +533,10 @@ TEST_F(BadInput, TruncatedFileIsFoundBeforeAnyOutput)
     }
 }
 
-TEST_F(BadInput, CorruptHeader)
-{
+TEST_F(BadInput, CorruptHeader) {
     write_blender_sequence(*scene_, in_, 1, 5);
     std::vector<char> bytes = file_bytes(frame_path(in_, 2));
-    for (std::size_t i = 8; i < 60; ++i) // the channel list, just after the magic number and version
+    for (std::size_t i = 8; i < 60; ++i)  // the channel list, just after the magic number and version
         bytes[i] = char(0xA5 ^ i);
     write_bytes(frame_path(in_, 2), bytes);
     EXPECT_EQ(run(), rrc_cli::kExitError);
@@ -559,27 +551,23 @@ TEST_F(BadInput, CorruptHeader)
 // Corrupt compressed pixels pass every structural check and are found only
 // when the frame is decoded: the frames before it stay, complete, and no
 // partial or temporary file is left.
-TEST_F(BadInput, CorruptPixelDataStopsCleanly)
-{
+TEST_F(BadInput, CorruptPixelDataStopsCleanly) {
     BlenderWrite w;
     w.multipart_even = false;
     write_blender_sequence(*scene_, in_, 1, 5, w);
     const std::string bad = frame_path(in_, 3);
     std::vector<char> bytes = file_bytes(bad);
-    for (std::size_t i = bytes.size() * 6 / 10; i < bytes.size() * 6 / 10 + 48; ++i)
-        bytes[i] = char(~bytes[i]);
+    for (std::size_t i = bytes.size() * 6 / 10; i < bytes.size() * 6 / 10 + 48; ++i) bytes[i] = char(~bytes[i]);
     write_bytes(bad, bytes);
     ASSERT_NO_THROW(rrc_exr::verify_exr_chunks(bad)) << "the corruption should sit inside a block's data";
     ASSERT_THROW(rrc_exr::read_exr(bad), rrc_exr::ExrError);
     EXPECT_EQ(run({"--coherence", dir_ / "out/coh_%04d.png"}), rrc_cli::kExitError);
     expect_contains(err_, "frame_0003.exr");
     expect_contains(err_, "frames 1-2 were written completely before the error; no partial file was left");
-    EXPECT_EQ(dir_entries(dir_.path() / "out"),
-              (std::vector<std::string>{"acc_0001.exr", "acc_0002.exr", "coh_0001.png", "coh_0002.png"}));
+    EXPECT_EQ(dir_entries(dir_.path() / "out"), (std::vector<std::string>{"acc_0001.exr", "acc_0002.exr", "coh_0001.png", "coh_0002.png"}));
 }
 
-TEST_F(BadInput, OutputsNeverOverwriteInputs)
-{
+TEST_F(BadInput, OutputsNeverOverwriteInputs) {
     write_blender_sequence(*scene_, in_, 1, 5);
     write_blender_sequence(*scene_, dir_ / "ref/r_%d.exr", 1, 5, BlenderWrite{false, false, "", -1, true});
     const std::vector<char> before = file_bytes(frame_path(in_, 2));
@@ -588,12 +576,11 @@ TEST_F(BadInput, OutputsNeverOverwriteInputs)
         const char* fragment;
     };
     const std::string same_input = (dir_.path() / "in" / "." / "frame_%04d.exr").string();
-    for (const Case& c : std::vector<Case>{
-             {{"--output", same_input}, "never overwritten"},
-             {{"--coherence", dir_ / "in/frame_%04d.exr"}, "never overwritten"},
-             {{"--reference", dir_ / "ref/r_%d.exr", "--output", dir_ / "ref/r_%d.exr"}, "never overwritten"},
-             {{"--reference", dir_ / "ref/r_%d.exr", "--metrics", frame_path(in_, 5)}, "never overwritten"},
-             {{"--coherence", dir_ / "out/./acc_%04d.exr"}, "choose distinct output names"}}) {
+    for (const Case& c : std::vector<Case>{{{"--output", same_input}, "never overwritten"},
+                                           {{"--coherence", dir_ / "in/frame_%04d.exr"}, "never overwritten"},
+                                           {{"--reference", dir_ / "ref/r_%d.exr", "--output", dir_ / "ref/r_%d.exr"}, "never overwritten"},
+                                           {{"--reference", dir_ / "ref/r_%d.exr", "--metrics", frame_path(in_, 5)}, "never overwritten"},
+                                           {{"--coherence", dir_ / "out/./acc_%04d.exr"}, "choose distinct output names"}}) {
         std::vector<std::string> args = {"--preset", "blender", "--input", in_, "--frames", "1-5", "--quiet"};
         if (std::find(c.args.begin(), c.args.end(), "--output") == c.args.end()) {
             args.push_back("--output");
@@ -607,14 +594,12 @@ TEST_F(BadInput, OutputsNeverOverwriteInputs)
     EXPECT_EQ(file_bytes(frame_path(in_, 2)), before);
 }
 
-TEST_F(BadInput, ReferenceFramesAreCheckedUpFront)
-{
+TEST_F(BadInput, ReferenceFramesAreCheckedUpFront) {
     write_blender_sequence(*scene_, in_, 1, 5);
     write_blender_sequence(*scene_, dir_ / "ref/r_%d.exr", 1, 4, BlenderWrite{false, false, "", -1, true});
     EXPECT_EQ(run({"--reference", dir_ / "ref/r_%d.exr"}), rrc_cli::kExitError);
     expect_contains(err_, "r_5.exr: cannot open: no such file");
-    write_blender_sequence(*scene_, dir_ / "ref/r_%d.exr", 5, 5,
-                           BlenderWrite{false, false, kLayer + "Combined.G", 5, true});
+    write_blender_sequence(*scene_, dir_ / "ref/r_%d.exr", 5, 5, BlenderWrite{false, false, kLayer + "Combined.G", 5, true});
     EXPECT_EQ(run({"--reference", dir_ / "ref/r_%d.exr"}), rrc_cli::kExitError);
     expect_contains(err_, "r_5.exr: missing channel 'ViewLayer.Combined.G'");
     EXPECT_FALSE(fs::exists(dir_ / "out"));
@@ -624,8 +609,7 @@ TEST_F(BadInput, ReferenceFramesAreCheckedUpFront)
 // Metrics, coherence maps, progress, cuts
 // ======================================================================
 
-TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
-{
+TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps) {
     TempDir dir;
     const int W = 48, H = 32;
     // A still camera and scene: the gain is the noise averaging alone (under
@@ -637,9 +621,9 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
     write_blender_sequence(scene, dir / "in/f_%d.exr", 1, 6);
     write_blender_sequence(scene, dir / "ref/r_%d.exr", 1, 6, BlenderWrite{false, false, "", -1, true});
     std::string out, err;
-    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-6", "--output",
-                        dir / "out/acc_%d.exr", "--signal", "ViewLayer.Combined:lambda=0.8,blend=age_aware,history=fp32",
-                        "--reference", dir / "ref/r_%d.exr", "--coherence", dir / "png/coh_%d.png", "--quiet"},
+    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-6", "--output", dir / "out/acc_%d.exr",
+                        "--signal", "ViewLayer.Combined:lambda=0.8,blend=age_aware,history=fp32", "--reference", dir / "ref/r_%d.exr",
+                        "--coherence", dir / "png/coh_%d.png", "--quiet"},
                        &out, &err),
               0)
         << err;
@@ -658,8 +642,7 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
         ASSERT_TRUE(std::getline(csv, line)) << "frame " << f;
         std::vector<std::string> cells;
         std::stringstream ss(line);
-        for (std::string cell; std::getline(ss, cell, ',');)
-            cells.push_back(cell);
+        for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
         ASSERT_EQ(cells.size(), 8u) << line;
         EXPECT_EQ(cells[0], std::to_string(f));
         EXPECT_EQ(cells[1], "ViewLayer.Combined");
@@ -667,7 +650,7 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
         const rrc_exr::ExrImage acc = rrc_exr::read_exr(frame_path(dir / "out/acc_%d.exr", f));
         const rrc_exr::ExrImage ref = rrc_exr::read_exr(frame_path(dir / "ref/r_%d.exr", f));
         double in_sse = 0, out_sse = 0;
-        for (const char* c : {"Combined.R", "Combined.G", "Combined.B"}) // A is left out
+        for (const char* c : {"Combined.R", "Combined.G", "Combined.B"})  // A is left out
             for (std::size_t i = 0; i < n; ++i) {
                 const double r = ref.channels.at(kLayer + c)[i];
                 in_sse += std::pow(in.channels.at(kLayer + c)[i] - r, 2);
@@ -680,7 +663,7 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
         EXPECT_NEAR(std::stod(cells[6]), out_rmse, 1e-5 * out_rmse);
         if (f == 1)
             EXPECT_EQ(cells[4], cells[6]) << "the first frame is the input";
-        else // the mean of f samples: the error falls as 1/sqrt(f)
+        else  // the mean of f samples: the error falls as 1/sqrt(f)
             EXPECT_LT(out_rmse, 1.1 * in_rmse / std::sqrt(double(f))) << "frame " << f;
 
         // The coherence map shows the mask.
@@ -700,21 +683,19 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps)
                 EXPECT_TRUE(p[0] == 255 && p[1] == 0 && p[2] == 0) << i;
             greens += p[1] == 255;
         }
-        if (f > 1)
-            EXPECT_GT(greens, int(n / 2));
+        if (f > 1) EXPECT_GT(greens, int(n / 2));
     }
     EXPECT_FALSE(std::getline(csv, line));
-    EXPECT_EQ(dir_entries(dir.path() / "out").size(), 7u); // 6 frames + the CSV, no temporary file
+    EXPECT_EQ(dir_entries(dir.path() / "out").size(), 7u);  // 6 frames + the CSV, no temporary file
 }
 
-TEST(OfflineOutputs, ProgressBarLinesAndQuiet)
-{
+TEST(OfflineOutputs, ProgressBarLinesAndQuiet) {
     TempDir dir;
     const rrc_scene::Scene scene(blender_scene_config(24, 16));
     write_blender_sequence(scene, dir / "in/f_%d.exr", 1, 3);
     auto run_with = [&](std::vector<std::string> extra, std::string& out) {
-        std::vector<std::string> args = {"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3",
-                                         "--output", dir / "out/%d.exr"};
+        std::vector<std::string> args = {"--preset", "blender", "--input",  dir / "in/f_%d.exr",
+                                         "--frames", "1-3",     "--output", dir / "out/%d.exr"};
         args.insert(args.end(), extra.begin(), extra.end());
         std::string err;
         EXPECT_EQ(run_tool(args, &out, &err), 0) << err;
@@ -729,7 +710,7 @@ TEST(OfflineOutputs, ProgressBarLinesAndQuiet)
     EXPECT_EQ(lines.find('\r'), std::string::npos);
     expect_contains(lines, "frame 2: hit ");
     expect_contains(lines, "[2/3, ETA ");
-    run_with({}, automatic); // not a terminal: lines
+    run_with({}, automatic);  // not a terminal: lines
     EXPECT_EQ(automatic.find('\r'), std::string::npos);
     expect_contains(automatic, "[3/3, ETA 0:00]");
     run_with({"--progress", "bar", "--quiet"}, quiet);
@@ -738,16 +719,15 @@ TEST(OfflineOutputs, ProgressBarLinesAndQuiet)
     expect_contains(quiet, "rrc-accumulate: 3 frames");
 }
 
-TEST(OfflineOutputs, CutsResetTheHistory)
-{
+TEST(OfflineOutputs, CutsResetTheHistory) {
     TempDir dir;
     const rrc_scene::Scene scene(blender_scene_config(32, 20));
     write_blender_sequence(scene, dir / "in/f_%d.exr", 1, 5);
     std::string out, err;
-    ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-5", "--output",
-                        dir / "out/%d.exr", "--cut", "4"},
-                       &out, &err),
-              0)
+    ASSERT_EQ(
+        run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-5", "--output", dir / "out/%d.exr", "--cut", "4"},
+                 &out, &err),
+        0)
         << err;
     expect_contains(out, "frame 4: hit 0.0% (cut)");
     auto hits = [&](int f) {
@@ -773,8 +753,7 @@ TEST(OfflineOutputs, CutsResetTheHistory)
 // sweeps tau over the analytic scene (camera orbit, moving sphere) at two
 // camera speeds and checks the preset's value keeps nearly every hit while
 // the false-hit rate stays at the level of the smallest tolerances.
-TEST(BlenderPresetTau, HitAndFalseHitRates)
-{
+TEST(BlenderPresetTau, HitAndFalseHitRates) {
     struct Rates {
         double tau, speed;
         int64_t tested = 0, hits = 0, checked = 0, false_hits = 0, strict = 0;
@@ -791,11 +770,9 @@ TEST(BlenderPresetTau, HitAndFalseHitRates)
         sc.object_speed = speed;
         const rrc_scene::Scene scene(sc);
         std::vector<rrc_scene::Frame> rendered;
-        for (int t = 0; t < frames; ++t)
-            rendered.push_back(scene.render(t));
+        for (int t = 0; t < frames; ++t) rendered.push_back(scene.render(t));
         for (double tau : taus) {
-            if (std::any_of(table.begin(), table.end(), [&](const Rates& r) { return r.tau == tau && r.speed == speed; }))
-                continue;
+            if (std::any_of(table.begin(), table.end(), [&](const Rates& r) { return r.tau == tau && r.speed == speed; })) continue;
             std::vector<rrc_channel_desc> ch = {rrc_test::channel("c", 1, 0.6f, RRC_HISTORY_FP16)};
             rrc_context_desc d = rrc_test::context_desc(W, H, ch);
             d.depth_mode = RRC_DEPTH_MODE_LINEAR;
@@ -820,8 +797,7 @@ TEST(BlenderPresetTau, HitAndFalseHitRates)
                 fd.channel_count = 1;
                 fd.channels = &in;
                 const rrc_test::FrameResult k = ctx.run(fd);
-                if (t == 0)
-                    continue;
+                if (t == 0) continue;
                 r.tested += int64_t(k.stats.hits + k.stats.misses);
                 r.hits += int64_t(k.stats.hits);
                 const rrc_scene::FalseHitReport fh = rrc_scene::count_false_hits(scene, t, k.mask.data());
@@ -835,12 +811,11 @@ TEST(BlenderPresetTau, HitAndFalseHitRates)
     std::printf("| camera speed | tau | hit ratio | false hits | strict false hits |\n|---|---|---|---|---|\n");
     for (const Rates& r : table)
         std::printf("| %.0fx | %g%s | %.2f%% | %.3f%% | %.3f%% |\n", r.speed, r.tau,
-                    r.tau == double(rrc_cli::kBlenderPresetTau) ? " (preset)" : "", 100.0 * r.hit_ratio(),
-                    100.0 * r.false_ratio(), 100.0 * r.strict_ratio());
+                    r.tau == double(rrc_cli::kBlenderPresetTau) ? " (preset)" : "", 100.0 * r.hit_ratio(), 100.0 * r.false_ratio(),
+                    100.0 * r.strict_ratio());
     for (double speed : {1.0, 3.0}) {
         auto at = [&](double tau) {
-            return *std::find_if(table.begin(), table.end(),
-                                 [&](const Rates& r) { return r.tau == tau && r.speed == speed; });
+            return *std::find_if(table.begin(), table.end(), [&](const Rates& r) { return r.tau == tau && r.speed == speed; });
         };
         const Rates preset = at(rrc_cli::kBlenderPresetTau), loosest = at(0.08), tightest = at(0.0025);
         // Nearly every hit the loosest tolerance finds...
@@ -858,8 +833,7 @@ TEST(BlenderPresetTau, HitAndFalseHitRates)
 // blender/render_check_scene.py; Blender itself is not needed here)
 // ======================================================================
 
-TEST(BlenderRender, RealFramesFollowTheDocumentedConvention)
-{
+TEST(BlenderRender, RealFramesFollowTheDocumentedConvention) {
     const char* data = std::getenv("RRC_TEST_DATA");
     ASSERT_NE(data, nullptr) << "RRC_TEST_DATA is set by tests/CMakeLists.txt";
     const std::string in = std::string(data) + "/offline/blender_cycles_%04d.exr";
@@ -870,9 +844,7 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention)
     ASSERT_EQ(info.width, 64);
     ASSERT_EQ(info.height, 48);
     for (const rrc_exr::ExrChannelInfo& c : info.channels)
-        EXPECT_EQ(c.type, c.name.find(".Combined.") != std::string::npos ? rrc_exr::PixelType::Half
-                                                                          : rrc_exr::PixelType::Float)
-            << c.name;
+        EXPECT_EQ(c.type, c.name.find(".Combined.") != std::string::npos ? rrc_exr::PixelType::Half : rrc_exr::PixelType::Float) << c.name;
     for (int f = 1; f <= 3; ++f) {
         const rrc_exr::ExrImage img = rrc_exr::read_exr(frame_path(in, f));
         const std::vector<float>& z = img.channels.at(kLayer + "Depth.Z");
@@ -889,8 +861,7 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention)
     // down, or as current minus previous, lose nearly half of them.
     TempDir dir;
     auto hit_ratio = [&](std::vector<std::string> extra, const std::string& out) {
-        std::vector<std::string> args = {"--preset", "blender", "--input", in, "--frames", "1-3", "--output", out,
-                                         "--quiet"};
+        std::vector<std::string> args = {"--preset", "blender", "--input", in, "--frames", "1-3", "--output", out, "--quiet"};
         args.insert(args.end(), extra.begin(), extra.end());
         std::string err;
         EXPECT_EQ(run_tool(args, nullptr, &err), 0) << err;
@@ -907,8 +878,8 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention)
     const double preset = hit_ratio({}, dir / "a/%d.exr");
     const double y_down = hit_ratio({"--motion-y", "down"}, dir / "b/%d.exr");
     const double reversed = hit_ratio({"--motion-scale", "-1,-1"}, dir / "c/%d.exr");
-    std::printf("real Blender frames 2-3: hit ratio %.1f%% (preset), %.1f%% (y down), %.1f%% (reversed)\n",
-                100 * preset, 100 * y_down, 100 * reversed);
+    std::printf("real Blender frames 2-3: hit ratio %.1f%% (preset), %.1f%% (y down), %.1f%% (reversed)\n", 100 * preset, 100 * y_down,
+                100 * reversed);
     EXPECT_GT(preset, 0.9);
     EXPECT_LT(y_down, 0.7);
     EXPECT_LT(reversed, 0.7);
@@ -922,14 +893,12 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention)
         for (int j = 0; j < 48; ++j)
             for (int i = 0; i < 64; ++i) {
                 const std::size_t k = std::size_t(j) * 64 + i;
-                if (!(int(mask[k]) & RRC_MASK_HIT))
-                    continue;
+                if (!(int(mask[k]) & RRC_MASK_HIT)) continue;
                 ++hits;
                 const double qx = i + 0.5 + cur.channels.at(kLayer + "Vector.X")[k];
                 const double qy = j + 0.5 - cur.channels.at(kLayer + "Vector.Y")[k];
                 const int x = std::clamp(int(std::floor(qx)), 0, 63), y = std::clamp(int(std::floor(qy)), 0, 47);
-                foreign += prev.channels.at(kLayer + "IndexOB.X")[std::size_t(y) * 64 + x] !=
-                           cur.channels.at(kLayer + "IndexOB.X")[k];
+                foreign += prev.channels.at(kLayer + "IndexOB.X")[std::size_t(y) * 64 + x] != cur.channels.at(kLayer + "IndexOB.X")[k];
             }
     }
     EXPECT_GT(hits, 4000);

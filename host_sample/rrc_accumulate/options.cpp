@@ -4,8 +4,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <sstream>
@@ -15,32 +15,24 @@ namespace rrc_cli {
 namespace {
 
 // Strict number parsing: the whole text, finite unless allow_inf.
-bool parse_float(const std::string& text, float& out, bool allow_inf = false)
-{
-    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
-        return false;
+bool parse_float(const std::string& text, float& out, bool allow_inf = false) {
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
     errno = 0;
     char* end = nullptr;
     double v = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + text.size() || std::isnan(v))
-        return false;
-    if (std::isinf(v) && !(allow_inf && v > 0 && errno == 0))
-        return false;
-    if (!std::isinf(v) && std::fabs(v) > 3.4028234663852886e38)
-        return false;
+    if (end != text.c_str() + text.size() || std::isnan(v)) return false;
+    if (std::isinf(v) && !(allow_inf && v > 0 && errno == 0)) return false;
+    if (!std::isinf(v) && std::fabs(v) > 3.4028234663852886e38) return false;
     out = static_cast<float>(v);
     return true;
 }
 
-bool parse_int(const std::string& text, int64_t& out)
-{
-    if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0])))
-        return false;
+bool parse_int(const std::string& text, int64_t& out) {
+    if (text.empty() || !std::isdigit(static_cast<unsigned char>(text[0]))) return false;
     errno = 0;
     char* end = nullptr;
     long long v = std::strtoll(text.c_str(), &end, 10);
-    if (errno == ERANGE || end != text.c_str() + text.size())
-        return false;
+    if (errno == ERANGE || end != text.c_str() + text.size()) return false;
     out = v;
     return true;
 }
@@ -48,59 +40,48 @@ bool parse_int(const std::string& text, int64_t& out)
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // "a,b,c" -> {"a","b","c"}; false if an item is empty.
-bool split_list(const std::string& text, std::vector<std::string>& out)
-{
+bool split_list(const std::string& text, std::vector<std::string>& out) {
     out.clear();
     std::size_t pos = 0;
     while (true) {
         std::size_t comma = text.find(',', pos);
         out.push_back(text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-        if (out.back().empty())
-            return false;
-        if (comma == std::string::npos)
-            return true;
+        if (out.back().empty()) return false;
+        if (comma == std::string::npos) return true;
         pos = comma + 1;
     }
 }
 
 // The layers that carry the per-pixel geometry or our own output.
-bool is_reserved_layer(const std::string& layer)
-{
-    return layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc";
-}
+bool is_reserved_layer(const std::string& layer) { return layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc"; }
 
-} // namespace
+}  // namespace
 
-std::string metrics_path(const Options& o)
-{
-    if (!o.metrics_file.empty())
-        return o.metrics_file;
+std::string metrics_path(const Options& o) {
+    if (!o.metrics_file.empty()) return o.metrics_file;
     const std::size_t slash = o.output_pattern.find_last_of('/');
     return slash == std::string::npos ? std::string("metrics.csv") : o.output_pattern.substr(0, slash + 1) + "metrics.csv";
 }
 
-const char* reproject_name(Reproject r)
-{
+const char* reproject_name(Reproject r) {
     switch (r) {
-    case Reproject::PrevClip: return "prev_clip";
-    case Reproject::Motion: return "motion";
-    case Reproject::Camera: return "camera";
+        case Reproject::PrevClip: return "prev_clip";
+        case Reproject::Motion: return "motion";
+        case Reproject::Camera: return "camera";
     }
     return "?";
 }
 
-const char* depth_mode_name(rrc_depth_mode m)
-{
+const char* depth_mode_name(rrc_depth_mode m) {
     switch (m) {
-    case RRC_DEPTH_MODE_STANDARD: return "standard";
-    case RRC_DEPTH_MODE_REVERSED: return "reversed";
-    case RRC_DEPTH_MODE_LINEAR: return "linear";
-    default: return "?";
+        case RRC_DEPTH_MODE_STANDARD: return "standard";
+        case RRC_DEPTH_MODE_REVERSED: return "reversed";
+        case RRC_DEPTH_MODE_LINEAR: return "linear";
+        default: return "?";
     }
 }
 
-bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error)
-{
+bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error) {
     SignalOptions s;
     const std::size_t colon = text.find(':');
     s.layer = text.substr(0, colon);
@@ -150,24 +131,32 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
                     return false;
                 }
             } else if (key == "blend") {
-                if (value == "fixed") s.blend = RRC_BLEND_FIXED;
-                else if (value == "age_aware") s.blend = RRC_BLEND_AGE_AWARE;
-                else if (value == "running_mean") s.blend = RRC_BLEND_RUNNING_MEAN;
+                if (value == "fixed")
+                    s.blend = RRC_BLEND_FIXED;
+                else if (value == "age_aware")
+                    s.blend = RRC_BLEND_AGE_AWARE;
+                else if (value == "running_mean")
+                    s.blend = RRC_BLEND_RUNNING_MEAN;
                 else {
                     error = where + "blend must be fixed, age_aware or running_mean, got " + quoted(value);
                     return false;
                 }
             } else if (key == "filter") {
-                if (value == "nearest") s.filter = RRC_HISTORY_FILTER_NEAREST;
-                else if (value == "bilinear") s.filter = RRC_HISTORY_FILTER_BILINEAR;
-                else if (value == "catmull_rom") s.filter = RRC_HISTORY_FILTER_CATMULL_ROM;
+                if (value == "nearest")
+                    s.filter = RRC_HISTORY_FILTER_NEAREST;
+                else if (value == "bilinear")
+                    s.filter = RRC_HISTORY_FILTER_BILINEAR;
+                else if (value == "catmull_rom")
+                    s.filter = RRC_HISTORY_FILTER_CATMULL_ROM;
                 else {
                     error = where + "filter must be nearest, bilinear or catmull_rom, got " + quoted(value);
                     return false;
                 }
             } else if (key == "history") {
-                if (value == "fp16") s.history = RRC_HISTORY_FP16;
-                else if (value == "fp32") s.history = RRC_HISTORY_FP32;
+                if (value == "fp16")
+                    s.history = RRC_HISTORY_FP16;
+                else if (value == "fp32")
+                    s.history = RRC_HISTORY_FP32;
                 else {
                     error = where + "history must be fp16 or fp32, got " + quoted(value);
                     return false;
@@ -175,8 +164,7 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
             } else if (key == "max_age") {
                 int64_t v = 0;
                 if (!parse_int(value, v) || v < 1 || v > static_cast<int64_t>(RRC_MAX_AGE_CAP)) {
-                    error = where + "max_age must be an integer in [1, " + std::to_string(RRC_MAX_AGE_CAP) +
-                            "], got " + quoted(value);
+                    error = where + "max_age must be an integer in [1, " + std::to_string(RRC_MAX_AGE_CAP) + "], got " + quoted(value);
                     return false;
                 }
                 s.max_age = static_cast<uint32_t>(v);
@@ -190,8 +178,7 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
     return true;
 }
 
-bool parse_frame_range(const std::string& text, int64_t& first, int64_t& last, std::string& error)
-{
+bool parse_frame_range(const std::string& text, int64_t& first, int64_t& last, std::string& error) {
     const std::string where = "--frames " + quoted(text) + ": ";
     const std::size_t dash = text.find('-');
     int64_t a = 0, b = 0;
@@ -219,8 +206,7 @@ namespace {
 // Walks a pattern; calls lit(text) for literal text and conv(zero_pad, width)
 // for the integer conversion.  Returns the number of conversions or -1.
 template <class Lit, class Conv>
-int walk_pattern(const std::string& p, Lit lit, Conv conv, std::string& bad)
-{
+int walk_pattern(const std::string& p, Lit lit, Conv conv, std::string& bad) {
     int conversions = 0;
     for (std::size_t i = 0; i < p.size();) {
         if (p[i] != '%') {
@@ -241,8 +227,7 @@ int walk_pattern(const std::string& p, Lit lit, Conv conv, std::string& bad)
             ++j;
         }
         int width = 0;
-        while (j < p.size() && std::isdigit(static_cast<unsigned char>(p[j])) && width < 100)
-            width = width * 10 + (p[j++] - '0');
+        while (j < p.size() && std::isdigit(static_cast<unsigned char>(p[j])) && width < 100) width = width * 10 + (p[j++] - '0');
         if (j >= p.size() || (p[j] != 'd' && p[j] != 'i' && p[j] != 'u') || width > 32) {
             bad = p.substr(i, j < p.size() ? j - i + 1 : std::string::npos);
             return -1;
@@ -254,27 +239,24 @@ int walk_pattern(const std::string& p, Lit lit, Conv conv, std::string& bad)
     return conversions;
 }
 
-} // namespace
+}  // namespace
 
-bool validate_pattern(const std::string& pattern, std::string& error)
-{
+bool validate_pattern(const std::string& pattern, std::string& error) {
     std::string bad;
-    int n = walk_pattern(pattern, [](const std::string&) {}, [](bool, int) {}, bad);
+    int n = walk_pattern(
+        pattern, [](const std::string&) {}, [](bool, int) {}, bad);
     if (pattern.empty())
         error = "the pattern is empty";
     else if (n < 0)
-        error = "unsupported conversion " + quoted(bad) + " in " + quoted(pattern) +
-                " (use %d, %04d...; write %% for a literal %)";
+        error = "unsupported conversion " + quoted(bad) + " in " + quoted(pattern) + " (use %d, %04d...; write %% for a literal %)";
     else if (n != 1)
-        error = quoted(pattern) + " must contain exactly one frame-number conversion such as %04d, found " +
-                std::to_string(n);
+        error = quoted(pattern) + " must contain exactly one frame-number conversion such as %04d, found " + std::to_string(n);
     else
         return true;
     return false;
 }
 
-std::string format_frame_path(const std::string& pattern, int64_t frame)
-{
+std::string format_frame_path(const std::string& pattern, int64_t frame) {
     std::string out, bad;
     walk_pattern(
         pattern, [&](const std::string& s) { out += s; },
@@ -289,8 +271,7 @@ std::string format_frame_path(const std::string& pattern, int64_t frame)
     return out;
 }
 
-std::string usage_text()
-{
+std::string usage_text() {
     std::string text = R"(Usage: rrc-accumulate --input PATTERN --frames A-B --output PATTERN [options]
 
 Accumulates a numbered sequence of OpenEXR frames (single- or multi-part,
@@ -419,13 +400,11 @@ missing channel, library error, validation message), 2 a bad command line.
 )";
     char tau[32];
     std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
-    for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;)
-        text.replace(p, 5, tau);
+    for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
     return text;
 }
 
-ParseResult parse_arguments(int argc, const char* const* argv)
-{
+ParseResult parse_arguments(int argc, const char* const* argv) {
     ParseResult r;
     Options& o = r.options;
     std::set<std::string> given;
@@ -450,53 +429,71 @@ ParseResult parse_arguments(int argc, const char* const* argv)
         }
         // Flags.
         if (arg == "--help" || arg == "-h" || arg == "--validation" || arg == "--quiet" || arg == "--verbose") {
-            if (has_inline)
-                return fail("option " + arg + " takes no value");
-            if (arg == "--help" || arg == "-h") o.help = true;
-            else if (arg == "--validation") o.validation = true;
-            else if (arg == "--quiet") o.quiet = true;
-            else o.verbose = true;
+            if (has_inline) return fail("option " + arg + " takes no value");
+            if (arg == "--help" || arg == "-h")
+                o.help = true;
+            else if (arg == "--validation")
+                o.validation = true;
+            else if (arg == "--quiet")
+                o.quiet = true;
+            else
+                o.verbose = true;
             continue;
         }
-        static const std::set<std::string> valued = {
-            "--input", "--output", "--frames", "--depth-mode", "--depth-format", "--epsilon",
-            "--epsilon-scale", "--tau", "--background-threshold", "--near", "--far", "--reproject",
-            "--motion-scale", "--camera", "--signal", "--device", "--preset", "--view-layer",
-            "--depth-channel", "--motion-channels", "--prevclip-channels", "--nocache-channel",
-            "--motion-units", "--motion-y", "--cut", "--coherence", "--reference", "--metrics",
-            "--psnr-peak", "--progress"};
+        static const std::set<std::string> valued = {"--input",
+                                                     "--output",
+                                                     "--frames",
+                                                     "--depth-mode",
+                                                     "--depth-format",
+                                                     "--epsilon",
+                                                     "--epsilon-scale",
+                                                     "--tau",
+                                                     "--background-threshold",
+                                                     "--near",
+                                                     "--far",
+                                                     "--reproject",
+                                                     "--motion-scale",
+                                                     "--camera",
+                                                     "--signal",
+                                                     "--device",
+                                                     "--preset",
+                                                     "--view-layer",
+                                                     "--depth-channel",
+                                                     "--motion-channels",
+                                                     "--prevclip-channels",
+                                                     "--nocache-channel",
+                                                     "--motion-units",
+                                                     "--motion-y",
+                                                     "--cut",
+                                                     "--coherence",
+                                                     "--reference",
+                                                     "--metrics",
+                                                     "--psnr-peak",
+                                                     "--progress"};
         if (!valued.count(arg)) {
-            if (arg.rfind("-", 0) == 0)
-                return fail("unknown option " + quoted(arg) + " (see --help)");
+            if (arg.rfind("-", 0) == 0) return fail("unknown option " + quoted(arg) + " (see --help)");
             return fail("unexpected argument " + quoted(arg) + " (see --help)");
         }
         if (!has_inline) {
-            if (i + 1 >= argc || !argv[i + 1])
-                return fail("option " + arg + " needs a value");
+            if (i + 1 >= argc || !argv[i + 1]) return fail("option " + arg + " needs a value");
             value = argv[++i];
-            if (value.rfind("--", 0) == 0)
-                return fail("option " + arg + " needs a value, got the option " + quoted(value));
+            if (value.rfind("--", 0) == 0) return fail("option " + arg + " needs a value, got the option " + quoted(value));
         }
-        if (arg != "--signal" && arg != "--cut" && !given.insert(arg).second)
-            return fail("option " + arg + " given more than once");
+        if (arg != "--signal" && arg != "--cut" && !given.insert(arg).second) return fail("option " + arg + " given more than once");
         const std::string where = "option " + arg + " " + quoted(value) + ": ";
 
         if (arg == "--input" || arg == "--output" || arg == "--coherence" || arg == "--reference") {
             std::string err;
-            if (!validate_pattern(value, err))
-                return fail("option " + arg + ": " + err);
+            if (!validate_pattern(value, err)) return fail("option " + arg + ": " + err);
             (arg == "--input"       ? o.input_pattern
              : arg == "--output"    ? o.output_pattern
              : arg == "--coherence" ? o.coherence_pattern
                                     : o.reference_pattern) = value;
         } else if (arg == "--preset") {
-            if (value != "blender")
-                return fail(where + "the only preset is blender (Blender 3.x multilayer EXR passes)");
+            if (value != "blender") return fail(where + "the only preset is blender (Blender 3.x multilayer EXR passes)");
             o.preset = value;
-        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" ||
-                   arg == "--metrics") {
-            if (value.empty())
-                return fail("option " + arg + ": the name is empty");
+        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics") {
+            if (value.empty()) return fail("option " + arg + ": the name is empty");
             (arg == "--view-layer"      ? o.view_layer
              : arg == "--depth-channel" ? o.depth_channel
              : arg == "--metrics"       ? o.metrics_file
@@ -509,62 +506,77 @@ ParseResult parse_arguments(int argc, const char* const* argv)
                                             : "expected 4 channel names X,Y,Z,W (e.g. prevclip.X,...)"));
             for (std::size_t a = 0; a < names.size(); ++a)
                 for (std::size_t b = a + 1; b < names.size(); ++b)
-                    if (names[a] == names[b])
-                        return fail(where + "channel " + quoted(names[a]) + " named twice");
+                    if (names[a] == names[b]) return fail(where + "channel " + quoted(names[a]) + " named twice");
             (motion ? o.motion_channels : o.prevclip_channels) = names;
         } else if (arg == "--motion-units") {
-            if (value == "uv") o.motion_units = MotionUnits::Uv;
-            else if (value == "pixels") o.motion_units = MotionUnits::Pixels;
-            else return fail(where + "expected uv or pixels");
+            if (value == "uv")
+                o.motion_units = MotionUnits::Uv;
+            else if (value == "pixels")
+                o.motion_units = MotionUnits::Pixels;
+            else
+                return fail(where + "expected uv or pixels");
         } else if (arg == "--motion-y") {
-            if (value == "down") o.motion_y_up = false;
-            else if (value == "up") o.motion_y_up = true;
-            else return fail(where + "expected down (rows grow downwards, as rrc) or up (as Blender)");
+            if (value == "down")
+                o.motion_y_up = false;
+            else if (value == "up")
+                o.motion_y_up = true;
+            else
+                return fail(where + "expected down (rows grow downwards, as rrc) or up (as Blender)");
         } else if (arg == "--progress") {
-            if (value == "auto") o.progress = Progress::Auto;
-            else if (value == "bar") o.progress = Progress::Bar;
-            else if (value == "lines") o.progress = Progress::Lines;
-            else return fail(where + "expected auto, bar or lines");
+            if (value == "auto")
+                o.progress = Progress::Auto;
+            else if (value == "bar")
+                o.progress = Progress::Bar;
+            else if (value == "lines")
+                o.progress = Progress::Lines;
+            else
+                return fail(where + "expected auto, bar or lines");
         } else if (arg == "--cut") {
             std::vector<std::string> items;
-            if (!split_list(value, items))
-                return fail(where + "expected frame numbers F[,F...]");
+            if (!split_list(value, items)) return fail(where + "expected frame numbers F[,F...]");
             for (const std::string& item : items) {
                 int64_t f = 0;
-                if (!parse_int(item, f) || f > 999999999)
-                    return fail(where + "expected frame numbers F[,F...], got " + quoted(item));
+                if (!parse_int(item, f) || f > 999999999) return fail(where + "expected frame numbers F[,F...], got " + quoted(item));
                 o.cuts.push_back(f);
             }
         } else if (arg == "--psnr-peak") {
             float v = 0;
-            if (!parse_float(value, v) || !(v > 0.0f))
-                return fail(where + "expected a positive number");
+            if (!parse_float(value, v) || !(v > 0.0f)) return fail(where + "expected a positive number");
             o.psnr_peak = v;
         } else if (arg == "--frames") {
             std::string err;
-            if (!parse_frame_range(value, o.first_frame, o.last_frame, err))
-                return fail(err);
+            if (!parse_frame_range(value, o.first_frame, o.last_frame, err)) return fail(err);
             frames_given = true;
         } else if (arg == "--depth-mode") {
-            if (value == "standard") o.depth_mode = RRC_DEPTH_MODE_STANDARD;
-            else if (value == "reversed") o.depth_mode = RRC_DEPTH_MODE_REVERSED;
-            else if (value == "linear") o.depth_mode = RRC_DEPTH_MODE_LINEAR;
-            else return fail(where + "expected standard, reversed or linear");
+            if (value == "standard")
+                o.depth_mode = RRC_DEPTH_MODE_STANDARD;
+            else if (value == "reversed")
+                o.depth_mode = RRC_DEPTH_MODE_REVERSED;
+            else if (value == "linear")
+                o.depth_mode = RRC_DEPTH_MODE_LINEAR;
+            else
+                return fail(where + "expected standard, reversed or linear");
         } else if (arg == "--depth-format") {
-            if (value == "float32") o.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
-            else if (value == "unorm16") o.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-            else if (value == "unorm24") o.depth_format = RRC_DEPTH_FORMAT_UNORM24;
-            else return fail(where + "expected float32, unorm16 or unorm24");
+            if (value == "float32")
+                o.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
+            else if (value == "unorm16")
+                o.depth_format = RRC_DEPTH_FORMAT_UNORM16;
+            else if (value == "unorm24")
+                o.depth_format = RRC_DEPTH_FORMAT_UNORM24;
+            else
+                return fail(where + "expected float32, unorm16 or unorm24");
         } else if (arg == "--reproject") {
-            if (value == "prev_clip") o.reproject = Reproject::PrevClip;
-            else if (value == "motion") o.reproject = Reproject::Motion;
-            else if (value == "camera") o.reproject = Reproject::Camera;
-            else return fail(where + "expected prev_clip, motion or camera");
-        } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" ||
-                   arg == "--background-threshold" || arg == "--near") {
+            if (value == "prev_clip")
+                o.reproject = Reproject::PrevClip;
+            else if (value == "motion")
+                o.reproject = Reproject::Motion;
+            else if (value == "camera")
+                o.reproject = Reproject::Camera;
+            else
+                return fail(where + "expected prev_clip, motion or camera");
+        } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" || arg == "--background-threshold" || arg == "--near") {
             float v = 0;
-            if (!parse_float(value, v) || !(v > 0.0f))
-                return fail(where + "expected a positive number");
+            if (!parse_float(value, v) || !(v > 0.0f)) return fail(where + "expected a positive number");
             (arg == "--epsilon"         ? o.epsilon
              : arg == "--epsilon-scale" ? o.epsilon_scale
              : arg == "--tau"           ? o.tau
@@ -572,44 +584,35 @@ ParseResult parse_arguments(int argc, const char* const* argv)
                                         : o.background_threshold) = v;
         } else if (arg == "--far") {
             float v = 0;
-            if (!parse_float(value, v, /*allow_inf*/ true) || !(v > 0.0f))
-                return fail(where + "expected a positive number or inf");
+            if (!parse_float(value, v, /*allow_inf*/ true) || !(v > 0.0f)) return fail(where + "expected a positive number or inf");
             o.far_plane = v;
         } else if (arg == "--motion-scale") {
             std::size_t comma = value.find(',');
             float sx = 0, sy = 0;
-            if (comma == std::string::npos || !parse_float(value.substr(0, comma), sx) ||
-                !parse_float(value.substr(comma + 1), sy))
+            if (comma == std::string::npos || !parse_float(value.substr(0, comma), sx) || !parse_float(value.substr(comma + 1), sy))
                 return fail(where + "expected two numbers SX,SY (e.g. 1,-1)");
-            if (sx == 0.0f || sy == 0.0f)
-                return fail(where + "the scales must be non-zero");
+            if (sx == 0.0f || sy == 0.0f) return fail(where + "the scales must be non-zero");
             o.motion_scale[0] = sx;
             o.motion_scale[1] = sy;
         } else if (arg == "--camera") {
-            if (value.empty())
-                return fail("option --camera: the file name is empty");
+            if (value.empty()) return fail("option --camera: the file name is empty");
             o.camera_file = value;
         } else if (arg == "--device") {
-            if (value.empty())
-                return fail("option --device: the name is empty");
+            if (value.empty()) return fail("option --device: the name is empty");
             o.device = value;
         } else if (arg == "--signal") {
             SignalOptions s;
             std::string err;
-            if (!parse_signal_spec(value, s, err))
-                return fail(err);
+            if (!parse_signal_spec(value, s, err)) return fail(err);
             for (const SignalOptions& prev : o.signals)
-                if (prev.layer == s.layer)
-                    return fail("--signal " + quoted(value) + ": layer " + quoted(s.layer) + " given twice");
+                if (prev.layer == s.layer) return fail("--signal " + quoted(value) + ": layer " + quoted(s.layer) + " given twice");
             if (o.signals.size() >= RRC_MAX_CHANNELS)
-                return fail("--signal " + quoted(value) + ": at most " + std::to_string(RRC_MAX_CHANNELS) +
-                            " signals per run");
+                return fail("--signal " + quoted(value) + ": at most " + std::to_string(RRC_MAX_CHANNELS) + " signals per run");
             o.signals.push_back(s);
         }
     }
 
-    if (o.help)
-        return r;
+    if (o.help) return r;
     if (o.preset == "blender") {
         // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
         if (!given.count("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;
@@ -620,16 +623,12 @@ ParseResult parse_arguments(int argc, const char* const* argv)
     } else if (!o.view_layer.empty()) {
         return fail("option --view-layer needs --preset blender");
     }
-    if (o.input_pattern.empty())
-        return fail("missing required option --input PATTERN (see --help)");
-    if (o.output_pattern.empty())
-        return fail("missing required option --output PATTERN (see --help)");
-    if (!frames_given)
-        return fail("missing required option --frames A-B (see --help)");
+    if (o.input_pattern.empty()) return fail("missing required option --input PATTERN (see --help)");
+    if (o.output_pattern.empty()) return fail("missing required option --output PATTERN (see --help)");
+    if (!frames_given) return fail("missing required option --frames A-B (see --help)");
     if (o.reproject == Reproject::Camera && o.camera_file.empty())
         return fail("option --reproject camera needs --camera FILE (the view-projection matrices)");
-    if (o.near_plane > 0.0f && o.far_plane > 0.0f && !(o.far_plane > o.near_plane))
-        return fail("option --far must be greater than --near");
+    if (o.near_plane > 0.0f && o.far_plane > 0.0f && !(o.far_plane > o.near_plane)) return fail("option --far must be greater than --near");
     if (o.input_pattern == o.output_pattern)
         return fail("option --output: the output pattern equals the input pattern; inputs are never overwritten");
     if (!o.coherence_pattern.empty() && o.coherence_pattern == o.output_pattern)
@@ -641,4 +640,4 @@ ParseResult parse_arguments(int argc, const char* const* argv)
     return r;
 }
 
-} // namespace rrc_cli
+}  // namespace rrc_cli

@@ -13,7 +13,7 @@
 namespace rrc_cli {
 
 enum class Reproject { PrevClip, Motion, Camera };
-enum class MotionUnits { Uv, Pixels };  /* --motion-units: uv (of the image) or pixels */
+enum class MotionUnits { Uv, Pixels };    /* --motion-units: uv (of the image) or pixels */
 enum class Progress { Auto, Bar, Lines }; /* --progress; auto: a bar on a terminal, lines otherwise */
 
 /** --preset blender's relative depth tolerance (tau for LINEAR depth with
@@ -23,12 +23,12 @@ constexpr float kBlenderPresetTau = 0.04f;
 
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {
-    std::string layer;                                     /* EXR layer name: "shadow", "color" */
-    float lambda = 0.6f;                                   /* lambda=  (3/5, the paper's) */
-    rrc_blend blend = RRC_BLEND_FIXED;                     /* blend=fixed|age_aware|running_mean */
+    std::string layer;                                       /* EXR layer name: "shadow", "color" */
+    float lambda = 0.6f;                                     /* lambda=  (3/5, the paper's) */
+    rrc_blend blend = RRC_BLEND_FIXED;                       /* blend=fixed|age_aware|running_mean */
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR; /* filter=nearest|bilinear|catmull_rom */
-    rrc_history_precision history = RRC_HISTORY_FP16;     /* history=fp16|fp32 */
-    uint32_t max_age = 255;                                /* max_age=1..65535 */
+    rrc_history_precision history = RRC_HISTORY_FP16;        /* history=fp16|fp32 */
+    uint32_t max_age = 255;                                  /* max_age=1..65535 */
 };
 
 struct Options {
@@ -39,21 +39,21 @@ struct Options {
     int64_t first_frame = 0;    /* --frames A-B (or A) */
     int64_t last_frame = -1;
 
-    rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;     /* --depth-mode */
+    rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;      /* --depth-mode */
     rrc_depth_format depth_format = RRC_DEPTH_FORMAT_FLOAT32; /* --depth-format */
-    float epsilon = 0.0f;              /* --epsilon: absolute; 0 = from the format */
-    float epsilon_scale = 0.0f;        /* --epsilon-scale; 0 = library default */
-    float tau = 0.0f;                  /* --tau; 0 = library default 0.01 */
-    float background_threshold = 0.0f; /* --background-threshold; 0 = library default */
-    float near_plane = 0.0f;           /* --near */
-    float far_plane = 0.0f;            /* --far (may be inf) */
+    float epsilon = 0.0f;                                     /* --epsilon: absolute; 0 = from the format */
+    float epsilon_scale = 0.0f;                               /* --epsilon-scale; 0 = library default */
+    float tau = 0.0f;                                         /* --tau; 0 = library default 0.01 */
+    float background_threshold = 0.0f;                        /* --background-threshold; 0 = library default */
+    float near_plane = 0.0f;                                  /* --near */
+    float far_plane = 0.0f;                                   /* --far (may be inf) */
 
-    Reproject reproject = Reproject::PrevClip; /* --reproject */
-    float motion_scale[2] = {1.0f, 1.0f};      /* --motion-scale sx,sy (after the units and y sign) */
+    Reproject reproject = Reproject::PrevClip;  /* --reproject */
+    float motion_scale[2] = {1.0f, 1.0f};       /* --motion-scale sx,sy (after the units and y sign) */
     MotionUnits motion_units = MotionUnits::Uv; /* --motion-units uv|pixels */
-    bool motion_y_up = false;                  /* --motion-y up|down */
-    std::string camera_file;                   /* --camera */
-    std::vector<int64_t> cuts;                 /* --cut F[,F...]: camera cuts, every pixel misses */
+    bool motion_y_up = false;                   /* --motion-y up|down */
+    std::string camera_file;                    /* --camera */
+    std::vector<int64_t> cuts;                  /* --cut F[,F...]: camera cuts, every pixel misses */
 
     /* --preset blender: Blender 3.x multilayer EXR passes.  Applied by
      * parse_arguments to every option not given: --depth-mode linear,
@@ -77,10 +77,10 @@ struct Options {
     std::string metrics_file;      /* --metrics: CSV path; default <output directory>/metrics.csv */
     float psnr_peak = 1.0f;        /* --psnr-peak: PSNR = 10 log10(peak^2 / MSE) */
 
-    std::string device;      /* --device */
-    bool validation = false; /* --validation */
-    bool quiet = false;      /* --quiet */
-    bool verbose = false;    /* --verbose */
+    std::string device;                 /* --device */
+    bool validation = false;            /* --validation */
+    bool quiet = false;                 /* --quiet */
+    bool verbose = false;               /* --verbose */
     Progress progress = Progress::Auto; /* --progress auto|bar|lines */
 };
 
@@ -119,6 +119,6 @@ std::string metrics_path(const Options& options);
 const char* reproject_name(Reproject r);
 const char* depth_mode_name(rrc_depth_mode m);
 
-} // namespace rrc_cli
+}  // namespace rrc_cli
 
 #endif

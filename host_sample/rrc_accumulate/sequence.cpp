@@ -18,8 +18,7 @@ namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-bool is_reserved_layer(const std::string& layer)
-{
+bool is_reserved_layer(const std::string& layer) {
     return layer.empty() || layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc";
 }
 
@@ -27,28 +26,24 @@ bool is_reserved_layer(const std::string& layer)
 bool is_reserved_component(const std::string& c) { return c == "conf" || c == "age" || c == "weight"; }
 
 // layer -> component suffixes, from names "layer.comp" (layer may hold dots).
-std::map<std::string, std::set<std::string>> group_layers(const rrc_exr::ExrInfo& info)
-{
+std::map<std::string, std::set<std::string>> group_layers(const rrc_exr::ExrInfo& info) {
     std::map<std::string, std::set<std::string>> layers;
     for (const auto& c : info.channels) {
         std::size_t dot = c.name.rfind('.');
-        if (dot == std::string::npos || dot == 0 || dot + 1 == c.name.size())
-            continue;
+        if (dot == std::string::npos || dot == 0 || dot + 1 == c.name.size()) continue;
         layers[c.name.substr(0, dot)].insert(c.name.substr(dot + 1));
     }
     return layers;
 }
 
-SignalLayout layout_signal(const SignalOptions& options, const std::set<std::string>& suffixes,
-                           const rrc_exr::ExrInfo& info, const std::string& path)
-{
+SignalLayout layout_signal(const SignalOptions& options, const std::set<std::string>& suffixes, const rrc_exr::ExrInfo& info,
+                           const std::string& path) {
     SignalLayout s;
     s.options = options;
     const std::string& layer = options.layer;
     std::set<std::string> comps;
     for (const std::string& c : suffixes)
-        if (!is_reserved_component(c))
-            comps.insert(c);
+        if (!is_reserved_component(c)) comps.insert(c);
     s.confidence = suffixes.count("conf") != 0;
     if (comps.empty())
         throw CliError(path + ": layer " + quoted(layer) + " not found (no channel " + quoted(layer + ".*") +
@@ -59,29 +54,24 @@ SignalLayout layout_signal(const SignalOptions& options, const std::set<std::str
         s.rrc_components = 1;
     } else if (comps == rgb || comps == rgba) {
         s.components = {"R", "G", "B"};
-        if (comps.count("A"))
-            s.components.push_back("A");
+        if (comps.count("A")) s.components.push_back("A");
         s.rrc_components = 4;
     } else {
         std::string have;
-        for (const std::string& c : comps)
-            have += (have.empty() ? "" : ", ") + layer + "." + c;
-        throw CliError(path + ": layer " + quoted(layer) + " has channels " + have + "; expected " + layer +
-                       ".Y (or one channel) or " + layer + ".R/.G/.B[/.A]");
+        for (const std::string& c : comps) have += (have.empty() ? "" : ", ") + layer + "." + c;
+        throw CliError(path + ": layer " + quoted(layer) + " has channels " + have + "; expected " + layer + ".Y (or one channel) or " +
+                       layer + ".R/.G/.B[/.A]");
     }
     return s;
 }
 
-void check_finite(double v, const std::string& where)
-{
-    if (!std::isfinite(v))
-        throw CliError(where + ": not a finite number");
+void check_finite(double v, const std::string& where) {
+    if (!std::isfinite(v)) throw CliError(where + ": not a finite number");
 }
 
-} // namespace
+}  // namespace
 
-std::string list_channels(const rrc_exr::ExrInfo& info)
-{
+std::string list_channels(const rrc_exr::ExrInfo& info) {
     std::string s;
     std::size_t n = 0;
     for (const auto& c : info.channels) {
@@ -96,15 +86,13 @@ std::string list_channels(const rrc_exr::ExrInfo& info)
 
 namespace {
 
-std::string layer_of(const std::string& channel)
-{
+std::string layer_of(const std::string& channel) {
     const std::size_t dot = channel.rfind('.');
     return dot == std::string::npos ? std::string() : channel.substr(0, dot);
 }
 
 // The view layer of a Blender multilayer file: the prefix of "<layer>.Depth.Z".
-std::string find_view_layer(const rrc_exr::ExrInfo& info, const std::string& path, const Options& o)
-{
+std::string find_view_layer(const rrc_exr::ExrInfo& info, const std::string& path, const Options& o) {
     if (!o.view_layer.empty()) {
         if (!info.has(o.view_layer + ".Depth.Z") && !info.has(o.view_layer + ".Combined.R")) {
             std::set<std::string> layers;
@@ -112,10 +100,9 @@ std::string find_view_layer(const rrc_exr::ExrInfo& info, const std::string& pat
                 if (c.name.size() > 8 && c.name.compare(c.name.size() - 8, 8, ".Depth.Z") == 0)
                     layers.insert(c.name.substr(0, c.name.size() - 8));
             std::string have;
-            for (const std::string& l : layers)
-                have += (have.empty() ? "" : ", ") + quoted(l);
-            throw CliError(path + ": --view-layer " + quoted(o.view_layer) + ": no channel " +
-                           quoted(o.view_layer + ".Depth.Z") + " or " + quoted(o.view_layer + ".Combined.R") +
+            for (const std::string& l : layers) have += (have.empty() ? "" : ", ") + quoted(l);
+            throw CliError(path + ": --view-layer " + quoted(o.view_layer) + ": no channel " + quoted(o.view_layer + ".Depth.Z") + " or " +
+                           quoted(o.view_layer + ".Combined.R") +
                            (have.empty() ? std::string() : "; view layers with a depth pass: " + have) +
                            "; the file has: " + list_channels(info));
         }
@@ -125,36 +112,30 @@ std::string find_view_layer(const rrc_exr::ExrInfo& info, const std::string& pat
     for (const auto& c : info.channels)
         if (c.name.size() > 8 && c.name.compare(c.name.size() - 8, 8, ".Depth.Z") == 0)
             layers.push_back(c.name.substr(0, c.name.size() - 8));
-    if (layers.size() == 1)
-        return layers[0];
+    if (layers.size() == 1) return layers[0];
     if (layers.empty()) {
-        if (!o.depth_channel.empty())
-            return std::string(); // the depth is mapped explicitly; the view layer is not needed for it
-        throw CliError(path + ": --preset blender: no channel '<view layer>.Depth.Z' (enable the Z pass: View "
-                              "Layer Properties > Passes > Data > Z, and save as OpenEXR MultiLayer); the file has: " +
+        if (!o.depth_channel.empty()) return std::string();  // the depth is mapped explicitly; the view layer is not needed for it
+        throw CliError(path +
+                       ": --preset blender: no channel '<view layer>.Depth.Z' (enable the Z pass: View "
+                       "Layer Properties > Passes > Data > Z, and save as OpenEXR MultiLayer); the file has: " +
                        list_channels(info));
     }
     std::string names;
-    for (const std::string& l : layers)
-        names += (names.empty() ? "" : ", ") + quoted(l);
-    throw CliError(path + ": --preset blender: several view layers have a depth pass (" + names +
-                   "): choose one with --view-layer");
+    for (const std::string& l : layers) names += (names.empty() ? "" : ", ") + quoted(l);
+    throw CliError(path + ": --preset blender: several view layers have a depth pass (" + names + "): choose one with --view-layer");
 }
 
-ChannelMap resolve_channels(const rrc_exr::ExrInfo& first, const std::string& path, const Options& o,
-                            rrc_reprojection& reprojection)
-{
+ChannelMap resolve_channels(const rrc_exr::ExrInfo& first, const std::string& path, const Options& o, rrc_reprojection& reprojection) {
     ChannelMap m;
     const bool blender = o.preset == "blender";
     if (blender) {
         m.view_layer = find_view_layer(first, path, o);
         const std::string p = m.view_layer.empty() ? std::string() : m.view_layer + ".";
         m.depth = p + "Depth.Z";
-        m.motion = {p + "Vector.X", p + "Vector.Y"}; // .Z/.W are the next frame's vectors, not a depth change
+        m.motion = {p + "Vector.X", p + "Vector.Y"};  // .Z/.W are the next frame's vectors, not a depth change
     } else {
         m.motion = {"mv.X", "mv.Y"};
-        if (first.has("mv.Z"))
-            m.motion.push_back("mv.Z");
+        if (first.has("mv.Z")) m.motion.push_back("mv.Z");
     }
     m.prevclip = {"prevclip.X", "prevclip.Y", "prevclip.Z", "prevclip.W"};
     if (!o.depth_channel.empty()) m.depth = o.depth_channel;
@@ -162,28 +143,26 @@ ChannelMap resolve_channels(const rrc_exr::ExrInfo& first, const std::string& pa
     if (!o.prevclip_channels.empty()) m.prevclip = o.prevclip_channels;
     if (!o.nocache_channel.empty()) m.nocache = o.nocache_channel;
     switch (o.reproject) {
-    case Reproject::PrevClip:
-        reprojection = RRC_REPROJECTION_PREV_CLIP;
-        m.motion.clear();
-        break;
-    case Reproject::Motion:
-        reprojection = m.motion.size() == 3 ? RRC_REPROJECTION_MOTION_DEPTH : RRC_REPROJECTION_MOTION;
-        m.prevclip.clear();
-        break;
-    case Reproject::Camera:
-        reprojection = RRC_REPROJECTION_CAMERA;
-        m.motion.clear();
-        m.prevclip.clear();
-        break;
+        case Reproject::PrevClip:
+            reprojection = RRC_REPROJECTION_PREV_CLIP;
+            m.motion.clear();
+            break;
+        case Reproject::Motion:
+            reprojection = m.motion.size() == 3 ? RRC_REPROJECTION_MOTION_DEPTH : RRC_REPROJECTION_MOTION;
+            m.prevclip.clear();
+            break;
+        case Reproject::Camera:
+            reprojection = RRC_REPROJECTION_CAMERA;
+            m.motion.clear();
+            m.prevclip.clear();
+            break;
     }
     return m;
 }
 
-} // namespace
+}  // namespace
 
-SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
-                               const Options& options)
-{
+SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path, const Options& options) {
     SequenceLayout layout;
     layout.width = first.width;
     layout.height = first.height;
@@ -196,11 +175,9 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
 
     // Layers that carry geometry are never signals.
     std::set<std::string> geometry_layers = {"mv", "prevclip", "nocache", "rrc"};
-    for (const std::string& c : {map.depth, map.nocache})
-        geometry_layers.insert(layer_of(c));
+    for (const std::string& c : {map.depth, map.nocache}) geometry_layers.insert(layer_of(c));
     for (const auto* list : {&map.motion, &map.prevclip})
-        for (const std::string& c : *list)
-            geometry_layers.insert(layer_of(c));
+        for (const std::string& c : *list) geometry_layers.insert(layer_of(c));
 
     const auto layers = group_layers(first);
     std::vector<SignalOptions> requested = options.signals;
@@ -209,37 +186,32 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
         s.layer = (map.view_layer.empty() ? std::string() : map.view_layer + ".") + "Combined";
         if (!layers.count(s.layer))
             throw CliError(first_path + ": --preset blender without --signal accumulates " + quoted(std::as_const(s.layer)) +
-                           ", which the file lacks (name the layers with --signal); the file has: " +
-                           list_channels(first));
+                           ", which the file lacks (name the layers with --signal); the file has: " + list_channels(first));
         requested.push_back(s);
     }
     if (!requested.empty()) {
         for (const SignalOptions& s : requested) {
             auto it = layers.find(s.layer);
-            layout.signals.push_back(layout_signal(s, it == layers.end() ? std::set<std::string>{} : it->second,
-                                                   first, first_path));
+            layout.signals.push_back(layout_signal(s, it == layers.end() ? std::set<std::string>{} : it->second, first, first_path));
         }
     } else {
         std::vector<std::string> found;
         for (const auto& kv : layers) {
-            if (is_reserved_layer(kv.first) || geometry_layers.count(kv.first))
-                continue;
+            if (is_reserved_layer(kv.first) || geometry_layers.count(kv.first)) continue;
             bool has_component = false;
-            for (const std::string& c : kv.second)
-                has_component = has_component || !is_reserved_component(c);
-            if (has_component)
-                found.push_back(kv.first);
+            for (const std::string& c : kv.second) has_component = has_component || !is_reserved_component(c);
+            if (has_component) found.push_back(kv.first);
         }
         if (found.empty())
-            throw CliError(first_path + ": no signal layer to accumulate (expected e.g. shadow.Y or color.R/.G/.B); "
-                                        "the file has: " + list_channels(first));
+            throw CliError(first_path +
+                           ": no signal layer to accumulate (expected e.g. shadow.Y or color.R/.G/.B); "
+                           "the file has: " +
+                           list_channels(first));
         if (found.size() > RRC_MAX_CHANNELS) {
             std::string names;
-            for (const std::string& f : found)
-                names += (names.empty() ? "" : ", ") + f;
-            throw CliError(first_path + ": " + std::to_string(found.size()) + " signal layers (" + names +
-                           "); rrc accumulates at most " + std::to_string(RRC_MAX_CHANNELS) +
-                           " per run: choose them with --signal");
+            for (const std::string& f : found) names += (names.empty() ? "" : ", ") + f;
+            throw CliError(first_path + ": " + std::to_string(found.size()) + " signal layers (" + names + "); rrc accumulates at most " +
+                           std::to_string(RRC_MAX_CHANNELS) + " per run: choose them with --signal");
         }
         for (const std::string& f : found) {
             SignalOptions s;
@@ -250,57 +222,47 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
     return layout;
 }
 
-std::vector<RequiredChannel> required_channels(const SequenceLayout& layout)
-{
+std::vector<RequiredChannel> required_channels(const SequenceLayout& layout) {
     std::vector<RequiredChannel> req;
     const ChannelMap& map = layout.channels;
     req.push_back({map.depth, "the depth"});
     switch (layout.reprojection) {
-    case RRC_REPROJECTION_PREV_CLIP:
-        for (const std::string& c : map.prevclip)
-            req.push_back({c, "needed by --reproject prev_clip"});
-        break;
-    case RRC_REPROJECTION_MOTION:
-    case RRC_REPROJECTION_MOTION_DEPTH:
-        req.push_back({map.motion[0], "motion vector x, needed by --reproject motion"});
-        req.push_back({map.motion[1], "motion vector y, needed by --reproject motion"});
-        if (layout.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
-            req.push_back({map.motion[2], "the depth change of the motion vectors"});
-        break;
-    default: break;
+        case RRC_REPROJECTION_PREV_CLIP:
+            for (const std::string& c : map.prevclip) req.push_back({c, "needed by --reproject prev_clip"});
+            break;
+        case RRC_REPROJECTION_MOTION:
+        case RRC_REPROJECTION_MOTION_DEPTH:
+            req.push_back({map.motion[0], "motion vector x, needed by --reproject motion"});
+            req.push_back({map.motion[1], "motion vector y, needed by --reproject motion"});
+            if (layout.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
+                req.push_back({map.motion[2], "the depth change of the motion vectors"});
+            break;
+        default: break;
     }
     for (const SignalLayout& s : layout.signals) {
-        for (const std::string& c : s.components)
-            req.push_back({s.options.layer + "." + c, "signal " + quoted(s.options.layer)});
+        for (const std::string& c : s.components) req.push_back({s.options.layer + "." + c, "signal " + quoted(s.options.layer)});
         if (s.confidence)
-            req.push_back({s.options.layer + ".conf", "confidence of signal " + quoted(s.options.layer) +
-                                                          "; the first frame has it, so every frame needs it"});
+            req.push_back({s.options.layer + ".conf",
+                           "confidence of signal " + quoted(s.options.layer) + "; the first frame has it, so every frame needs it"});
     }
-    if (layout.nocache)
-        req.push_back({map.nocache, "the do-not-cache mask; the first frame has it, so every frame needs it"});
+    if (layout.nocache) req.push_back({map.nocache, "the do-not-cache mask; the first frame has it, so every frame needs it"});
     return req;
 }
 
-void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, const SequenceLayout& layout)
-{
+void check_frame_header(const rrc_exr::ExrInfo& info, const std::string& path, const SequenceLayout& layout) {
     if (info.width != layout.width || info.height != layout.height)
-        throw CliError(path + ": " + std::to_string(info.width) + "x" + std::to_string(info.height) +
-                       " differs from the first frame's " + std::to_string(layout.width) + "x" +
-                       std::to_string(layout.height));
+        throw CliError(path + ": " + std::to_string(info.width) + "x" + std::to_string(info.height) + " differs from the first frame's " +
+                       std::to_string(layout.width) + "x" + std::to_string(layout.height));
     for (const RequiredChannel& r : required_channels(layout))
         if (!info.has(r.name))
-            throw CliError(path + ": missing channel " + quoted(r.name) + " (" + r.reason +
-                           "); the file has: " + list_channels(info));
+            throw CliError(path + ": missing channel " + quoted(r.name) + " (" + r.reason + "); the file has: " + list_channels(info));
 }
 
-std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last,
-                                                bool need_view_proj)
-{
+std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last, bool need_view_proj) {
     using nlohmann::json;
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw CliError("camera file " + quoted(path) + ": cannot open (" +
-                       std::error_code(errno, std::generic_category()).message() + ")");
+        throw CliError("camera file " + quoted(path) + ": cannot open (" + std::error_code(errno, std::generic_category()).message() + ")");
     json root;
     try {
         root = json::parse(in);
@@ -308,8 +270,7 @@ std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t
         throw CliError("camera file " + quoted(path) + ": invalid JSON: " + e.what());
     }
     const std::string where = "camera file " + quoted(path);
-    if (!root.is_object())
-        throw CliError(where + ": expected an object mapping frame numbers to {\"view_proj\": [...]}");
+    if (!root.is_object()) throw CliError(where + ": expected an object mapping frame numbers to {\"view_proj\": [...]}");
 
     std::map<int64_t, CameraFrame> frames;
     for (auto it = root.begin(); it != root.end(); ++it) {
@@ -317,23 +278,17 @@ std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t
         const std::string at = where + ", frame " + quoted(key);
         char* end = nullptr;
         errno = 0;
-        long long n = key.empty() || !std::isdigit(static_cast<unsigned char>(key[0]))
-                          ? -1
-                          : std::strtoll(key.c_str(), &end, 10);
+        long long n = key.empty() || !std::isdigit(static_cast<unsigned char>(key[0])) ? -1 : std::strtoll(key.c_str(), &end, 10);
         if (n < 0 || errno == ERANGE || end != key.c_str() + key.size())
             throw CliError(at + ": keys must be frame numbers (non-negative integers)");
-        if (frames.count(n))
-            throw CliError(at + ": frame " + std::to_string(n) + " appears twice");
+        if (frames.count(n)) throw CliError(at + ": frame " + std::to_string(n) + " appears twice");
         const json& v = it.value();
-        if (!v.is_object())
-            throw CliError(at + ": expected an object {\"view_proj\": [16 numbers], \"jitter\": [x, y]}");
+        if (!v.is_object()) throw CliError(at + ": expected an object {\"view_proj\": [16 numbers], \"jitter\": [x, y]}");
         CameraFrame cf;
         if (auto vp = v.find("view_proj"); vp != v.end()) {
-            if (!vp->is_array() || vp->size() != 16)
-                throw CliError(at + ": \"view_proj\" must be an array of 16 numbers (column-major)");
+            if (!vp->is_array() || vp->size() != 16) throw CliError(at + ": \"view_proj\" must be an array of 16 numbers (column-major)");
             for (std::size_t i = 0; i < 16; ++i) {
-                if (!(*vp)[i].is_number())
-                    throw CliError(at + ": \"view_proj\"[" + std::to_string(i) + "] is not a number");
+                if (!(*vp)[i].is_number()) throw CliError(at + ": \"view_proj\"[" + std::to_string(i) + "] is not a number");
                 cf.view_proj[i] = (*vp)[i].get<double>();
                 check_finite(cf.view_proj[i], at + ": \"view_proj\"[" + std::to_string(i) + "]");
             }
@@ -354,18 +309,15 @@ std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t
         for (int64_t f = first; f <= last; ++f) {
             auto it = frames.find(f);
             if (it == frames.end() || !it->second.has_view_proj)
-                throw CliError(where + ": no \"view_proj\" for frame " + std::to_string(f) +
-                               " (needed by --reproject camera)");
+                throw CliError(where + ": no \"view_proj\" for frame " + std::to_string(f) + " (needed by --reproject camera)");
         }
     }
     return frames;
 }
 
-FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, const SequenceLayout& layout)
-{
+FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, const SequenceLayout& layout) {
     const std::size_t n = image.pixel_count();
-    if (image.width != layout.width || image.height != layout.height)
-        throw CliError(path + ": the size changed while reading");
+    if (image.width != layout.width || image.height != layout.height) throw CliError(path + ": the size changed while reading");
     auto channel = [&](const std::string& name) {
         try {
             return image.as_float(name, path);
@@ -379,8 +331,7 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
         std::size_t c = 0;
         for (const std::string& name : names) {
             std::vector<float> v = channel(name);
-            for (std::size_t i = 0; i < n; ++i)
-                out[i * k + c] = v[i];
+            for (std::size_t i = 0; i < n; ++i) out[i * k + c] = v[i];
             ++c;
         }
     };
@@ -388,10 +339,10 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
     FrameData f;
     f.depth = channel(layout.channels.depth);
     switch (layout.reprojection) {
-    case RRC_REPROJECTION_PREV_CLIP: interleave(layout.channels.prevclip, f.reprojection); break;
-    case RRC_REPROJECTION_MOTION:
-    case RRC_REPROJECTION_MOTION_DEPTH: interleave(layout.channels.motion, f.reprojection); break;
-    default: break;
+        case RRC_REPROJECTION_PREV_CLIP: interleave(layout.channels.prevclip, f.reprojection); break;
+        case RRC_REPROJECTION_MOTION:
+        case RRC_REPROJECTION_MOTION_DEPTH: interleave(layout.channels.motion, f.reprojection); break;
+        default: break;
     }
     for (const SignalLayout& s : layout.signals) {
         const std::string& layer = s.options.layer;
@@ -399,11 +350,10 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
         if (s.rrc_components == 1) {
             samples = channel(layer + "." + s.components[0]);
         } else {
-            samples.assign(n * 4, 1.0f); // a missing A stays 1
+            samples.assign(n * 4, 1.0f);  // a missing A stays 1
             for (std::size_t c = 0; c < s.components.size(); ++c) {
                 std::vector<float> v = channel(layer + "." + s.components[c]);
-                for (std::size_t i = 0; i < n; ++i)
-                    samples[i * 4 + c] = v[i];
+                for (std::size_t i = 0; i < n; ++i) samples[i * 4 + c] = v[i];
             }
         }
         f.samples.push_back(std::move(samples));
@@ -412,15 +362,12 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
     if (layout.nocache) {
         std::vector<float> v = channel(layout.channels.nocache);
         f.nocache.resize(n);
-        for (std::size_t i = 0; i < n; ++i)
-            f.nocache[i] = v[i] != 0.0f ? 1 : 0; // NaN counts as non-zero
+        for (std::size_t i = 0; i < n; ++i) f.nocache[i] = v[i] != 0.0f ? 1 : 0;  // NaN counts as non-zero
     }
     return f;
 }
 
-rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layout,
-                                   std::vector<rrc_channel_desc>& channels)
-{
+rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layout, std::vector<rrc_channel_desc>& channels) {
     if (layout.reprojection == RRC_REPROJECTION_MOTION && o.depth_mode != RRC_DEPTH_MODE_LINEAR &&
         !(o.near_plane > 0.0f && o.far_plane > 0.0f))
         throw CliError(std::string("--reproject motion without a depth-change channel (mv.Z) on --depth-mode ") +
@@ -434,8 +381,7 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
         c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
         c.next = nullptr;
         c.size = sizeof(rrc_channel_desc);
-        if (s.options.layer.size() >= RRC_MAX_NAME)
-            throw CliError("layer name " + quoted(s.options.layer) + " is too long for rrc");
+        if (s.options.layer.size() >= RRC_MAX_NAME) throw CliError("layer name " + quoted(s.options.layer) + " is too long for rrc");
         s.options.layer.copy(c.name, s.options.layer.size());
         c.name[s.options.layer.size()] = '\0';
         c.components = s.rrc_components;
@@ -470,8 +416,7 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
         sx /= layout.width;
         sy /= layout.height;
     }
-    if (o.motion_y_up)
-        sy = -sy;
+    if (o.motion_y_up) sy = -sy;
     d.motion_scale[0] = static_cast<float>(sx);
     d.motion_scale[1] = static_cast<float>(sy);
     d.channel_count = static_cast<uint32_t>(channels.size());
@@ -482,8 +427,7 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
     return d;
 }
 
-rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameResult& r)
-{
+rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameResult& r) {
     rrc_exr::ExrImage img;
     img.width = layout.width;
     img.height = layout.height;
@@ -494,13 +438,11 @@ rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameRes
         for (std::size_t c = 0; c < s.components.size(); ++c) {
             std::vector<float>& out = img.channels[layer + "." + s.components[c]];
             out.resize(n);
-            for (std::size_t i = 0; i < n; ++i)
-                out[i] = r.values[k][i * s.rrc_components + c];
+            for (std::size_t i = 0; i < n; ++i) out[i] = r.values[k][i * s.rrc_components + c];
         }
         std::vector<float>& age = img.channels[layer + ".age"];
         age.assign(r.age[k].begin(), r.age[k].end());
-        if (s.confidence)
-            img.channels[layer + ".weight"] = r.weight[k];
+        if (s.confidence) img.channels[layer + ".weight"] = r.weight[k];
     }
     std::vector<float>& mask = img.channels["rrc.mask"];
     mask.assign(r.mask.begin(), r.mask.end());
@@ -508,16 +450,19 @@ rrc_exr::ExrImage make_output_image(const SequenceLayout& layout, const FrameRes
     return img;
 }
 
-std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask)
-{
+std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask) {
     std::vector<uint8_t> rgb(mask.size() * 3, 0);
     for (std::size_t i = 0; i < mask.size(); ++i) {
         const uint8_t m = mask[i];
-        uint8_t r = 255, g = 0, b = 0; // miss
-        if (m & RRC_MASK_BACKGROUND) r = g = b = 64;
-        else if (m & RRC_MASK_INVALID_GEOMETRY) r = 255, g = 0, b = 255;
-        else if (m & RRC_MASK_REFRESHED) r = 0, g = 0, b = 255;
-        else if (m & RRC_MASK_HIT) r = 0, g = 255, b = 0;
+        uint8_t r = 255, g = 0, b = 0;  // miss
+        if (m & RRC_MASK_BACKGROUND)
+            r = g = b = 64;
+        else if (m & RRC_MASK_INVALID_GEOMETRY)
+            r = 255, g = 0, b = 255;
+        else if (m & RRC_MASK_REFRESHED)
+            r = 0, g = 0, b = 255;
+        else if (m & RRC_MASK_HIT)
+            r = 0, g = 255, b = 0;
         rgb[3 * i] = r;
         rgb[3 * i + 1] = g;
         rgb[3 * i + 2] = b;
@@ -525,13 +470,11 @@ std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask)
     return rgb;
 }
 
-std::vector<std::string> metric_channels(const SignalLayout& signal)
-{
+std::vector<std::string> metric_channels(const SignalLayout& signal) {
     std::vector<std::string> names;
     for (const std::string& c : signal.components)
-        if (!(c == "A" && signal.components.size() > 1))
-            names.push_back(signal.options.layer + "." + c);
+        if (!(c == "A" && signal.components.size() > 1)) names.push_back(signal.options.layer + "." + c);
     return names;
 }
 
-} // namespace rrc_cli
+}  // namespace rrc_cli

@@ -24,10 +24,10 @@ public:
 
 /** One accumulated layer as found in the first frame. */
 struct SignalLayout {
-    SignalOptions options;              /* options.layer is the layer name */
+    SignalOptions options;               /* options.layer is the layer name */
     std::vector<std::string> components; /* channel suffixes in the file: {"Y"}, {"R","G","B"}, ... */
-    uint32_t rrc_components = 1;        /* 1 or 4 (RGB is padded with A = 1) */
-    bool confidence = false;            /* <layer>.conf present */
+    uint32_t rrc_components = 1;         /* 1 or 4 (RGB is padded with A = 1) */
+    bool confidence = false;             /* <layer>.conf present */
 };
 
 /** The channels the geometry is read from (defaults, preset or options). */
@@ -36,7 +36,7 @@ struct ChannelMap {
     std::vector<std::string> motion;   /* 2 (MOTION) or 3 (MOTION_DEPTH) names; empty otherwise */
     std::vector<std::string> prevclip; /* 4 names for PREV_CLIP; empty otherwise */
     std::string nocache = "nocache.Y";
-    std::string view_layer;            /* --preset blender: the view layer read ("ViewLayer") */
+    std::string view_layer; /* --preset blender: the view layer read ("ViewLayer") */
 };
 
 /** What the first frame and the options make of the sequence. */
@@ -64,8 +64,7 @@ struct RequiredChannel {
  *  preset's Combined, or every layer not used by the geometry), their
  *  components and confidence, and the nocache mask.  Throws CliError naming
  *  the file and channel and listing the channels the file has. */
-SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path,
-                               const Options& options);
+SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path, const Options& options);
 
 /** The channels the layout reads from every frame. */
 std::vector<RequiredChannel> required_channels(const SequenceLayout& layout);
@@ -84,13 +83,12 @@ struct CameraFrame {
 /** Reads the camera JSON: an object mapping frame numbers ("12") to
  *  {"view_proj": [16 numbers], "jitter": [x, y]}.  With need_view_proj
  *  every frame in [first, last] must have a view_proj.  Throws CliError. */
-std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last,
-                                                bool need_view_proj);
+std::map<int64_t, CameraFrame> load_camera_file(const std::string& path, int64_t first, int64_t last, bool need_view_proj);
 
 /** The arrays of one frame in rrc's layout (interleaved components). */
 struct FrameData {
     std::vector<float> depth;
-    std::vector<float> reprojection; /* 4, 3 or 2 floats a pixel; empty for CAMERA */
+    std::vector<float> reprojection;            /* 4, 3 or 2 floats a pixel; empty for CAMERA */
     std::vector<std::vector<float>> samples;    /* per signal */
     std::vector<std::vector<float>> confidence; /* per signal; empty without */
     std::vector<uint8_t> nocache;               /* empty without */
@@ -102,8 +100,7 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
 /** rrc's context descriptor; `channels` receives the channel descriptors the
  *  result points to (keep it alive).  Throws CliError for combinations the
  *  tool can explain better than the library. */
-rrc_context_desc make_context_desc(const Options& options, const SequenceLayout& layout,
-                                   std::vector<rrc_channel_desc>& channels);
+rrc_context_desc make_context_desc(const Options& options, const SequenceLayout& layout, std::vector<rrc_channel_desc>& channels);
 
 /** The output image of one frame from rrc's outputs. */
 struct FrameResult {
@@ -121,6 +118,6 @@ std::vector<uint8_t> coherence_rgb(const std::vector<uint8_t>& mask);
 /** The channels of a signal that metrics compare (its components but A). */
 std::vector<std::string> metric_channels(const SignalLayout& signal);
 
-} // namespace rrc_cli
+}  // namespace rrc_cli
 
 #endif

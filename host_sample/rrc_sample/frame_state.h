@@ -20,22 +20,22 @@ struct FrameUniforms {
     glm::mat4 view_proj;       // current, Vulkan clip (y down, reversed z)
     glm::mat4 prev_view_proj;  // previous frame's
     glm::mat4 inv_view_proj;
-    glm::mat4 sun_vp;          // sun's orthographic shadow map
-    glm::mat4 lamp_point_vp;   // this frame's random point on the area light
-    glm::mat4 lamp_centre_vp;  // the area light's centre (PCSS fallback)
-    glm::vec4 camera_pos;      // w: time in seconds
-    glm::vec4 sun_dir;         // towards the sun; w: normal offset (world units)
-    glm::vec4 sun_colour;      // w: PCF radius in sun-map texels
-    glm::vec4 ambient;         // w: sun-map depth bias (world units)
-    glm::vec4 lamp_centre;     // w: lamp maps' near plane
-    glm::vec4 lamp_u;          // half axis; w: far plane
-    glm::vec4 lamp_v;          // half axis; w: tan(fov / 2)
-    glm::vec4 lamp_point;      // this frame's point; w: lamp map size (texels)
-    glm::vec4 lamp_facing;     // w: relative depth bias
-    glm::vec4 lamp_colour;     // w: sun map size (texels)
-    glm::vec4 sphere;          // mirror sphere centre, radius
-    glm::vec4 bump;            // x: bump frequency (1/m), y: strength
-    glm::uvec4 frame;          // x: frame index, y: taps k, z: width, w: height
+    glm::mat4 sun_vp;             // sun's orthographic shadow map
+    glm::mat4 lamp_point_vp;      // this frame's random point on the area light
+    glm::mat4 lamp_centre_vp;     // the area light's centre (PCSS fallback)
+    glm::vec4 camera_pos;         // w: time in seconds
+    glm::vec4 sun_dir;            // towards the sun; w: normal offset (world units)
+    glm::vec4 sun_colour;         // w: PCF radius in sun-map texels
+    glm::vec4 ambient;            // w: sun-map depth bias (world units)
+    glm::vec4 lamp_centre;        // w: lamp maps' near plane
+    glm::vec4 lamp_u;             // half axis; w: far plane
+    glm::vec4 lamp_v;             // half axis; w: tan(fov / 2)
+    glm::vec4 lamp_point;         // this frame's point; w: lamp map size (texels)
+    glm::vec4 lamp_facing;        // w: relative depth bias
+    glm::vec4 lamp_colour;        // w: sun map size (texels)
+    glm::vec4 sphere;             // mirror sphere centre, radius
+    glm::vec4 bump;               // x: bump frequency (1/m), y: strength
+    glm::uvec4 frame;             // x: frame index, y: taps k, z: width, w: height
     glm::vec4 poisson[kMaxTaps];  // xy: the k-tap pattern in the unit disk
 };
 static_assert(sizeof(FrameUniforms) == 6 * 64 + 13 * 16 + kMaxTaps * 16, "std140 layout");

@@ -24,8 +24,8 @@ void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stages, VkAcce
 void compute_to_compute(VkCommandBuffer cmd);
 
 struct GpuOptions {
-    bool validation = false;   // VK_LAYER_KHRONOS_validation + synchronization validation
-    std::string device_name;   // substring of the device name; "" = RRC_DEVICE or discrete > integrated > any
+    bool validation = false;  // VK_LAYER_KHRONOS_validation + synchronization validation
+    std::string device_name;  // substring of the device name; "" = RRC_DEVICE or discrete > integrated > any
 };
 
 struct Image {
@@ -62,8 +62,8 @@ public:
     uint32_t family = 0;
     uint32_t api_version = VK_API_VERSION_1_1;
     VkPhysicalDeviceProperties properties{};
-    bool debug_utils = false;      // VK_EXT_debug_utils enabled (object names, labels)
-    bool timestamps = false;       // the queue family has valid timestamp bits
+    bool debug_utils = false;  // VK_EXT_debug_utils enabled (object names, labels)
+    bool timestamps = false;   // the queue family has valid timestamp bits
     bool validation = false;
 
     std::string device_name() const { return properties.deviceName; }

@@ -23,8 +23,7 @@ MeshData make_plane(float half, int n) {
     MeshData m;
     const float step = 2.0f * half / (float)n;
     for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            quad(m, {-half + i * step, 0.0f, -half + j * step}, {0, 0, step}, {step, 0, 0}, {0, 1, 0});
+        for (int i = 0; i < n; ++i) quad(m, {-half + i * step, 0.0f, -half + j * step}, {0, 0, step}, {step, 0, 0}, {0, 1, 0});
     return m;
 }
 

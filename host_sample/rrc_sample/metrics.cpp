@@ -10,9 +10,12 @@ namespace rrc_sample {
 HitStats hit_stats(const std::vector<uint8_t>& mask) {
     HitStats s;
     for (uint8_t m : mask) {
-        if (m & RRC_MASK_BACKGROUND) ++s.background;
-        else if (m & RRC_MASK_HIT) ++s.hits;
-        else ++s.misses;
+        if (m & RRC_MASK_BACKGROUND)
+            ++s.background;
+        else if (m & RRC_MASK_HIT)
+            ++s.hits;
+        else
+            ++s.misses;
         if (m & RRC_MASK_REFRESHED) ++s.refreshed;
     }
     return s;

@@ -29,8 +29,8 @@ ErrorStats error_against(const std::vector<float>& value, const std::vector<floa
 struct SignalErrors {
     std::string signal;
     ErrorStats raw, accumulated;
-    ErrorStats brute_force;  // 4x the per-frame samples, one frame
-    ErrorStats shown, fallback;  // soft only: displayed (accumulated + PCSS fallback), PCSS alone
+    ErrorStats brute_force;                 // 4x the per-frame samples, one frame
+    ErrorStats shown, fallback;             // soft only: displayed (accumulated + PCSS fallback), PCSS alone
     ErrorStats raw_hits, accumulated_hits;  // over cache hits only
 };
 

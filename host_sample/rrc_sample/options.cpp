@@ -34,10 +34,14 @@ uint32_t parse_signals(const std::string& v) {
     std::stringstream ss(v);
     std::string item;
     while (std::getline(ss, item, ',')) {
-        if (item == "pcf") bits |= kSignalPcf;
-        else if (item == "env") bits |= kSignalEnv;
-        else if (item == "soft") bits |= kSignalSoft;
-        else throw OptionError("--signals: unknown signal \"" + item + "\" (pcf, env, soft)");
+        if (item == "pcf")
+            bits |= kSignalPcf;
+        else if (item == "env")
+            bits |= kSignalEnv;
+        else if (item == "soft")
+            bits |= kSignalSoft;
+        else
+            throw OptionError("--signals: unknown signal \"" + item + "\" (pcf, env, soft)");
     }
     if (!bits) throw OptionError("--signals: name at least one of pcf, env, soft");
     return bits;
@@ -101,39 +105,64 @@ Options parse_options(int argc, const char* const* argv) {
             if (i + 1 >= argc) throw OptionError(a + ": missing value");
             return argv[++i];
         };
-        if (a == "--help" || a == "-h") o.help = true;
-        else if (a == "--scene") o.scene = value();
-        else if (a == "--frames") o.frames = (int)to_int(a, value(), 1, 100000);
+        if (a == "--help" || a == "-h")
+            o.help = true;
+        else if (a == "--scene")
+            o.scene = value();
+        else if (a == "--frames")
+            o.frames = (int)to_int(a, value(), 1, 100000);
         else if (a == "--size") {
             const std::string v = value();
             const size_t x = v.find('x');
             if (x == std::string::npos) throw OptionError("--size: expected WxH, got \"" + v + "\"");
             o.width = (uint32_t)to_int(a, v.substr(0, x), 8, 8192);
             o.height = (uint32_t)to_int(a, v.substr(x + 1), 8, 8192);
-        } else if (a == "--out") o.out = value();
-        else if (a == "--reference-every") o.reference_every = (int)to_int(a, value(), 0, 100000);
-        else if (a == "--reference-samples") o.reference_samples = (int)to_int(a, value(), 1, 65536);
-        else if (a == "--taps") o.taps = (int)to_int(a, value(), 1, 64);
-        else if (a == "--signals") o.signals = parse_signals(value());
+        } else if (a == "--out")
+            o.out = value();
+        else if (a == "--reference-every")
+            o.reference_every = (int)to_int(a, value(), 0, 100000);
+        else if (a == "--reference-samples")
+            o.reference_samples = (int)to_int(a, value(), 1, 65536);
+        else if (a == "--taps")
+            o.taps = (int)to_int(a, value(), 1, 64);
+        else if (a == "--signals")
+            o.signals = parse_signals(value());
         else if (a == "--reproject") {
             const std::string v = value();
-            if (v == "prev_clip") o.reprojection = RRC_REPROJECTION_PREV_CLIP;
-            else if (v == "motion") o.reprojection = RRC_REPROJECTION_MOTION;
-            else if (v == "motion_depth") o.reprojection = RRC_REPROJECTION_MOTION_DEPTH;
-            else if (v == "camera") o.reprojection = RRC_REPROJECTION_CAMERA;
-            else throw OptionError("--reproject: expected prev_clip, motion, motion_depth or camera, got \"" + v + "\"");
-        } else if (a == "--epsilon-scale") o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
-        else if (a == "--soft-prior") o.soft_prior = to_float(a, value(), 0.0f, 1e6f);
-        else if (a == "--soft-age-cap") o.soft_age_cap = (uint32_t)to_int(a, value(), 1, 65535);
-        else if (a == "--fps") o.fps = to_float(a, value(), 0.1f, 10000.0f);
-        else if (a == "--shadow-map-size") o.sun_map = o.lamp_map = (uint32_t)to_int(a, value(), 16, 8192);
-        else if (a == "--pcf-radius") o.pcf_radius = to_float(a, value(), 0.0f, 64.0f);
-        else if (a == "--static-camera") o.static_camera = true;
-        else if (a == "--no-images") o.write_images = false;
-        else if (a == "--validation") o.validation = true;
-        else if (a == "--device") o.device = value();
-        else if (a == "--quiet") o.quiet = true;
-        else throw OptionError("unknown option \"" + a + "\" (--help lists them)");
+            if (v == "prev_clip")
+                o.reprojection = RRC_REPROJECTION_PREV_CLIP;
+            else if (v == "motion")
+                o.reprojection = RRC_REPROJECTION_MOTION;
+            else if (v == "motion_depth")
+                o.reprojection = RRC_REPROJECTION_MOTION_DEPTH;
+            else if (v == "camera")
+                o.reprojection = RRC_REPROJECTION_CAMERA;
+            else
+                throw OptionError("--reproject: expected prev_clip, motion, motion_depth or camera, got \"" + v + "\"");
+        } else if (a == "--epsilon-scale")
+            o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
+        else if (a == "--soft-prior")
+            o.soft_prior = to_float(a, value(), 0.0f, 1e6f);
+        else if (a == "--soft-age-cap")
+            o.soft_age_cap = (uint32_t)to_int(a, value(), 1, 65535);
+        else if (a == "--fps")
+            o.fps = to_float(a, value(), 0.1f, 10000.0f);
+        else if (a == "--shadow-map-size")
+            o.sun_map = o.lamp_map = (uint32_t)to_int(a, value(), 16, 8192);
+        else if (a == "--pcf-radius")
+            o.pcf_radius = to_float(a, value(), 0.0f, 64.0f);
+        else if (a == "--static-camera")
+            o.static_camera = true;
+        else if (a == "--no-images")
+            o.write_images = false;
+        else if (a == "--validation")
+            o.validation = true;
+        else if (a == "--device")
+            o.device = value();
+        else if (a == "--quiet")
+            o.quiet = true;
+        else
+            throw OptionError("unknown option \"" + a + "\" (--help lists them)");
     }
     return o;
 }

@@ -13,22 +13,22 @@ struct Options {
     int frames = 60;
     uint32_t width = 256, height = 160;
     std::string out = "out/sample";
-    int reference_every = 10;      // checkpoint frames: t % K == K-1, and the last frame; 0 = none
-    int reference_samples = 256;   // per pixel (pcf taps, env sub-pixel rays, soft shadow maps)
-    int taps = 4;                  // k: pcf taps and env sub-pixel samples per frame
-    uint32_t signals = 0;          // Signal bits; 0 = every signal the scene uses
-    uint32_t reprojection = 0;     // RRC_REPROJECTION_*
-    float epsilon_scale = 16384.0f;  // rrc's epsilon_scale (ulps of FLOAT32 depth); 0 = the library default (4)
-    float soft_prior = 4.0f;       // PCSS fallback weight, in samples (see README.md)
-    uint32_t soft_age_cap = 64;    // the soft channel's running-mean cap
-    float fps = 30.0f;             // animation time step = 1/fps
+    int reference_every = 10;                // checkpoint frames: t % K == K-1, and the last frame; 0 = none
+    int reference_samples = 256;             // per pixel (pcf taps, env sub-pixel rays, soft shadow maps)
+    int taps = 4;                            // k: pcf taps and env sub-pixel samples per frame
+    uint32_t signals = 0;                    // Signal bits; 0 = every signal the scene uses
+    uint32_t reprojection = 0;               // RRC_REPROJECTION_*
+    float epsilon_scale = 16384.0f;          // rrc's epsilon_scale (ulps of FLOAT32 depth); 0 = the library default (4)
+    float soft_prior = 4.0f;                 // PCSS fallback weight, in samples (see README.md)
+    uint32_t soft_age_cap = 64;              // the soft channel's running-mean cap
+    float fps = 30.0f;                       // animation time step = 1/fps
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
-    float pcf_radius = 3.0f;       // PCF disk radius in sun-map texels
-    bool static_camera = false;    // hold the camera still (the mover still moves)
+    float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
+    bool static_camera = false;              // hold the camera still (the mover still moves)
     bool validation = false;
     bool quiet = false;
-    bool write_images = true;      // PNG/EXR per frame; the summary is always written
-    std::string device;            // substring of the Vulkan device name
+    bool write_images = true;  // PNG/EXR per frame; the summary is always written
+    std::string device;        // substring of the Vulkan device name
     bool help = false;
 };
 

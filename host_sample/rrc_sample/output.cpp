@@ -53,9 +53,12 @@ std::vector<uint8_t> coherence_map(const std::vector<uint8_t>& mask) {
         const uint8_t m = mask[i];
         uint8_t* p = &rgb[i * 3];
         if (m & RRC_MASK_BACKGROUND) continue;
-        if (m & RRC_MASK_REFRESHED) p[2] = 230;
-        else if (m & RRC_MASK_HIT) p[1] = 200;
-        else p[0] = 230;
+        if (m & RRC_MASK_REFRESHED)
+            p[2] = 230;
+        else if (m & RRC_MASK_HIT)
+            p[1] = 200;
+        else
+            p[0] = 230;
     }
     return rgb;
 }

@@ -14,8 +14,7 @@ enum ComposeInput : uint32_t { kComposeAccumulated = 0, kComposeRaw = 1, kCompos
 class PostPasses {
 public:
     PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask,
-               const SignalImages& accumulated, const SignalImages& raw, const SignalImages& reference, uint32_t width,
-               uint32_t height);
+               const SignalImages& accumulated, const SignalImages& raw, const SignalImages& reference, uint32_t width, uint32_t height);
     ~PostPasses();
     PostPasses(const PostPasses&) = delete;
     PostPasses& operator=(const PostPasses&) = delete;

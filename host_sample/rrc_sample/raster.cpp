@@ -14,14 +14,13 @@ namespace {
 // (compute reads and writes, transfers of the readback, earlier passes) and
 // make their results visible to compute, fragment and transfer reads after.
 std::vector<VkSubpassDependency> external_dependencies() {
-    const VkPipelineStageFlags attachment_stages = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
-                                                   VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+    const VkPipelineStageFlags attachment_stages = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
                                                    VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     VkSubpassDependency in{};
     in.srcSubpass = VK_SUBPASS_EXTERNAL;
     in.dstSubpass = 0;
-    in.srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
-                      VK_PIPELINE_STAGE_TRANSFER_BIT | attachment_stages;
+    in.srcStageMask =
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT | attachment_stages;
     in.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     in.dstStageMask = attachment_stages;
@@ -183,8 +182,8 @@ void GpuScene::update(const FrameState& state) {
     std::memcpy(objects_.mapped, state.objects.data(), state.objects.size() * sizeof(GpuObject));
 }
 
-void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, VkShaderStageFlags stages, uint32_t object_offset,
-                    const void* prefix, uint32_t prefix_bytes) const {
+void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, VkShaderStageFlags stages, uint32_t object_offset, const void* prefix,
+                    uint32_t prefix_bytes) const {
     VkDeviceSize zero = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertices_.buffer, &zero);
     vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -329,8 +328,9 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     plci.pushConstantRangeCount = 1;
     plci.pPushConstantRanges = &range;
     vk_check(vkCreatePipelineLayout(gpu.device, &plci, nullptr, &layout_), "vkCreatePipelineLayout");
-    PipelineDesc d{pass_, layout_, rrc_sample_gbuffer_vert, sizeof rrc_sample_gbuffer_vert, rrc_sample_gbuffer_frag,
-                   sizeof rrc_sample_gbuffer_frag, 4};
+    PipelineDesc d{
+        pass_, layout_, rrc_sample_gbuffer_vert, sizeof rrc_sample_gbuffer_vert, rrc_sample_gbuffer_frag, sizeof rrc_sample_gbuffer_frag,
+        4};
     d.depth_compare = VK_COMPARE_OP_GREATER;  // reversed z
     pipeline_ = make_pipeline(gpu, d);
 }
@@ -346,7 +346,7 @@ GBufferPass::~GBufferPass() {
 void GBufferPass::record(VkCommandBuffer cmd) {
     VkClearValue clears[5] = {};
     clears[2].color = {{0.0f, 0.0f, 1.0f, 0.0f}};  // material 0: background
-    clears[4].depthStencil = {0.0f, 0};             // reversed z: far = 0
+    clears[4].depthStencil = {0.0f, 0};            // reversed z: far = 0
     VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     bi.renderPass = pass_;
     bi.framebuffer = framebuffer_;

@@ -23,8 +23,8 @@ public:
     /** Copies the frame's uniforms and objects (the GPU must be idle on them). */
     void update(const FrameState& state);
     /** Binds buffers and draws every object; push constant at `object_offset` = the object's index. */
-    void draw(VkCommandBuffer cmd, VkPipelineLayout layout, VkShaderStageFlags push_stages, uint32_t object_offset,
-              const void* push_prefix, uint32_t prefix_bytes) const;
+    void draw(VkCommandBuffer cmd, VkPipelineLayout layout, VkShaderStageFlags push_stages, uint32_t object_offset, const void* push_prefix,
+              uint32_t prefix_bytes) const;
 
     VkBuffer uniforms() const { return ubo_.buffer; }
     VkBuffer objects() const { return objects_.buffer; }
@@ -66,11 +66,11 @@ private:
 
 /** The G-buffer images (left in SHADER_READ_ONLY_OPTIMAL by the pass). */
 struct GBuffer {
-    Image depth;        // D32_SFLOAT, reversed z (cleared to 0)
-    Image prev_clip;    // RGBA32F: previous clip position (rrc PREV_CLIP)
-    Image motion;       // RGBA32F: uv_prev - uv_cur, expected previous depth - depth (rrc MOTION / MOTION_DEPTH)
-    Image normal;       // RGBA16F: world normal, material id in w
-    Image position;     // RGBA32F: world position
+    Image depth;      // D32_SFLOAT, reversed z (cleared to 0)
+    Image prev_clip;  // RGBA32F: previous clip position (rrc PREV_CLIP)
+    Image motion;     // RGBA32F: uv_prev - uv_cur, expected previous depth - depth (rrc MOTION / MOTION_DEPTH)
+    Image normal;     // RGBA16F: world normal, material id in w
+    Image position;   // RGBA32F: world position
 };
 
 class GBufferPass {

@@ -8,7 +8,8 @@ uint32_t texel_bytes(VkFormat f) {
     switch (f) {
         case VK_FORMAT_R8_UINT: return 1;
         case VK_FORMAT_R16_UINT: return 2;
-        case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_R8G8B8A8_UNORM: return 4;
+        case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_R8G8B8A8_UNORM: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
         default: throw std::runtime_error("readback: unsupported format");

@@ -127,7 +127,8 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
     auto stamp = [&](Stamp s) {
-        if (queries_) vkCmdWriteTimestamp(cmd, s == kStart ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, s);
+        if (queries_)
+            vkCmdWriteTimestamp(cmd, s == kStart ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, s);
     };
     if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, kStampCount);
     // Everything of the previous frame (readback copies included) before anything of this one.
@@ -164,8 +165,8 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
         post_->record_compose(cmd, sig, kComposeRaw);
         post_->record_compose(cmd, sig, kComposeReference);
     }
-    std::vector<int> slots = {slot_.mask, slot_.age[parity_], slot_.colour[0], slot_.shown, slot_.pcss, slot_.position, slot_.normal,
-                              slot_.prev_clip};
+    std::vector<int> slots = {slot_.mask, slot_.age[parity_], slot_.colour[0], slot_.shown,
+                              slot_.pcss, slot_.position,     slot_.normal,    slot_.prev_clip};
     for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]);
     if (checkpoint)
         for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);

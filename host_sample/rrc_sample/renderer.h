@@ -48,15 +48,15 @@ struct SignalData {
 struct FrameOutput {
     int index = 0;
     bool checkpoint = false;
-    std::vector<uint8_t> mask;       // rrc's mask bits
-    std::vector<uint16_t> age;       // the host's age map
+    std::vector<uint8_t> mask;                   // rrc's mask bits
+    std::vector<uint16_t> age;                   // the host's age map
     std::array<std::vector<uint8_t>, 3> colour;  // RGBA8: accumulated; raw, reference (checkpoints)
-    std::vector<float> position;   // G-buffer world position, RGBA (false-hit count)
-    std::vector<float> prev_clip;  // G-buffer previous clip position, RGBA
-    std::vector<uint8_t> material; // G-buffer material id
-    std::vector<float> normal;     // G-buffer world normal, xyz
-    glm::vec3 eye{0.0f};           // camera position
-    float pixel_angle = 0.0f;      // radians per pixel, vertically
+    std::vector<float> position;                 // G-buffer world position, RGBA (false-hit count)
+    std::vector<float> prev_clip;                // G-buffer previous clip position, RGBA
+    std::vector<uint8_t> material;               // G-buffer material id
+    std::vector<float> normal;                   // G-buffer world normal, xyz
+    glm::vec3 eye{0.0f};                         // camera position
+    float pixel_angle = 0.0f;                    // radians per pixel, vertically
     SignalData pcf, env, soft;
     FrameTimings timings;
 };

@@ -31,7 +31,8 @@ bool is_checkpoint(const Options& o, int frame) {
     return frame % o.reference_every == o.reference_every - 1 || frame == o.frames - 1;
 }
 
-RunResult run_sample(const Options& o, std::ostream* progress, const std::function<void(const FrameOutput&, const FrameRecord&)>& on_frame) {
+RunResult run_sample(const Options& o, std::ostream* progress,
+                     const std::function<void(const FrameOutput&, const FrameRecord&)>& on_frame) {
     if (o.quiet) progress = nullptr;
     Scene scene = Scene::make(o.scene);
     if (o.static_camera) scene.camera_speed = 0.0f;

@@ -23,7 +23,7 @@ Options tiny(const std::string& name) {
     o.frames = 6;
     o.width = 64;
     o.height = 40;
-    o.reference_every = 3;    // checkpoints: frames 2 and 5
+    o.reference_every = 3;     // checkpoints: frames 2 and 5
     o.reference_samples = 16;  // 4x4 light points for the soft reference
     o.sun_map = o.lamp_map = 256;
     o.validation = true;
@@ -72,8 +72,7 @@ TEST(RrcSample, ShortSequenceUnderValidationLayer) {
 
     namespace fs = std::filesystem;
     for (const char* f : {"summary.md", "summary.csv", "errors.csv", "frames/frame_0005.png", "frames/frame_0005_reference.png",
-                          "coherence/coherence_0005.png", "age/age_0005.png", "exr/pcf_0005.exr", "exr/env_0005.exr",
-                          "exr/soft_0005.exr"})
+                          "coherence/coherence_0005.png", "age/age_0005.png", "exr/pcf_0005.exr", "exr/env_0005.exr", "exr/soft_0005.exr"})
         EXPECT_TRUE(fs::exists(fs::path(o.out) / f)) << f;
 }
 
@@ -133,8 +132,15 @@ TEST(RrcSample, SceneWithoutMirrorSphereHasNoEnvChannel) {
 }
 
 TEST(RrcSampleOptions, ParsesAndRefuses) {
-    const char* ok[] = {"rrc-sample", "--frames", "12", "--size", "96x64", "--signals", "pcf,soft", "--reproject", "motion",
-                        "--taps", "8", "--reference-every", "4", "--reference-samples", "64", "--quiet", "--no-images"};
+    const char* ok[] = {"rrc-sample", "--frames",
+                        "12",         "--size",
+                        "96x64",      "--signals",
+                        "pcf,soft",   "--reproject",
+                        "motion",     "--taps",
+                        "8",          "--reference-every",
+                        "4",          "--reference-samples",
+                        "64",         "--quiet",
+                        "--no-images"};
     Options o = parse_options((int)(sizeof ok / sizeof *ok), ok);
     EXPECT_EQ(o.frames, 12);
     EXPECT_EQ(o.width, 96u);
@@ -148,10 +154,14 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_TRUE(is_checkpoint(o, 11));
     EXPECT_FALSE(is_checkpoint(o, 4));
 
-    const std::vector<std::vector<const char*>> bad = {
-        {"rrc-sample", "--frames", "0"},        {"rrc-sample", "--size", "64"},          {"rrc-sample", "--signals", "pcf,fog"},
-        {"rrc-sample", "--reproject", "warp"},  {"rrc-sample", "--taps", "65"},          {"rrc-sample", "--frames"},
-        {"rrc-sample", "--bogus"},              {"rrc-sample", "--epsilon-scale", "-1"}};
+    const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
+                                                       {"rrc-sample", "--size", "64"},
+                                                       {"rrc-sample", "--signals", "pcf,fog"},
+                                                       {"rrc-sample", "--reproject", "warp"},
+                                                       {"rrc-sample", "--taps", "65"},
+                                                       {"rrc-sample", "--frames"},
+                                                       {"rrc-sample", "--bogus"},
+                                                       {"rrc-sample", "--epsilon-scale", "-1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

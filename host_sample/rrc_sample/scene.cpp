@@ -26,8 +26,7 @@ AreaLight make_lamp(glm::vec3 centre, glm::vec3 target, float half_size, glm::ve
 std::vector<std::string> Scene::names() { return {"temple", "courtyard"}; }
 
 Scene Scene::make(const std::string& name) {
-    if (name != "temple" && name != "courtyard")
-        throw std::runtime_error("unknown scene \"" + name + "\" (temple, courtyard)");
+    if (name != "temple" && name != "courtyard") throw std::runtime_error("unknown scene \"" + name + "\" (temple, courtyard)");
     Scene s;
     s.name = name;
     // Meshes: 0 ground, 1 stylobate (steps), 2 column, 3 roof slab, 4 sphere, 5 torus.
@@ -42,13 +41,11 @@ Scene Scene::make(const std::string& name) {
     s.objects.push_back({1, kMatStone, at({0, 0.25f, 0}), false});
     // The small temple: two rows of six columns on the stylobate, a roof slab on top.
     for (int row = 0; row < 2; ++row)
-        for (int i = 0; i < 6; ++i)
-            s.objects.push_back({2, kMatStone, at({-5.0f + 2.0f * (float)i, 0.5f, row ? -2.3f : 2.3f}), false});
+        for (int i = 0; i < 6; ++i) s.objects.push_back({2, kMatStone, at({-5.0f + 2.0f * (float)i, 0.5f, row ? -2.3f : 2.3f}), false});
     s.objects.push_back({3, kMatStone, at({0, 4.4f, 0}), false});
     if (name == "temple") {
         s.sphere = {-3.2f, 1.3f, 5.6f, 1.3f};
-        s.objects.push_back({4, kMatSphere,
-                             glm::scale(at(glm::vec3(s.sphere)), glm::vec3(s.sphere.w)), false});
+        s.objects.push_back({4, kMatSphere, glm::scale(at(glm::vec3(s.sphere)), glm::vec3(s.sphere.w)), false});
         s.signals = kSignalPcf | kSignalEnv | kSignalSoft;
     } else {
         s.sphere = {0, -100.0f, 0, 0.0f};  // none

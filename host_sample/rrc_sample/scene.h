@@ -20,8 +20,8 @@ enum Signal : uint32_t { kSignalPcf = 1u, kSignalEnv = 2u, kSignalSoft = 4u };
 struct SceneObject {
     uint32_t mesh = 0;
     uint32_t material = kMatStone;
-    glm::mat4 base{1.0f};      // placement
-    bool moves = false;        // animated by Scene::model()
+    glm::mat4 base{1.0f};  // placement
+    bool moves = false;    // animated by Scene::model()
 };
 
 struct Camera {
@@ -49,10 +49,10 @@ public:
 
     glm::vec3 sun_direction{0, 1, 0};  // towards the sun
     glm::vec3 sun_colour{1.0f};
-    float sun_extent = 14.0f;           // half size of the sun's orthographic shadow map
+    float sun_extent = 14.0f;  // half size of the sun's orthographic shadow map
     glm::vec3 ambient{0.1f};
     AreaLight lamp;
-    glm::vec4 sphere{0, 1, 0, 1};       // the mirror sphere (analytic, for sub-pixel rays): centre, radius
+    glm::vec4 sphere{0, 1, 0, 1};  // the mirror sphere (analytic, for sub-pixel rays): centre, radius
     float near_plane = 0.1f, far_plane = 200.0f;
 
     /** Object `i`'s model matrix at time `t` seconds. */

@@ -27,8 +27,8 @@ struct SoftPush {
 SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, uint32_t w, uint32_t h)
     : gpu_(gpu), maps_(maps), width_(w), height_(h) {
     // Sampled by rrc, written here, read back by the host.
-    const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const VkImageUsageFlags use =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     raw_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf signal");
     raw_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env signal");
     raw_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft signal");

@@ -71,8 +71,10 @@ Aggregate aggregate(const RunResult& run) {
             s.psnr_brute += e.brute_force.psnr;
         }
     }
-    if (a.hit_frames) a.hit_mean /= a.hit_frames;
-    else a.hit_min = 0;
+    if (a.hit_frames)
+        a.hit_mean /= a.hit_frames;
+    else
+        a.hit_min = 0;
     a.render = median(render);
     a.rrc = median(rrc);
     a.post = median(post);
@@ -118,15 +120,16 @@ void print_summary(const RunResult& run, std::ostream& os) {
     char b[512];
     os << "\nsummary (" << run.frames.size() << " frames, " << run.options.width << "x" << run.options.height << ", " << run.device
        << ")\n";
-    std::snprintf(b, sizeof b, "  hit ratio, frames 2..%zu: mean %.1f%%, min %.1f%%; false hits %.3f%% of static-surface hits (strict %.3f%%)\n",
-                  run.frames.size(), 100.0 * a.hit_mean, 100.0 * a.hit_min,
-                  a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0,
-                  a.checked ? 100.0 * (double)a.strict / (double)a.checked : 0.0);
+    std::snprintf(
+        b, sizeof b, "  hit ratio, frames 2..%zu: mean %.1f%%, min %.1f%%; false hits %.3f%% of static-surface hits (strict %.3f%%)\n",
+        run.frames.size(), 100.0 * a.hit_mean, 100.0 * a.hit_min, a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0,
+        a.checked ? 100.0 * (double)a.strict / (double)a.checked : 0.0);
     os << b;
-    std::snprintf(b, sizeof b,
-                  "  GPU ms per frame (median): render %.2f (shadows + g-buffer + signals), rrc %.2f, post %.2f; reference %.0f on checkpoints\n"
-                  "  the signal passes: %.2f ms with k = %d samples; %.2f ms brute force with 4k\n",
-                  a.render, a.rrc, a.post, a.reference, a.signals, run.options.taps, a.brute);
+    std::snprintf(
+        b, sizeof b,
+        "  GPU ms per frame (median): render %.2f (shadows + g-buffer + signals), rrc %.2f, post %.2f; reference %.0f on checkpoints\n"
+        "  the signal passes: %.2f ms with k = %d samples; %.2f ms brute force with 4k\n",
+        a.render, a.rrc, a.post, a.reference, a.signals, run.options.taps, a.brute);
     os << b;
     if (!a.order.empty()) {
         os << "  error against the reference (mean over checkpoints; PSNR with peak 1):\n";
@@ -139,7 +142,8 @@ void print_summary(const RunResult& run, std::ostream& os) {
                           s.rmse_brute, s.rmse_acc, s.psnr_raw, s.psnr_brute, s.psnr_acc, s.psnr_acc - s.psnr_raw);
             os << b;
             if (name == "soft") {
-                std::snprintf(b, sizeof b, "    %-6s %10s %10s %10.4f %10s %10s %7.2f dB   (displayed: accumulated + PCSS fallback; PCSS alone %.4f)\n",
+                std::snprintf(b, sizeof b,
+                              "    %-6s %10s %10s %10.4f %10s %10s %7.2f dB   (displayed: accumulated + PCSS fallback; PCSS alone %.4f)\n",
                               "shown", "", "", s.rmse_shown, "", "", s.psnr_shown, s.rmse_fallback);
                 os << b;
             }
@@ -148,8 +152,7 @@ void print_summary(const RunResult& run, std::ostream& os) {
     }
     if (run.options.validation)
         os << "  validation messages: " << run.validation_messages << (run.validation_messages ? " (see stderr)" : "") << "\n";
-    if (run.options.write_images)
-        os << "  images: " << run.options.out << "/{frames,coherence,age,exr}/\n";
+    if (run.options.write_images) os << "  images: " << run.options.out << "/{frames,coherence,age,exr}/\n";
     os << "  summary: " << run.options.out << "/summary.md, summary.csv, errors.csv\n";
 }
 
@@ -161,12 +164,14 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     {
         std::ofstream f;
         open_or_throw(f, (fs::path(out_dir) / "summary.csv").string());
-        f << "frame,checkpoint,hit_ratio,hits,misses,background,false_hits,false_hits_strict,false_hits_checked,ms_shadows,ms_gbuffer,ms_signals,ms_render,ms_rrc,ms_post,ms_reference,"
+        f << "frame,checkpoint,hit_ratio,hits,misses,background,false_hits,false_hits_strict,false_hits_checked,ms_shadows,ms_gbuffer,ms_"
+             "signals,ms_render,ms_rrc,ms_post,ms_reference,"
              "ms_brute_force,ms_cpu_frame\n";
         for (const FrameRecord& r : run.frames) {
             const FrameTimings& t = r.timings;
-            f << r.index << "," << (r.checkpoint ? 1 : 0) << "," << fmt("%.6f", r.hits.ratio()) << "," << r.hits.hits << "," << r.hits.misses
-              << "," << r.hits.background << "," << r.false_hits.false_hits << "," << r.false_hits.strict << "," << r.false_hits.checked << "," << fmt("%.4f", t.shadows) << "," << fmt("%.4f", t.gbuffer) << "," << fmt("%.4f", t.signals)
+            f << r.index << "," << (r.checkpoint ? 1 : 0) << "," << fmt("%.6f", r.hits.ratio()) << "," << r.hits.hits << ","
+              << r.hits.misses << "," << r.hits.background << "," << r.false_hits.false_hits << "," << r.false_hits.strict << ","
+              << r.false_hits.checked << "," << fmt("%.4f", t.shadows) << "," << fmt("%.4f", t.gbuffer) << "," << fmt("%.4f", t.signals)
               << "," << fmt("%.4f", t.render()) << "," << fmt("%.4f", t.rrc) << "," << fmt("%.4f", t.post) << ","
               << fmt("%.4f", t.reference) << "," << fmt("%.4f", t.brute_force) << "," << fmt("%.4f", t.cpu_frame) << "\n";
         }
@@ -174,14 +179,15 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     {
         std::ofstream f;
         open_or_throw(f, (fs::path(out_dir) / "errors.csv").string());
-        f << "frame,signal,pixels,rmse_raw,rmse_brute_force_4x,rmse_accumulated,psnr_raw,psnr_brute_force_4x,psnr_accumulated,rmse_raw_hits,"
+        f << "frame,signal,pixels,rmse_raw,rmse_brute_force_4x,rmse_accumulated,psnr_raw,psnr_brute_force_4x,psnr_accumulated,rmse_raw_"
+             "hits,"
              "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss\n";
         for (const FrameRecord& r : run.frames)
             for (const SignalErrors& e : r.errors) {
                 f << r.index << "," << e.signal << "," << e.raw.pixels << "," << fmt("%.6f", e.raw.rmse) << ","
                   << fmt("%.6f", e.brute_force.rmse) << "," << fmt("%.6f", e.accumulated.rmse) << "," << fmt("%.3f", e.raw.psnr) << ","
-                  << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << ","
-                  << fmt("%.6f", e.raw_hits.rmse) << "," << fmt("%.6f", e.accumulated_hits.rmse) << ",";
+                  << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << "," << fmt("%.6f", e.raw_hits.rmse) << ","
+                  << fmt("%.6f", e.accumulated_hits.rmse) << ",";
                 if (e.signal == "soft")
                     f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << "," << fmt("%.6f", e.fallback.rmse);
                 else
@@ -214,24 +220,26 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     f << "- GPU time per frame (median): rendering " << fmt("%.2f", a.render) << " ms (shadow maps + G-buffer + signals), rrc "
       << fmt("%.2f", a.rrc) << " ms, post " << fmt("%.2f", a.post) << " ms (age, PCSS fallback, compose); reference "
       << fmt("%.0f", a.reference) << " ms per checkpoint\n";
-    f << "- the signal passes: " << fmt("%.2f", a.signals) << " ms with k = " << o.taps << " samples; brute force at 4k: "
-      << fmt("%.2f", a.brute) << " ms (checkpoints)\n";
+    f << "- the signal passes: " << fmt("%.2f", a.signals) << " ms with k = " << o.taps
+      << " samples; brute force at 4k: " << fmt("%.2f", a.brute) << " ms (checkpoints)\n";
     if (!a.order.empty()) {
         f << "\nError against the brute-force reference, mean over checkpoint frames (PSNR with peak 1; pcf and soft over every "
              "surface pixel, env over the mirror sphere's pixels, RGB):\n\n";
-        f << "| signal | RMSE raw (1 frame, k) | RMSE brute force (1 frame, 4k) | RMSE accumulated | PSNR raw | PSNR 4k | PSNR accumulated | "
+        f << "| signal | RMSE raw (1 frame, k) | RMSE brute force (1 frame, 4k) | RMSE accumulated | PSNR raw | PSNR 4k | PSNR accumulated "
+             "| "
              "accumulated - raw |\n|---|---|---|---|---|---|---|---|\n";
         for (const std::string& name : a.order) {
             const Aggregate::Sig& s = a.sig.at(name);
             f << "| " << name << " | " << fmt("%.4f", s.rmse_raw) << " | " << fmt("%.4f", s.rmse_brute) << " | " << fmt("%.4f", s.rmse_acc)
-              << " | " << fmt("%.2f", s.psnr_raw) << " dB | " << fmt("%.2f", s.psnr_brute) << " dB | " << fmt("%.2f", s.psnr_acc) << " dB | "
-              << fmt("%+.2f", s.psnr_acc - s.psnr_raw) << " dB |\n";
+              << " | " << fmt("%.2f", s.psnr_raw) << " dB | " << fmt("%.2f", s.psnr_brute) << " dB | " << fmt("%.2f", s.psnr_acc)
+              << " dB | " << fmt("%+.2f", s.psnr_acc - s.psnr_raw) << " dB |\n";
             if (name == "soft")
                 f << "| soft, displayed (accumulated + PCSS fallback) | | | " << fmt("%.4f", s.rmse_shown) << " | | | "
                   << fmt("%.2f", s.psnr_shown) << " dB | |\n| soft, PCSS alone | | | " << fmt("%.4f", s.rmse_fallback) << " | | | | |\n";
         }
         f << "\nFor soft shadows \"k\" is one shadow map a frame and \"4k\" four shadow maps from random points of the light.\n";
-        f << "\nPer checkpoint:\n\n| frame | signal | pixels | RMSE raw | RMSE accumulated | RMSE raw, hits | RMSE accumulated, hits | PSNR raw | "
+        f << "\nPer checkpoint:\n\n| frame | signal | pixels | RMSE raw | RMSE accumulated | RMSE raw, hits | RMSE accumulated, hits | "
+             "PSNR raw | "
              "PSNR accumulated |\n|---|---|---|---|---|---|---|---|---|\n";
         for (const FrameRecord& r : run.frames)
             for (const SignalErrors& e : r.errors)

@@ -61,21 +61,20 @@ extern "C" {
 #endif
 
 #if defined(_WIN32)
-#  if defined(RRC_BUILDING_LIBRARY)
-#    define RRC_API __declspec(dllexport)
-#  else
-#    define RRC_API __declspec(dllimport)
-#  endif
+#    if defined(RRC_BUILDING_LIBRARY)
+#        define RRC_API __declspec(dllexport)
+#    else
+#        define RRC_API __declspec(dllimport)
+#    endif
 #elif defined(__GNUC__)
-#  define RRC_API __attribute__((visibility("default")))
+#    define RRC_API __attribute__((visibility("default")))
 #else
-#  define RRC_API
+#    define RRC_API
 #endif
 
 /* ---- Version ----------------------------------------------------------- */
 
-#define RRC_MAKE_VERSION(major, minor, patch) \
-    ((((uint32_t)(major)) << 22) | (((uint32_t)(minor)) << 12) | ((uint32_t)(patch)))
+#define RRC_MAKE_VERSION(major, minor, patch) ((((uint32_t)(major)) << 22) | (((uint32_t)(minor)) << 12) | ((uint32_t)(patch)))
 #define RRC_VERSION_MAJOR(v) ((uint32_t)(v) >> 22)
 #define RRC_VERSION_MINOR(v) (((uint32_t)(v) >> 12) & 0x3FFu)
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
@@ -90,16 +89,16 @@ RRC_API uint32_t rrc_get_version(void);
 
 typedef int32_t rrc_result;
 #define RRC_SUCCESS 0
-#define RRC_ERROR_INVALID_ARGUMENT -1       /* a NULL pointer, a bad value */
-#define RRC_ERROR_INVALID_STRUCT -2         /* wrong type tag or size */
-#define RRC_ERROR_INCOMPATIBLE_VERSION -3   /* api_version of another major */
-#define RRC_ERROR_UNSUPPORTED -4            /* valid, but not implemented or not on this device */
-#define RRC_ERROR_OUT_OF_MEMORY -5          /* host or device allocation failed */
-#define RRC_ERROR_DEVICE -6                 /* no Vulkan device, or a Vulkan call failed */
-#define RRC_ERROR_DEVICE_LOST -7            /* the device was lost; destroy the context */
-#define RRC_ERROR_MISSING_INPUT -8          /* an input the configuration needs is NULL */
-#define RRC_ERROR_SIZE_MISMATCH -9          /* input sizes disagree with the context */
-#define RRC_ERROR_INVALID_HANDLE -10        /* NULL, destroyed or foreign context */
+#define RRC_ERROR_INVALID_ARGUMENT -1     /* a NULL pointer, a bad value */
+#define RRC_ERROR_INVALID_STRUCT -2       /* wrong type tag or size */
+#define RRC_ERROR_INCOMPATIBLE_VERSION -3 /* api_version of another major */
+#define RRC_ERROR_UNSUPPORTED -4          /* valid, but not implemented or not on this device */
+#define RRC_ERROR_OUT_OF_MEMORY -5        /* host or device allocation failed */
+#define RRC_ERROR_DEVICE -6               /* no Vulkan device, or a Vulkan call failed */
+#define RRC_ERROR_DEVICE_LOST -7          /* the device was lost; destroy the context */
+#define RRC_ERROR_MISSING_INPUT -8        /* an input the configuration needs is NULL */
+#define RRC_ERROR_SIZE_MISMATCH -9        /* input sizes disagree with the context */
+#define RRC_ERROR_INVALID_HANDLE -10      /* NULL, destroyed or foreign context */
 
 /** A static, never-NULL name for a result code ("RRC_ERROR_SIZE_MISMATCH"). */
 RRC_API const char* rrc_result_to_string(rrc_result result);
@@ -134,10 +133,10 @@ typedef uint32_t rrc_depth_format;
 
 /** Where the previous-frame position of each pixel comes from. */
 typedef uint32_t rrc_reprojection;
-#define RRC_REPROJECTION_PREV_CLIP 0 /* RGBA32F previous clip position (x,y,z,w) per pixel */
-#define RRC_REPROJECTION_MOTION 1    /* RG: uv_prev - uv_cur (times motion_scale) */
+#define RRC_REPROJECTION_PREV_CLIP 0    /* RGBA32F previous clip position (x,y,z,w) per pixel */
+#define RRC_REPROJECTION_MOTION 1       /* RG: uv_prev - uv_cur (times motion_scale) */
 #define RRC_REPROJECTION_MOTION_DEPTH 2 /* RGB: as MOTION plus expected prev depth - current depth */
-#define RRC_REPROJECTION_CAMERA 3    /* no per-pixel data: view-projection matrices (static scenes) */
+#define RRC_REPROJECTION_CAMERA 3       /* no per-pixel data: view-projection matrices (static scenes) */
 
 /** The lambda recursive filter's blend (docs/CONVENTIONS.md §filter). */
 typedef uint32_t rrc_blend;
@@ -147,7 +146,7 @@ typedef uint32_t rrc_blend;
 
 /** How history is resampled at the reprojected position. */
 typedef uint32_t rrc_history_filter;
-#define RRC_HISTORY_FILTER_BILINEAR 0    /* the paper's choice (default) */
+#define RRC_HISTORY_FILTER_BILINEAR 0 /* the paper's choice (default) */
 #define RRC_HISTORY_FILTER_NEAREST 1
 #define RRC_HISTORY_FILTER_CATMULL_ROM 2 /* clamped to the 4 bilinear taps' range: cannot ring */
 
@@ -167,7 +166,7 @@ typedef uint32_t rrc_history_precision;
 #define RRC_MASK_HIT 1u
 #define RRC_MASK_REFRESHED 2u
 #define RRC_MASK_BACKGROUND 4u
-#define RRC_MASK_INVALID_SAMPLE 8u   /* some channel's sample was not finite */
+#define RRC_MASK_INVALID_SAMPLE 8u    /* some channel's sample was not finite */
 #define RRC_MASK_INVALID_GEOMETRY 16u /* non-finite depth or reprojection data */
 
 /** Channels a context may hold (one fused dispatch serves them all). */
@@ -194,17 +193,17 @@ typedef void (*rrc_log_fn)(void* user, rrc_log_level level, const char* message)
 
 /** One accumulated signal. */
 typedef struct rrc_channel_desc {
-    rrc_struct_type type; /* RRC_STRUCT_TYPE_CHANNEL_DESC */
-    const void* next;     /* reserved, must be NULL */
-    uint32_t size;        /* sizeof(rrc_channel_desc) */
-    char name[RRC_MAX_NAME]; /* non-empty, unique in the context, NUL-terminated */
-    uint32_t components;  /* 1 or 4 */
+    rrc_struct_type type;            /* RRC_STRUCT_TYPE_CHANNEL_DESC */
+    const void* next;                /* reserved, must be NULL */
+    uint32_t size;                   /* sizeof(rrc_channel_desc) */
+    char name[RRC_MAX_NAME];         /* non-empty, unique in the context, NUL-terminated */
+    uint32_t components;             /* 1 or 4 */
     rrc_history_precision precision; /* fp16 (default) or fp32; fp16 above RRC_FP16_MAX_LAMBDA is fp32 */
-    float lambda;         /* in [0,1); the weight of history. 0 with blend FIXED is no accumulation */
+    float lambda;                    /* in [0,1); the weight of history. 0 with blend FIXED is no accumulation */
     rrc_blend blend;
     rrc_history_filter filter;
-    uint32_t age_cap;     /* saturation of the age count; 0 = default 255, at most RRC_MAX_AGE_CAP */
-    uint32_t confidence;  /* non-zero: the host passes a per-sample weight w in [0,1] */
+    uint32_t age_cap;    /* saturation of the age count; 0 = default 255, at most RRC_MAX_AGE_CAP */
+    uint32_t confidence; /* non-zero: the host passes a per-sample weight w in [0,1] */
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {
@@ -216,14 +215,14 @@ typedef struct rrc_context_desc {
     uint32_t width, height; /* 1..RRC_MAX_EXTENT */
 
     rrc_depth_mode depth_mode;
-    float near_plane;     /* view distance of the near plane; needed by MOTION with NDC depth */
-    float far_plane;      /* may be +inf (REVERSED); needed by MOTION with NDC depth */
+    float near_plane;           /* view distance of the near plane; needed by MOTION with NDC depth */
+    float far_plane;            /* may be +inf (REVERSED); needed by MOTION with NDC depth */
     float background_threshold; /* LINEAR: d >= this is background; 0 = default 1e10 */
 
     rrc_depth_format depth_format; /* NDC modes: which z increment makes epsilon */
-    float epsilon_scale;  /* epsilon = scale * increment; 0 = default (1 unorm, 4 float32) */
-    float epsilon;        /* > 0: absolute epsilon (NDC modes), overrides format and scale */
-    float tau;            /* relative tolerance |diff| <= tau*d for LINEAR and linearised
+    float epsilon_scale;           /* epsilon = scale * increment; 0 = default (1 unorm, 4 float32) */
+    float epsilon;                 /* > 0: absolute epsilon (NDC modes), overrides format and scale */
+    float tau;                     /* relative tolerance |diff| <= tau*d for LINEAR and linearised
                              MOTION tests; 0 = default 0.01 */
 
     rrc_reprojection reprojection;
@@ -244,8 +243,8 @@ typedef struct rrc_context_desc {
      * the log at RRC_LOG_VALIDATION and is counted (rrc_context_validation_messages). */
     uint32_t enable_validation;
 
-    rrc_log_fn log;       /* optional */
-    void* log_user;       /* passed to log */
+    rrc_log_fn log; /* optional */
+    void* log_user; /* passed to log */
 } rrc_context_desc;
 
 /** Check a context descriptor without touching Vulkan.  Returns RRC_SUCCESS or
@@ -310,7 +309,7 @@ typedef struct rrc_frame_desc {
 
 typedef struct rrc_frame_stats {
     uint64_t hits;
-    uint64_t misses;     /* non-background pixels that are not hits */
+    uint64_t misses; /* non-background pixels that are not hits */
     uint64_t background;
     uint64_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
     uint64_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
@@ -330,7 +329,7 @@ typedef struct rrc_frame_output {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_FRAME_OUTPUT */
     const void* next;
     uint32_t size;
-    uint8_t* mask;        /* width*height RRC_MASK_* bits; may be NULL */
+    uint8_t* mask;          /* width*height RRC_MASK_* bits; may be NULL */
     uint32_t channel_count; /* 0 (no channel read back) or the context's */
     rrc_channel_output* channels;
     rrc_frame_stats stats; /* always written on success */
@@ -346,8 +345,7 @@ RRC_API rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* fra
  *  offline runs, tests).  `outputs` is NULL or an array of `count`.  Every
  *  frame is validated before anything runs; on a validation error nothing
  *  changes.  Staging memory grows to the largest batch: count * (inputs + outputs). */
-RRC_API rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames,
-                                       rrc_frame_output* outputs);
+RRC_API rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs);
 
 #ifdef __cplusplus
 }

@@ -49,22 +49,22 @@ typedef struct rrc_vulkan_device_desc {
     VkInstance instance;
     VkPhysicalDevice physical_device;
     VkDevice device;
-    uint32_t queue_family_index; /* the family whose command buffers the host passes */
-    uint32_t vulkan_api_version; /* what the host's device was created with; at least VK_API_VERSION_1_1 */
+    uint32_t queue_family_index;                      /* the family whose command buffers the host passes */
+    uint32_t vulkan_api_version;                      /* what the host's device was created with; at least VK_API_VERSION_1_1 */
     PFN_vkGetInstanceProcAddr get_instance_proc_addr; /* required: the host's loader entry */
     PFN_vkGetDeviceProcAddr get_device_proc_addr;     /* optional: NULL = from get_instance_proc_addr */
     VkPipelineCache pipeline_cache;                   /* optional */
     const VkAllocationCallbacks* allocator;           /* optional, used for every object the library makes */
     uint32_t max_frames_in_flight;                    /* recorded frames pending at once; 0 = 2, at most 16 */
-    uint32_t debug_utils_enabled; /* non-zero: VK_EXT_debug_utils is enabled on the instance; dispatches get labels */
+    uint32_t debug_utils_enabled;                     /* non-zero: VK_EXT_debug_utils is enabled on the instance; dispatches get labels */
 } rrc_vulkan_device_desc;
 
 /** One host image as the kernel sees it. */
 typedef struct rrc_vulkan_image {
     VkImage image;
-    VkImageView view;        /* 2D, one mip, one layer; for depth formats a DEPTH-aspect view */
-    VkFormat format;         /* the view's format */
-    VkImageLayout layout;    /* its layout when the recorded commands start */
+    VkImageView view;           /* 2D, one mip, one layer; for depth formats a DEPTH-aspect view */
+    VkFormat format;            /* the view's format */
+    VkImageLayout layout;       /* its layout when the recorded commands start */
     VkImageLayout final_layout; /* the layout to leave it in; VK_IMAGE_LAYOUT_UNDEFINED = `layout` */
 } rrc_vulkan_image;
 
@@ -97,8 +97,7 @@ typedef struct rrc_vulkan_frame_desc {
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */
-RRC_API rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device,
-                                             rrc_context** out_context);
+RRC_API rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device, rrc_context** out_context);
 
 /** Records one frame into frame->command_buffer: barriers, one dispatch,
  *  barriers.  The frame becomes the "previous frame" of the next call.  On

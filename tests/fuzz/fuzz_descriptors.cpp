@@ -29,9 +29,20 @@ namespace {
 
 // Floats a validator must get right: specials, bounds, and anything at all.
 float fuzz_float(FuzzedDataProvider& in) {
-    static const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 0.999f, 1e-7f, 1e-40f, 1e30f, 65504.0f,
-                                     std::numeric_limits<float>::max(), std::numeric_limits<float>::infinity(),
-                                     -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()};
+    static const float specials[] = {0.0f,
+                                     -0.0f,
+                                     1.0f,
+                                     -1.0f,
+                                     0.5f,
+                                     0.999f,
+                                     1e-7f,
+                                     1e-40f,
+                                     1e30f,
+                                     65504.0f,
+                                     std::numeric_limits<float>::max(),
+                                     std::numeric_limits<float>::infinity(),
+                                     -std::numeric_limits<float>::infinity(),
+                                     std::numeric_limits<float>::quiet_NaN()};
     if (in.ConsumeBool()) return specials[in.ConsumeIntegralInRange<size_t>(0, sizeof specials / sizeof specials[0] - 1)];
     return in.ConsumeFloatingPoint<float>();
 }
@@ -42,7 +53,9 @@ double fuzz_double(FuzzedDataProvider& in) {
 }
 
 // A struct tag: mostly the right one, sometimes anything.
-uint32_t fuzz_tag(FuzzedDataProvider& in, uint32_t right) { return in.ConsumeIntegralInRange<int>(0, 7) ? right : in.ConsumeIntegral<uint32_t>(); }
+uint32_t fuzz_tag(FuzzedDataProvider& in, uint32_t right) {
+    return in.ConsumeIntegralInRange<int>(0, 7) ? right : in.ConsumeIntegral<uint32_t>();
+}
 uint32_t fuzz_size(FuzzedDataProvider& in, uint32_t right) {
     return in.ConsumeIntegralInRange<int>(0, 7) ? right + (in.ConsumeBool() ? 0u : in.ConsumeIntegralInRange<uint32_t>(0, 64))
                                                 : in.ConsumeIntegral<uint32_t>();

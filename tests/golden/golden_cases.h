@@ -29,13 +29,29 @@ inline std::vector<GoldenCase> golden_cases() {
     using rrc_test::channel;
     const double inf = std::numeric_limits<double>::infinity();
     return {
-        {"prev_clip_standard", RRC_REPROJECTION_PREV_CLIP, RRC_DEPTH_MODE_STANDARD, 100, true,
+        {"prev_clip_standard",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_STANDARD,
+         100,
+         true,
          {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32), channel("env", 4, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE)}},
-        {"motion_depth_reversed", RRC_REPROJECTION_MOTION_DEPTH, RRC_DEPTH_MODE_REVERSED, 100, true,
+        {"motion_depth_reversed",
+         RRC_REPROJECTION_MOTION_DEPTH,
+         RRC_DEPTH_MODE_REVERSED,
+         100,
+         true,
          {channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_CATMULL_ROM)}},
-        {"motion_linear", RRC_REPROJECTION_MOTION, RRC_DEPTH_MODE_LINEAR, 100, true,
+        {"motion_linear",
+         RRC_REPROJECTION_MOTION,
+         RRC_DEPTH_MODE_LINEAR,
+         100,
+         true,
          {channel("soft", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_NEAREST, 8)}},
-        {"camera_reversed_infinite", RRC_REPROJECTION_CAMERA, RRC_DEPTH_MODE_REVERSED, inf, false,
+        {"camera_reversed_infinite",
+         RRC_REPROJECTION_CAMERA,
+         RRC_DEPTH_MODE_REVERSED,
+         inf,
+         false,
          {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)}},
     };
 }

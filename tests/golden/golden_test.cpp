@@ -34,8 +34,8 @@ TEST_P(Golden, KernelMatchesGoldenFrame) {
     size_t compared = 0, flips = 0, hits = 0;
     for (size_t i = 0; i < n; ++i) {
         if (k.mask[i] != g.expected.mask[i]) {
-            EXPECT_TRUE(g.expected.near_threshold[i]) << c.name << " pixel " << i << " mask " << int(k.mask[i]) << " golden "
-                                                      << int(g.expected.mask[i]);
+            EXPECT_TRUE(g.expected.near_threshold[i])
+                << c.name << " pixel " << i << " mask " << int(k.mask[i]) << " golden " << int(g.expected.mask[i]);
             ++flips;
             continue;
         }
@@ -49,8 +49,8 @@ TEST_P(Golden, KernelMatchesGoldenFrame) {
             for (uint32_t q = 0; q < m; ++q) {
                 double rv = g.expected.channels[ch].out[m * i + q];
                 // Frame 0 missed everywhere, so the history is frame 0's samples as stored.
-                double spread = history_spread(first.values[ch], m, q, kWidth, kHeight, g.expected.uv_prev_x[i],
-                                               g.expected.uv_prev_y[i], g.frames[1].prev_jitter);
+                double spread = history_spread(first.values[ch], m, q, kWidth, kHeight, g.expected.uv_prev_x[i], g.expected.uv_prev_y[i],
+                                               g.frames[1].prev_jitter);
                 double tol = arithmetic_tolerance(rv, rv, fp16) + position_tolerance(spread, kWidth, kHeight);
                 EXPECT_NEAR(k.values[ch][m * i + q], rv, tol) << c.name << " pixel " << i << " channel " << ch;
             }

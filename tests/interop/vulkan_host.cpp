@@ -13,9 +13,12 @@ void check(VkResult r, const char* what) {
 uint32_t bytes_of(VkFormat f) {
     switch (f) {
         case VK_FORMAT_R8_UINT: return 1;
-        case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_D16_UNORM: return 2;
-        case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_D32_SFLOAT: return 4;
-        case VK_FORMAT_R32G32_SFLOAT: case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+        case VK_FORMAT_R16_SFLOAT:
+        case VK_FORMAT_D16_UNORM: return 2;
+        case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_D32_SFLOAT: return 4;
+        case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
         case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
         default: throw std::runtime_error("vulkan_host: unsupported format");
     }
@@ -36,7 +39,8 @@ struct Staging {
         vkGetBufferMemoryRequirements(device, buffer, &req);
         VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
         ai.allocationSize = req.size;
-        ai.memoryTypeIndex = host.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        ai.memoryTypeIndex =
+            host.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
         check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory");
         check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
         check(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &data), "vkMapMemory");
@@ -50,7 +54,7 @@ struct Staging {
 }  // namespace
 
 VKAPI_ATTR VkBool32 VKAPI_CALL VulkanHost::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
-                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     static_cast<VulkanHost*>(user)->messages.push_back(data && data->pMessage ? data->pMessage : "?");
     return VK_FALSE;
 }
@@ -199,7 +203,6 @@ void VulkanHost::transition(VkCommandBuffer cmd, HostImage& img, VkImageLayout f
     b.subresourceRange = {img.aspect, 0, 1, 0, 1};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
-
 
 void VulkanHost::upload(HostImage& img, const void* data, size_t bytes, VkImageLayout layout) {
     Staging staging(*this, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);

@@ -42,9 +42,7 @@ inline Bounded as_f32(double v) { return rounded(v, 0.0); }
 
 inline Bounded operator+(Bounded a, Bounded b) { return rounded(a.v + b.v, a.err + b.err); }
 inline Bounded operator-(Bounded a, Bounded b) { return rounded(a.v - b.v, a.err + b.err); }
-inline Bounded operator*(Bounded a, Bounded b) {
-    return rounded(a.v * b.v, std::fabs(a.v) * b.err + std::fabs(b.v) * a.err);
-}
+inline Bounded operator*(Bounded a, Bounded b) { return rounded(a.v * b.v, std::fabs(a.v) * b.err + std::fabs(b.v) * a.err); }
 inline Bounded operator/(Bounded a, Bounded b) {
     double q = a.v / b.v;
     return rounded(q, (a.err + std::fabs(q) * b.err) / std::fabs(b.v));

@@ -56,8 +56,7 @@ void resample(const Image& img, rrc_history_filter filter, double qx, double qy,
         double t00 = img.at(k.x0, k.y0, c), t10 = img.at(k.x0 + 1, k.y0, c);
         double t01 = img.at(k.x0, k.y0 + 1, c), t11 = img.at(k.x0 + 1, k.y0 + 1, c);
         if (filter != RRC_HISTORY_FILTER_CATMULL_ROM) {
-            out[c] = (1 - k.fx) * (1 - k.fy) * t00 + k.fx * (1 - k.fy) * t10 +
-                     (1 - k.fx) * k.fy * t01 + k.fx * k.fy * t11;
+            out[c] = (1 - k.fx) * (1 - k.fy) * t00 + k.fx * (1 - k.fy) * t10 + (1 - k.fx) * k.fy * t01 + k.fx * k.fy * t11;
             continue;
         }
         double wx[4], wy[4], sum = 0.0;
@@ -71,8 +70,7 @@ void resample(const Image& img, rrc_history_filter filter, double qx, double qy,
     }
 }
 
-DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx,
-                       Bounded qy, double scale) {
+DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx, Bounded qy, double scale) {
     const int W = p.width, H = p.height;
     const bool linear = p.mode == RRC_DEPTH_MODE_LINEAR;
     Image img{depth.data(), W, H, 1};
@@ -120,14 +118,11 @@ DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded
     double steep_x = 0.0, steep_y = 0.0;
     if (finite_pos) {
         for (int y = ylo; y <= yhi + 1; ++y)
-            for (int x = xlo; x <= xhi; ++x)
-                steep_x = std::max(steep_x, std::fabs(tap(x + 1, y) - tap(x, y)));
+            for (int x = xlo; x <= xhi; ++x) steep_x = std::max(steep_x, std::fabs(tap(x + 1, y) - tap(x, y)));
         for (int y = ylo; y <= yhi; ++y)
-            for (int x = xlo; x <= xhi + 1; ++x)
-                steep_y = std::max(steep_y, std::fabs(tap(x, y + 1) - tap(x, y)));
+            for (int x = xlo; x <= xhi + 1; ++x) steep_y = std::max(steep_y, std::fabs(tap(x, y + 1) - tap(x, y)));
     }
-    double err = (linear ? 8.0 : 7.0) * kU * magnitude +
-                 (finite_pos ? px.err * steep_x + py.err * steep_y : INFINITY);
+    double err = (linear ? 8.0 : 7.0) * kU * magnitude + (finite_pos ? px.err * steep_x + py.err * steep_y : INFINITY);
     Bounded interpolated = rounded(sum, err - kU * std::fabs(sum));  // rounded() re-adds it
     DepthFetch f;
     f.value = linear ? exact(1.0) / interpolated : interpolated;

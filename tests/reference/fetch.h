@@ -28,15 +28,14 @@ struct Image {
 void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out);
 
 struct DepthFetch {
-    Bounded value;          // fetched previous depth (NDC z, or linear d for LINEAR)
-    Decision no_background; // none of the four taps is background
+    Bounded value;           // fetched previous depth (NDC z, or linear d for LINEAR)
+    Decision no_background;  // none of the four taps is background
 };
 
 // The bilinear previous-depth fetch of the hit test.  qx, qy carry the
 // kernel's position error; `scale` multiplies the error bounds it uses for
 // its own decisions (Options::error_scale).
-DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx,
-                       Bounded qy, double scale);
+DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx, Bounded qy, double scale);
 
 }  // namespace rrc_ref
 

@@ -11,8 +11,8 @@ enum class PixelCase { background, miss, hit };
 
 struct Sample {
     double s[4] = {0, 0, 0, 0};
-    double w = 1.0;      // confidence, clamped to [0, 1]; 1 without confidence
-    bool valid = true;   // every component (and the confidence) finite
+    double w = 1.0;     // confidence, clamped to [0, 1]; 1 without confidence
+    bool valid = true;  // every component (and the confidence) finite
 };
 
 // What the hit case reads from the previous frame at uv_prev.
@@ -25,7 +25,7 @@ struct Resampled {
 struct Update {
     double out[4] = {0, 0, 0, 0};  // before any fp16 rounding
     unsigned age = 0;
-    double weight = 0.0;           // W' (confidence channels)
+    double weight = 0.0;  // W' (confidence channels)
 };
 
 // `prev` is read only for PixelCase::hit.

@@ -29,18 +29,14 @@ EpsRange epsilon_range(const Params& p, Bounded e, double scale) {
     }
     // scale * ulp(e): ulp is non-decreasing in |e|.
     double a = std::fabs(e.v);
-    return {v, p.epsilon_scale * ulp_fp32(std::max(a - de, 0.0)),
-            p.epsilon_scale * ulp_fp32(a + de)};
+    return {v, p.epsilon_scale * ulp_fp32(std::max(a - de, 0.0)), p.epsilon_scale * ulp_fp32(a + de)};
 }
 
 }  // namespace
 
-HitTest hit_test(const Params& p, const std::vector<float>& prev_depth, const float prev_jitter[2],
-                 const Reprojected& r, double scale) {
+HitTest hit_test(const Params& p, const std::vector<float>& prev_depth, const float prev_jitter[2], const Reprojected& r, double scale) {
     HitTest t;
-    Decision geometry = positive(r.w.v, r.w.err * scale) &&
-                        in_unit(r.uv_x.v, r.uv_x.err * scale) &&
-                        in_unit(r.uv_y.v, r.uv_y.err * scale);
+    Decision geometry = positive(r.w.v, r.w.err * scale) && in_unit(r.uv_x.v, r.uv_x.err * scale) && in_unit(r.uv_y.v, r.uv_y.err * scale);
     t.qx = r.uv_x * exact(p.width) - exact(prev_jitter[0]);
     t.qy = r.uv_y * exact(p.height) - exact(prev_jitter[1]);
     if (!std::isfinite(t.qx.v) || !std::isfinite(t.qy.v)) {

@@ -12,15 +12,14 @@
 namespace rrc_ref {
 
 struct HitTest {
-    Decision hit;               // w > 0, uv_prev in [0,1]^2, no background tap, |diff| <= eps
-    Bounded qx, qy;             // previous-frame sample coordinate uv_prev * size - prev_jitter
+    Decision hit;                                                 // w > 0, uv_prev in [0,1]^2, no background tap, |diff| <= eps
+    Bounded qx, qy;                                               // previous-frame sample coordinate uv_prev * size - prev_jitter
     double diff = NAN, eps = NAN, diff_err = NAN, fetched = NAN;  // NaN: not computed
 };
 
 // For a pixel that may hit (previous frame valid, geometry valid, cacheable).
 // `scale` is Options::error_scale.
-HitTest hit_test(const Params& p, const std::vector<float>& prev_depth, const float prev_jitter[2],
-                 const Reprojected& r, double scale);
+HitTest hit_test(const Params& p, const std::vector<float>& prev_depth, const float prev_jitter[2], const Reprojected& r, double scale);
 
 }  // namespace rrc_ref
 

@@ -32,9 +32,7 @@ Params resolve(const rrc_context_desc& ctx) {
     p.far_plane = ctx.far_plane;
     p.background_threshold = ctx.background_threshold != 0.0f ? ctx.background_threshold : 1e10;
     p.format = ctx.depth_format;
-    p.epsilon_scale = ctx.epsilon_scale != 0.0f ? ctx.epsilon_scale
-                      : ctx.depth_format == RRC_DEPTH_FORMAT_FLOAT32 ? 4.0
-                                                                     : 1.0;
+    p.epsilon_scale = ctx.epsilon_scale != 0.0f ? ctx.epsilon_scale : ctx.depth_format == RRC_DEPTH_FORMAT_FLOAT32 ? 4.0 : 1.0;
     p.epsilon = ctx.epsilon;
     p.tau = ctx.tau != 0.0f ? ctx.tau : 0.01;
     p.source = ctx.reprojection;
@@ -45,8 +43,8 @@ Params resolve(const rrc_context_desc& ctx) {
     for (uint32_t c = 0; c < ctx.channel_count; ++c) {
         const rrc_channel_desc& d = ctx.channels[c];
         const unsigned cap = d.age_cap != 0 ? d.age_cap : 255u;
-        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16 && !stalls_in_fp16(d.lambda, d.blend, cap),
-                              d.lambda, d.blend, d.filter, cap, d.confidence != 0});
+        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16 && !stalls_in_fp16(d.lambda, d.blend, cap), d.lambda, d.blend,
+                              d.filter, cap, d.confidence != 0});
     }
     return p;
 }
@@ -80,7 +78,7 @@ double ulp_fp32(double v) {
     float f = static_cast<float>(v);
     double a = std::fabs(static_cast<double>(f));
     if (!(a >= FLT_MIN)) return 0x1p-149;  // zero, fp32 denormal (and NaN)
-    if (std::isinf(v)) return NAN;  // no tolerance at an infinite depth: the test fails
+    if (std::isinf(v)) return NAN;         // no tolerance at an infinite depth: the test fails
     // Beyond the fp32 range the formula is applied to v itself (the kernel's
     // own overflow is covered by the error bound, not here).
     return std::ldexp(1.0, std::ilogb(std::isinf(a) ? v : a) - 23);
@@ -96,8 +94,6 @@ double epsilon_at(const Params& p, double e) {
     }
 }
 
-double epsilon_for(const rrc_context_desc& ctx, double expected_depth) {
-    return epsilon_at(resolve(ctx), expected_depth);
-}
+double epsilon_for(const rrc_context_desc& ctx, double expected_depth) { return epsilon_at(resolve(ctx), expected_depth); }
 
 }  // namespace rrc_ref

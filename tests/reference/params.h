@@ -28,7 +28,7 @@ struct Params {
     double background_threshold;   // LINEAR
     rrc_depth_format format;
     double epsilon_scale;
-    double epsilon;                // > 0: absolute epsilon (NDC tests)
+    double epsilon;  // > 0: absolute epsilon (NDC tests)
     double tau;
     rrc_reprojection source;
     double motion_scale[2];
@@ -36,12 +36,8 @@ struct Params {
     std::vector<ChannelParams> channels;
 
     // Plain MOTION on NDC depth compares linearised depths relatively.
-    bool relative_test() const {
-        return mode == RRC_DEPTH_MODE_LINEAR || source == RRC_REPROJECTION_MOTION;
-    }
-    bool linearise() const {
-        return mode != RRC_DEPTH_MODE_LINEAR && source == RRC_REPROJECTION_MOTION;
-    }
+    bool relative_test() const { return mode == RRC_DEPTH_MODE_LINEAR || source == RRC_REPROJECTION_MOTION; }
+    bool linearise() const { return mode != RRC_DEPTH_MODE_LINEAR && source == RRC_REPROJECTION_MOTION; }
 };
 
 Params resolve(const rrc_context_desc& ctx);

@@ -62,8 +62,7 @@ bool reprojection_data_finite(const Params& p, const rrc_frame_desc& frame, size
     return true;
 }
 
-Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera& cam, int i,
-                      int j, double d) {
+Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera& cam, int i, int j, double d) {
     // The true sample position: the pixel centre plus this frame's jitter.
     Bounded uv_x = (exact(i + 0.5) + exact(frame.jitter[0])) / exact(p.width);
     Bounded uv_y = (exact(j + 0.5) + exact(frame.jitter[1])) / exact(p.height);
@@ -71,8 +70,7 @@ Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera
     int n = data_components(p.source);
     const float* data = n ? frame.reprojection + pixel * n : nullptr;
 
-    if (p.source == RRC_REPROJECTION_PREV_CLIP)
-        return from_clip(p, {exact(data[0]), exact(data[1]), exact(data[2]), exact(data[3])});
+    if (p.source == RRC_REPROJECTION_PREV_CLIP) return from_clip(p, {exact(data[0]), exact(data[1]), exact(data[2]), exact(data[3])});
 
     if (p.source == RRC_REPROJECTION_MOTION || p.source == RRC_REPROJECTION_MOTION_DEPTH) {
         Reprojected r;

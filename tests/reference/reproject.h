@@ -30,8 +30,7 @@ struct Reprojected {
 bool reprojection_data_finite(const Params& p, const rrc_frame_desc& frame, size_t pixel);
 
 // Pixel (i, j) with current depth d (not background, not invalid).
-Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera& cam, int i,
-                      int j, double d);
+Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera& cam, int i, int j, double d);
 
 }  // namespace rrc_ref
 

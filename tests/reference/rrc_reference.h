@@ -44,8 +44,8 @@ struct ChannelHistory {
 };
 
 struct PreviousFrame {
-    bool valid = false;          // false: first frame / after reset or resize -> all misses
-    std::vector<float> depth;    // previous frame's depth exactly as the host passed it (W*H)
+    bool valid = false;                    // false: first frame / after reset or resize -> all misses
+    std::vector<float> depth;              // previous frame's depth exactly as the host passed it (W*H)
     std::vector<ChannelHistory> channels;  // in the context's channel order
 };
 
@@ -57,9 +57,9 @@ struct ChannelResult {
 };
 
 struct FrameResult {
-    std::vector<uint8_t> mask;   // RRC_MASK_* bits
+    std::vector<uint8_t> mask;  // RRC_MASK_* bits
     std::vector<ChannelResult> channels;
-    rrc_frame_stats stats{};     // counted from mask as the library counts them
+    rrc_frame_stats stats{};  // counted from mask as the library counts them
 
     // Per-pixel diagnostics (see the header comment).
     std::vector<uint8_t> near_threshold;
@@ -88,14 +88,12 @@ struct Options {
 // Computes one frame.  Arrays in `frame` are read as the C API documents them;
 // throws std::invalid_argument on NULL required arrays or on a valid `prev`
 // whose arrays do not match the context's size and channels.
-FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
-                      const rrc_frame_desc& frame, const Options& options = {});
+FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, const rrc_frame_desc& frame, const Options& options = {});
 
 // The stored state run_frame's result leaves for the next frame (values as the
 // kernel would store them: fp32 channels rounded to float), for multi-frame
 // runs of the reference on its own.
-PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame,
-                          const FrameResult& result);
+PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame, const FrameResult& result);
 
 // Clamp to +-65504, then round to the nearest fp16 value, ties to even.
 // The result is exactly representable in fp16.  NaN stays NaN.

@@ -31,12 +31,10 @@ Sample read_sample(const ChannelParams& ch, const rrc_channel_input& in, size_t 
     return s;
 }
 
-Resampled read_previous(const ChannelParams& ch, const ChannelHistory& h, int width, int height,
-                        const HitTest& t) {
+Resampled read_previous(const ChannelParams& ch, const ChannelHistory& h, int width, int height, const HitTest& t) {
     Resampled r;
     resample(Image{h.history.data(), width, height, ch.components}, ch.filter, t.qx.v, t.qy.v, r.h);
-    if (ch.confidence)
-        resample(Image{h.weight.data(), width, height, 1}, ch.filter, t.qx.v, t.qy.v, &r.weight);
+    if (ch.confidence) resample(Image{h.weight.data(), width, height, 1}, ch.filter, t.qx.v, t.qy.v, &r.weight);
     int x = nearest_index(t.qx.v, width), y = nearest_index(t.qy.v, height);
     r.age = h.age[static_cast<size_t>(y) * width + x];
     return r;
@@ -55,8 +53,7 @@ FrameResult allocate(const Params& p) {
     r.mask.assign(n, 0);
     r.near_threshold.assign(n, 0);
     r.near_nearest_edge.assign(n, 0);
-    for (auto* v : {&r.diff, &r.eps, &r.diff_err, &r.expected, &r.fetched, &r.uv_prev_x, &r.uv_prev_y})
-        v->assign(n, NAN);
+    for (auto* v : {&r.diff, &r.eps, &r.diff_err, &r.expected, &r.fetched, &r.uv_prev_x, &r.uv_prev_y}) v->assign(n, NAN);
     for (const ChannelParams& ch : p.channels) {
         ChannelResult c;
         c.out.assign(n * ch.components, 0.0);
@@ -95,9 +92,12 @@ void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_de
 
 void count(FrameResult& r) {
     for (uint8_t m : r.mask) {
-        if (m & RRC_MASK_BACKGROUND) ++r.stats.background;
-        else if (m & RRC_MASK_HIT) ++r.stats.hits;
-        else ++r.stats.misses;
+        if (m & RRC_MASK_BACKGROUND)
+            ++r.stats.background;
+        else if (m & RRC_MASK_HIT)
+            ++r.stats.hits;
+        else
+            ++r.stats.misses;
         if (m & RRC_MASK_INVALID_SAMPLE) ++r.stats.invalid_samples;
         if (m & RRC_MASK_INVALID_GEOMETRY) ++r.stats.invalid_geometry;
     }
@@ -105,8 +105,7 @@ void count(FrameResult& r) {
 
 }  // namespace
 
-FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
-                      const rrc_frame_desc& frame, const Options& options) {
+FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, const rrc_frame_desc& frame, const Options& options) {
     const Params p = resolve(ctx);
     check_inputs(p, prev, frame);
     const double scale = options.error_scale;
@@ -142,8 +141,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
                     res.diff_err[px] = t.diff_err;
                     res.fetched[px] = t.fetched;
                     bool may_hit = t.hit.value || !t.hit.sure;
-                    res.near_nearest_edge[px] =
-                        may_hit && (near_edge(t.qx, p.width, scale) || near_edge(t.qy, p.height, scale));
+                    res.near_nearest_edge[px] = may_hit && (near_edge(t.qx, p.width, scale) || near_edge(t.qy, p.height, scale));
                     if (t.hit.value) {
                         mask |= RRC_MASK_HIT;
                         pc = PixelCase::hit;
@@ -162,8 +160,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
                 for (unsigned k = 0; k < ch.components; ++k) {
                     out.exact[px * ch.components + k] = u.out[k];
                     // fp32 stores are clamped to the finite range (a no-op in exact arithmetic).
-                    out.out[px * ch.components + k] =
-                        ch.fp16 ? fp16_round(u.out[k]) : std::fmin(std::fmax(u.out[k], -FLT_MAX), FLT_MAX);
+                    out.out[px * ch.components + k] = ch.fp16 ? fp16_round(u.out[k]) : std::fmin(std::fmax(u.out[k], -FLT_MAX), FLT_MAX);
                 }
                 out.age[px] = static_cast<uint16_t>(u.age);
                 if (ch.confidence) out.weight[px] = u.weight;
@@ -175,8 +172,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev,
     return res;
 }
 
-PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame,
-                          const FrameResult& result) {
+PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame, const FrameResult& result) {
     const size_t n = static_cast<size_t>(ctx.width) * ctx.height;
     PreviousFrame prev;
     prev.valid = true;

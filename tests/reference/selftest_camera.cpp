@@ -91,10 +91,9 @@ struct CameraCase {
                 // Current depth went through float: allow its rounding's effect.
                 EXPECT_NEAR(r.uv_prev_x[k], (c.x / c.w + 1) / 2, 1e-5) << i << "," << j;
                 EXPECT_NEAR(r.uv_prev_y[k], (c.y / c.w + 1) / 2, 1e-5) << i << "," << j;
-                EXPECT_NEAR(r.expected[k], depth_of(vp_prev, x, s.ctx.depth_mode),
-                            1e-5 * std::fabs(r.expected[k]));
-                bool inside = r.uv_prev_x[k] > 2.0 / kW && r.uv_prev_x[k] < 1 - 2.0 / kW &&
-                              r.uv_prev_y[k] > 2.0 / kH && r.uv_prev_y[k] < 1 - 2.0 / kH;
+                EXPECT_NEAR(r.expected[k], depth_of(vp_prev, x, s.ctx.depth_mode), 1e-5 * std::fabs(r.expected[k]));
+                bool inside = r.uv_prev_x[k] > 2.0 / kW && r.uv_prev_x[k] < 1 - 2.0 / kW && r.uv_prev_y[k] > 2.0 / kH &&
+                              r.uv_prev_y[k] < 1 - 2.0 / kH;
                 if (!inside) continue;
                 ++interior;
                 hits += r.mask[k] == RRC_MASK_HIT;

@@ -70,7 +70,7 @@ TEST(Fetch, LinearDepthInterpolatesReciprocals) {
     Params p = resolve(s.ctx);
     std::vector<float> depth = {1.0f, 3.0f};
     DepthFetch f = fetch_depth(p, depth, exact(1.0), exact(0.5), 1.0);  // halfway
-    EXPECT_NEAR(f.value.v, 1.5, 1e-15);  // 1 / ((1 + 1/3) / 2), not 2
+    EXPECT_NEAR(f.value.v, 1.5, 1e-15);                                 // 1 / ((1 + 1/3) / 2), not 2
     EXPECT_TRUE(f.no_background.value);
     EXPECT_TRUE(f.no_background.sure);
     // Standard NDC depth interpolates z itself.
@@ -101,7 +101,7 @@ TEST(Fetch, DepthErrorBoundGrowsWithSlopeAndPositionError) {
     std::vector<float> flat = {0.5f, 0.5f}, steep = {0.25f, 0.75f};
     double e_flat = fetch_depth(p, flat, Bounded{1.0, 1e-6}, exact(0.5), 1.0).value.err;
     double e_steep = fetch_depth(p, steep, Bounded{1.0, 1e-6}, exact(0.5), 1.0).value.err;
-    EXPECT_LE(e_flat, 8 * 0x1p-24 * 0.5);    // rounding only
+    EXPECT_LE(e_flat, 8 * 0x1p-24 * 0.5);  // rounding only
     // + step 0.5 times the position error (q's, plus the rounding of p = q - 0.5).
     EXPECT_NEAR(e_steep - e_flat, 0.5 * (1e-6 + 0.5 * 0x1p-24), 1e-15);
 }

@@ -143,9 +143,8 @@ TEST(Filter, Fp16AboveTheLambdaLimitIsStoredInFp32) {
         bool fp16;
     };
     const Case cases[] = {
-        {0.95f, RRC_BLEND_FIXED, 0, true},        {0.951f, RRC_BLEND_FIXED, 0, false},
-        {0.999f, RRC_BLEND_AGE_AWARE, 19, true},  {0.999f, RRC_BLEND_AGE_AWARE, 20, false},
-        {0.6f, RRC_BLEND_AGE_AWARE, 0, true},     {0.0f, RRC_BLEND_RUNNING_MEAN, 19, true},
+        {0.95f, RRC_BLEND_FIXED, 0, true},        {0.951f, RRC_BLEND_FIXED, 0, false},  {0.999f, RRC_BLEND_AGE_AWARE, 19, true},
+        {0.999f, RRC_BLEND_AGE_AWARE, 20, false}, {0.6f, RRC_BLEND_AGE_AWARE, 0, true}, {0.0f, RRC_BLEND_RUNNING_MEAN, 19, true},
         {0.0f, RRC_BLEND_RUNNING_MEAN, 0, false},  // default cap 255: 255/256
     };
     for (const Case& c : cases) {
@@ -179,8 +178,7 @@ TEST(Filter, RunningMeanIsTheExactMeanOverFrames) {
 
 TEST(Filter, RunningMeanAtTheCapBecomesFixed) {
     Scene s = static_scene();
-    s.add_channel(1, 0.0f, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_BILINEAR, RRC_HISTORY_FP32,
-                  false, 3);
+    s.add_channel(1, 0.0f, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_BILINEAR, RRC_HISTORY_FP32, false, 3);
     PreviousFrame prev;
     std::vector<double> expected(s.size(), 0.0);
     for (int f = 0; f < 6; ++f) {

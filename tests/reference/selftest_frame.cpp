@@ -109,7 +109,7 @@ TEST(Frame, InvalidSamples) {
     size_t k = st.s.at(1, 1);
     EXPECT_EQ(hit.mask[k], RRC_MASK_HIT | RRC_MASK_INVALID_SAMPLE);
     EXPECT_EQ(hit.channels[0].out[k], st.history[k]);  // H unchanged
-    EXPECT_EQ(hit.channels[0].age[k], 3);             // n_prev
+    EXPECT_EQ(hit.channels[0].age[k], 3);              // n_prev
     k = st.s.at(5, 5);
     EXPECT_EQ(hit.mask[k], RRC_MASK_BACKGROUND | RRC_MASK_INVALID_SAMPLE);
     EXPECT_EQ(hit.channels[0].out[k], 0.0);
@@ -212,7 +212,7 @@ TEST(Frame, JitterIsRemovedBeforeReprojecting) {
     s.frame.jitter[0] = 0.25f;
     s.frame.prev_jitter[0] = 0.25f;  // same sample positions: texel centres again
     FrameResult same = s.run(prev);
-    s.frame.prev_jitter[0] = 0.0f;   // previous texel i' shows i' + 0.5: q = i + 0.75
+    s.frame.prev_jitter[0] = 0.0f;  // previous texel i' shows i' + 0.5: q = i + 0.75
     FrameResult shifted = s.run(prev);
     for (int i = 0; i < 8; ++i) {
         EXPECT_DOUBLE_EQ(same.uv_prev_x[i], (i + 0.75) / 8) << i;

@@ -28,18 +28,18 @@ TEST(Fp16Round, ClampsToMaxHalf) {
 }
 
 TEST(Fp16Round, TiesToEven) {
-    EXPECT_EQ(fp16_round(1.0 + 0x1p-11), 1.0);                  // 1 | 1+2^-10: even is 1
-    EXPECT_EQ(fp16_round(1.0 + 3 * 0x1p-11), 1.0 + 0x1p-9);     // odd 1+2^-10 loses
+    EXPECT_EQ(fp16_round(1.0 + 0x1p-11), 1.0);               // 1 | 1+2^-10: even is 1
+    EXPECT_EQ(fp16_round(1.0 + 3 * 0x1p-11), 1.0 + 0x1p-9);  // odd 1+2^-10 loses
     EXPECT_EQ(fp16_round(2049.0), 2048.0);
     EXPECT_EQ(fp16_round(2051.0), 2052.0);
-    EXPECT_EQ(fp16_round(1.5 * 0x1p-24), 0x1p-23);              // subnormal tie, up to even
-    EXPECT_EQ(fp16_round(0.5 * 0x1p-24), 0.0);                  // subnormal tie, down to 0
+    EXPECT_EQ(fp16_round(1.5 * 0x1p-24), 0x1p-23);  // subnormal tie, up to even
+    EXPECT_EQ(fp16_round(0.5 * 0x1p-24), 0.0);      // subnormal tie, down to 0
     EXPECT_EQ(fp16_round(2.5 * 0x1p-24), 2 * 0x1p-24);
     EXPECT_EQ(fp16_round(-(1.0 + 0x1p-11)), -1.0);
 }
 
 TEST(Fp16Round, NearestOffTies) {
-    EXPECT_EQ(fp16_round(0.1), 0.0999755859375);   // 0x2E66
+    EXPECT_EQ(fp16_round(0.1), 0.0999755859375);  // 0x2E66
     EXPECT_EQ(fp16_round(1.0 + 0x1p-11 + 0x1p-30), 1.0 + 0x1p-10);
     EXPECT_EQ(fp16_round(0.75 * 0x1p-24), 0x1p-24);
     EXPECT_EQ(fp16_round(0x1p-14 - 0x1p-26), 0x1p-14);  // rounds up into the normal range
@@ -69,8 +69,8 @@ TEST(UlpFp32, Binades) {
     EXPECT_EQ(ulp_fp32(1.0), 0x1p-23);
     EXPECT_EQ(ulp_fp32(-3.0), 0x1p-22);
     EXPECT_EQ(ulp_fp32(0.0), 0x1p-149);
-    EXPECT_EQ(ulp_fp32(1e-40), 0x1p-149);           // fp32 denormal
-    EXPECT_EQ(ulp_fp32(1.0 - 0x1p-30), 0x1p-23);    // rounds to 1.0f first
+    EXPECT_EQ(ulp_fp32(1e-40), 0x1p-149);         // fp32 denormal
+    EXPECT_EQ(ulp_fp32(1.0 - 0x1p-30), 0x1p-23);  // rounds to 1.0f first
 }
 
 TEST(Epsilon, Float32DefaultScaleIsFourUlp) {

@@ -36,9 +36,10 @@ struct Scene {
         for (int k = 0; k < 16; ++k)  // identity cameras
             frame.view_proj[k] = frame.prev_view_proj[k] = (k % 5 == 0) ? 1.0 : 0.0;
         depth.assign(size(), 0.5f);
-        int n = source == RRC_REPROJECTION_PREV_CLIP ? 4
-                : source == RRC_REPROJECTION_MOTION ? 2
-                : source == RRC_REPROJECTION_MOTION_DEPTH ? 3 : 0;
+        int n = source == RRC_REPROJECTION_PREV_CLIP      ? 4
+                : source == RRC_REPROJECTION_MOTION       ? 2
+                : source == RRC_REPROJECTION_MOTION_DEPTH ? 3
+                                                          : 0;
         reprojection.assign(size() * n, 0.0f);
         nocache.assign(size(), 0);
     }
@@ -47,9 +48,8 @@ struct Scene {
 
     // Returns the channel's index.
     int add_channel(unsigned components, float lambda, rrc_blend blend = RRC_BLEND_FIXED,
-                    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR,
-                    rrc_history_precision precision = RRC_HISTORY_FP32, bool with_confidence = false,
-                    unsigned age_cap = 0) {
+                    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR, rrc_history_precision precision = RRC_HISTORY_FP32,
+                    bool with_confidence = false, unsigned age_cap = 0) {
         rrc_channel_desc d{};
         d.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
         d.size = sizeof(d);
@@ -94,8 +94,7 @@ struct Scene {
     }
 
     // A previous frame with this scene's depth and a given state per channel.
-    rrc_ref::PreviousFrame previous(std::vector<std::vector<float>> history, uint16_t age,
-                                    float weight = 1.0f) const {
+    rrc_ref::PreviousFrame previous(std::vector<std::vector<float>> history, uint16_t age, float weight = 1.0f) const {
         rrc_ref::PreviousFrame p;
         p.valid = true;
         p.depth = depth;

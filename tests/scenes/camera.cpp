@@ -53,7 +53,7 @@ Projection make_projection(uint32_t depth_mode, double n, double f, double fovy_
     m[1][1] = -1.0 / p.tan_half_fovy;
     m[2][2] = -p.za;  // z_clip = za * (-z_v) + zb
     m[3][2] = p.zb;
-    m[2][3] = -1.0;   // w_clip = -z_v
+    m[2][3] = -1.0;  // w_clip = -z_v
     p.matrix = m;
     return p;
 }

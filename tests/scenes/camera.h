@@ -40,14 +40,13 @@ struct Projection {
     double near_plane = 0.1;
     double far_plane = 100.0;  // may be +inf
     double tan_half_fovy = 0.0;
-    double aspect = 1.0;       // width / height: square pixels
-    double za = 0.0, zb = 0.0; // NDC z = za + zb / d
-    glm::dmat4 matrix{1.0};    // view -> Vulkan clip, column-major
+    double aspect = 1.0;        // width / height: square pixels
+    double za = 0.0, zb = 0.0;  // NDC z = za + zb / d
+    glm::dmat4 matrix{1.0};     // view -> Vulkan clip, column-major
 
     double ndc_z(double d) const { return za + zb / d; }
 };
 
-Projection make_projection(uint32_t depth_mode, double near_plane, double far_plane, double fovy_degrees,
-                           double aspect);
+Projection make_projection(uint32_t depth_mode, double near_plane, double far_plane, double fovy_degrees, double aspect);
 
 }  // namespace rrc_scene

@@ -16,8 +16,7 @@ FalseHitEvaluator::FalseHitEvaluator(const Scene& scene, int frame, int prev_fra
       prev_jitter_(scene.jitter(prev_frame)),
       prev_ids_(scene.object_ids(prev_frame)) {}
 
-bool FalseHitEvaluator::near_other_object(int32_t id, const FrameState& st, const glm::dvec3& world,
-                                          double distance) const {
+bool FalseHitEvaluator::near_other_object(int32_t id, const FrameState& st, const glm::dvec3& world, double distance) const {
     for (int32_t other = 0; other < OBJECT_COUNT; ++other) {
         if (other == id) continue;
         if (surface_distance(other, st.models[other].to_object(world)) < distance) return true;
@@ -33,8 +32,7 @@ Verdict FalseHitEvaluator::classify(int i, int j) const {
     const int32_t o = cur.object_id;
 
     // Rule 2, current frame.
-    if (near_other_object(o, cur_, cur.world, options_.contact_footprints * scene_.pixel_footprint(cur.depth)))
-        return VERDICT_CONTACT;
+    if (near_other_object(o, cur_, cur.world, options_.contact_footprints * scene_.pixel_footprint(cur.depth))) return VERDICT_CONTACT;
 
     // P moved with its object to the previous frame and projected there.
     const glm::dvec3 p_prev = prev_.models[o].to_world(cur.object);
@@ -69,8 +67,7 @@ Verdict FalseHitEvaluator::classify(int i, int j) const {
     return VERDICT_TRUE_HIT;
 }
 
-FalseHitReport count_false_hits(const Scene& scene, int frame, int prev_frame, const uint8_t* mask,
-                                const FalseHitOptions& options) {
+FalseHitReport count_false_hits(const Scene& scene, int frame, int prev_frame, const uint8_t* mask, const FalseHitOptions& options) {
     const int w = scene.width(), h = scene.height();
     FalseHitEvaluator eval(scene, frame, prev_frame, options);
     FalseHitReport r;

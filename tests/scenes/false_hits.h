@@ -39,30 +39,30 @@
 namespace rrc_scene {
 
 enum Verdict : uint8_t {
-    VERDICT_NOT_CHECKED = 0,      // count_false_hits: pixel not marked HIT
+    VERDICT_NOT_CHECKED = 0,  // count_false_hits: pixel not marked HIT
     VERDICT_TRUE_HIT = 1,
-    VERDICT_FALSE_HIT = 2,        // rule 3 failed
-    VERDICT_STRICT_FALSE_HIT = 3, // rule 3 passed, rule 4 failed
-    VERDICT_CONTACT = 4,          // excluded by rule 2
-    VERDICT_BACKGROUND = 5,       // the pixel shows the sky
+    VERDICT_FALSE_HIT = 2,         // rule 3 failed
+    VERDICT_STRICT_FALSE_HIT = 3,  // rule 3 passed, rule 4 failed
+    VERDICT_CONTACT = 4,           // excluded by rule 2
+    VERDICT_BACKGROUND = 5,        // the pixel shows the sky
 };
 
 struct FalseHitOptions {
-    double contact_footprints = 1.0;    // rule 2 distance, in pixel footprints
-    double distance_footprints = 0.5;   // rule 3 distance, in pixel footprints (SPEC: half a pixel)
-    double tap_weight_threshold = 1e-3; // rule 4 ignores taps lighter than this (fp32 weights differ)
-    double screen_tolerance_px = 0.01;  // rule 3: how far outside the image uv_prev may land
-    bool count_missed = false;          // also classify unmarked pixels (missed_visible)
+    double contact_footprints = 1.0;     // rule 2 distance, in pixel footprints
+    double distance_footprints = 0.5;    // rule 3 distance, in pixel footprints (SPEC: half a pixel)
+    double tap_weight_threshold = 1e-3;  // rule 4 ignores taps lighter than this (fp32 weights differ)
+    double screen_tolerance_px = 0.01;   // rule 3: how far outside the image uv_prev may land
+    bool count_missed = false;           // also classify unmarked pixels (missed_visible)
 };
 
 struct FalseHitReport {
-    int64_t marked_hits = 0;       // pixels with RRC_MASK_HIT
-    int64_t excluded_contact = 0;  // marked hits excluded by rule 2
-    int64_t hits_checked = 0;      // marked_hits - excluded_contact
-    int64_t false_hits = 0;        // checked hits failing rule 3 (background hits included)
-    int64_t strict_false_hits = 0; // checked hits failing rule 3 or rule 4 (>= false_hits)
-    int64_t missed_visible = 0;    // count_missed only: unmarked pixels whose verdict is TRUE_HIT
-    std::vector<uint8_t> verdict;  // W*H Verdict per pixel (NOT_CHECKED where not classified)
+    int64_t marked_hits = 0;        // pixels with RRC_MASK_HIT
+    int64_t excluded_contact = 0;   // marked hits excluded by rule 2
+    int64_t hits_checked = 0;       // marked_hits - excluded_contact
+    int64_t false_hits = 0;         // checked hits failing rule 3 (background hits included)
+    int64_t strict_false_hits = 0;  // checked hits failing rule 3 or rule 4 (>= false_hits)
+    int64_t missed_visible = 0;     // count_missed only: unmarked pixels whose verdict is TRUE_HIT
+    std::vector<uint8_t> verdict;   // W*H Verdict per pixel (NOT_CHECKED where not classified)
 
     double false_hit_ratio() const { return hits_checked ? double(false_hits) / hits_checked : 0.0; }
     double strict_false_hit_ratio() const { return hits_checked ? double(strict_false_hits) / hits_checked : 0.0; }
@@ -89,10 +89,8 @@ private:
 // Counts the false hits among the pixels whose mask has RRC_MASK_HIT.
 // `mask` is W*H RRC_MASK_* bits of the cache's output for `frame`, which
 // was reprojected against `prev_frame` (default frame - 1).
-FalseHitReport count_false_hits(const Scene& scene, int frame, int prev_frame, const uint8_t* mask,
-                                const FalseHitOptions& options = {});
-inline FalseHitReport count_false_hits(const Scene& scene, int frame, const uint8_t* mask,
-                                       const FalseHitOptions& options = {}) {
+FalseHitReport count_false_hits(const Scene& scene, int frame, int prev_frame, const uint8_t* mask, const FalseHitOptions& options = {});
+inline FalseHitReport count_false_hits(const Scene& scene, int frame, const uint8_t* mask, const FalseHitOptions& options = {}) {
     return count_false_hits(scene, frame, frame - 1, mask, options);
 }
 

@@ -12,21 +12,20 @@ namespace {
 // disoccludes them; it never touches another object (its path keeps >= 0.4
 // clearance), so all contacts are the static ones below.
 const ObjectShape kShapes[OBJECT_COUNT] = {
-    {Shape::Plane, {30.0, 0.0, 30.0}, 0.0},   // ground
-    {Shape::Box, {1.0, 1.0, 1.0}, 0.0},       // large box
-    {Shape::Box, {0.75, 0.75, 1.5}, 0.0},     // long box
-    {Shape::Box, {0.8, 0.2, 0.8}, 0.0},       // floating box
-    {Shape::Sphere, {0.0, 0.0, 0.0}, 0.9},    // resting sphere
-    {Shape::Sphere, {0.0, 0.0, 0.0}, 0.7},    // moving sphere
+    {Shape::Plane, {30.0, 0.0, 30.0}, 0.0},  // ground
+    {Shape::Box, {1.0, 1.0, 1.0}, 0.0},      // large box
+    {Shape::Box, {0.75, 0.75, 1.5}, 0.0},    // long box
+    {Shape::Box, {0.8, 0.2, 0.8}, 0.0},      // floating box
+    {Shape::Sphere, {0.0, 0.0, 0.0}, 0.9},   // resting sphere
+    {Shape::Sphere, {0.0, 0.0, 0.0}, 0.7},   // moving sphere
 };
 
 const glm::dvec3 kStaticPositions[OBJECT_COUNT] = {
-    {0.0, 0.0, 0.0},
-    {-2.5, 1.0, -1.5},   // bottom face on y = 0
-    {2.0, 0.75, -2.5},   // bottom face on y = 0
-    {3.0, 2.2, 0.5},     // y in [2.0, 2.4], z in [-0.3, 1.3]
-    {-3.0, 0.9, 2.0},    // touches y = 0 at (-3, 0, 2)
-    {0.0, 0.0, 0.0},     // unused: moving
+    {0.0, 0.0, 0.0},   {-2.5, 1.0, -1.5},  // bottom face on y = 0
+    {2.0, 0.75, -2.5},                     // bottom face on y = 0
+    {3.0, 2.2, 0.5},                       // y in [2.0, 2.4], z in [-0.3, 1.3]
+    {-3.0, 0.9, 2.0},                      // touches y = 0 at (-3, 0, 2)
+    {0.0, 0.0, 0.0},                       // unused: moving
 };
 
 glm::dmat3 rotation_y(double a) {
@@ -103,8 +102,7 @@ RigidTransform object_transform(int32_t id, double t, double speed) {
     // floating box and the resting sphere),
     // about 0.1 units a frame at speed 1, plus a spin so object space rotates.
     const double s = t * speed;
-    x.translation = glm::dvec3(1.0 + 2.0 * std::sin(0.05 * s), 1.25 + 0.1 * std::sin(0.11 * s),
-                               3.0 + 0.8 * std::cos(0.037 * s));
+    x.translation = glm::dvec3(1.0 + 2.0 * std::sin(0.05 * s), 1.25 + 0.1 * std::sin(0.11 * s), 3.0 + 0.8 * std::cos(0.037 * s));
     x.rotation = rotation_y(0.08 * s) * rotation_x(0.3 + 0.03 * s);
     return x;
 }

@@ -15,12 +15,12 @@ namespace rrc_scene {
 // Object ids as written to Frame::object_id.  -1 is the sky (nothing hit).
 enum ObjectId : int32_t {
     OBJECT_BACKGROUND = -1,
-    OBJECT_GROUND = 0,         // square 60 x 60 on y = 0 (finite: its far edge shows the sky)
-    OBJECT_BOX_LARGE = 1,      // cube resting on the ground
-    OBJECT_BOX_LONG = 2,       // long box resting on the ground
-    OBJECT_BOX_FLOATING = 3,   // flat box in the air: clean disocclusions, no contact
-    OBJECT_SPHERE_RESTING = 4, // sphere touching the ground in one point (a contact)
-    OBJECT_SPHERE_MOVING = 5,  // floating sphere that translates and spins: object motion
+    OBJECT_GROUND = 0,          // square 60 x 60 on y = 0 (finite: its far edge shows the sky)
+    OBJECT_BOX_LARGE = 1,       // cube resting on the ground
+    OBJECT_BOX_LONG = 2,        // long box resting on the ground
+    OBJECT_BOX_FLOATING = 3,    // flat box in the air: clean disocclusions, no contact
+    OBJECT_SPHERE_RESTING = 4,  // sphere touching the ground in one point (a contact)
+    OBJECT_SPHERE_MOVING = 5,   // floating sphere that translates and spins: object motion
     OBJECT_COUNT = 6
 };
 

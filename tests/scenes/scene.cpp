@@ -15,11 +15,11 @@ namespace {
 
 // Hash streams: each random decision of a pixel draws from its own stream.
 enum Stream : uint64_t {
-    STREAM_NOISE1 = 1,        // signal1 noise
-    STREAM_NOISE4 = 2,        // signal4 noise: 2..5, one per component
-    STREAM_INVALID1 = 10,     // is signal1 invalid
+    STREAM_NOISE1 = 1,     // signal1 noise
+    STREAM_NOISE4 = 2,     // signal4 noise: 2..5, one per component
+    STREAM_INVALID1 = 10,  // is signal1 invalid
     STREAM_INVALID1_KIND = 11,
-    STREAM_INVALID4 = 12,     // is signal4 invalid
+    STREAM_INVALID4 = 12,  // is signal4 invalid
     STREAM_INVALID4_KIND = 13,
     STREAM_INVALID4_COMP = 14,
 };
@@ -51,13 +51,10 @@ Scene::Scene(const SceneConfig& c) : config_(c) {
     if (!(c.fovy_degrees > 0.0 && c.fovy_degrees < 180.0)) throw std::invalid_argument("rrc_scene: bad fovy");
     if (!(c.invalid_fraction >= 0.0 && c.invalid_fraction <= 1.0))
         throw std::invalid_argument("rrc_scene: invalid_fraction must be in [0, 1]");
-    projection_ = make_projection(c.depth_mode, c.near_plane, c.far_plane, c.fovy_degrees,
-                                  static_cast<double>(c.width) / c.height);
+    projection_ = make_projection(c.depth_mode, c.near_plane, c.far_plane, c.fovy_degrees, static_cast<double>(c.width) / c.height);
 }
 
-CameraPose Scene::camera(int frame) const {
-    return camera_pose(config_.camera_motion ? frame : 0, config_.camera_speed);
-}
+CameraPose Scene::camera(int frame) const { return camera_pose(config_.camera_motion ? frame : 0, config_.camera_speed); }
 
 glm::dmat4 Scene::view_proj(int frame) const { return projection_.matrix * camera(frame).view_matrix(); }
 
@@ -96,8 +93,7 @@ Hit Scene::cast(const FrameState& st, double px, double py) const {
     const double ndc_x = 2.0 * px / config_.width - 1.0;
     const double ndc_y = 2.0 * py / config_.height - 1.0;
     // View-space direction with z = -1, so the ray parameter is the planar depth.
-    const glm::dvec3 dir_view(ndc_x * projection_.aspect * projection_.tan_half_fovy,
-                              -ndc_y * projection_.tan_half_fovy, -1.0);
+    const glm::dvec3 dir_view(ndc_x * projection_.aspect * projection_.tan_half_fovy, -ndc_y * projection_.tan_half_fovy, -1.0);
     Hit hit;
     hit.direction = cam.basis * dir_view;
     double best = config_.far_plane;  // hits must satisfy near <= d < far
@@ -162,8 +158,7 @@ Frame Scene::render(int frame, int prev_frame) const {
 
     const FrameState st = frame_state(frame), prev_st = frame_state(prev_frame);
 
-    const float background_depth = linear ? c.linear_background
-                                          : (c.depth_mode == RRC_DEPTH_MODE_REVERSED ? 0.0f : 1.0f);
+    const float background_depth = linear ? c.linear_background : (c.depth_mode == RRC_DEPTH_MODE_REVERSED ? 0.0f : 1.0f);
     for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
             const size_t k = static_cast<size_t>(j) * w + i;
@@ -218,12 +213,11 @@ Frame Scene::render(int frame, int prev_frame) const {
             const bool noisy = hit.object_id != OBJECT_BACKGROUND;
             const double a = noisy ? c.noise_amplitude : 0.0;
             f.truth1[k] = static_cast<float>(truth1);
-            f.signal1[k] = static_cast<float>(
-                truth1 + a * (2.0 * uniform01(hash4(c.seed, frame, k, STREAM_NOISE1)) - 1.0));
+            f.signal1[k] = static_cast<float>(truth1 + a * (2.0 * uniform01(hash4(c.seed, frame, k, STREAM_NOISE1)) - 1.0));
             for (int q = 0; q < 4; ++q) {
                 f.truth4[4 * k + q] = static_cast<float>(truth4[q]);
-                f.signal4[4 * k + q] = static_cast<float>(
-                    truth4[q] + a * (2.0 * uniform01(hash4(c.seed, frame, k, STREAM_NOISE4 + q)) - 1.0));
+                f.signal4[4 * k + q] =
+                    static_cast<float>(truth4[q] + a * (2.0 * uniform01(hash4(c.seed, frame, k, STREAM_NOISE4 + q)) - 1.0));
             }
             if (c.invalid_fraction > 0.0) {
                 if (uniform01(hash4(c.seed, frame, k, STREAM_INVALID1)) < c.invalid_fraction)

@@ -58,16 +58,16 @@ struct SceneConfig {
 // The first surface a ray meets.
 struct Hit {
     int32_t object_id = OBJECT_BACKGROUND;
-    double depth = INFINITY;   // planar view depth d (= clip w); the ray parameter
-    glm::dvec3 world{0.0};     // hit point, world space
-    glm::dvec3 object{0.0};    // hit point, the object's own space
-    glm::dvec3 direction{0.0}; // world-space ray direction, scaled so its view z is -1
+    double depth = INFINITY;    // planar view depth d (= clip w); the ray parameter
+    glm::dvec3 world{0.0};      // hit point, world space
+    glm::dvec3 object{0.0};     // hit point, the object's own space
+    glm::dvec3 direction{0.0};  // world-space ray direction, scaled so its view z is -1
 };
 
 // One rendered frame.  Arrays are row-major, row 0 at the top, interleaved.
 struct Frame {
-    int index = 0;       // this frame's time
-    int prev_index = -1; // the frame prev_clip/motion/prev_* refer to
+    int index = 0;        // this frame's time
+    int prev_index = -1;  // the frame prev_clip/motion/prev_* refer to
     int width = 0, height = 0;
     uint32_t depth_mode = RRC_DEPTH_MODE_STANDARD;
 
@@ -92,9 +92,9 @@ struct Frame {
     float prev_jitter[2] = {};       // the previous frame's
 
     // Exact visibility (double, not rounded).
-    std::vector<int32_t> object_id;       // -1 = background
-    std::vector<glm::dvec3> object_pos;   // hit point in object space (0 for background)
-    std::vector<double> linear_depth;     // planar depth d of P, +inf for background
+    std::vector<int32_t> object_id;      // -1 = background
+    std::vector<glm::dvec3> object_pos;  // hit point in object space (0 for background)
+    std::vector<double> linear_depth;    // planar depth d of P, +inf for background
 
     // Signals.  truth*: noise-free shading of P (shading.h), sky values on the
     // background.  signal*: truth + independent zero-mean uniform noise per
@@ -123,7 +123,7 @@ public:
     int height() const { return config_.height; }
 
     CameraPose camera(int frame) const;
-    glm::dmat4 view_proj(int frame) const;                // unjittered, column-major
+    glm::dmat4 view_proj(int frame) const;                  // unjittered, column-major
     RigidTransform model(int32_t object, int frame) const;  // object -> world
     // Jitter in pixels, x right y down, in [-0.5, 0.5)^2 (zero if disabled):
     // Halton bases 2 and 3 at index 1 + (frame mod 16), minus 0.5.

@@ -14,8 +14,7 @@ namespace {
 // Marks every pixel HIT (background included when asked).
 std::vector<uint8_t> all_hits(const Frame& f, bool include_background) {
     std::vector<uint8_t> m(f.object_id.size());
-    for (size_t k = 0; k < m.size(); ++k)
-        m[k] = (f.object_id[k] >= 0 || include_background) ? RRC_MASK_HIT : RRC_MASK_BACKGROUND;
+    for (size_t k = 0; k < m.size(); ++k) m[k] = (f.object_id[k] >= 0 || include_background) ? RRC_MASK_HIT : RRC_MASK_BACKGROUND;
     return m;
 }
 
@@ -104,11 +103,11 @@ TEST(FalseHits, EpsilonTestMaskIsMostlyCorrect) {
 
         const std::vector<uint8_t> loose = epsilon_test_mask(cur, prev, 1.0);
         const FalseHitReport bad = count_false_hits(s, t, loose.data());
-        std::printf("jitter %d visible %ld: tight marked %ld checked %ld false %ld strict %ld contact %ld; "
-                    "loose marked %ld false %ld strict %ld\n",
-                    int(jitter), visible, long(r.marked_hits), long(r.hits_checked), long(r.false_hits),
-                    long(r.strict_false_hits), long(r.excluded_contact), long(bad.marked_hits),
-                    long(bad.false_hits), long(bad.strict_false_hits));
+        std::printf(
+            "jitter %d visible %ld: tight marked %ld checked %ld false %ld strict %ld contact %ld; "
+            "loose marked %ld false %ld strict %ld\n",
+            int(jitter), visible, long(r.marked_hits), long(r.hits_checked), long(r.false_hits), long(r.strict_false_hits),
+            long(r.excluded_contact), long(bad.marked_hits), long(bad.false_hits), long(bad.strict_false_hits));
         EXPECT_GT(bad.false_hits, 10);
         EXPECT_GE(bad.strict_false_hits, bad.false_hits);
     }

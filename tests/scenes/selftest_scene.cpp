@@ -81,9 +81,8 @@ TEST(SceneFrame, StaticSceneReprojectsToItself) {
                     ASSERT_NEAR(uv.y, us.y, 1e-6) << m.name;
                     ASSERT_NEAR(f.motion[3 * k], 0.0, 1e-6);
                     ASSERT_NEAR(f.motion[3 * k + 1], 0.0, 1e-6);
-                    const double e = m.mode == RRC_DEPTH_MODE_LINEAR
-                                         ? f.prev_clip[4 * k + 3]
-                                         : double(f.prev_clip[4 * k + 2]) / f.prev_clip[4 * k + 3];
+                    const double e =
+                        m.mode == RRC_DEPTH_MODE_LINEAR ? f.prev_clip[4 * k + 3] : double(f.prev_clip[4 * k + 2]) / f.prev_clip[4 * k + 3];
                     ASSERT_NEAR(e, f.depth[k], 1e-6 * std::max(1.0, double(f.depth[k]))) << m.name;
                     if (!jitter) {
                         // Same camera, same sample: frame t's depth is frame t-1's.
@@ -132,9 +131,9 @@ TEST(SceneFrame, DepthModesAgreeAfterLinearisation) {
             ASSERT_EQ(f.object_id[k], ref.object_id[k]);
             ASSERT_EQ(f.linear_depth[k], ref.linear_depth[k]);
             if (f.object_id[k] < 0) {
-                const float bg = modes[a].mode == RRC_DEPTH_MODE_STANDARD ? 1.0f
+                const float bg = modes[a].mode == RRC_DEPTH_MODE_STANDARD   ? 1.0f
                                  : modes[a].mode == RRC_DEPTH_MODE_REVERSED ? 0.0f
-                                                                             : INFINITY;
+                                                                            : INFINITY;
                 ASSERT_EQ(f.depth[k], bg) << modes[a].name;
                 ASSERT_TRUE(is_background(modes[a].mode, f.depth[k]));
                 continue;
@@ -243,8 +242,7 @@ TEST(SceneFrame, MovingSphereLandsOnItselfInPreviousFrame) {
             ++total;
             on_sphere += prev_ids[size_t(y) * f.width + x] == OBJECT_SPHERE_MOVING;
             if (g.object_id[k] == OBJECT_SPHERE_MOVING)
-                object_motion_px = std::max(
-                    object_motion_px, std::abs(double(f.motion[3 * k]) - g.motion[3 * k]) * f.width);
+                object_motion_px = std::max(object_motion_px, std::abs(double(f.motion[3 * k]) - g.motion[3 * k]) * f.width);
         }
     }
     ASSERT_GT(total, 50);

@@ -33,9 +33,7 @@ inline rrc_scene::SceneConfig config_for(const ModeCase& m) {
 }
 
 // uv of a clip position (double), as CONVENTIONS.md's PREV_CLIP source.
-inline glm::dvec2 clip_uv(const float* c) {
-    return glm::dvec2((double(c[0]) / c[3] + 1.0) * 0.5, (double(c[1]) / c[3] + 1.0) * 0.5);
-}
+inline glm::dvec2 clip_uv(const float* c) { return glm::dvec2((double(c[0]) / c[3] + 1.0) * 0.5, (double(c[1]) / c[3] + 1.0) * 0.5); }
 
 inline bool is_background(uint32_t mode, float d) {
     if (mode == RRC_DEPTH_MODE_STANDARD) return d >= 1.0f;

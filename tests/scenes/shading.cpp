@@ -15,9 +15,7 @@ double smoothstep(double e0, double e1, double x) {
 }
 
 // A blurred square wave of the given period: 1 on half the period, 0 on the other.
-double stripe(double u, double period, double phase) {
-    return smoothstep(-0.6, 0.6, std::sin(kTwoPi * (u / period + phase)));
-}
+double stripe(double u, double period, double phase) { return smoothstep(-0.6, 0.6, std::sin(kTwoPi * (u / period + phase))); }
 
 // Soft exclusive-or: maps [0,1]^2 to [0,1], equals XOR on {0,1}.
 double sxor(double a, double b) { return a + b - 2.0 * a * b; }
@@ -25,9 +23,10 @@ double sxor(double a, double b) { return a + b - 2.0 * a * b; }
 // Checker period per object (world units): a few pixels at 96x64.
 double checker_period(int32_t id) {
     switch (id) {
-        case 0: return 1.5;           // ground
-        case 4: case 5: return 0.35;  // spheres
-        default: return 0.6;          // boxes
+        case 0: return 1.5;  // ground
+        case 4:
+        case 5: return 0.35;  // spheres
+        default: return 0.6;  // boxes
     }
 }
 
@@ -45,8 +44,7 @@ glm::dvec4 shade4(int32_t id, const glm::dvec3& p) {
     const double k = static_cast<double>(id);
     return glm::dvec4(0.5 + 0.5 * std::sin(kTwoPi * (p.x / 0.9 + 0.3 * p.y) + k),
                       0.5 + 0.5 * std::cos(kTwoPi * (p.z / 1.1 - 0.2 * p.x) + 0.5 * k),
-                      0.5 + 0.5 * std::sin(kTwoPi * (p.y / 0.7 + p.z / 1.3) + 0.7 * k),
-                      checker(id, p, 2.0 * checker_period(id)));
+                      0.5 + 0.5 * std::sin(kTwoPi * (p.y / 0.7 + p.z / 1.3) + 0.7 * k), checker(id, p, 2.0 * checker_period(id)));
 }
 
 }  // namespace rrc_scene

@@ -32,7 +32,8 @@ struct Call {
     rrc_channel_input inputs[2];
     rrc_frame_desc frame;
     // Outputs with sentinel contents.
-    std::vector<float> out1 = std::vector<float>(kN, -7.0f), out4 = std::vector<float>(4 * kN, -7.0f), weight = std::vector<float>(kN, -7.0f);
+    std::vector<float> out1 = std::vector<float>(kN, -7.0f), out4 = std::vector<float>(4 * kN, -7.0f),
+                       weight = std::vector<float>(kN, -7.0f);
     std::vector<uint16_t> age1 = std::vector<uint16_t>(kN, 777), age4 = std::vector<uint16_t>(kN, 777);
     std::vector<uint8_t> mask = std::vector<uint8_t>(kN, 0xEE);
     rrc_channel_output outs[2];
@@ -136,7 +137,8 @@ const ::testing::Environment* const kSharedTeardown = ::testing::AddGlobalTestEn
 void done(const char* suite) {
     static int passed = 0, failed = 0;
     (::testing::Test::HasFailure() ? failed : passed) += 1;
-    rrc_stab::report("bad input at the C API", "api_bad_input_test.cpp: frame cases via rrc_frame_run and as frames[1] of a batch, "
+    rrc_stab::report("bad input at the C API",
+                     "api_bad_input_test.cpp: frame cases via rrc_frame_run and as frames[1] of a batch, "
                      "batch arguments, NULL/destroyed/foreign handles, queries, create, camera matrices",
                      "specific code, message naming the field, outputs untouched, history intact",
                      rrc_stab::format("%d tests passed, %d failed (last: %s)", passed, failed, suite));

@@ -122,10 +122,12 @@ TEST_P(DepthPrecision, HitRatioAndFalseHits) {
     }
     const double ratio = should_hit ? double(true_hits) / should_hit : 0.0;
     rrc_stab::report("depth precision (static scene, camera motion, PREV_CLIP, 96x64, 7 frames)", c.name,
-                     c.must_hold ? ">= 99% hits, 0 false hits" : c.no_false_hits ? "0 false hits" : "reported",
+                     c.must_hold       ? ">= 99% hits, 0 false hits"
+                     : c.no_false_hits ? "0 false hits"
+                                       : "reported",
                      rrc_stab::format("hit ratio %.2f%% (%lld / %lld), false hits %lld, strict %lld, lost to background %lld / %lld",
-                                      100.0 * ratio, (long long)true_hits, (long long)should_hit, (long long)false_hits,
-                                      (long long)strict, (long long)lost, (long long)visible));
+                                      100.0 * ratio, (long long)true_hits, (long long)should_hit, (long long)false_hits, (long long)strict,
+                                      (long long)lost, (long long)visible));
     EXPECT_GT(should_hit, visible / 2) << "the scene should be mostly reprojectable";
     if (c.must_hold) EXPECT_GE(ratio, 0.99) << c.name;
     if (c.no_false_hits) {
@@ -134,12 +136,11 @@ TEST_P(DepthPrecision, HitRatioAndFalseHits) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, DepthPrecision, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<DepthCase>& i) {
-                             std::string n = i.param.name;
-                             for (char& ch : n)
-                                 if (ch == '-' || ch == '.' || ch == '^') ch = '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Cases, DepthPrecision, ::testing::ValuesIn(cases()), [](const ::testing::TestParamInfo<DepthCase>& i) {
+    std::string n = i.param.name;
+    for (char& ch : n)
+        if (ch == '-' || ch == '.' || ch == '^') ch = '_';
+    return n;
+});
 
 }  // namespace

@@ -123,7 +123,8 @@ TEST(LambdaSweep, BiasAndVarianceOver10000Frames) {
                     const std::vector<float>& s = frames[k].samples[ci];
                     for (size_t p = 0; p < n; ++p) {
                         c.exact[p] = t == 0 ? s[p] : c.lambda * c.exact[p] + (1.0 - c.lambda) * s[p];
-                        if (c.fp16 && c.lambda > RRC_FP16_MAX_LAMBDA) c.model16[p] = t == 0 ? round_fp16(s[p]) : model_fp16_step(c.lambda, c.model16[p], s[p]);
+                        if (c.fp16 && c.lambda > RRC_FP16_MAX_LAMBDA)
+                            c.model16[p] = t == 0 ? round_fp16(s[p]) : model_fp16_step(c.lambda, c.model16[p], s[p]);
                     }
                     if (!frames[k].read_values) continue;
                     const std::vector<float>& h = res[k].values[ci];
@@ -181,8 +182,7 @@ TEST(LambdaSweep, BiasAndVarianceOver10000Frames) {
         if (c.fp16 && c.lambda > RRC_FP16_MAX_LAMBDA) {  // what fp16 storage would have done
             const double bias16 = c.sum_model16 / c.samples / kMean - 1.0;
             report(kArea, format("λ=%g, fp16 NOT promoted (CPU model of the kernel's store)", (double)c.lambda),
-                   c.lambda == 0.999f ? "|bias| > 1e-3 (the stall the promotion removes)" : "reported",
-                   format("bias %+.2e", bias16));
+                   c.lambda == 0.999f ? "|bias| > 1e-3 (the stall the promotion removes)" : "reported", format("bias %+.2e", bias16));
             if (c.lambda == 0.999f) EXPECT_GT(std::fabs(bias16), 1e-3) << "the unpromoted fp16 model should stall at λ = 0.999";
         }
     }

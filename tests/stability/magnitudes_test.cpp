@@ -35,9 +35,8 @@ constexpr int kW = 8, kH = 16, kFrames = 40;  // powers of two: pixel centres re
 // +FLT_MAX and -FLT_MAX, where fp32 bilinear weights that sum to 1 + ulp
 // would round the resampled history to ±Inf.
 float sample_of(size_t p, int t) {
-    static const float mags[] = {0.0f,  1.4e-45f, 1e-40f, FLT_MIN, 1e-30f, 1e-20f, 1e-10f, 6e-8f,  6.1e-5f, 1e-3f, 0.5f,
-                                 1.0f,  1000.0f,  2048.5f, 65504.0f, 65519.0f, 65520.0f, 1e5f,  1e10f,  1e20f,   1e30f, 1e38f,
-                                 FLT_MAX};
+    static const float mags[] = {0.0f,    1.4e-45f, 1e-40f,   FLT_MIN,  1e-30f,   1e-20f, 1e-10f, 6e-8f, 6.1e-5f, 1e-3f, 0.5f,   1.0f,
+                                 1000.0f, 2048.5f,  65504.0f, 65519.0f, 65520.0f, 1e5f,   1e10f,  1e20f, 1e30f,   1e38f, FLT_MAX};
     constexpr size_t kMags = sizeof mags / sizeof mags[0];
     const double u = noise01(9, t, p);
     const size_t row = p / kW, col = p % kW;
@@ -47,10 +46,10 @@ float sample_of(size_t p, int t) {
     }
     if (row >= 10) return col < kW / 2 ? FLT_MAX : -FLT_MAX;
     switch (p % 4) {
-        case 0: return (t % 2 ? 1e30f : -1e30f) * (float)(1.0 - 0.5 * u);          // sign swings
-        case 1: return t % 2 ? 1e-30f : 1e30f;                                       // 60 decades a frame
+        case 0: return (t % 2 ? 1e30f : -1e30f) * (float)(1.0 - 0.5 * u);              // sign swings
+        case 1: return t % 2 ? 1e-30f : 1e30f;                                         // 60 decades a frame
         case 2: return (float)((t % 3 == 0 ? FLT_MAX : -FLT_MAX) * (1.0 - 0.01 * u));  // extremes, both signs
-        default: return (float)(1e-38 * u);                                          // around FLT_MIN
+        default: return (float)(1e-38 * u);                                            // around FLT_MIN
     }
 }
 
@@ -146,8 +145,8 @@ TEST(Magnitudes, MatchTheReferenceRelativelyWithoutJitter) {
                 const double h = prev.valid ? prev.channels[c].history[i] : 0.0;
                 const double scale = std::max({std::fabs(rv), std::fabs(h), std::fabs((double)f.samples[c][i])});
                 const double tol = 1e-5 * scale + FLT_MIN + (fp16 ? fp16_step(exact) : 0.0);
-                EXPECT_LE(std::fabs(kv - rv), tol) << "channel " << c << " value " << i << " frame " << t << " kernel " << kv
-                                                   << " reference " << rv;
+                EXPECT_LE(std::fabs(kv - rv), tol)
+                    << "channel " << c << " value " << i << " frame " << t << " kernel " << kv << " reference " << rv;
                 worst = std::max(worst, std::fabs(kv - rv) / tol);
                 if (fp16 && std::fabs(exact) >= 65504.0) {
                     EXPECT_EQ(std::fabs(kv), 65504.0) << "fp16 overflow must clamp to ±65504, value " << i;
@@ -164,8 +163,8 @@ TEST(Magnitudes, MatchTheReferenceRelativelyWithoutJitter) {
     EXPECT_GT(clamped16, 0);
     report("magnitudes (8x16, 1e-45 .. FLT_MAX, both signs, 40 frames)", "no jitter: kernel vs double reference",
            "finite; |k - r| <= 1e-5·max(|r|, |H|, |s|) + FLT_MIN (+1 fp16 step); fp16 beyond 65504 = ±65504",
-           format("all %lld values finite, max error/tolerance %.3f, %lld fp16 values clamped to ±65504", (long long)finite_values,
-                  worst, (long long)clamped16));
+           format("all %lld values finite, max error/tolerance %.3f, %lld fp16 values clamped to ±65504", (long long)finite_values, worst,
+                  (long long)clamped16));
 }
 
 TEST(Magnitudes, StayInsideTheirInputsRangeUnderResampling) {

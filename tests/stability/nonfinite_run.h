@@ -77,13 +77,14 @@ inline void run_nonfinite_samples(int frame_count) {
             hits += (int64_t)r.stats.hits;
             for (size_t c = 0; c < channels.size(); ++c) {
                 for (float v : r.values[c]) ASSERT_TRUE(std::isfinite(v)) << "channel " << c << " frame " << t0 + k;
-                for (float w : r.weight[c]) ASSERT_TRUE(w >= 0.0f && w <= 1.0f) << "weight " << w << " channel " << c << " frame " << t0 + k;
+                for (float w : r.weight[c])
+                    ASSERT_TRUE(w >= 0.0f && w <= 1.0f) << "weight " << w << " channel " << c << " frame " << t0 + k;
                 values_checked += (int64_t)(r.values[c].size() + r.weight[c].size());
             }
         }
     }
     EXPECT_GT(invalid_total, (int64_t)(0.01 * n * frame_count));  // about 3-4% of the pixels: one of four inputs
-    EXPECT_GT(hits, (int64_t)(n * frame_count / 4));  // the run exercises hits, not only misses
+    EXPECT_GT(hits, (int64_t)(n * frame_count / 4));              // the run exercises hits, not only misses
     report("non-finite samples (16x16, moving scene, 4 channels)",
            format("%d frames, 1%% of samples and confidences NaN/+Inf/-Inf", frame_count),
            "no non-finite value or weight ever; INVALID_SAMPLE and stats.invalid_samples exact every frame",

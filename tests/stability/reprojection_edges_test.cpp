@@ -47,26 +47,93 @@ std::vector<PixelCase> prev_clip_cases() {
         c[3] = w;
     };
     return {
-        {"identity (control)", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); return Expect{true, false}; }},
-        {"10 images off-screen", [=](int i, int j, float* c, float&) { clip(c, uv_x(i) + 10.0f, uv_y(j), 0.5f, 1.0f); return Expect{false, false}; }},
-        {"1e6 pixels away", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j) - 1e6f / kH, 0.5f, 1.0f); return Expect{false, false}; }},
-        {"w = 0", [=](int, int, float* c, float&) { clip(c, 0.5f, 0.5f, 0.5f, 0.0f); return Expect{false, false}; }},
-        {"w = -0", [=](int, int, float* c, float&) { clip(c, 0.5f, 0.5f, 0.5f, -0.0f); return Expect{false, false}; }},
-        {"w < 0, x/w y/w z/w inside", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j), 0.5f, -1.0f); return Expect{false, false}; }},
-        {"w = 1e-38 (x/w overflows)", [=](int i, int j, float* c, float&) {
+        {"identity (control)",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             return Expect{true, false};
+         }},
+        {"10 images off-screen",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i) + 10.0f, uv_y(j), 0.5f, 1.0f);
+             return Expect{false, false};
+         }},
+        {"1e6 pixels away",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j) - 1e6f / kH, 0.5f, 1.0f);
+             return Expect{false, false};
+         }},
+        {"w = 0",
+         [=](int, int, float* c, float&) {
+             clip(c, 0.5f, 0.5f, 0.5f, 0.0f);
+             return Expect{false, false};
+         }},
+        {"w = -0",
+         [=](int, int, float* c, float&) {
+             clip(c, 0.5f, 0.5f, 0.5f, -0.0f);
+             return Expect{false, false};
+         }},
+        {"w < 0, x/w y/w z/w inside",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, -1.0f);
+             return Expect{false, false};
+         }},
+        {"w = 1e-38 (x/w overflows)",
+         [=](int i, int j, float* c, float&) {
              clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
              c[3] = 1e-38f;
              return Expect{false, false};
          }},
-        {"NaN x", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); c[0] = kNaN; return Expect{false, true}; }},
-        {"+Inf w", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); c[3] = kInf; return Expect{false, true}; }},
-        {"-Inf z", [=](int i, int j, float* c, float&) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); c[2] = -kInf; return Expect{false, true}; }},
-        {"just left of the image", [=](int, int j, float* c, float&) { clip(c, -1e-3f, uv_y(j), 0.5f, 1.0f); return Expect{false, false}; }},
-        {"just below the image", [=](int i, int, float* c, float&) { clip(c, uv_x(i), 1.0f + 1e-3f, 0.5f, 1.0f); return Expect{false, false}; }},
-        {"on the image edge uv = 0 (closed square: a hit)", [=](int, int j, float* c, float&) { clip(c, 0.0f, uv_y(j), 0.5f, 1.0f); return Expect{true, false}; }},
-        {"NaN depth", [=](int i, int j, float* c, float& d) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); d = kNaN; return Expect{false, true}; }},
-        {"+Inf depth", [=](int i, int j, float* c, float& d) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); d = kInf; return Expect{false, true}; }},
-        {"-Inf depth", [=](int i, int j, float* c, float& d) { clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f); d = -kInf; return Expect{false, true}; }},
+        {"NaN x",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             c[0] = kNaN;
+             return Expect{false, true};
+         }},
+        {"+Inf w",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             c[3] = kInf;
+             return Expect{false, true};
+         }},
+        {"-Inf z",
+         [=](int i, int j, float* c, float&) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             c[2] = -kInf;
+             return Expect{false, true};
+         }},
+        {"just left of the image",
+         [=](int, int j, float* c, float&) {
+             clip(c, -1e-3f, uv_y(j), 0.5f, 1.0f);
+             return Expect{false, false};
+         }},
+        {"just below the image",
+         [=](int i, int, float* c, float&) {
+             clip(c, uv_x(i), 1.0f + 1e-3f, 0.5f, 1.0f);
+             return Expect{false, false};
+         }},
+        {"on the image edge uv = 0 (closed square: a hit)",
+         [=](int, int j, float* c, float&) {
+             clip(c, 0.0f, uv_y(j), 0.5f, 1.0f);
+             return Expect{true, false};
+         }},
+        {"NaN depth",
+         [=](int i, int j, float* c, float& d) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             d = kNaN;
+             return Expect{false, true};
+         }},
+        {"+Inf depth",
+         [=](int i, int j, float* c, float& d) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             d = kInf;
+             return Expect{false, true};
+         }},
+        {"-Inf depth",
+         [=](int i, int j, float* c, float& d) {
+             clip(c, uv_x(i), uv_y(j), 0.5f, 1.0f);
+             d = -kInf;
+             return Expect{false, true};
+         }},
     };
 }
 
@@ -78,18 +145,67 @@ std::vector<PixelCase> motion_cases() {
         m[2] = dz;
     };
     return {
-        {"zero motion (control)", [=](int, int, float* m, float&) { mv(m, 0, 0, 0); return Expect{true, false}; }},
-        {"10 images off-screen", [=](int, int, float* m, float&) { mv(m, 10.0f * kW, 0, 0); return Expect{false, false}; }},
-        {"1e6 pixels", [=](int, int, float* m, float&) { mv(m, 1e6f, -1e6f, 0); return Expect{false, false}; }},
-        {"1e38 pixels (scaled: still finite)", [=](int, int, float* m, float&) { mv(m, 1e38f, 0, 0); return Expect{false, false}; }},
-        {"NaN motion", [=](int, int, float* m, float&) { mv(m, kNaN, 0, 0); return Expect{false, true}; }},
-        {"Inf motion", [=](int, int, float* m, float&) { mv(m, 0, -kInf, 0); return Expect{false, true}; }},
-        {"NaN depth change", [=](int, int, float* m, float&) { mv(m, 0, 0, kNaN); return Expect{false, true}; }},
-        {"Inf depth change", [=](int, int, float* m, float&) { mv(m, 0, 0, kInf); return Expect{false, true}; }},
-        {"huge depth change", [=](int, int, float* m, float&) { mv(m, 0, 0, 1e30f); return Expect{false, false}; }},
-        {"just off the left edge", [=](int i, int, float* m, float&) { mv(m, -(i + 0.5f) - 1e-3f, 0, 0); return Expect{false, false}; }},
-        {"just off the bottom edge", [=](int, int j, float* m, float&) { mv(m, 0, kH - (j + 0.5f) + 1e-3f, 0); return Expect{false, false}; }},
-        {"NaN depth", [=](int, int, float* m, float& d) { mv(m, 0, 0, 0); d = kNaN; return Expect{false, true}; }},
+        {"zero motion (control)",
+         [=](int, int, float* m, float&) {
+             mv(m, 0, 0, 0);
+             return Expect{true, false};
+         }},
+        {"10 images off-screen",
+         [=](int, int, float* m, float&) {
+             mv(m, 10.0f * kW, 0, 0);
+             return Expect{false, false};
+         }},
+        {"1e6 pixels",
+         [=](int, int, float* m, float&) {
+             mv(m, 1e6f, -1e6f, 0);
+             return Expect{false, false};
+         }},
+        {"1e38 pixels (scaled: still finite)",
+         [=](int, int, float* m, float&) {
+             mv(m, 1e38f, 0, 0);
+             return Expect{false, false};
+         }},
+        {"NaN motion",
+         [=](int, int, float* m, float&) {
+             mv(m, kNaN, 0, 0);
+             return Expect{false, true};
+         }},
+        {"Inf motion",
+         [=](int, int, float* m, float&) {
+             mv(m, 0, -kInf, 0);
+             return Expect{false, true};
+         }},
+        {"NaN depth change",
+         [=](int, int, float* m, float&) {
+             mv(m, 0, 0, kNaN);
+             return Expect{false, true};
+         }},
+        {"Inf depth change",
+         [=](int, int, float* m, float&) {
+             mv(m, 0, 0, kInf);
+             return Expect{false, true};
+         }},
+        {"huge depth change",
+         [=](int, int, float* m, float&) {
+             mv(m, 0, 0, 1e30f);
+             return Expect{false, false};
+         }},
+        {"just off the left edge",
+         [=](int i, int, float* m, float&) {
+             mv(m, -(i + 0.5f) - 1e-3f, 0, 0);
+             return Expect{false, false};
+         }},
+        {"just off the bottom edge",
+         [=](int, int j, float* m, float&) {
+             mv(m, 0, kH - (j + 0.5f) + 1e-3f, 0);
+             return Expect{false, false};
+         }},
+        {"NaN depth",
+         [=](int, int, float* m, float& d) {
+             mv(m, 0, 0, 0);
+             d = kNaN;
+             return Expect{false, true};
+         }},
     };
 }
 
@@ -166,7 +282,7 @@ TEST(ReprojectionEdges, CameraBehindAndAway) {
     for (int t = 0; t < 4; ++t) {
         FrameData f = static_frame(kW, kH, t);
         f.samples = {std::vector<float>(kW * kH, t == 0 ? 1000.0f : 1.0f)};
-        if (t == 1) f.prev_view_proj[15] = -1.0;  // w_prev = -w
+        if (t == 1) f.prev_view_proj[15] = -1.0;   // w_prev = -w
         if (t == 2) f.prev_view_proj[12] = 100.0;  // x_prev = x + 100 w: 50 images away
         frames.push_back(f);
     }
@@ -178,8 +294,8 @@ TEST(ReprojectionEdges, CameraBehindAndAway) {
     EXPECT_EQ(r[2].values[0], std::vector<float>(kW * kH, 1.0f));
     EXPECT_EQ(r[3].values[0], std::vector<float>(kW * kH, 1.0f));  // the blend of 1 and 1
     report("reprojection edge cases (16x16)", "CAMERA: previous camera facing away (w < 0), looking 50 images aside",
-           "every pixel a miss, s stored exactly", format("hits %llu and %llu of %d", (unsigned long long)r[1].stats.hits,
-                                                           (unsigned long long)r[2].stats.hits, kW * kH));
+           "every pixel a miss, s stored exactly",
+           format("hits %llu and %llu of %d", (unsigned long long)r[1].stats.hits, (unsigned long long)r[2].stats.hits, kW * kH));
 }
 
 // Non-finite previous depth: frame 1 has NaN / +Inf / -Inf depth on some

@@ -68,8 +68,8 @@ TEST(Reset, EveryPixelMissesAndNothingSurvives) {
     EXPECT_EQ(r[6].age[0], std::vector<uint16_t>(W * H, 2));
     FrameData lone = frame_with(W, H, 8, 1);
     expect_fresh(lone, run_batch(ctx.get(), ctx.desc(), {lone})[0], "reset alone");
-    report("reset and resolution change (8x8, 2 channels)", "reset inside a batch and alone",
-           "0 hits; values = s, weight = w, age 1", format("hits %llu; exact", (unsigned long long)r[5].stats.hits));
+    report("reset and resolution change (8x8, 2 channels)", "reset inside a batch and alone", "0 hits; values = s, weight = w, age 1",
+           format("hits %llu; exact", (unsigned long long)r[5].stats.hits));
 }
 
 TEST(Reset, NewResolutionStartsEmpty) {

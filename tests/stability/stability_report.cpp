@@ -11,7 +11,7 @@
 #include <vector>
 
 #ifndef RRC_STABILITY_SECTION
-#error "RRC_STABILITY_SECTION must name the test executable"
+#    error "RRC_STABILITY_SECTION must name the test executable"
 #endif
 
 namespace rrc_stab {

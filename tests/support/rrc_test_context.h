@@ -15,10 +15,9 @@
 
 namespace rrc_test {
 
-inline rrc_channel_desc channel(const char* name, uint32_t components, float lambda,
-                                rrc_history_precision precision = RRC_HISTORY_FP32, rrc_blend blend = RRC_BLEND_FIXED,
-                                rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR, uint32_t age_cap = 0,
-                                uint32_t confidence = 0) {
+inline rrc_channel_desc channel(const char* name, uint32_t components, float lambda, rrc_history_precision precision = RRC_HISTORY_FP32,
+                                rrc_blend blend = RRC_BLEND_FIXED, rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR,
+                                uint32_t age_cap = 0, uint32_t confidence = 0) {
     rrc_channel_desc c;
     std::memset(&c, 0, sizeof c);
     c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;

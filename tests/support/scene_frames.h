@@ -13,7 +13,7 @@ namespace rrc_test {
 
 struct SceneFrameInputs {
     rrc_scene::Frame frame;
-    std::vector<float> reprojection;  // per the source's layout
+    std::vector<float> reprojection;             // per the source's layout
     std::vector<std::vector<float>> confidence;  // per channel; empty = none
     std::vector<rrc_channel_input> inputs;
     rrc_frame_desc desc;

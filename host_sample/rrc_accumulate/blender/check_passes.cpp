@@ -29,25 +29,22 @@ namespace {
 
 struct FrameInfo {
     glm::dmat4 camera_world{1.0}, projection{1.0};
-    glm::dmat4 objects[4]; // by pass index 1..3
+    glm::dmat4 objects[4];  // by pass index 1..3
 };
 
-glm::dmat4 from_rows(const nlohmann::json& m)
-{
+glm::dmat4 from_rows(const nlohmann::json& m) {
     glm::dmat4 r(1.0);
     for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            r[j][i] = m[i][j].get<double>(); // glm is column-major: r[col][row]
+        for (int j = 0; j < 4; ++j) r[j][i] = m[i][j].get<double>();  // glm is column-major: r[col][row]
     return r;
 }
 
 struct Scene {
-    int W = 0, H = 0, count = 3; // frames 1..count rendered; 0..count+1 described
+    int W = 0, H = 0, count = 3;  // frames 1..count rendered; 0..count+1 described
     std::vector<FrameInfo> frames;
 };
 
-Scene load_scene(const std::string& dir)
-{
+Scene load_scene(const std::string& dir) {
     std::ifstream in(dir + "/scene.json");
     nlohmann::json j = nlohmann::json::parse(in);
     Scene s;
@@ -59,37 +56,33 @@ Scene load_scene(const std::string& dir)
         const auto& fj = j["frames"][std::to_string(f)];
         s.frames[f].camera_world = from_rows(fj["camera_world"]);
         s.frames[f].projection = from_rows(fj["projection"]);
-        for (const auto& kv : fj["objects"].items())
-            s.frames[f].objects[kv.value()["index"].get<int>()] = from_rows(kv.value()["world"]);
+        for (const auto& kv : fj["objects"].items()) s.frames[f].objects[kv.value()["index"].get<int>()] = from_rows(kv.value()["world"]);
     }
     return s;
 }
 
 // The centre ray of pixel (i, j) (row j from the top): origin and a world
 // direction scaled so that its view-space z is -1 (so t is planar depth).
-void centre_ray(const Scene& s, int f, double px, double py_down, glm::dvec3& o, glm::dvec3& d)
-{
+void centre_ray(const Scene& s, int f, double px, double py_down, glm::dvec3& o, glm::dvec3& d) {
     const FrameInfo& fi = s.frames[f];
-    const double ndc_x = 2.0 * px / s.W - 1.0, ndc_y = 1.0 - 2.0 * py_down / s.H; // OpenGL: y up
+    const double ndc_x = 2.0 * px / s.W - 1.0, ndc_y = 1.0 - 2.0 * py_down / s.H;  // OpenGL: y up
     const glm::dvec3 dir_view(ndc_x / fi.projection[0][0], ndc_y / fi.projection[1][1], -1.0);
     o = glm::dvec3(fi.camera_world[3]);
     d = glm::dmat3(fi.camera_world) * dir_view;
 }
 
 // Nearest intersection with object `id` (1 plane z=0, 2 cube, 3 sphere) at frame f; -1 if none.
-double intersect(const Scene& s, int f, int id, const glm::dvec3& o, const glm::dvec3& d)
-{
+double intersect(const Scene& s, int f, int id, const glm::dvec3& o, const glm::dvec3& d) {
     const glm::dmat4& m = s.frames[f].objects[id];
     const glm::dvec3 c(m[3]);
-    if (id == 1)
-        return d.z < 0 ? -o.z / d.z : -1.0;
-    if (id == 3) { // radius 0.8 (a 48x24 UV sphere: within ~0.2% of it)
+    if (id == 1) return d.z < 0 ? -o.z / d.z : -1.0;
+    if (id == 3) {  // radius 0.8 (a 48x24 UV sphere: within ~0.2% of it)
         const glm::dvec3 oc = o - c;
         const double a = glm::dot(d, d), b = glm::dot(oc, d), cc = glm::dot(oc, oc) - 0.64, disc = b * b - a * cc;
         if (disc < 0) return -1.0;
         return (-b - std::sqrt(disc)) / a;
     }
-    double t0 = -1e300, t1 = 1e300; // cube: half size 0.75, axis-aligned
+    double t0 = -1e300, t1 = 1e300;  // cube: half size 0.75, axis-aligned
     for (int k = 0; k < 3; ++k) {
         const double lo = c[k] - 0.75, hi = c[k] + 0.75;
         if (std::fabs(d[k]) < 1e-300) {
@@ -105,8 +98,7 @@ double intersect(const Scene& s, int f, int id, const glm::dvec3& o, const glm::
 }
 
 // Pixel position (x right, y UP from the bottom edge, Blender's raster) of a world point at frame f.
-glm::dvec2 project_up(const Scene& s, int f, const glm::dvec3& p)
-{
+glm::dvec2 project_up(const Scene& s, int f, const glm::dvec3& p) {
     const FrameInfo& fi = s.frames[f];
     const glm::dvec4 c = fi.projection * glm::inverse(fi.camera_world) * glm::dvec4(p, 1.0);
     return glm::dvec2((c.x / c.w + 1.0) / 2.0 * s.W, (c.y / c.w + 1.0) / 2.0 * s.H);
@@ -115,8 +107,7 @@ glm::dvec2 project_up(const Scene& s, int f, const glm::dvec3& p)
 struct Stat {
     double sum = 0, max = 0;
     long n = 0;
-    void add(double v)
-    {
+    void add(double v) {
         sum += std::fabs(v);
         max = std::max(max, std::fabs(v));
         ++n;
@@ -124,10 +115,9 @@ struct Stat {
     double mean() const { return n ? sum / n : 0.0; }
 };
 
-} // namespace
+}  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
     if (argc < 2) {
         std::fprintf(stderr, "usage: rrc-blender-check DIR [OTHER_DIR]\n");
         return 2;
@@ -151,13 +141,11 @@ int main(int argc, char** argv)
                 for (int i = 0; i < s.W; ++i) {
                     const std::size_t k = std::size_t(j) * s.W + i;
                     const int m = int(mask[k]);
-                    if (m & 4)
-                        continue; // background
+                    if (m & 4) continue;  // background
                     ++tested;
                     const int id = int(std::lround(ID[k]));
                     sphere += id == 3;
-                    if (!(m & 1))
-                        continue;
+                    if (!(m & 1)) continue;
                     ++hits;
                     sphere_hits += id == 3;
                     const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k];
@@ -176,10 +164,11 @@ int main(int argc, char** argv)
                     strict += wrong || wrong_tap;
                 }
         }
-        std::printf("frames 2-%d: hit ratio %.2f%% (%ld of %ld), false hits %.3f%%, strict false hits %.3f%% "
-                    "(object index), moving sphere hit ratio %.2f%%\n",
-                    s.count, 100.0 * hits / tested, hits, tested, 100.0 * false_hits / std::max(1L, hits),
-                    100.0 * strict / std::max(1L, hits), 100.0 * sphere_hits / std::max(1L, sphere));
+        std::printf(
+            "frames 2-%d: hit ratio %.2f%% (%ld of %ld), false hits %.3f%%, strict false hits %.3f%% "
+            "(object index), moving sphere hit ratio %.2f%%\n",
+            s.count, 100.0 * hits / tested, hits, tested, 100.0 * false_hits / std::max(1L, hits), 100.0 * strict / std::max(1L, hits),
+            100.0 * sphere_hits / std::max(1L, sphere));
         return 0;
     }
     for (int f = 1; f <= s.count; ++f) {
@@ -198,7 +187,7 @@ int main(int argc, char** argv)
         // Hypotheses for Vector.XY: prev - cur (y up), cur - prev (y up), prev - cur (y down).
         Stat h_prev_up, h_cur_up, h_prev_down, h_next_zw, h_next_zw_flip;
         long interior = 0;
-        Stat edge_fraction; // object edge pixels: |V| / |V_object| (1 = not diluted by sky or other samples)
+        Stat edge_fraction;  // object edge pixels: |V| / |V_object| (1 = not diluted by sky or other samples)
         // What rrc's plain-motion test sees: |fetched previous depth - depth| / depth at the
         // position the Vector gives, per object (interior pixels, previous frame needed).
         std::vector<double> rel_change[4];
@@ -228,13 +217,12 @@ int main(int argc, char** argv)
                 glm::dvec3 o, d;
                 centre_ray(s, f, i + 0.5, j + 0.5, o, d);
                 const double t = intersect(s, f, id, o, d);
-                if (t <= 0)
-                    continue;
+                if (t <= 0) continue;
                 const glm::dvec3 p = o + t * d;
                 if (uniform) {
                     planar_rel.add((Z[k] - t) / t);
                     euclid_rel.add((Z[k] - t * glm::length(d)) / (t * glm::length(d)));
-                    if (id == 1) { // ground plane: where on the plane did the depth sample land?
+                    if (id == 1) {  // ground plane: where on the plane did the depth sample land?
                         glm::dvec3 o2, d2;
                         const double h = 0.01;
                         centre_ray(s, f, i + 0.5 + h, j + 0.5, o2, d2);
@@ -242,8 +230,8 @@ int main(int argc, char** argv)
                         centre_ray(s, f, i + 0.5, j + 0.5 + h, o2, d2);
                         const double gy = (intersect(s, f, 1, o2, d2) - t) / h;
                         const double g = std::hypot(gx, gy);
-                        if (g > 1e-3 * t) { // only where depth changes measurably across a pixel
-                            const double off = (Z[k] - t) / g; // along the gradient, pixels
+                        if (g > 1e-3 * t) {                     // only where depth changes measurably across a pixel
+                            const double off = (Z[k] - t) / g;  // along the gradient, pixels
                             offset_px.add(off);
                             ++offset_n;
                             offset_over_half += std::fabs(off) > 0.5;
@@ -259,7 +247,7 @@ int main(int argc, char** argv)
                 const glm::dvec2 v(VX[k], VY[k]), vn(VZ[k], VW[k]);
                 if (uniform && f > 1) {
                     const auto& PZ = prev_img.channels.at(L + "Depth.Z");
-                    const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k]; // y up -> rows
+                    const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k];  // y up -> rows
                     const double px = qx - 0.5, py = qy - 0.5;
                     const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
                     const double fx = px - x0, fy = py - y0;
@@ -285,27 +273,31 @@ int main(int argc, char** argv)
                     edge_fraction.add(glm::length(v) / glm::length(prev - cur));
                 }
             }
-        std::printf("frame %d: %ld sky pixels (IndexOB 0), %ld with Depth exactly 1e10, %ld with Vector exactly 0; "
-                    "%ld non-sky pixels with Depth 1e10\n",
-                    f, sky, sky_1e10, sky_zero_vector, nonsky_1e10);
+        std::printf(
+            "frame %d: %ld sky pixels (IndexOB 0), %ld with Depth exactly 1e10, %ld with Vector exactly 0; "
+            "%ld non-sky pixels with Depth 1e10\n",
+            f, sky, sky_1e10, sky_zero_vector, nonsky_1e10);
         std::printf("  depth vs centre ray (interior pixels): planar |rel| mean %.2e max %.2e; along-ray |rel| mean %.2e max %.2e\n",
                     planar_rel.mean(), planar_rel.max, euclid_rel.mean(), euclid_rel.max);
-        std::printf("  ground-plane depth sample offset along the depth gradient: mean |off| %.3f px, max %.3f px, "
-                    "%.1f%% beyond 0.5 px (%ld pixels)\n",
-                    offset_px.mean(), offset_px.max, offset_n ? 100.0 * offset_over_half / offset_n : 0.0, offset_n);
-        std::printf("  Vector.XY vs exact motion (%ld interior pixels), mean |error| px: prev-cur y-up %.4f (max %.4f), "
-                    "cur-prev y-up %.4f, prev-cur y-down %.4f\n",
-                    interior, h_prev_up.mean(), h_prev_up.max, h_cur_up.mean(), h_prev_down.mean());
-        std::printf("  Vector.ZW: cur-next y-up %.4f (max %.4f), next-cur %.4f\n", h_next_zw.mean(), h_next_zw.max,
-                    h_next_zw_flip.mean());
+        std::printf(
+            "  ground-plane depth sample offset along the depth gradient: mean |off| %.3f px, max %.3f px, "
+            "%.1f%% beyond 0.5 px (%ld pixels)\n",
+            offset_px.mean(), offset_px.max, offset_n ? 100.0 * offset_over_half / offset_n : 0.0, offset_n);
+        std::printf(
+            "  Vector.XY vs exact motion (%ld interior pixels), mean |error| px: prev-cur y-up %.4f (max %.4f), "
+            "cur-prev y-up %.4f, prev-cur y-down %.4f\n",
+            interior, h_prev_up.mean(), h_prev_up.max, h_cur_up.mean(), h_prev_down.mean());
+        std::printf("  Vector.ZW: cur-next y-up %.4f (max %.4f), next-cur %.4f\n", h_next_zw.mean(), h_next_zw.max, h_next_zw_flip.mean());
         for (int id = 1; id <= 3; ++id) {
             auto& v = rel_change[id];
-            if (v.empty())
-                continue;
+            if (v.empty()) continue;
             std::sort(v.begin(), v.end());
             auto pct = [&](double p) { return v[std::min(v.size() - 1, std::size_t(p * v.size()))]; };
             std::printf("  %s: |fetched previous depth - depth| / depth: median %.4f, 90%% %.4f, 99%% %.4f, max %.4f (%zu pixels)\n",
-                        id == 1 ? "ground" : id == 2 ? "cube  " : "sphere", pct(0.5), pct(0.9), pct(0.99), v.back(), v.size());
+                        id == 1   ? "ground"
+                        : id == 2 ? "cube  "
+                                  : "sphere",
+                        pct(0.5), pct(0.9), pct(0.99), v.back(), v.size());
         }
         std::printf("  moving-sphere edge pixels: |Vector| / |exact motion| mean %.3f (%ld pixels; 1 = not diluted)\n",
                     edge_fraction.mean(), edge_fraction.n);
@@ -318,8 +310,7 @@ int main(int argc, char** argv)
             for (const char* c : {"Depth.Z", "Vector.X", "IndexOB.X", "Combined.R"}) {
                 const auto &x = a.channels.at(L + c), &y = b.channels.at(L + c);
                 long same = 0;
-                for (std::size_t k = 0; k < x.size(); ++k)
-                    same += x[k] == y[k];
+                for (std::size_t k = 0; k < x.size(); ++k) same += x[k] == y[k];
                 std::printf("frame %d %-10s bitwise equal in %s and %s: %5.1f%%\n", f, c, argv[1], argv[2],
                             100.0 * same / double(x.size()));
             }
