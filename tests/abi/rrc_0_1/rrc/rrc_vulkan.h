@@ -1,0 +1,112 @@
+/*
+ * rrc Vulkan interop: run rrc inside the host engine's own Vulkan device and
+ * command buffers.  C99; include after <rrc/rrc.h>.  Vulkan types come from
+ * <vulkan/vulkan.h> (define VK_NO_PROTOTYPES first if you use volk: this
+ * header calls no Vulkan function).
+ *
+ * Model (docs/INTEGRATION.md has the full walk-through and an input table)
+ * ---------------------------------------------------------------------
+ *   rrc_vulkan_context_create()  once, on the host's instance/device
+ *   rrc_vulkan_record_frame()    per frame: records barriers and one dispatch
+ *                                into the host's command buffer
+ *   rrc_context_destroy()        after the host has waited for the device
+ *
+ * The library never submits, waits, or touches a queue.  It cannot know when
+ * the GPU has finished a frame, so the host declares max_frames_in_flight:
+ * it may record a new frame while up to that many earlier recorded frames are
+ * still pending (descriptor sets are used in a ring of max_frames_in_flight + 1).  Frames must be submitted in the order
+ * they were recorded, on the queue family given at creation.  Queue-family
+ * ownership transfers (async compute) are the host's job.
+ *
+ * Every host image is passed with the layout it is in when the recorded
+ * commands start and the layout it must be left in; the library's barriers
+ * make the host's earlier writes (any stage) visible, and its own writes
+ * visible to any later stage.  History, age and previous depth are owned by
+ * the library (ping-pong; rrc_get_memory_usage reports the bytes).
+ *
+ * Device requirements: Vulkan 1.1, the feature
+ * shaderStorageImageWriteWithoutFormat enabled, 59 storage images per stage.
+ */
+#ifndef RRC_RRC_VULKAN_H
+#define RRC_RRC_VULKAN_H
+
+#include <rrc/rrc.h>
+#include <vulkan/vulkan.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC 0x52524310u
+#define RRC_STRUCT_TYPE_VULKAN_FRAME_DESC 0x52524311u
+#define RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES 0x52524312u
+
+/** The host's Vulkan objects.  The library uses them and destroys none. */
+typedef struct rrc_vulkan_device_desc {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC */
+    const void* next;     /* reserved, must be NULL */
+    uint32_t size;        /* sizeof(rrc_vulkan_device_desc) */
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    uint32_t queue_family_index; /* the family whose command buffers the host passes */
+    uint32_t vulkan_api_version; /* what the host's device was created with; at least VK_API_VERSION_1_1 */
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr; /* required: the host's loader entry */
+    PFN_vkGetDeviceProcAddr get_device_proc_addr;     /* optional: NULL = from get_instance_proc_addr */
+    VkPipelineCache pipeline_cache;                   /* optional */
+    const VkAllocationCallbacks* allocator;           /* optional, used for every object the library makes */
+    uint32_t max_frames_in_flight;                    /* recorded frames pending at once; 0 = 2, at most 16 */
+    uint32_t debug_utils_enabled; /* non-zero: VK_EXT_debug_utils is enabled on the instance; dispatches get labels */
+} rrc_vulkan_device_desc;
+
+/** One host image as the kernel sees it. */
+typedef struct rrc_vulkan_image {
+    VkImage image;
+    VkImageView view;        /* 2D, one mip, one layer; for depth formats a DEPTH-aspect view */
+    VkFormat format;         /* the view's format */
+    VkImageLayout layout;    /* its layout when the recorded commands start */
+    VkImageLayout final_layout; /* the layout to leave it in; VK_IMAGE_LAYOUT_UNDEFINED = `layout` */
+} rrc_vulkan_image;
+
+typedef struct rrc_vulkan_channel_images {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES */
+    const void* next;
+    uint32_t size;
+    rrc_vulkan_image samples;    /* required, SAMPLED usage, any float format: .r (1 component) or .rgba */
+    rrc_vulkan_image confidence; /* required iff the channel has confidence: SAMPLED, weight in .r */
+    rrc_vulkan_image output;     /* required, STORAGE usage, a float format: receives the accumulated value */
+} rrc_vulkan_channel_images;
+
+typedef struct rrc_vulkan_frame_desc {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_FRAME_DESC */
+    const void* next;
+    uint32_t size;
+    VkCommandBuffer command_buffer; /* recording, outside a render pass, of the context's queue family */
+    uint64_t frame_index;
+    uint32_t reset;
+    rrc_vulkan_image depth;        /* required, SAMPLED: D16/D24/D32 (depth view) or a colour format with depth in .r */
+    rrc_vulkan_image reprojection; /* SAMPLED, float: PREV_CLIP rgba, MOTION rg, MOTION_DEPTH rgb; unused for CAMERA */
+    rrc_vulkan_image nocache;      /* SAMPLED R8_UINT, required iff use_nocache_mask */
+    rrc_vulkan_image mask;         /* optional (image = NULL: none), STORAGE R8_UINT: the RRC_MASK_* bits */
+    double view_proj[16];          /* as rrc_frame_desc */
+    double prev_view_proj[16];
+    float jitter[2];
+    float prev_jitter[2];
+    uint32_t channel_count; /* the context's */
+    const rrc_vulkan_channel_images* channels;
+} rrc_vulkan_frame_desc;
+
+/** Creates a context on the host's device (no device of its own). */
+RRC_API rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device,
+                                             rrc_context** out_context);
+
+/** Records one frame into frame->command_buffer: barriers, one dispatch,
+ *  barriers.  The frame becomes the "previous frame" of the next call.  On
+ *  error nothing is recorded.  Only for contexts made by rrc_vulkan_context_create. */
+RRC_API rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RRC_RRC_VULKAN_H */
