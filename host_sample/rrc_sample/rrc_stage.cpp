@@ -1,5 +1,7 @@
 #include "rrc_stage.h"
 
+#include "rrc_interop.h"
+
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -9,33 +11,14 @@ namespace {
 
 rrc_channel_desc make_channel(const char* name, uint32_t components, float lambda, rrc_blend blend, rrc_history_precision precision,
                               uint32_t age_cap) {
-    rrc_channel_desc c;
-    std::memset(&c, 0, sizeof c);
-    c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-    c.size = sizeof c;
-    std::snprintf(c.name, sizeof c.name, "%s", name);
-    c.components = components;
-    c.lambda = lambda;
-    c.blend = blend;
-    c.filter = RRC_HISTORY_FILTER_BILINEAR;
-    c.precision = precision;
-    c.age_cap = age_cap;
-    return c;
+    return rrc_host::channel(name, components, lambda, precision, blend, RRC_HISTORY_FILTER_BILINEAR, age_cap);
 }
 
 void log_to_stderr(void*, rrc_log_level level, const char* message) {
     if (level >= RRC_LOG_WARNING) std::fprintf(stderr, "rrc: %s\n", message);
 }
 
-rrc_vulkan_image view_of(const Image& img, VkImageLayout layout) {
-    rrc_vulkan_image v;
-    std::memset(&v, 0, sizeof v);
-    v.image = img.image;
-    v.view = img.view;
-    v.format = img.format;
-    v.layout = layout;  // final_layout 0: left as it was
-    return v;
-}
+rrc_vulkan_image view_of(const Image& img, VkImageLayout layout) { return rrc_host::vulkan_image(img, layout); }
 
 }  // namespace
 
@@ -60,35 +43,17 @@ RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
     mask_ = gpu.create_image(VK_FORMAT_R8_UINT, s.width, s.height, use, "rrc mask");
     gpu.init_storage_images({&out_.pcf, &out_.env, &out_.soft, &mask_});
 
-    rrc_context_desc d;
-    std::memset(&d, 0, sizeof d);
-    d.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-    d.size = sizeof d;
-    d.api_version = RRC_API_VERSION;
-    d.width = s.width;
-    d.height = s.height;
+    rrc_context_desc d = rrc_host::context_desc(s.width, s.height, channels_);
     d.depth_mode = RRC_DEPTH_MODE_REVERSED;  // the G-buffer's D32 reversed-z attachment
     d.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
     d.near_plane = s.near_plane;  // used by plain MOTION to linearise depth
     d.far_plane = s.far_plane;
     d.epsilon_scale = s.epsilon_scale;
     d.reprojection = s.reprojection;
-    d.channel_count = (uint32_t)channels_.size();
-    d.channels = channels_.data();
     d.log = log_to_stderr;
 
-    rrc_vulkan_device_desc dd;
-    std::memset(&dd, 0, sizeof dd);
-    dd.type = RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC;
-    dd.size = sizeof dd;
-    dd.instance = gpu.instance;
-    dd.physical_device = gpu.physical;
-    dd.device = gpu.device;
-    dd.queue_family_index = gpu.family;
-    dd.vulkan_api_version = gpu.api_version;
-    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
-    dd.max_frames_in_flight = 1;  // the sample waits for each frame (it reads every frame back)
-    dd.debug_utils_enabled = gpu.debug_utils ? 1u : 0u;
+    // One frame in flight: the sample waits for each frame (it reads every frame back).
+    const rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(gpu, 1);
     if (rrc_vulkan_context_create(&d, &dd, &ctx_) != RRC_SUCCESS)
         throw std::runtime_error(std::string("rrc_vulkan_context_create: ") + rrc_last_error());
 }
@@ -109,10 +74,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
     const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
     std::vector<rrc_vulkan_channel_images> ch;
     auto add = [&](const Image& in, const Image& out) {
-        rrc_vulkan_channel_images c;
-        std::memset(&c, 0, sizeof c);
-        c.type = RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES;
-        c.size = sizeof c;
+        auto c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         c.samples = view_of(in, GEN);
         c.output = view_of(out, GEN);
         ch.push_back(c);
@@ -121,10 +83,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
     if (settings_.signals & kSignalEnv) add(samples.env, out_.env);
     if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft);
 
-    rrc_vulkan_frame_desc f;
-    std::memset(&f, 0, sizeof f);
-    f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-    f.size = sizeof f;
+    auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
     f.command_buffer = cmd;
     f.frame_index = frame_index;
     f.reset = reset ? 1u : 0u;

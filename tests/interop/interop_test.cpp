@@ -8,6 +8,8 @@
 
 #include <rrc/rrc_vulkan.h>
 
+#include "rrc_interop.h"
+
 #include <glm/gtc/packing.hpp>
 
 using namespace rrc_test;
@@ -30,31 +32,10 @@ rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels) {
     return d;
 }
 
-rrc_vulkan_device_desc device_desc(const VulkanHost& host) {
-    rrc_vulkan_device_desc d;
-    std::memset(&d, 0, sizeof d);
-    d.type = RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC;
-    d.size = sizeof d;
-    d.instance = host.instance;
-    d.physical_device = host.physical;
-    d.device = host.device;
-    d.queue_family_index = host.family;
-    d.vulkan_api_version = VK_API_VERSION_1_1;
-    d.get_instance_proc_addr = vkGetInstanceProcAddr;
-    d.max_frames_in_flight = 2;
-    d.debug_utils_enabled = 1;
-    return d;
-}
+// Two frames in flight: the test records a frame while the previous one may still be pending.
+rrc_vulkan_device_desc device_desc(const VulkanHost& host) { return rrc_host::vulkan_device_desc(host, 2); }
 
-rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) {
-    rrc_vulkan_image v;
-    std::memset(&v, 0, sizeof v);
-    v.image = img.image;
-    v.view = img.view;
-    v.format = img.format;
-    v.layout = layout;
-    return v;
-}
+rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) { return rrc_host::vulkan_image(img, layout); }
 
 std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
     std::vector<float> f(bytes.size() / 4);
@@ -120,20 +101,13 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
 
         rrc_vulkan_channel_images ch[2];
-        std::memset(ch, 0, sizeof ch);
-        for (auto& c : ch) {
-            c.type = RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES;
-            c.size = sizeof c;
-        }
+        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         ch[0].samples = view_of(s1, ro);
         ch[0].output = view_of(out1, VK_IMAGE_LAYOUT_GENERAL);
         ch[1].samples = view_of(s4, ro);
         ch[1].confidence = view_of(conf, ro);
         ch[1].output = view_of(out4, VK_IMAGE_LAYOUT_GENERAL);
-        rrc_vulkan_frame_desc f;
-        std::memset(&f, 0, sizeof f);
-        f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-        f.size = sizeof f;
+        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
         f.frame_index = t;
         f.depth = view_of(depth, dro);
         f.reprojection = view_of(clip, ro);
@@ -157,7 +131,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     rrc_context_destroy(ctx);
     for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &out1, &out4, &mask}) host.destroy(*img);
     host.shutdown();
-    EXPECT_TRUE(host.messages.empty()) << host.messages.size() << " validation messages, first: " << host.messages.front();
+    EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
 }
 
 TEST(Interop, WrongModeAndBadInputAreRefused) {
@@ -194,10 +168,7 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
     EXPECT_EQ(rrc_frame_run(ctx, &core, nullptr), RRC_ERROR_UNSUPPORTED);  // ...then refused: not standalone
     EXPECT_NE(std::string(rrc_last_error()).find("rrc_vulkan_record_frame"), std::string::npos);
 
-    rrc_vulkan_frame_desc f;
-    std::memset(&f, 0, sizeof f);
-    f.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-    f.size = sizeof f;
+    auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
     EXPECT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("command_buffer"), std::string::npos);
     f.command_buffer = host.begin();
@@ -211,7 +182,7 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
     ASSERT_TRUE(standalone);
     EXPECT_EQ(rrc_vulkan_record_frame(standalone.get(), &f), RRC_ERROR_UNSUPPORTED);
     host.shutdown();
-    EXPECT_TRUE(host.messages.empty()) << host.messages.front();
+    EXPECT_EQ(host.message_count(), 0u) << host.messages().front();
 }
 
 }  // namespace

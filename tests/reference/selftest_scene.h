@@ -1,5 +1,6 @@
 // Small owned-array scene builder for the reference self-tests: fills the C
-// API descriptors and keeps every array they point to alive.
+// API descriptors (with the shared builders of host_sample/common/rrc_descs.h)
+// and keeps every array they point to alive.
 #ifndef RRC_REFERENCE_SELFTEST_SCENE_H
 #define RRC_REFERENCE_SELFTEST_SCENE_H
 
@@ -7,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "rrc_descs.h"
 #include "rrc_reference.h"
 
 namespace rrc_ref_test {
@@ -22,17 +24,12 @@ struct Scene {
     rrc_frame_desc frame{};
 
     Scene(int width, int height, rrc_depth_mode mode, rrc_reprojection source) : W(width), H(height) {
-        ctx.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-        ctx.size = sizeof(ctx);
-        ctx.api_version = RRC_API_VERSION;
-        ctx.width = width;
-        ctx.height = height;
+        ctx = rrc_host::context_desc(width, height, channel_descs);
         ctx.depth_mode = mode;
         ctx.reprojection = source;
         ctx.near_plane = 0.1f;  // plain MOTION on NDC depth linearises with these
         ctx.far_plane = 100.0f;
-        frame.type = RRC_STRUCT_TYPE_FRAME_DESC;
-        frame.size = sizeof(frame);
+        frame = rrc_host::frame_desc();
         for (int k = 0; k < 16; ++k)  // identity cameras
             frame.view_proj[k] = frame.prev_view_proj[k] = (k % 5 == 0) ? 1.0 : 0.0;
         depth.assign(size(), 0.5f);
@@ -50,17 +47,9 @@ struct Scene {
     int add_channel(unsigned components, float lambda, rrc_blend blend = RRC_BLEND_FIXED,
                     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR, rrc_history_precision precision = RRC_HISTORY_FP32,
                     bool with_confidence = false, unsigned age_cap = 0) {
-        rrc_channel_desc d{};
-        d.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-        d.size = sizeof(d);
-        std::snprintf(d.name, sizeof(d.name), "c%zu", channel_descs.size());
-        d.components = components;
-        d.precision = precision;
-        d.lambda = lambda;
-        d.blend = blend;
-        d.filter = filter;
-        d.age_cap = age_cap;
-        d.confidence = with_confidence;
+        char name[RRC_MAX_NAME];
+        std::snprintf(name, sizeof name, "c%zu", channel_descs.size());
+        rrc_channel_desc d = rrc_host::channel(name, components, lambda, precision, blend, filter, age_cap, with_confidence);
         channel_descs.push_back(d);
         samples.emplace_back(size() * components, 0.0f);
         confidence.emplace_back(with_confidence ? size() : 0, 1.0f);
@@ -73,12 +62,7 @@ struct Scene {
         ctx.channels = channel_descs.data();
         inputs.clear();
         for (size_t c = 0; c < channel_descs.size(); ++c) {
-            rrc_channel_input in{};
-            in.type = RRC_STRUCT_TYPE_CHANNEL_INPUT;
-            in.size = sizeof(in);
-            in.samples = samples[c].data();
-            in.confidence = confidence[c].empty() ? nullptr : confidence[c].data();
-            inputs.push_back(in);
+            inputs.push_back(rrc_host::channel_input(samples[c].data(), confidence[c].empty() ? nullptr : confidence[c].data()));
         }
         frame.depth = depth.data();
         frame.reprojection = reprojection.empty() ? nullptr : reprojection.data();

@@ -1,10 +1,12 @@
-// Test support: builds rrc descriptors and owns a context that runs under
+// Test support: rrc descriptors (the shared builders) and a context that runs under
 // VK_LAYER_KHRONOS_validation with synchronization validation, recording
 // every message (including those emitted while the device is destroyed).
 // A test fails if any message was seen.
 #pragma once
 
 #include <rrc/rrc.h>
+
+#include "rrc_descs.h"
 
 #include <gtest/gtest.h>
 
@@ -15,54 +17,11 @@
 
 namespace rrc_test {
 
-inline rrc_channel_desc channel(const char* name, uint32_t components, float lambda, rrc_history_precision precision = RRC_HISTORY_FP32,
-                                rrc_blend blend = RRC_BLEND_FIXED, rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR,
-                                uint32_t age_cap = 0, uint32_t confidence = 0) {
-    rrc_channel_desc c;
-    std::memset(&c, 0, sizeof c);
-    c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-    c.size = sizeof c;
-    std::strncpy(c.name, name, RRC_MAX_NAME - 1);
-    c.components = components;
-    c.precision = precision;
-    c.lambda = lambda;
-    c.blend = blend;
-    c.filter = filter;
-    c.age_cap = age_cap;
-    c.confidence = confidence;
-    return c;
-}
-
-inline rrc_context_desc context_desc(uint32_t width, uint32_t height, const std::vector<rrc_channel_desc>& channels) {
-    rrc_context_desc d;
-    std::memset(&d, 0, sizeof d);
-    d.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-    d.size = sizeof d;
-    d.api_version = RRC_API_VERSION;
-    d.width = width;
-    d.height = height;
-    d.channel_count = (uint32_t)channels.size();
-    d.channels = channels.data();
-    return d;
-}
-
-inline rrc_frame_desc frame_desc() {
-    rrc_frame_desc f;
-    std::memset(&f, 0, sizeof f);
-    f.type = RRC_STRUCT_TYPE_FRAME_DESC;
-    f.size = sizeof f;
-    return f;
-}
-
-inline rrc_channel_input channel_input(const float* samples, const float* confidence = nullptr) {
-    rrc_channel_input c;
-    std::memset(&c, 0, sizeof c);
-    c.type = RRC_STRUCT_TYPE_CHANNEL_INPUT;
-    c.size = sizeof c;
-    c.samples = samples;
-    c.confidence = confidence;
-    return c;
-}
+// The descriptor builders rrc-sample uses too (host_sample/common/rrc_descs.h).
+using rrc_host::channel;
+using rrc_host::channel_input;
+using rrc_host::context_desc;
+using rrc_host::frame_desc;
 
 // Messages of the validation layer; shared with the log callback.
 struct ValidationLog {
@@ -121,9 +80,7 @@ public:
         for (size_t i = 0; i < channels_.size(); ++i) {
             r.values[i].resize(n * channels_[i].components);
             r.age[i].resize(n);
-            std::memset(&outs[i], 0, sizeof outs[i]);
-            outs[i].type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
-            outs[i].size = sizeof outs[i];
+            outs[i] = rrc_host::channel_output();
             outs[i].values = r.values[i].data();
             outs[i].age = r.age[i].data();
             if (channels_[i].confidence) {
@@ -131,10 +88,7 @@ public:
                 outs[i].weight = r.weight[i].data();
             }
         }
-        rrc_frame_output o;
-        std::memset(&o, 0, sizeof o);
-        o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-        o.size = sizeof o;
+        rrc_frame_output o = rrc_host::frame_output();
         o.mask = r.mask.data();
         o.channel_count = (uint32_t)outs.size();
         o.channels = outs.data();
