@@ -7,7 +7,16 @@
 //
 // Frame-level cases run twice: through rrc_frame_run, and through
 // rrc_frame_run_batch as frames[1] of three (the message must then say
-// "frames[1]: ...", and frames[0] must not have run either).
+// "frames[1]: ...", and frames[0] must not have run either).  Every case with
+// a Vulkan-path equivalent runs a third time through rrc_vulkan_record_frame
+// on a context of rrc_vulkan_context_create inside a host device
+// (tests/abi/vulkan_path.h): the same code and field, nothing recorded (the
+// library's vkCmd* calls are counted through the device description's
+// get_*_proc_addr), the host's output images untouched once the command
+// buffer has run, and history intact (the next good frame continues the
+// lambda recursion with the age one higher).  The host's validation layer
+// must report nothing.
+#include "abi/vulkan_path.h"
 #include "stability_report.h"
 #include "stability_util.h"
 
@@ -127,9 +136,13 @@ private:
 
 // Destroys the shared context inside the test program, so its destructor's
 // checks (validation messages, leaks reported at destruction) still count.
+void reset_vulkan_shared();
 class SharedTeardown : public ::testing::Environment {
 public:
-    void TearDown() override { Shared::instance().reset(); }
+    void TearDown() override {
+        Shared::instance().reset();
+        reset_vulkan_shared();
+    }
 };
 const ::testing::Environment* const kSharedTeardown = ::testing::AddGlobalTestEnvironment(new SharedTeardown);
 
@@ -144,42 +157,100 @@ void done(const char* suite) {
                      rrc_stab::format("%d tests passed, %d failed (last: %s)", passed, failed, suite));
 }
 
+using rrc_test::vkpath::VkFrame;
+
 struct FrameCase {
     const char* name;
     rrc_result code;
-    const char* field;  // must appear in the message
-    std::function<void(Call&)> spoil;
+    const char* field;                        // must appear in the message
+    std::function<void(Call&)> spoil;         // standalone (NULL: a Vulkan-only case)
+    std::function<void(VkFrame&)> vk_spoil;   // the Vulkan path's equivalent (NULL: none)
 };
 
+// A chained struct of a type no version defines (rrc.h Versioning, rule 5).
+struct UnknownExtension {
+    rrc_struct_type type = 0x525243EFu;
+    const void* next = nullptr;
+    uint32_t size = sizeof(UnknownExtension);
+};
+const UnknownExtension kUnknownExtension{};
+const rrc_frame_desc kBaseStruct = frame_desc();  // a base struct's tag in a chain: INVALID_STRUCT
+
 std::vector<FrameCase> frame_cases() {
+    const VkImageView no_view = VK_NULL_HANDLE;
+    (void)no_view;
     return {
-        {"frame_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.type", [](Call& c) { c.frame.type = RRC_STRUCT_TYPE_CONTEXT_DESC; }},
-        {"frame_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.size", [](Call& c) { c.frame.size = 12; }},
-        {"frame_next_set", RRC_ERROR_INVALID_STRUCT, "frame.next", [](Call& c) { c.frame.next = &c; }},
-        {"depth_null", RRC_ERROR_MISSING_INPUT, "frame.depth", [](Call& c) { c.frame.depth = nullptr; }},
-        {"reprojection_null", RRC_ERROR_MISSING_INPUT, "frame.reprojection", [](Call& c) { c.frame.reprojection = nullptr; }},
-        {"nocache_null", RRC_ERROR_MISSING_INPUT, "frame.nocache", [](Call& c) { c.frame.nocache = nullptr; }},
-        {"channel_count_zero", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 0; }},
-        {"channel_count_too_many", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 3; }},
-        {"channels_null", RRC_ERROR_MISSING_INPUT, "frame.channels", [](Call& c) { c.frame.channels = nullptr; }},
-        {"channel_input_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].type", [](Call& c) { c.inputs[1].type = 0; }},
-        {"channel_input_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].size", [](Call& c) { c.inputs[1].size = 8; }},
-        {"channel_input_next_set", RRC_ERROR_INVALID_STRUCT, "frame.channels[0].next", [](Call& c) { c.inputs[0].next = &c; }},
-        {"samples_null", RRC_ERROR_MISSING_INPUT, "frame.channels[1].samples", [](Call& c) { c.inputs[1].samples = nullptr; }},
-        {"confidence_null", RRC_ERROR_MISSING_INPUT, "frame.channels[0].confidence", [](Call& c) { c.inputs[0].confidence = nullptr; }},
-        {"jitter_nan", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[1] = kNaN; }},
-        {"jitter_beyond_a_pixel", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[0] = 1.5f; }},
-        {"prev_jitter_inf", RRC_ERROR_INVALID_ARGUMENT, "prev_jitter", [](Call& c) { c.frame.prev_jitter[0] = -kInf; }},
-        {"output_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.type", [](Call& c) { c.output.type = RRC_STRUCT_TYPE_FRAME_DESC; }},
-        {"output_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.size", [](Call& c) { c.output.size = 4; }},
-        {"output_next_set", RRC_ERROR_INVALID_STRUCT, "output.next", [](Call& c) { c.output.next = &c; }},
-        {"output_channel_count_mismatch", RRC_ERROR_SIZE_MISMATCH, "output.channel_count", [](Call& c) { c.output.channel_count = 1; }},
-        {"output_channels_null", RRC_ERROR_INVALID_ARGUMENT, "output.channels", [](Call& c) { c.output.channels = nullptr; }},
-        {"output_channel_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.channels[1].type", [](Call& c) { c.outs[1].type = 99; }},
-        {"output_channel_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.channels[0].size", [](Call& c) { c.outs[0].size = 1; }},
+        {"frame_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.type", [](Call& c) { c.frame.type = RRC_STRUCT_TYPE_CONTEXT_DESC; },
+         [](VkFrame& f) { f.desc.type = RRC_STRUCT_TYPE_CONTEXT_DESC; }},
+        {"frame_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.size", [](Call& c) { c.frame.size = 12; },
+         [](VkFrame& f) { f.desc.size = 12; }},
+        // 0.2: `next` is an extension chain; a base struct's tag in it is INVALID_STRUCT.
+        {"frame_next_set", RRC_ERROR_INVALID_STRUCT, "frame.next", [](Call& c) { c.frame.next = &c.inputs[0]; },
+         [](VkFrame& f) { f.desc.next = &kBaseStruct; }},
+        {"frame_next_unknown_extension", RRC_ERROR_UNSUPPORTED, "frame.next[0].type", [](Call& c) { c.frame.next = &kUnknownExtension; },
+         [](VkFrame& f) { f.desc.next = &kUnknownExtension; }},
+        {"depth_null", RRC_ERROR_MISSING_INPUT, "frame.depth", [](Call& c) { c.frame.depth = nullptr; },
+         [](VkFrame& f) { f.desc.depth = rrc_vulkan_image{}; }},
+        {"reprojection_null", RRC_ERROR_MISSING_INPUT, "frame.reprojection", [](Call& c) { c.frame.reprojection = nullptr; },
+         [](VkFrame& f) { f.desc.reprojection = rrc_vulkan_image{}; }},
+        {"nocache_null", RRC_ERROR_MISSING_INPUT, "frame.nocache", [](Call& c) { c.frame.nocache = nullptr; },
+         [](VkFrame& f) { f.desc.nocache = rrc_vulkan_image{}; }},
+        {"channel_count_zero", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 0; },
+         [](VkFrame& f) { f.desc.channel_count = 0; }},
+        {"channel_count_too_many", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 3; },
+         [](VkFrame& f) { f.desc.channel_count = 3; }},
+        {"channels_null", RRC_ERROR_MISSING_INPUT, "frame.channels", [](Call& c) { c.frame.channels = nullptr; },
+         [](VkFrame& f) { f.desc.channels = nullptr; }},
+        {"channel_input_wrong_type", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].type", [](Call& c) { c.inputs[1].type = 0; },
+         [](VkFrame& f) { f.channels[1].type = 0; }},
+        {"channel_input_size_too_small", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].size", [](Call& c) { c.inputs[1].size = 8; },
+         [](VkFrame& f) { f.channels[1].size = 8; }},
+        {"channel_input_next_set", RRC_ERROR_INVALID_STRUCT, "frame.channels[0].next", [](Call& c) { c.inputs[0].next = &c.frame; },
+         [](VkFrame& f) { f.channels[0].next = &kBaseStruct; }},
+        {"channel_input_next_unknown_extension", RRC_ERROR_UNSUPPORTED, "frame.channels[0].next[0].type",
+         [](Call& c) { c.inputs[0].next = &kUnknownExtension; }, [](VkFrame& f) { f.channels[0].next = &kUnknownExtension; }},
+        {"samples_null", RRC_ERROR_MISSING_INPUT, "frame.channels[1].samples", [](Call& c) { c.inputs[1].samples = nullptr; },
+         [](VkFrame& f) { f.channels[1].samples = rrc_vulkan_image{}; }},
+        {"confidence_null", RRC_ERROR_MISSING_INPUT, "frame.channels[0].confidence", [](Call& c) { c.inputs[0].confidence = nullptr; },
+         [](VkFrame& f) { f.channels[0].confidence = rrc_vulkan_image{}; }},
+        {"jitter_nan", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[1] = kNaN; },
+         [](VkFrame& f) { f.desc.jitter[1] = kNaN; }},
+        {"jitter_beyond_a_pixel", RRC_ERROR_INVALID_ARGUMENT, "jitter", [](Call& c) { c.frame.jitter[0] = 1.5f; },
+         [](VkFrame& f) { f.desc.jitter[0] = 1.5f; }},
+        {"prev_jitter_inf", RRC_ERROR_INVALID_ARGUMENT, "prev_jitter", [](Call& c) { c.frame.prev_jitter[0] = -kInf; },
+         [](VkFrame& f) { f.desc.prev_jitter[0] = -kInf; }},
+        {"output_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.type", [](Call& c) { c.output.type = RRC_STRUCT_TYPE_FRAME_DESC; }, {}},
+        {"output_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.size", [](Call& c) { c.output.size = 4; }, {}},
+        {"output_next_set", RRC_ERROR_INVALID_STRUCT, "output.next", [](Call& c) { c.output.next = &c.frame; }, {}},
+        {"output_channel_count_mismatch", RRC_ERROR_SIZE_MISMATCH, "output.channel_count", [](Call& c) { c.output.channel_count = 1; }, {}},
+        {"output_channels_null", RRC_ERROR_INVALID_ARGUMENT, "output.channels", [](Call& c) { c.output.channels = nullptr; }, {}},
+        {"output_channel_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.channels[1].type", [](Call& c) { c.outs[1].type = 99; }, {}},
+        {"output_channel_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.channels[0].size", [](Call& c) { c.outs[0].size = 1; }, {}},
         {"output_weight_without_confidence", RRC_ERROR_INVALID_ARGUMENT, "output.channels[1].weight",
-         [](Call& c) { c.outs[1].weight = c.weight.data(); }},
+         [](Call& c) { c.outs[1].weight = c.weight.data(); }, {}},
+        // The Vulkan path's own inputs (no standalone equivalent).
+        {"vk_command_buffer_null", RRC_ERROR_INVALID_ARGUMENT, "frame.command_buffer", {},
+         [](VkFrame& f) { f.desc.command_buffer = VK_NULL_HANDLE; }},
+        {"vk_depth_view_null", RRC_ERROR_MISSING_INPUT, "frame.depth", {}, [](VkFrame& f) { f.desc.depth.view = VK_NULL_HANDLE; }},
+        {"vk_output_image_null", RRC_ERROR_MISSING_INPUT, "frame.channels[1].output", {},
+         [](VkFrame& f) { f.channels[1].output = rrc_vulkan_image{}; }},
+        {"vk_channel_images_mixed_sizes", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].size", {},
+         [](VkFrame& f) { f.channels[1].size = (uint32_t)sizeof(rrc_vulkan_channel_images) - 8; }},
     };
+}
+
+std::vector<FrameCase> standalone_cases() {
+    std::vector<FrameCase> v;
+    for (FrameCase& c : frame_cases())
+        if (c.spoil) v.push_back(c);
+    return v;
+}
+
+std::vector<FrameCase> vulkan_cases() {
+    std::vector<FrameCase> v;
+    for (FrameCase& c : frame_cases())
+        if (c.vk_spoil) v.push_back(c);
+    return v;
 }
 
 // ctest shows the parameter: print its name, not its bytes.
@@ -200,7 +271,7 @@ TEST_P(FrameRun, RefusedUntouchedHistoryIntact) {
     done("FrameRun.RefusedUntouchedHistoryIntact");
 }
 
-INSTANTIATE_TEST_SUITE_P(Api, FrameRun, ::testing::ValuesIn(frame_cases()),
+INSTANTIATE_TEST_SUITE_P(Api, FrameRun, ::testing::ValuesIn(standalone_cases()),
                          [](const ::testing::TestParamInfo<FrameCase>& i) { return std::string(i.param.name); });
 
 class FrameRunBatch : public ::testing::TestWithParam<FrameCase> {};
@@ -222,8 +293,222 @@ TEST_P(FrameRunBatch, RefusedAsFrameOneOfThree) {
     done("FrameRunBatch.RefusedAsFrameOneOfThree");
 }
 
-INSTANTIATE_TEST_SUITE_P(Api, FrameRunBatch, ::testing::ValuesIn(frame_cases()),
+INSTANTIATE_TEST_SUITE_P(Api, FrameRunBatch, ::testing::ValuesIn(standalone_cases()),
                          [](const ::testing::TestParamInfo<FrameCase>& i) { return std::string(i.param.name); });
+
+// ---- the Vulkan path: rrc_vulkan_record_frame ------------------------------
+
+using rrc_test::vkpath::VulkanRig;
+
+// The shared context's twin on a host device: the same channels, PREV_CLIP
+// and do-not-cache mask, so every case above has its equivalent.
+class VulkanShared {
+public:
+    static std::unique_ptr<VulkanShared>& instance() {
+        static std::unique_ptr<VulkanShared> s;
+        return s;
+    }
+    static VulkanShared& get() {
+        if (!instance()) instance().reset(new VulkanShared);
+        return *instance();
+    }
+    ~VulkanShared() {
+        rig_.reset();
+        host_->shutdown();
+        EXPECT_EQ(host_->message_count(), 0u) << (host_->messages().empty() ? "" : host_->messages().front());
+    }
+    rrc_context* ctx() { return rig_->ctx; }
+    VulkanRig& rig() { return *rig_; }
+    rrc_test::VulkanHost& host() { return *host_; }
+
+    // Records a good frame whose samples alternate 1, 2, 1, ... and checks it
+    // continues the lambda recursion (0.5) of the previous good frame: a
+    // refused call that ran, or that moved the ping-pong, shows here.
+    ::testing::AssertionResult good_frame_continues_history() {
+        const uint32_t k = frames_++;
+        const float s = k % 2 ? 2.0f : 1.0f;
+        expected_ = k == 0 ? s : 0.5 * expected_ + 0.5 * s;
+        rig_->upload_samples(0, std::vector<float>(kN, s));
+        rig_->upload_samples(1, std::vector<float>(4 * kN, s));
+        rig_->fill_outputs();
+        VkFrame f = rig_->frame(k);
+        uint64_t recorded = 0;
+        rrc_result r = rig_->record(f, {}, &recorded);
+        if (r != RRC_SUCCESS) return ::testing::AssertionFailure() << "good frame failed: " << rrc_last_error();
+        if (recorded == 0) return ::testing::AssertionFailure() << "a good frame recorded nothing";
+        const std::vector<float> v0 = rig_->values(0), v1 = rig_->values(1);
+        for (float x : v0)  // fp32 history: exact (dyadic values)
+            if (std::fabs(x - expected_) > 1e-6) return ::testing::AssertionFailure() << "value " << x << ", expected " << expected_;
+        for (float x : v1)  // fp16 history: rounding, at most ~1e-3 here; a wrong history is >= 0.25 off
+            if (std::fabs(x - expected_) > 4e-3) return ::testing::AssertionFailure() << "fp16 value " << x << ", expected " << expected_;
+        if (rig_->mask_bytes() != std::vector<uint8_t>(kN, k ? RRC_MASK_HIT : 0))
+            return ::testing::AssertionFailure() << "mask " << (int)rig_->mask_bytes()[0] << " on good frame " << k;
+        const uint16_t want_age = (uint16_t)std::min<uint32_t>(k + 1, 255);
+        if (rig_->age(0) != std::vector<uint16_t>(kN, want_age) || rig_->age(1) != std::vector<uint16_t>(kN, want_age))
+            return ::testing::AssertionFailure() << "age " << rig_->age(0)[0] << ", expected " << want_age << ": a refused call ran a frame";
+        const rrc_vulkan_frame_stats st = rig_->frame_stats();
+        if (st.hits != (k ? kN : 0) || st.pixels != kN) return ::testing::AssertionFailure() << st.hits << " hits of " << st.pixels;
+        return ::testing::AssertionSuccess();
+    }
+
+private:
+    VulkanShared() : host_(new rrc_test::VulkanHost) {
+        channels_ = {channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
+                     channel("color", 4, 0.5f, RRC_HISTORY_FP16)};
+        rrc_context_desc d = context_desc(kW, kH, channels_);
+        d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+        d.use_nocache_mask = 1;
+        rig_.reset(new VulkanRig(*host_, d));
+        EXPECT_EQ(rig_->create_result, RRC_SUCCESS) << rrc_last_error();
+        Call inputs;  // the standalone cases' static frame
+        rig_->upload_depth(inputs.depth);
+        rig_->upload_reprojection(inputs.clip);
+        rig_->upload_nocache(inputs.nocache);
+        rig_->upload_confidence(0, inputs.conf);
+        EXPECT_TRUE(good_frame_continues_history());
+    }
+    std::unique_ptr<rrc_test::VulkanHost> host_;
+    std::vector<rrc_channel_desc> channels_;
+    std::unique_ptr<VulkanRig> rig_;
+    uint32_t frames_ = 0;
+    double expected_ = 0.0;
+};
+
+void reset_vulkan_shared() { VulkanShared::instance().reset(); }
+
+// Refused: the code and field of the standalone path, nothing recorded into
+// the command buffer, nothing written once it ran, history intact.
+::testing::AssertionResult refused_on_vulkan(VulkanRig& rig, const std::function<void(VkFrame&)>& spoil, rrc_result code,
+                                             const char* field) {
+    for (uint32_t c = 0; c < rig.images.size(); ++c)  // had anything run, 100 would show
+        rig.upload_samples(c, std::vector<float>(rig.pixels() * rig.images[c].samples.texel_bytes / 4, 100.0f));
+    rig.fill_outputs();
+    VkFrame f = rig.frame(1000);
+    uint64_t recorded = 99;
+    const rrc_result r = rig.record(f, spoil, &recorded);
+    const std::string message = rrc_last_error();
+    if (r != code) return ::testing::AssertionFailure() << rrc_result_to_string(r) << " instead of " << rrc_result_to_string(code) << ": " << message;
+    if (message.find(field) == std::string::npos) return ::testing::AssertionFailure() << "message must name " << field << ": " << message;
+    if (message != rrc_context_last_error(rig.ctx)) return ::testing::AssertionFailure() << "rrc_context_last_error differs";
+    if (recorded != 0) return ::testing::AssertionFailure() << recorded << " commands recorded by a refused call";
+    for (uint32_t c = 0; c < rig.images.size(); ++c) {
+        for (float x : rig.values(c))
+            if (x != -7.0f) return ::testing::AssertionFailure() << "output " << c << " written: " << x;
+        if (rig.age(c) != std::vector<uint16_t>(rig.pixels(), 777)) return ::testing::AssertionFailure() << "age " << c << " written";
+    }
+    if (rig.mask_bytes() != std::vector<uint8_t>(rig.pixels(), 0xEE)) return ::testing::AssertionFailure() << "mask written";
+    const rrc_vulkan_frame_stats st = rig.frame_stats();
+    const std::vector<unsigned char> sb((const unsigned char*)&st, (const unsigned char*)&st + sizeof st);
+    if (sb != std::vector<unsigned char>(sizeof st, 0xEE) || !rig.stats_guard_untouched()) return ::testing::AssertionFailure() << "stats written";
+    return ::testing::AssertionSuccess();
+}
+
+class VulkanRecord : public ::testing::TestWithParam<FrameCase> {};
+
+TEST_P(VulkanRecord, RefusedNothingRecordedHistoryIntact) {
+    const FrameCase& fc = GetParam();
+    VulkanShared& shared = VulkanShared::get();
+    EXPECT_TRUE(refused_on_vulkan(shared.rig(), fc.vk_spoil, fc.code, fc.field));
+    EXPECT_TRUE(shared.good_frame_continues_history());
+    done("VulkanRecord.RefusedNothingRecordedHistoryIntact");
+}
+
+INSTANTIATE_TEST_SUITE_P(Api, VulkanRecord, ::testing::ValuesIn(vulkan_cases()),
+                         [](const ::testing::TestParamInfo<FrameCase>& i) { return std::string(i.param.name); });
+
+// CAMERA on the Vulkan path: a singular or non-finite view_proj is refused
+// by name, as on the standalone path (ApiCamera below).
+TEST(ApiVulkanCamera, SingularViewProjection) {
+    rrc_test::VulkanHost host;
+    {
+        std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+        VulkanRig rig(host, rrc_stab::static_desc(4, 4, channels));
+        ASSERT_EQ(rig.create_result, RRC_SUCCESS) << rrc_last_error();
+        rig.upload_depth(std::vector<float>(16, 0.5f));
+        auto zero = [](VkFrame& f) { std::memset(f.desc.view_proj, 0, sizeof f.desc.view_proj); };
+        EXPECT_TRUE(refused_on_vulkan(rig, zero, RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj"));
+        auto rank3 = [](VkFrame& f) { f.desc.view_proj[15] = 0.0; };
+        EXPECT_TRUE(refused_on_vulkan(rig, rank3, RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj"));
+        auto nan = [](VkFrame& f) { f.desc.prev_view_proj[7] = std::numeric_limits<double>::quiet_NaN(); };
+        EXPECT_TRUE(refused_on_vulkan(rig, nan, RRC_ERROR_INVALID_ARGUMENT, "view_proj"));
+        rig.upload_samples(0, std::vector<float>(16, 1.0f));
+        rig.fill_outputs();
+        VkFrame f = rig.frame(0);
+        EXPECT_EQ(rig.record(f), RRC_SUCCESS) << rrc_last_error();
+        EXPECT_EQ(rig.age(0), std::vector<uint16_t>(16, 1)) << "the refused calls must not have run";
+    }
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << (host.messages().empty() ? "" : host.messages().front());
+    done("ApiVulkanCamera.SingularViewProjection");
+}
+
+// A depth image whose VkFormat disagrees with the context's depth_format
+// (epsilon is made from the format) is refused, naming depth.
+struct DepthFormatCase {
+    rrc_depth_format context_format;
+    VkFormat image_format;
+    rrc_result code;
+};
+
+TEST(ApiVulkanDepth, ImageFormatDisagreesWithDepthFormat) {
+    rrc_test::VulkanHost host;
+    for (const DepthFormatCase& c : {DepthFormatCase{RRC_DEPTH_FORMAT_FLOAT32, VK_FORMAT_D16_UNORM, RRC_ERROR_INVALID_ARGUMENT},
+                                     DepthFormatCase{RRC_DEPTH_FORMAT_UNORM24, VK_FORMAT_D32_SFLOAT, RRC_ERROR_INVALID_ARGUMENT},
+                                     DepthFormatCase{RRC_DEPTH_FORMAT_UNORM16, VK_FORMAT_D32_SFLOAT, RRC_ERROR_INVALID_ARGUMENT},
+                                     DepthFormatCase{RRC_DEPTH_FORMAT_UNORM16, VK_FORMAT_D16_UNORM, RRC_SUCCESS},
+                                     DepthFormatCase{RRC_DEPTH_FORMAT_FLOAT32, VK_FORMAT_D32_SFLOAT, RRC_SUCCESS}}) {
+        SCOPED_TRACE(::testing::Message() << "depth_format " << c.context_format << ", image format " << c.image_format);
+        std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+        rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+        d.depth_format = c.context_format;
+        VulkanRig rig(host, d, c.image_format);
+        ASSERT_EQ(rig.create_result, RRC_SUCCESS) << rrc_last_error();
+        rig.upload_depth(std::vector<float>(16, 0.5f));
+        if (c.code == RRC_SUCCESS) {
+            rig.upload_samples(0, std::vector<float>(16, 1.0f));
+            rig.fill_outputs();
+            VkFrame f = rig.frame(0);
+            EXPECT_EQ(rig.record(f), RRC_SUCCESS) << rrc_last_error();
+        } else {
+            EXPECT_TRUE(refused_on_vulkan(rig, {}, c.code, "depth"));
+        }
+    }
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << (host.messages().empty() ? "" : host.messages().front());
+    done("ApiVulkanDepth.ImageFormatDisagreesWithDepthFormat");
+}
+
+TEST(ApiVulkanCreate, NullDescOrDeviceLeavesOutputUntouched) {
+    VulkanShared& shared = VulkanShared::get();
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+    rrc_vulkan_device_desc dd = rrc_test::vkpath::device_desc(shared.host());
+    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
+    rrc_context* out = sentinel;
+    EXPECT_EQ(rrc_vulkan_context_create(nullptr, &dd, &out), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("desc"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(rrc_vulkan_context_create(&d, nullptr, &out), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("device"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(out, sentinel);
+    done("ApiVulkanCreate.NullDescOrDeviceLeavesOutputUntouched");
+}
+
+// The largest valid extent on the host's device: OUT_OF_MEMORY, nothing left behind.
+TEST(ApiVulkanCreate, LargestExtentBeyondTheDeviceFailsCleanly) {
+    VulkanShared& shared = VulkanShared::get();
+    std::vector<rrc_channel_desc> channels = {channel("a", 4, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
+                                              channel("b", 4, 0.5f, RRC_HISTORY_FP32)};
+    rrc_context_desc d = context_desc(RRC_MAX_EXTENT, RRC_MAX_EXTENT, channels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    rrc_vulkan_device_desc dd = rrc_test::vkpath::device_desc(shared.host());
+    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
+    rrc_context* out = sentinel;
+    EXPECT_EQ(rrc_vulkan_context_create(&d, &dd, &out), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
+    EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(out, sentinel);
+    EXPECT_TRUE(shared.good_frame_continues_history());
+    done("ApiVulkanCreate.LargestExtentBeyondTheDeviceFailsCleanly");
+}
 
 // ---- rrc_frame_run_batch's own arguments --------------------------------
 
@@ -298,6 +583,12 @@ TEST(ApiHandle, NullContextEverywhere) {
     EXPECT_EQ(rrc_frame_run(nullptr, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_last_error()).find("context is NULL"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_frame_run_batch(nullptr, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
+    rrc_vulkan_frame_desc vf;
+    std::memset(&vf, 0, sizeof vf);
+    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+    vf.size = sizeof vf;
+    EXPECT_EQ(rrc_vulkan_record_frame(nullptr, &vf), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_last_error()).find("context is NULL"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_context_device_name(nullptr, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
     EXPECT_EQ(rrc_context_validation_messages(nullptr, &count), RRC_ERROR_INVALID_HANDLE);
     EXPECT_STREQ(name, "sentinel");
@@ -327,6 +618,12 @@ TEST(ApiHandle, DestroyedContextEverywhere) {
     EXPECT_EQ(rrc_frame_run(ctx, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_frame_run_batch(ctx, 1, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
+    rrc_vulkan_frame_desc vf;
+    std::memset(&vf, 0, sizeof vf);
+    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+    vf.size = sizeof vf;
+    EXPECT_EQ(rrc_vulkan_record_frame(ctx, &vf), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_context_device_name(ctx, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
     EXPECT_EQ(rrc_context_validation_messages(ctx, &count), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_context_last_error(ctx)).find("not a live"), std::string::npos);
@@ -344,6 +641,11 @@ TEST(ApiHandle, ForeignPointerEverywhere) {
     char name[64] = "sentinel";
     uint64_t count = 99;
     EXPECT_EQ(rrc_frame_run_batch(fake, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
+    rrc_vulkan_frame_desc vf;
+    std::memset(&vf, 0, sizeof vf);
+    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
+    vf.size = sizeof vf;
+    EXPECT_EQ(rrc_vulkan_record_frame(fake, &vf), RRC_ERROR_INVALID_HANDLE);
     EXPECT_EQ(rrc_context_device_name(fake, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
     EXPECT_EQ(rrc_context_validation_messages(fake, &count), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_context_last_error(fake)).find("not a live"), std::string::npos);
