@@ -26,7 +26,7 @@ if (RRC_CH < CH_COUNT) {
 #define LOAD_W(t) (CH_(_CONFIDENCE) ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
     vec4 H;
     float Wh;
-    if (CH_(_FILTER) == RRC_FILTER_NEAREST) {
+    if (CH_(_FILTER) == RRC_HISTORY_FILTER_NEAREST) {
         H = LOAD_H(g.taps.nearest);
         Wh = LOAD_W(g.taps.nearest);
     } else {
@@ -34,7 +34,7 @@ if (RRC_CH < CH_COUNT) {
         vec4 wt = g.taps.w;
         H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
         Wh = CH_(_CONFIDENCE) ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
-        if (CH_(_FILTER) == RRC_FILTER_CATMULL_ROM) {
+        if (CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM) {
             // 4x4 taps, clamped to the range of the bilinear taps so it cannot ring.
             vec4 wx = rrc_catmull_rom_weights(g.taps.f.x), wy = rrc_catmull_rom_weights(g.taps.f.y);
             ivec2 hi = rrc_size() - 1;

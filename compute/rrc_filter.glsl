@@ -3,12 +3,7 @@
 #ifndef RRC_FILTER_GLSL
 #define RRC_FILTER_GLSL
 
-#define RRC_BLEND_FIXED 0u
-#define RRC_BLEND_AGE_AWARE 1u
-#define RRC_BLEND_RUNNING_MEAN 2u
-#define RRC_FILTER_BILINEAR 0u
-#define RRC_FILTER_NEAREST 1u
-#define RRC_FILTER_CATMULL_ROM 2u
+#include "rrc_values.glsl"  // rrc_blend, rrc_history_filter
 
 // The largest finite fp32 value and the smallest normal one, exactly.
 const float RRC_FLT_MAX = 3.4028234663852886e38;

@@ -1,60 +1,53 @@
 // Reverse reprojection and the epsilon-depth hit test (docs/CONVENTIONS.md).
 // Shared by every kernel that classifies pixels: it declares the geometry
-// inputs (set 0, bindings 0..4), the frame's push constants and the
+// inputs (set 0, RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and the interop bindings), the frame's push constants and the
 // specialization constants that select the source and depth mode, so a
 // configuration compiles only the path it uses.
 #ifndef RRC_REPROJECT_GLSL
 #define RRC_REPROJECT_GLSL
 
-// ---- Specialization constants (ids match plugin/kernel_config.h) ----------
-#define RRC_SOURCE_PREV_CLIP 0u
-#define RRC_SOURCE_MOTION 1u
-#define RRC_SOURCE_MOTION_DEPTH 2u
-#define RRC_SOURCE_CAMERA 3u
-#define RRC_DEPTH_STANDARD 0u
-#define RRC_DEPTH_REVERSED 1u
-#define RRC_DEPTH_LINEAR 2u
-#define RRC_EPS_ABSOLUTE 0u  // pc.eps is epsilon itself
-#define RRC_EPS_ULP 1u       // pc.eps is a scale of ulp(expected depth)
-#define RRC_EPS_RELATIVE 2u  // pc.eps is tau: |diff| <= tau * expected linear depth
+#include "rrc_values.glsl"  // rrc_reprojection, rrc_depth_mode, RRC_EPS_*, ids
 
-layout(constant_id = 0) const uint SOURCE = RRC_SOURCE_PREV_CLIP;
-layout(constant_id = 1) const uint DEPTH_MODE = RRC_DEPTH_STANDARD;
-layout(constant_id = 2) const uint EPS_KIND = RRC_EPS_ULP;
-layout(constant_id = 3) const bool HAS_NOCACHE = false;
+// ---- Specialization constants (ids: rrc_kernel_interface.h) ---------------
+layout(constant_id = RRC_SPEC_SOURCE) const uint SOURCE = RRC_REPROJECTION_PREV_CLIP;
+layout(constant_id = RRC_SPEC_DEPTH_MODE) const uint DEPTH_MODE = RRC_DEPTH_MODE_STANDARD;
+layout(constant_id = RRC_SPEC_EPS_KIND) const uint EPS_KIND = RRC_EPS_ULP;  // RRC_EPS_ABSOLUTE, _ULP, _RELATIVE
+layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
 // Interop: the host's images are read through samplers (any format, depth
 // formats included), the library keeps its own copy of depth for the next
 // frame and writes each channel to the host's output image too.
-layout(constant_id = 5) const bool INTEROP = false;
+layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
 
-// ---- Per-frame parameters (124 bytes: fits the 128-byte minimum) ----------
+// ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
+// Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
+// offsets, asserted against plugin/accumulate_pipeline.h's FramePushConstants.
 layout(push_constant) uniform Frame {
-    mat4 M;             // CAMERA: VP_prev * inverse(VP_cur), formed in double on the CPU
-    vec4 inv_row3;      // CAMERA + LINEAR: row 3 of inverse(VP_cur)
-    vec4 jitter;        // xy: this frame's sample offset (pixels), zw: the previous frame's
-    vec2 motion_scale;  // multiplies motion vectors into uv units
-    float eps;          // see EPS_KIND
-    float near_plane;   // plain MOTION on NDC depth: linearisation
-    float far_plane;    //   (may be +inf for REVERSED)
-    float bg_threshold; // LINEAR: d >= this is background
-    uint prev_valid;    // 0 on the first frame, after reset or resize
+    layout(offset = RRC_PC_OFFSET_M) mat4 M;                    // CAMERA: VP_prev * inverse(VP_cur), formed in double on the CPU
+    layout(offset = RRC_PC_OFFSET_INV_ROW3) vec4 inv_row3;      // CAMERA + LINEAR: row 3 of inverse(VP_cur)
+    layout(offset = RRC_PC_OFFSET_JITTER) vec4 jitter;          // xy: this frame's sample offset (pixels), zw: the previous frame's
+    layout(offset = RRC_PC_OFFSET_MOTION_SCALE) vec2 motion_scale;  // multiplies motion vectors into uv units
+    layout(offset = RRC_PC_OFFSET_EPS) float eps;               // see EPS_KIND
+    layout(offset = RRC_PC_OFFSET_NEAR_PLANE) float near_plane; // plain MOTION on NDC depth: linearisation
+    layout(offset = RRC_PC_OFFSET_FAR_PLANE) float far_plane;   //   (may be +inf for REVERSED)
+    layout(offset = RRC_PC_OFFSET_BG_THRESHOLD) float bg_threshold;  // LINEAR: d >= this is background
+    layout(offset = RRC_PC_OFFSET_PREV_VALID) uint prev_valid;  // 0 on the first frame, after reset or resize
 } pc;
 
-layout(set = 0, binding = 0, r32f) uniform readonly image2D u_depth;
-layout(set = 0, binding = 1, r32f) uniform readonly image2D u_prev_depth;
-layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION_DEPTH
-layout(set = 0, binding = 3, rg32f) uniform readonly image2D u_motion;    // MOTION
-layout(set = 0, binding = 4, r8ui) uniform readonly uimage2D u_nocache;
-layout(set = 0, binding = 6) uniform sampler2D s_depth;        // INTEROP: the host's depth
-layout(set = 0, binding = 7) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
-layout(set = 0, binding = 8) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
-layout(set = 0, binding = 9, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
+layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
+layout(set = 0, binding = RRC_BINDING_PREV_DEPTH, r32f) uniform readonly image2D u_prev_depth;
+layout(set = 0, binding = RRC_BINDING_REPROJ, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION_DEPTH
+layout(set = 0, binding = RRC_BINDING_MOTION, rg32f) uniform readonly image2D u_motion;    // MOTION
+layout(set = 0, binding = RRC_BINDING_NOCACHE, r8ui) uniform readonly uimage2D u_nocache;
+layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;        // INTEROP: the host's depth
+layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
+layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
+layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
 
 ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
 float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
 vec4 rrc_load_reprojection(ivec2 px) {
     if (INTEROP) return texelFetch(s_reproj, px, 0);
-    return SOURCE == RRC_SOURCE_MOTION ? vec4(imageLoad(u_motion, px).xy, 0.0, 0.0) : imageLoad(u_reproj, px);
+    return SOURCE == RRC_REPROJECTION_MOTION ? vec4(imageLoad(u_motion, px).xy, 0.0, 0.0) : imageLoad(u_reproj, px);
 }
 bool rrc_load_nocache(ivec2 px) { return (INTEROP ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
 
@@ -62,23 +55,23 @@ bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
 bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 bool rrc_is_background(float d) {
-    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return d >= 1.0;
-    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return d <= 0.0;
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return d >= 1.0;
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return d <= 0.0;
     return d >= pc.bg_threshold;  // +inf included
 }
 
 // Non-finite depth, or depth outside its mode's range (NaN compares false).
 bool rrc_is_invalid_depth(float d) {
     if (isnan(d)) return true;
-    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return !(d >= 0.0) || isinf(d);
-    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return !(d <= 1.0) || isinf(d);
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return !(d >= 0.0) || isinf(d);
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return !(d <= 1.0) || isinf(d);
     return !(d > 0.0);  // LINEAR: +inf is background, not invalid
 }
 
 float rrc_linearize(float z) {
     float n = pc.near_plane, f = pc.far_plane;
-    if (DEPTH_MODE == RRC_DEPTH_STANDARD) return n * f / (f - z * (f - n));
-    if (DEPTH_MODE == RRC_DEPTH_REVERSED) return isinf(f) ? n / z : n * f / (n + z * (f - n));
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return n * f / (f - z * (f - n));
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return isinf(f) ? n / z : n * f / (n + z * (f - n));
     return z;
 }
 
@@ -138,24 +131,24 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     vec2 uv_prev;
     float expected;  // in depth-mode units (linear for the relative tests)
     float w = 1.0;
-    if (SOURCE == RRC_SOURCE_MOTION) {
+    if (SOURCE == RRC_REPROJECTION_MOTION) {
         vec2 m = rrc_load_reprojection(px).xy;
         g.invalid = g.invalid || !rrc_finite4(vec4(m, 0.0, 0.0));
         uv_prev = uv_s + m * pc.motion_scale;
         expected = d;
-    } else if (SOURCE == RRC_SOURCE_MOTION_DEPTH) {
+    } else if (SOURCE == RRC_REPROJECTION_MOTION_DEPTH) {
         vec4 m = rrc_load_reprojection(px);
         g.invalid = g.invalid || !rrc_finite4(vec4(m.xyz, 0.0));
         uv_prev = uv_s + m.xy * pc.motion_scale;
         expected = d + m.z;
     } else {
         vec4 c;
-        if (SOURCE == RRC_SOURCE_PREV_CLIP) {
+        if (SOURCE == RRC_REPROJECTION_PREV_CLIP) {
             c = rrc_load_reprojection(px);
             g.invalid = g.invalid || !rrc_finite4(c);
         } else {  // CAMERA: static geometry, matrices only
             vec2 ndc = 2.0 * uv_s - 1.0;
-            if (DEPTH_MODE == RRC_DEPTH_LINEAR) {
+            if (DEPTH_MODE == RRC_DEPTH_MODE_LINEAR) {
                 // The point on the pixel's ray whose clip w equals d.
                 float a = dot(pc.inv_row3, vec4(ndc, 0.0, 1.0));
                 c = pc.M * vec4(ndc * d, (1.0 - d * a) / pc.inv_row3.z, d);
@@ -165,7 +158,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
         }
         w = c.w;
         uv_prev = (c.xy / c.w + 1.0) * 0.5;
-        expected = DEPTH_MODE == RRC_DEPTH_LINEAR ? c.w : c.z / c.w;
+        expected = DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? c.w : c.z / c.w;
     }
 
     // Background wins over bad reprojection data: the sky has no history.
@@ -181,11 +174,11 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
                   imageLoad(u_prev_depth, g.taps.p01).r, imageLoad(u_prev_depth, g.taps.p11).r);
     bool tap_background = rrc_is_background(z.x) || rrc_is_background(z.y) ||
                           rrc_is_background(z.z) || rrc_is_background(z.w);
-    float fetched = DEPTH_MODE == RRC_DEPTH_LINEAR ? 1.0 / dot(g.taps.w, 1.0 / z) : dot(g.taps.w, z);
+    float fetched = DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1.0 / dot(g.taps.w, 1.0 / z) : dot(g.taps.w, z);
 
     float eps;
     if (EPS_KIND == RRC_EPS_RELATIVE) {
-        if (SOURCE == RRC_SOURCE_MOTION && DEPTH_MODE != RRC_DEPTH_LINEAR) {
+        if (SOURCE == RRC_REPROJECTION_MOTION && DEPTH_MODE != RRC_DEPTH_MODE_LINEAR) {
             fetched = rrc_linearize(fetched);
             expected = rrc_linearize(expected);
         }

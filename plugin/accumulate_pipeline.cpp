@@ -9,20 +9,34 @@
 namespace rrc {
 namespace {
 
-// Specialization constant ids (compute/rrc_reproject.glsl, rrc_accumulate.comp).
+// Specialization constant ids: compute/rrc_kernel_interface.h.
 enum : uint32_t {
-    kSource = 0,
-    kDepthMode = 1,
-    kEpsKind = 2,
-    kHasNocache = 3,
-    kChannelCount = 4,
-    kInterop = 5,
-    kGroupXId = 100,
-    kGroupYId = 101
+    kSource = RRC_SPEC_SOURCE,
+    kDepthMode = RRC_SPEC_DEPTH_MODE,
+    kEpsKind = RRC_SPEC_EPS_KIND,
+    kHasNocache = RRC_SPEC_HAS_NOCACHE,
+    kChannelCount = RRC_SPEC_CHANNEL_COUNT,
+    kInterop = RRC_SPEC_INTEROP,
+    kGroupXId = RRC_SPEC_GROUP_SIZE_X,
+    kGroupYId = RRC_SPEC_GROUP_SIZE_Y
 };
-// Per-channel property k of slot c has id 16 + 4*k + c.
-enum : uint32_t { kComponents = 0, kFp16, kBlend, kFilter, kConfidenceOn, kLambda, kAgeCap };
-uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return 16 + 4 * property + slot; }
+// Per-channel property k of slot c has id RRC_SPEC_CHANNEL(k, c) = 16 + 4*k + c.
+enum : uint32_t {
+    kComponents = RRC_CHANNEL_PROPERTY_COMPONENTS,
+    kFp16 = RRC_CHANNEL_PROPERTY_FP16,
+    kBlend = RRC_CHANNEL_PROPERTY_BLEND,
+    kFilter = RRC_CHANNEL_PROPERTY_FILTER,
+    kConfidenceOn = RRC_CHANNEL_PROPERTY_CONFIDENCE,
+    kLambda = RRC_CHANNEL_PROPERTY_LAMBDA,
+    kAgeCap = RRC_CHANNEL_PROPERTY_AGE_CAP
+};
+uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC_CHANNEL(property, slot); }
+// The per-channel ids fill the slots of the kernel (CH0_..CH3_) and stay
+// clear of the whole-dispatch ones.
+static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
+static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_INTEROP, "channel ids overlap the dispatch ids");
+static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
+              "channel ids overlap the workgroup-size ids");
 
 struct SpecBuilder {
     std::vector<VkSpecializationMapEntry> entries;

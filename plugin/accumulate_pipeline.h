@@ -1,43 +1,48 @@
 // The fused kernel's pipeline: descriptor layout, specialization constants
 // chosen from the context's configuration (so a scene pays only for what it
-// enables) and the dispatch.  Binding numbers and constant ids mirror
-// compute/rrc_accumulate.comp and compute/rrc_reproject.glsl.
+// enables) and the dispatch.  Binding numbers, constant ids and push-constant
+// offsets come from compute/rrc_kernel_interface.h, which the kernels read too.
 #pragma once
 
 #include "config.h"
 #include "vulkan_device.h"
 
+#include <rrc_kernel_interface.h>
+
+#include <cstddef>
+
 namespace rrc {
 
+// The numbers are RRC_BINDING_* of compute/rrc_kernel_interface.h.
 enum Binding : uint32_t {
-    kDepth = 0,
-    kPrevDepth = 1,
-    kReproj = 2,
-    kMotion = 3,
-    kNocache = 4,
-    kMask = 5,
-    kHostDepth = 6,
-    kHostReproj = 7,
-    kHostNocache = 8,
-    kDepthOut = 9,  // interop
+    kDepth = RRC_BINDING_DEPTH,
+    kPrevDepth = RRC_BINDING_PREV_DEPTH,
+    kReproj = RRC_BINDING_REPROJ,
+    kMotion = RRC_BINDING_MOTION,
+    kNocache = RRC_BINDING_NOCACHE,
+    kMask = RRC_BINDING_MASK,
+    kHostDepth = RRC_BINDING_HOST_DEPTH,
+    kHostReproj = RRC_BINDING_HOST_REPROJ,
+    kHostNocache = RRC_BINDING_HOST_NOCACHE,
+    kDepthOut = RRC_BINDING_DEPTH_OUT,  // interop
     // per channel, arrays of RRC_MAX_CHANNELS
-    kSample1 = 10,
-    kSample4,
-    kConfidence,
-    kHistR16f,
-    kHistRgba16f,
-    kHistR32f,
-    kHistRgba32f,
-    kAge,
-    kWeight,
-    kHistOut,
-    kAgeOut,
-    kWeightOut,
-    kHostSamples = 22,
-    kHostConfidence = 23,
-    kHostOut = 24,  // interop
+    kSample1 = RRC_BINDING_SAMPLE1,
+    kSample4 = RRC_BINDING_SAMPLE4,
+    kConfidence = RRC_BINDING_CONFIDENCE,
+    kHistR16f = RRC_BINDING_HIST_R16F,
+    kHistRgba16f = RRC_BINDING_HIST_RGBA16F,
+    kHistR32f = RRC_BINDING_HIST_R32F,
+    kHistRgba32f = RRC_BINDING_HIST_RGBA32F,
+    kAge = RRC_BINDING_AGE,
+    kWeight = RRC_BINDING_WEIGHT,
+    kHistOut = RRC_BINDING_HIST_OUT,
+    kAgeOut = RRC_BINDING_AGE_OUT,
+    kWeightOut = RRC_BINDING_WEIGHT_OUT,
+    kHostSamples = RRC_BINDING_HOST_SAMPLES,
+    kHostConfidence = RRC_BINDING_HOST_CONFIDENCE,
+    kHostOut = RRC_BINDING_HOST_OUT,  // interop
 };
-constexpr uint32_t kFirstChannelBinding = kSample1, kLastBinding = kHostOut, kBindingCount = kLastBinding + 1;
+constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBinding = RRC_BINDING_LAST, kBindingCount = kLastBinding + 1;
 
 // Sampled (combined image sampler) bindings; all others are storage images.
 inline bool is_sampled_binding(uint32_t b) {
@@ -52,7 +57,8 @@ struct DescriptorViews {
     VkImageLayout layout[kBindingCount][RRC_MAX_CHANNELS] = {};  // 0 = GENERAL
 };
 
-// Layout of `Frame` in compute/rrc_reproject.glsl.
+// Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the
+// RRC_PC_OFFSET_* of compute/rrc_kernel_interface.h (asserted below).
 struct FramePushConstants {
     float M[16];  // column-major
     float inv_row3[4];
@@ -63,7 +69,17 @@ struct FramePushConstants {
     float bg_threshold;
     uint32_t prev_valid;
 };
-static_assert(sizeof(FramePushConstants) == 124, "must match the GLSL push-constant block");
+static_assert(sizeof(FramePushConstants) == RRC_PC_SIZE, "must match the GLSL push-constant block");
+static_assert(offsetof(FramePushConstants, M) == RRC_PC_OFFSET_M, "Frame.M");
+static_assert(offsetof(FramePushConstants, inv_row3) == RRC_PC_OFFSET_INV_ROW3, "Frame.inv_row3");
+static_assert(offsetof(FramePushConstants, jitter) == RRC_PC_OFFSET_JITTER, "Frame.jitter");
+static_assert(offsetof(FramePushConstants, motion_scale) == RRC_PC_OFFSET_MOTION_SCALE, "Frame.motion_scale");
+static_assert(offsetof(FramePushConstants, eps) == RRC_PC_OFFSET_EPS, "Frame.eps");
+static_assert(offsetof(FramePushConstants, near_plane) == RRC_PC_OFFSET_NEAR_PLANE, "Frame.near_plane");
+static_assert(offsetof(FramePushConstants, far_plane) == RRC_PC_OFFSET_FAR_PLANE, "Frame.far_plane");
+static_assert(offsetof(FramePushConstants, bg_threshold) == RRC_PC_OFFSET_BG_THRESHOLD, "Frame.bg_threshold");
+static_assert(offsetof(FramePushConstants, prev_valid) == RRC_PC_OFFSET_PREV_VALID, "Frame.prev_valid");
+static_assert(RRC_PC_SIZE <= 128, "push constants must fit Vulkan's guaranteed 128 bytes");
 
 class AccumulatePipeline {
 public:

@@ -9,9 +9,11 @@
 #define MAT_SPHERE 3u
 #define MAT_MOVER 4u
 
-#define RRC_MASK_HIT 1u
-#define RRC_MASK_REFRESHED 2u
-#define RRC_MASK_BACKGROUND 4u
+// rrc's mask bits, from the public list (include/rrc/rrc_values.h).
+#include "rrc/rrc_values.h"
+#define RRC_SAMPLE_UINT(name, value) const uint name = uint(value);
+RRC_MASK_VALUES(RRC_SAMPLE_UINT)
+#undef RRC_SAMPLE_UINT
 
 #define MAX_TAPS 64
 

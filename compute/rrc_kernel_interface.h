@@ -1,0 +1,85 @@
+// The interface between the fused kernel (compute/rrc_accumulate.comp and its
+// includes) and the library (plugin/accumulate_pipeline.h/.cpp,
+// plugin/config.h), written once: specialization-constant ids, descriptor
+// binding numbers, epsilon kinds and the push-constant layout.  Preprocessor
+// text only, read by GLSL and C++ alike; not a public header.  The values of
+// the public enumerations are in include/rrc/rrc_values.h.
+#ifndef RRC_KERNEL_INTERFACE_H
+#define RRC_KERNEL_INTERFACE_H
+
+// ---- Specialization constant ids -------------------------------------------
+// Whole-dispatch constants (rrc_reproject.glsl, rrc_accumulate.comp).
+#define RRC_SPEC_SOURCE 0         // uint rrc_reprojection
+#define RRC_SPEC_DEPTH_MODE 1     // uint rrc_depth_mode
+#define RRC_SPEC_EPS_KIND 2       // uint RRC_EPS_* below
+#define RRC_SPEC_HAS_NOCACHE 3    // bool: frames carry a do-not-cache mask
+#define RRC_SPEC_CHANNEL_COUNT 4  // uint 1..RRC_MAX_CHANNELS
+#define RRC_SPEC_INTEROP 5        // bool: host images through samplers
+#define RRC_SPEC_GROUP_SIZE_X 100 // local_size_x_id
+#define RRC_SPEC_GROUP_SIZE_Y 101 // local_size_y_id
+
+// Per-channel constants: property k of channel slot c has id 16 + 4*k + c
+// (4 slots: CH0_..CH3_ in rrc_accumulate.comp).
+#define RRC_CHANNEL_PROPERTY_COMPONENTS 0  // uint 1 or 4
+#define RRC_CHANNEL_PROPERTY_FP16 1        // bool: fp16 history
+#define RRC_CHANNEL_PROPERTY_BLEND 2       // uint rrc_blend
+#define RRC_CHANNEL_PROPERTY_FILTER 3      // uint rrc_history_filter
+#define RRC_CHANNEL_PROPERTY_CONFIDENCE 4  // bool
+#define RRC_CHANNEL_PROPERTY_LAMBDA 5      // float
+#define RRC_CHANNEL_PROPERTY_AGE_CAP 6     // uint
+#define RRC_CHANNEL_PROPERTY_COUNT 7
+#define RRC_SPEC_CHANNEL_SLOTS 4
+#define RRC_SPEC_CHANNEL(property, slot) (16 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+
+// ---- Descriptor bindings (set 0) -------------------------------------------
+// Geometry (rrc_reproject.glsl) and the mask: one image each.
+#define RRC_BINDING_DEPTH 0
+#define RRC_BINDING_PREV_DEPTH 1
+#define RRC_BINDING_REPROJ 2        // PREV_CLIP, MOTION_DEPTH
+#define RRC_BINDING_MOTION 3        // MOTION
+#define RRC_BINDING_NOCACHE 4
+#define RRC_BINDING_MASK 5
+#define RRC_BINDING_HOST_DEPTH 6    // interop: sampler
+#define RRC_BINDING_HOST_REPROJ 7   // interop: sampler
+#define RRC_BINDING_HOST_NOCACHE 8  // interop: sampler
+#define RRC_BINDING_DEPTH_OUT 9     // interop: next frame's previous depth
+// Per channel (rrc_accumulate.comp): arrays of RRC_MAX_CHANNELS, indexed by slot.
+#define RRC_BINDING_SAMPLE1 10
+#define RRC_BINDING_SAMPLE4 11
+#define RRC_BINDING_CONFIDENCE 12
+#define RRC_BINDING_HIST_R16F 13
+#define RRC_BINDING_HIST_RGBA16F 14
+#define RRC_BINDING_HIST_R32F 15
+#define RRC_BINDING_HIST_RGBA32F 16
+#define RRC_BINDING_AGE 17
+#define RRC_BINDING_WEIGHT 18
+#define RRC_BINDING_HIST_OUT 19
+#define RRC_BINDING_AGE_OUT 20
+#define RRC_BINDING_WEIGHT_OUT 21
+#define RRC_BINDING_HOST_SAMPLES 22     // interop: sampler
+#define RRC_BINDING_HOST_CONFIDENCE 23  // interop: sampler
+#define RRC_BINDING_HOST_OUT 24         // interop: the host's output image
+#define RRC_BINDING_FIRST_CHANNEL RRC_BINDING_SAMPLE1
+#define RRC_BINDING_LAST RRC_BINDING_HOST_OUT
+
+// ---- Epsilon kinds (the value of RRC_SPEC_EPS_KIND) ------------------------
+#define RRC_EPS_ABSOLUTE 0u  // pc.eps is epsilon itself
+#define RRC_EPS_ULP 1u       // pc.eps is a scale of ulp(expected depth)
+#define RRC_EPS_RELATIVE 2u  // pc.eps is tau: |diff| <= tau * expected linear depth
+
+// ---- Push constants: byte offsets of the members of `Frame` ----------------
+// (rrc_reproject.glsl declares each member at its offset; the C++ mirror
+// FramePushConstants static_asserts each one.)  124 bytes: fits the 128-byte
+// minimum of maxPushConstantsSize.
+#define RRC_PC_OFFSET_M 0              // mat4
+#define RRC_PC_OFFSET_INV_ROW3 64      // vec4
+#define RRC_PC_OFFSET_JITTER 80        // vec4
+#define RRC_PC_OFFSET_MOTION_SCALE 96  // vec2
+#define RRC_PC_OFFSET_EPS 104          // float
+#define RRC_PC_OFFSET_NEAR_PLANE 108   // float
+#define RRC_PC_OFFSET_FAR_PLANE 112    // float
+#define RRC_PC_OFFSET_BG_THRESHOLD 116 // float
+#define RRC_PC_OFFSET_PREV_VALID 120   // uint
+#define RRC_PC_SIZE 124
+
+#endif  // RRC_KERNEL_INTERFACE_H
