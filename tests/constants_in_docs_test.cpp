@@ -1,0 +1,158 @@
+// Every place where the documentation, the header's comments or a tool's
+// --help text repeats a constant of include/rrc/ is checked against the
+// macro itself, so a changed value cannot leave a stale copy behind.  Each
+// check finds a specific phrase (an anchor) and reads the value right after
+// it; whitespace runs (line breaks included) count as one space.
+#include <rrc/rrc.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#ifndef RRC_SOURCE_DIR
+#    error "RRC_SOURCE_DIR must name the source tree"
+#endif
+
+namespace {
+
+// The file with every whitespace run made one space.
+std::string read_squashed(const std::string& relative) {
+    std::ifstream in(std::string(RRC_SOURCE_DIR) + "/" + relative, std::ios::binary);
+    EXPECT_TRUE(in.good()) << "cannot read " << relative;
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return std::regex_replace(ss.str(), std::regex("\\s+"), " ");
+}
+
+// The text right after `anchor` (which must occur exactly once), up to n characters.
+std::string after(const std::string& text, const std::string& file, const std::string& anchor, size_t n = 160) {
+    const size_t at = text.find(anchor);
+    if (at == std::string::npos) {
+        ADD_FAILURE() << file << ": phrase \"" << anchor << "\" not found (reworded? update this test with the document)";
+        return "";
+    }
+    EXPECT_EQ(text.find(anchor, at + 1), std::string::npos) << file << ": phrase \"" << anchor << "\" occurs more than once";
+    return text.substr(at + anchor.size(), n);
+}
+
+// The number at the start of s (after spaces), as written.
+std::string leading_number(const std::string& s) {
+    std::smatch m;
+    if (!std::regex_search(s, m, std::regex("^ ?([0-9]+(\\.[0-9]+)?([eE][-+]?[0-9]+)?)"))) return "(no number)";
+    return m[1];
+}
+
+struct Place {
+    const char* file;
+    const char* anchor;  // the value follows it directly
+};
+
+// Checks that each place states `value`: parsed as the macro's type.
+template <typename T>
+void expect_value(const char* macro, T value, const std::vector<Place>& places) {
+    for (const Place& p : places) {
+        const std::string text = read_squashed(p.file);
+        const std::string written = leading_number(after(text, p.file, p.anchor));
+        T parsed{};
+        std::istringstream(written) >> parsed;
+        EXPECT_EQ(parsed, value) << p.file << ": \"" << p.anchor << written << "\" repeats " << macro << " = " << value;
+    }
+}
+
+// The mask bits, from the public list: {value, name without RRC_MASK_}.
+std::vector<std::pair<unsigned, std::string>> mask_bits() {
+    std::vector<std::pair<unsigned, std::string>> bits;
+#define RRC_TEST_BIT(name, value) bits.emplace_back(static_cast<unsigned>(value), std::string(#name).substr(sizeof "RRC_MASK_" - 1));
+    RRC_MASK_VALUES(RRC_TEST_BIT)
+#undef RRC_TEST_BIT
+    return bits;
+}
+
+// A list "1 HIT, 2 REFRESHED, ..." after the anchor names every bit with its value.
+void expect_mask_list(const char* file, const char* anchor) {
+    const std::string text = read_squashed(file);
+    const std::string list = after(text, file, anchor, 200);
+    for (const auto& [value, name] : mask_bits()) {
+        std::smatch m;
+        const bool found = std::regex_search(list, m, std::regex("([0-9]+) " + name + "\\b"));
+        EXPECT_TRUE(found) << file << ": the mask list after \"" << anchor << "\" lacks " << name << ": " << list;
+        if (found) EXPECT_EQ(std::stoul(m[1]), value) << file << ": bit " << name << " is RRC_MASK_" << name << " = " << value;
+    }
+}
+
+const char* const kAccumulateHelp = "host_sample/rrc_accumulate/options.cpp";  // usage_text()
+const char* const kSampleHelp = "host_sample/rrc_sample/options.cpp";          // usage()
+
+}  // namespace
+
+TEST(ConstantsInDocs, MaskBits) {
+    expect_mask_list("docs/CONVENTIONS.md", "The mask bits:");
+    expect_mask_list("docs/INTEGRATION.md", "| mask | storage R8_UINT / `uint8_t[W*H]` | bits:");
+    expect_mask_list("docs/OFFLINE.md", "`rrc.mask` (bits");
+    expect_mask_list(kAccumulateHelp, "the integer value of the per-pixel bitfield");
+}
+
+TEST(ConstantsInDocs, Limits) {
+    expect_value<unsigned>("RRC_MAX_CHANNELS", RRC_MAX_CHANNELS,
+                           {{"README.md", "Limits: up to "},
+                            {"docs/OFFLINE.md", "can be accumulated alongside, up to "},
+                            {kAccumulateHelp, "accumulate EXR layer NAME (repeatable, at most "}});
+    expect_value<unsigned>("RRC_MAX_AGE_CAP", RRC_MAX_AGE_CAP,
+                           {{"README.md", "ages up to "},
+                            {"docs/CONVENTIONS.md", "Age cap: default 255, at most "},
+                            {kAccumulateHelp, "max_age=1.."}});
+    expect_value<unsigned>("RRC_MAX_EXTENT", RRC_MAX_EXTENT, {{"README.md", "history), "}});
+    const std::string readme = read_squashed("README.md");
+    const std::string extent = std::to_string(RRC_MAX_EXTENT);
+    EXPECT_NE(readme.find(extent + "×" + extent + " pixels"), std::string::npos) << "README.md: the largest extent";
+}
+
+TEST(ConstantsInDocs, Fp16MaxLambda) {
+    expect_value<double>("RRC_FP16_MAX_LAMBDA", RRC_FP16_MAX_LAMBDA,
+                         {{"docs/CONVENTIONS.md", "`RRC_FP16_MAX_LAMBDA` = "}, {"docs/STABILITY.md", "`RRC_FP16_MAX_LAMBDA` = "}});
+}
+
+TEST(ConstantsInDocs, DefaultAgeCap) {
+    expect_value<unsigned>("RRC_DEFAULT_AGE_CAP", RRC_DEFAULT_AGE_CAP,
+                           {{"docs/CONVENTIONS.md", "Age cap: default "},
+                            {"docs/STABILITY.md", "A running mean with the default cap "},
+                            {"include/rrc/rrc.h", "saturation of the age count; 0 = default "},
+                            {kAccumulateHelp, "max_age=1..65535 ("}});
+}
+
+TEST(ConstantsInDocs, DefaultTau) {
+    expect_value<float>("RRC_DEFAULT_TAU", RRC_DEFAULT_TAU,
+                        {{"docs/CONVENTIONS.md", "τ default "},
+                         {"docs/OFFLINE.md", "The library's default τ = "},
+                         {"include/rrc/rrc.h", "MOTION tests; 0 = default "},
+                         {kAccumulateHelp, "relative tolerance for linear-depth tests ("}});
+}
+
+TEST(ConstantsInDocs, DefaultEpsilonScale) {
+    expect_value<float>("RRC_DEFAULT_EPSILON_SCALE_FLOAT32", RRC_DEFAULT_EPSILON_SCALE_FLOAT32,
+                        {{"docs/CONVENTIONS.md", "default scale 1 (UNORM) or "},
+                         {"include/rrc/rrc.h", "0 = default (1 unorm, "},
+                         {"include/rrc/rrc_values.h", "/* eps = scale * ulp(z), default scale "},
+                         {kAccumulateHelp, "the format's smallest increment (default "},
+                         {kSampleHelp, "0 = the library default, "}});
+    expect_value<float>("RRC_DEFAULT_EPSILON_SCALE_UNORM", RRC_DEFAULT_EPSILON_SCALE_UNORM,
+                        {{"docs/CONVENTIONS.md", "(2^−149 at e = 0, i.e. the ulp of the fp32 value e); default scale "},
+                         {"include/rrc/rrc.h", "epsilon = scale * increment; 0 = default ("},
+                         {"include/rrc/rrc_values.h", "/* eps = scale / 65535, default scale "},
+                         {"include/rrc/rrc_values.h", "/* eps = scale / 16777215, default scale "},
+                         {kAccumulateHelp, "(default 4 for float32, "}});
+}
+
+TEST(ConstantsInDocs, DefaultBackgroundThreshold) {
+    expect_value<float>("RRC_DEFAULT_BACKGROUND_THRESHOLD", RRC_DEFAULT_BACKGROUND_THRESHOLD,
+                        {{"docs/CONVENTIONS.md", "background iff d ≥ threshold (default "},
+                         {"docs/INTEGRATION.md", "sky = +inf or ≥ `background_threshold` ("},
+                         {"docs/OFFLINE.md", "`background_threshold` "},
+                         {"include/rrc/rrc.h", "LINEAR: d >= this is background; 0 = default "},
+                         {kAccumulateHelp, "linear depth >= T is background ("}});
+}
