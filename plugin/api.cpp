@@ -1,6 +1,8 @@
 // The C boundary: every entry point validates, catches every exception and
 // turns it into an rrc_result plus a message.  Nothing throws across it.
 #include "error.h"
+#include "frame.h"
+#include "struct_reader.h"
 #include "interop_context.h"
 #include "standalone_context.h"
 #include "validation.h"
@@ -77,6 +79,8 @@ rrc_context* publish(std::unique_ptr<rrc_context> ctx) {
     return ctx.release();
 }
 
+rrc_context* live_or_null(const rrc_context* c) { return c && is_live(c) ? const_cast<rrc_context*>(c) : nullptr; }
+
 rrc_context* checked(rrc_context* c) {
     if (!c) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context is NULL");
     if (!is_live(c)) rrc::fail(RRC_ERROR_INVALID_HANDLE, "context %p is not a live rrc context (destroyed or foreign)", (void*)c);
@@ -86,7 +90,7 @@ rrc_context* checked(rrc_context* c) {
 // A create call reports to the descriptor's log callback when the
 // descriptor is readable enough to hold one.
 bool desc_readable(const rrc_context_desc* d) {
-    return d && d->type == RRC_STRUCT_TYPE_CONTEXT_DESC && d->size >= sizeof(rrc_context_desc);
+    return d && d->type == RRC_STRUCT_TYPE_CONTEXT_DESC && d->size >= rrc::StructInfo<rrc_context_desc>::size_0_1;
 }
 rrc_log_fn desc_log(const rrc_context_desc* d) { return desc_readable(d) ? d->log : nullptr; }
 void* desc_log_user(const rrc_context_desc* d) { return desc_readable(d) ? d->log_user : nullptr; }
@@ -145,9 +149,9 @@ rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vul
     return guarded(nullptr, desc_log(desc), desc_log_user(desc), [&] {
         if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
         rrc::ContextConfig config = rrc::resolve_context_desc(desc);
-        rrc::validate_vulkan_device_desc(device);
+        const rrc_vulkan_device_desc host = rrc::validate_vulkan_device_desc(device);
         std::unique_ptr<rrc_context> ctx(new rrc_context);
-        ctx->interop.reset(new rrc::InteropContext(config, *device));
+        ctx->interop.reset(new rrc::InteropContext(config, host));
         *out_context = publish(std::move(ctx));
     });
 }
@@ -170,8 +174,9 @@ const char* rrc_context_last_error(const rrc_context* context) {
 }
 
 rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, size_t capacity) {
-    return guarded(nullptr, nullptr, nullptr, [&] {
-        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(const_cast<rrc_context*>(context));
         if (!out_name) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_name is NULL");
         const std::string& name = c->device().name;
         if (capacity < name.size() + 1)
@@ -181,20 +186,16 @@ rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, s
 }
 
 rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t* out_count) {
-    return guarded(nullptr, nullptr, nullptr, [&] {
-        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(const_cast<rrc_context*>(context));
         if (!out_count) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_count is NULL");
         *out_count = c->device().validation_messages();
     });
 }
 
 rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_frame_output* output) {
-    rrc_context* c = context && is_live(context) ? context : nullptr;
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
-        rrc::validate_frame(c->config(), frame, output);
-        standalone(c).run_frames(1, frame, output);
-    });
+    return rrc_frame_run_batch(context, 1, frame, output);
 }
 
 rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame) {
@@ -203,34 +204,55 @@ rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_
         checked(context);
         if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
         if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_run");
-        c->interop->record_frame(*frame);
+        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
+        rrc::validate_frame(c->config(), f, nullptr, c->interop->stats_alignment());
+        c->interop->record_frame(f);
     });
 }
 
-rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes) {
-    return guarded(nullptr, nullptr, nullptr, [&] {
-        const rrc_context* c = checked(const_cast<rrc_context*>(context));
+rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t* out_bytes) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(const_cast<rrc_context*>(context));
         if (!out_bytes) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_bytes is NULL");
         *out_bytes = c->standalone ? c->standalone->memory_bytes() : c->interop->memory_bytes();
     });
 }
 
+rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes) { return rrc_context_memory_usage(context, out_bytes); }
+
 rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
-    rrc_context* c = context && is_live(context) ? context : nullptr;
+    rrc_context* c = live_or_null(context);
     return guarded(c, log_of(c), log_user_of(c), [&] {
         checked(context);
-        const rrc::ContextConfig* config = &c->config();
+        const rrc::ContextConfig& config = c->config();
         if (count == 0) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is 0");
         if (count > 65536) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is %u, at most 65536 frames a batch", count);
-        if (!frames) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frames is NULL");
+        if (!frames) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame%s is NULL", count == 1 ? "" : "s");
+        // Frames and outputs are arrays of tagged structs: strided by their
+        // first element's size (rrc.h Versioning, rule 3).
+        std::vector<rrc::Frame> f;
+        std::vector<rrc::FrameOutputs> out;
+        const uint32_t frame_stride = frames->size, output_stride = outputs ? outputs->size : 0;
         for (uint32_t i = 0; i < count; ++i) {
             try {
-                rrc::validate_frame(*config, &frames[i], outputs ? &outputs[i] : nullptr);
+                const auto* frame = reinterpret_cast<const rrc_frame_desc*>(reinterpret_cast<const char*>(frames) + (size_t)i * frame_stride);
+                auto* output = outputs ? reinterpret_cast<rrc_frame_output*>(reinterpret_cast<char*>(outputs) + (size_t)i * output_stride) : nullptr;
+                if (frame->size != frame_stride)
+                    rrc::fail(RRC_ERROR_INVALID_STRUCT, "frame.size is %u but frames[0].size is %u: every element of an array has one size",
+                              frame->size, frame_stride);
+                if (output && output->size != output_stride)
+                    rrc::fail(RRC_ERROR_INVALID_STRUCT, "output.size is %u but outputs[0].size is %u: every element of an array has one size",
+                              output->size, output_stride);
+                f.push_back(rrc::read_frame(frame, config.channels.size()));
+                out.push_back(rrc::read_outputs(output, config.channels.size()));
+                rrc::validate_frame(config, f.back(), &out.back(), 0);
             } catch (const rrc::Error& e) {
+                if (count == 1) throw;
                 throw rrc::Error(e.code, "frames[" + std::to_string(i) + "]: " + e.what());
             }
         }
-        standalone(c).run_frames(count, frames, outputs);
+        standalone(c).run_frames(f, out);
     });
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <rrc/rrc.h>
+#include "../compute/rrc_kernel_interface.h"  // RRC_EPS_* (by path: tests/fuzz compiles this without compute/)
 
 #include <array>
 #include <string>
@@ -21,12 +22,14 @@ struct ChannelConfig {
     bool confidence = false;
 };
 
-// How the kernel's epsilon is formed (matches EPS_KIND in compute/rrc_reproject.glsl).
-enum class EpsilonKind : uint32_t { Absolute = 0, Ulp = 1, Relative = 2 };
+// How the kernel's epsilon is formed: the value of EPS_KIND in
+// compute/rrc_reproject.glsl (RRC_EPS_* of compute/rrc_kernel_interface.h).
+enum class EpsilonKind : uint32_t { Absolute = RRC_EPS_ABSOLUTE, Ulp = RRC_EPS_ULP, Relative = RRC_EPS_RELATIVE };
 
 struct ContextConfig {
     uint32_t width = 0, height = 0;
     rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;
+    rrc_depth_format depth_format = RRC_DEPTH_FORMAT_FLOAT32;
     float near_plane = 0, far_plane = 0;
     float background_threshold = 1e10f;
     rrc_reprojection reprojection = RRC_REPROJECTION_PREV_CLIP;

@@ -5,7 +5,7 @@
 
 namespace rrc {
 
-FramePushConstants make_frame_constants(const ContextConfig& c, const rrc_frame_desc& f, bool prev_valid) {
+FramePushConstants make_frame_constants(const ContextConfig& c, const Frame& f, bool prev_valid) {
     FramePushConstants pc{};
     if (c.reprojection == RRC_REPROJECTION_CAMERA) {
         // M = VP_prev * VP_cur^-1 in double; only the product is rounded to fp32.

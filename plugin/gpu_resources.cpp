@@ -40,6 +40,14 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    // An image beyond what the device can hold is refused before it is made
+    // (creating it anyway is invalid usage, not just a failed allocation).
+    VkImageFormatProperties limits{};
+    VulkanDevice::check(dev.fi.GetPhysicalDeviceImageFormatProperties(dev.physical, fmt, ci.imageType, ci.tiling, ci.usage, 0, &limits),
+                        "vkGetPhysicalDeviceImageFormatProperties");
+    if (w > limits.maxExtent.width || h > limits.maxExtent.height || (VkDeviceSize)bytes() > limits.maxResourceSize)
+        fail(RRC_ERROR_OUT_OF_MEMORY, "a %ux%u image of VkFormat %d needs %zu bytes: beyond this device's largest image (%ux%u, %llu bytes of memory)",
+             w, h, (int)fmt, bytes(), limits.maxExtent.width, limits.maxExtent.height, (unsigned long long)limits.maxResourceSize);
     try {
         VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, dev.allocator, &image), "vkCreateImage");
         VkMemoryRequirements req;

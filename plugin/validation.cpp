@@ -1,6 +1,7 @@
 #include "validation.h"
 
 #include "error.h"
+#include "struct_reader.h"
 
 #include <rrc/rrc_vulkan.h>
 
@@ -10,18 +11,6 @@
 
 namespace rrc {
 namespace {
-
-// A tagged struct: right type, a size at least as large as the first
-// version's (older callers pass smaller, newer ones larger sizes), and a
-// `next` chain that this version does not understand must be empty.
-template <typename T>
-void check_struct(const T* s, rrc_struct_type type, size_t min_size, const char* what) {
-    if (!s) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what);
-    if (s->type != type) fail(RRC_ERROR_INVALID_STRUCT, "%s.type is 0x%08x, expected 0x%08x", what, (unsigned)s->type, (unsigned)type);
-    if (s->size < min_size)
-        fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, smaller than the smallest known (%zu)", what, (unsigned)s->size, min_size);
-    if (s->next) fail(RRC_ERROR_INVALID_STRUCT, "%s.next must be NULL (no extension is defined yet)", what);
-}
 
 bool finite(float x) { return std::isfinite(x); }
 
@@ -45,10 +34,10 @@ double max_lambda_eff(const ChannelConfig& c) {
     return c.lambda;
 }
 
+// c: the caller's channel as read by read_array (struct rules already applied).
 ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     char what[48];
     std::snprintf(what, sizeof what, "channels[%u]", index);
-    check_struct(&c, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc), what);
     ChannelConfig out;
     size_t len = strnlen(c.name, RRC_MAX_NAME);
     if (len == 0) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is empty", what);
@@ -62,9 +51,9 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (!(c.lambda >= 0.0f && c.lambda < 1.0f))
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.lambda is %g, must be in [0, 1)", what, (double)c.lambda);
     out.lambda = c.lambda;
-    if (c.blend > RRC_BLEND_RUNNING_MEAN) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
+    if (c.blend > uint32_t{RRC_BLEND_RUNNING_MEAN}) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
     out.blend = c.blend;
-    if (c.filter > RRC_HISTORY_FILTER_CATMULL_ROM)
+    if (c.filter > uint32_t{RRC_HISTORY_FILTER_CATMULL_ROM})
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
     out.filter = c.filter;
     if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
@@ -80,8 +69,9 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
 
 }  // namespace
 
-ContextConfig resolve_context_desc(const rrc_context_desc* d) {
-    check_struct(d, RRC_STRUCT_TYPE_CONTEXT_DESC, sizeof(rrc_context_desc), "desc");
+ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
+    const rrc_context_desc desc = read_struct<rrc_context_desc>(caller, "desc");
+    const rrc_context_desc* d = &desc;
     if (RRC_VERSION_MAJOR(d->api_version) != RRC_VERSION_MAJOR(RRC_API_VERSION))
         fail(RRC_ERROR_INCOMPATIBLE_VERSION, "desc.api_version is %u.%u.%u, this library is %u.%u.%u (major versions must match)",
              RRC_VERSION_MAJOR(d->api_version), RRC_VERSION_MINOR(d->api_version), RRC_VERSION_PATCH(d->api_version),
@@ -94,14 +84,15 @@ ContextConfig resolve_context_desc(const rrc_context_desc* d) {
     c.width = d->width;
     c.height = d->height;
 
-    if (d->depth_mode > RRC_DEPTH_MODE_LINEAR)
+    if (d->depth_mode > uint32_t{RRC_DEPTH_MODE_LINEAR})
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.depth_mode is %u, not an rrc_depth_mode", d->depth_mode);
     c.depth_mode = d->depth_mode;
-    if (d->reprojection > RRC_REPROJECTION_CAMERA)
+    if (d->reprojection > uint32_t{RRC_REPROJECTION_CAMERA})
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.reprojection is %u, not an rrc_reprojection", d->reprojection);
     c.reprojection = d->reprojection;
-    if (d->depth_format > RRC_DEPTH_FORMAT_UNORM24)
+    if (d->depth_format > uint32_t{RRC_DEPTH_FORMAT_UNORM24})
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.depth_format is %u, not an rrc_depth_format", d->depth_format);
+    c.depth_format = d->depth_format;
 
     if (!(d->background_threshold >= 0.0f) || std::isinf(d->background_threshold))
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold is %g, must be finite and >= 0 (0 = default 1e10)",
@@ -155,8 +146,9 @@ ContextConfig resolve_context_desc(const rrc_context_desc* d) {
     if (d->channel_count == 0 || d->channel_count > RRC_MAX_CHANNELS)
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count is %u, must be 1..%d", d->channel_count, RRC_MAX_CHANNELS);
     if (!d->channels) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.channels is NULL");
+    const std::vector<rrc_channel_desc> channels = read_array<rrc_channel_desc>(d->channels, d->channel_count, "channels");
     for (uint32_t i = 0; i < d->channel_count; ++i) {
-        c.channels.push_back(resolve_channel(d->channels[i], i));
+        c.channels.push_back(resolve_channel(channels[i], i));
         for (uint32_t k = 0; k < i; ++k)
             if (c.channels[k].name == c.channels[i].name)
                 fail(RRC_ERROR_INVALID_ARGUMENT, "channels[%u].name \"%s\" repeats channels[%u].name", i, c.channels[i].name.c_str(), k);
@@ -169,61 +161,114 @@ ContextConfig resolve_context_desc(const rrc_context_desc* d) {
     return c;
 }
 
-void validate_frame(const ContextConfig& c, const rrc_frame_desc* f, const rrc_frame_output* out) {
-    check_struct(f, RRC_STRUCT_TYPE_FRAME_DESC, sizeof(rrc_frame_desc), "frame");
-    if (!f->depth) fail(RRC_ERROR_MISSING_INPUT, "frame.depth is NULL");
-    if (c.reprojection != RRC_REPROJECTION_CAMERA && !f->reprojection)
-        fail(RRC_ERROR_MISSING_INPUT, "frame.reprojection is NULL but the context reprojects from %s",
-             c.reprojection == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP"
-             : c.reprojection == RRC_REPROJECTION_MOTION  ? "MOTION"
-                                                          : "MOTION_DEPTH");
+namespace {
+
+const char* source_name(rrc_reprojection r) {
+    return r == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP" : r == RRC_REPROJECTION_MOTION ? "MOTION" : "MOTION_DEPTH";
+}
+
+bool is_depth_stencil_format(VkFormat f) {
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
+           f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+// The depth-format rule of docs/INTEGRATION.md: a depth/stencil image holds
+// NDC depth in exactly the encoding the context's epsilon is built for; a
+// colour image carries depth in .r and its precision is the host's choice.
+void check_depth_image_format(const ContextConfig& c, VkFormat f) {
+    if (!is_depth_stencil_format(f)) return;
+    if (c.depth_mode == RRC_DEPTH_MODE_LINEAR)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d, a depth/stencil format, but LINEAR depth is view depth in a colour image",
+             (int)f);
+    const bool is_float = f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+    const bool is_unorm16 = f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT;
+    const rrc_depth_format expected = is_float ? RRC_DEPTH_FORMAT_FLOAT32 : is_unorm16 ? RRC_DEPTH_FORMAT_UNORM16 : RRC_DEPTH_FORMAT_UNORM24;
+    if (c.depth_format != expected)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d (%s) but the context's depth_format is %u: epsilon would be wrong", (int)f,
+             is_float ? "FLOAT32" : is_unorm16 ? "UNORM16" : "UNORM24", (unsigned)c.depth_format);
+}
+
+// One input is present: a CPU array, or a host image with image and view.
+template <typename P>
+void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_result code, const std::string& what,
+          const std::string& why) {
+    if (f.path == FramePath::Standalone) {
+        if (!array) fail(code, "frame.%s is NULL%s", what.c_str(), why.c_str());
+    } else if (!image.image || !image.view) {
+        fail(code, "frame.%s.image/view is VK_NULL_HANDLE%s", what.c_str(), why.c_str());
+    }
+}
+
+}  // namespace
+
+void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* out, uint64_t stats_alignment) {
+    const bool vulkan = f.path == FramePath::Vulkan;
+    if (vulkan && !f.command_buffer) fail(RRC_ERROR_INVALID_ARGUMENT, "frame.command_buffer is VK_NULL_HANDLE");
+    need(f, f.depth, f.depth_image, RRC_ERROR_MISSING_INPUT, "depth", "");
+    if (vulkan) check_depth_image_format(c, f.depth_image.format);
+    if (c.reprojection != RRC_REPROJECTION_CAMERA)
+        need(f, f.reprojection, f.reprojection_image, RRC_ERROR_MISSING_INPUT, "reprojection",
+             std::string(" but the context reprojects from ") + source_name(c.reprojection));
     if (c.reprojection == RRC_REPROJECTION_CAMERA) {
         for (int i = 0; i < 16; ++i)
-            if (!std::isfinite(f->view_proj[i]) || !std::isfinite(f->prev_view_proj[i]))
+            if (!std::isfinite(f.view_proj[i]) || !std::isfinite(f.prev_view_proj[i]))
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj/prev_view_proj[%d] is not finite", i);
         // The library inverts view_proj (frame_constants.cpp): a singular one
         // would turn every pixel into NaN silently.
-        const double det = determinant4(f->view_proj);
+        const double det = determinant4(f.view_proj);
         if (!(std::fabs(det) > 0.0) || !std::isfinite(det))
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj is singular (determinant %g): CAMERA reprojection inverts it", det);
     }
     for (int i = 0; i < 2; ++i)
-        if (!finite(f->jitter[i]) || !finite(f->prev_jitter[i]) || std::fabs(f->jitter[i]) > 1.0f || std::fabs(f->prev_jitter[i]) > 1.0f)
+        if (!finite(f.jitter[i]) || !finite(f.prev_jitter[i]) || std::fabs(f.jitter[i]) > 1.0f || std::fabs(f.prev_jitter[i]) > 1.0f)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.jitter/prev_jitter[%d] must be finite and within [-1, 1] pixels", i);
-    if (c.use_nocache && !f->nocache)
-        fail(RRC_ERROR_MISSING_INPUT, "frame.nocache is NULL but the context was created with use_nocache_mask");
-    if (f->channel_count != c.channels.size())
-        fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f->channel_count, c.channels.size());
-    if (!f->channels) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
-    for (uint32_t i = 0; i < f->channel_count; ++i) {
-        char what[48];
-        std::snprintf(what, sizeof what, "frame.channels[%u]", i);
-        check_struct(&f->channels[i], RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input), what);
-        if (!f->channels[i].samples) fail(RRC_ERROR_MISSING_INPUT, "%s.samples is NULL (channel \"%s\")", what, c.channels[i].name.c_str());
-        if (c.channels[i].confidence && !f->channels[i].confidence)
-            fail(RRC_ERROR_MISSING_INPUT, "%s.confidence is NULL but channel \"%s\" has confidence", what, c.channels[i].name.c_str());
+    if (c.use_nocache) need(f, f.nocache, f.nocache_image, RRC_ERROR_MISSING_INPUT, "nocache", " but the context was created with use_nocache_mask");
+    if (f.channel_count != c.channels.size())
+        fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f.channel_count, c.channels.size());
+    if (!f.channels_given) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
+    for (uint32_t i = 0; i < f.channel_count; ++i) {
+        const FrameChannel& ch = f.channels[i];
+        const std::string what = "channels[" + std::to_string(i) + "]";
+        const std::string name = " (channel \"" + c.channels[i].name + "\")";
+        need(f, ch.samples, ch.samples_image, RRC_ERROR_MISSING_INPUT, what + ".samples", name);
+        if (c.channels[i].confidence)
+            need(f, ch.confidence, ch.confidence_image, RRC_ERROR_MISSING_INPUT, what + ".confidence",
+                 " but channel \"" + c.channels[i].name + "\" has confidence");
+        if (vulkan) need(f, (const float*)nullptr, ch.output_image, RRC_ERROR_MISSING_INPUT, what + ".output", name);
+        if (vulkan && ch.age_image.image && ch.age_image.format != VK_FORMAT_R16_UINT)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(), (int)ch.age_image.format);
+        if (vulkan && ch.age_image.image && !ch.age_image.view)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.view is VK_NULL_HANDLE with an image", what.c_str());
     }
-    if (!out) return;
-    check_struct(out, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output), "output");
+    if (vulkan && f.mask_image.image && !f.mask_image.view)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.view is VK_NULL_HANDLE with an image");
+    if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
+             (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);
+    if (!out || !out->caller) return;
     if (out->channel_count != 0 && out->channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "output.channel_count is %u, must be 0 or the context's %zu", out->channel_count, c.channels.size());
-    if (out->channel_count && !out->channels)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", out->channel_count);
-    for (uint32_t i = 0; i < out->channel_count; ++i) {
-        char what[48];
-        std::snprintf(what, sizeof what, "output.channels[%u]", i);
-        check_struct(&out->channels[i], RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output), what);
+    for (uint32_t i = 0; i < out->channel_count; ++i)
         if (out->channels[i].weight && !c.channels[i].confidence)
-            fail(RRC_ERROR_INVALID_ARGUMENT, "%s.weight is set but channel \"%s\" has no confidence", what, c.channels[i].name.c_str());
-    }
+            fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels[%u].weight is set but channel \"%s\" has no confidence", i,
+                 c.channels[i].name.c_str());
+}
+
+void validate_frame(const ContextConfig& c, const rrc_frame_desc* frame, rrc_frame_output* output) {
+    const Frame f = read_frame(frame, c.channels.size());
+    const FrameOutputs out = read_outputs(output, c.channels.size());
+    validate_frame(c, f, &out, 0);
 }
 
 }  // namespace rrc
 
+
+
 namespace rrc {
 
-void validate_vulkan_device_desc(const rrc_vulkan_device_desc* d) {
-    check_struct(d, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, sizeof(rrc_vulkan_device_desc), "device");
+rrc_vulkan_device_desc validate_vulkan_device_desc(const rrc_vulkan_device_desc* caller) {
+    const rrc_vulkan_device_desc desc = read_struct<rrc_vulkan_device_desc>(caller, "device");
+    const rrc_vulkan_device_desc* d = &desc;
     if (!d->instance) fail(RRC_ERROR_INVALID_ARGUMENT, "device.instance is VK_NULL_HANDLE");
     if (!d->physical_device) fail(RRC_ERROR_INVALID_ARGUMENT, "device.physical_device is VK_NULL_HANDLE");
     if (!d->device) fail(RRC_ERROR_INVALID_ARGUMENT, "device.device is VK_NULL_HANDLE");
@@ -233,6 +278,7 @@ void validate_vulkan_device_desc(const rrc_vulkan_device_desc* d) {
              VK_API_VERSION_MINOR(d->vulkan_api_version));
     if (d->max_frames_in_flight > 16)
         fail(RRC_ERROR_INVALID_ARGUMENT, "device.max_frames_in_flight is %u, at most 16", d->max_frames_in_flight);
+    return desc;
 }
 
 }  // namespace rrc

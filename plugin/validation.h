@@ -1,18 +1,24 @@
-// Argument validation of every descriptor the C API accepts.  Device-free:
-// rrc_validate_context_desc() and fuzzers call it without any Vulkan object.
+// Argument validation of every descriptor the C API accepts, one function
+// per kind of descriptor, whichever path (standalone or Vulkan) it came
+// from.  Device-free: rrc_validate_context_desc() and the fuzzers call it
+// without any Vulkan object.
 #pragma once
 
 #include "config.h"
-
-struct rrc_vulkan_device_desc;  // include/rrc/rrc_vulkan.h
+#include "frame.h"
 
 namespace rrc {
 
-// Checks a frame (and the optional output description) against the context's
-// configuration; throws rrc::Error naming the field.
-void validate_frame(const ContextConfig& config, const rrc_frame_desc* frame, const rrc_frame_output* output);
+// Checks a frame (and the optional outputs) against the context's
+// configuration; throws rrc::Error naming the field.  stats_alignment: the
+// device's minStorageBufferOffsetAlignment (Vulkan path), 0 to skip.
+void validate_frame(const ContextConfig& config, const Frame& frame, const FrameOutputs* outputs, uint64_t stats_alignment);
 
-// Checks the host's Vulkan objects for rrc_vulkan_context_create.
-void validate_vulkan_device_desc(const ::rrc_vulkan_device_desc* device);
+// Reads and checks a standalone frame in one call (rrc_frame_run's order).
+void validate_frame(const ContextConfig& config, const rrc_frame_desc* frame, rrc_frame_output* output);
+
+// Checks the host's Vulkan objects for rrc_vulkan_context_create and returns
+// them as read by the struct rules.
+rrc_vulkan_device_desc validate_vulkan_device_desc(const rrc_vulkan_device_desc* device);
 
 }  // namespace rrc

@@ -150,6 +150,7 @@ void VulkanDevice::load_instance_functions(PFN_vkGetInstanceProcAddr gipa, bool 
     RRC_LOAD(GetPhysicalDeviceQueueFamilyProperties);
     RRC_LOAD(GetPhysicalDeviceMemoryProperties);
     RRC_LOAD(GetPhysicalDeviceFormatProperties);
+    RRC_LOAD(GetPhysicalDeviceImageFormatProperties);
     RRC_LOAD(CreateDevice);
     if (debug_utils) {
         RRC_LOAD(CreateDebugUtilsMessengerEXT);
@@ -224,6 +225,7 @@ void VulkanDevice::check_physical_device() {
         fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" lacks shaderStorageImageWriteWithoutFormat", name.c_str());
     VkPhysicalDeviceProperties p;
     fi.GetPhysicalDeviceProperties(physical, &p);
+    limits = p.limits;
     if (p.limits.maxPerStageDescriptorStorageImages < 59)  // bindings 0-5, 9, 10-21 and 24 (x4)
         fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs 59", name.c_str(),
              p.limits.maxPerStageDescriptorStorageImages);

@@ -2,6 +2,7 @@
 // specific code and a message naming the field, without touching Vulkan;
 // calls on a live context leave outputs untouched on error.
 #include "support/rrc_test_context.h"
+#include "support/static_clip.h"
 
 #include <cmath>
 #include <functional>
@@ -20,6 +21,13 @@ struct DescCase {
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 const float kInf = std::numeric_limits<float>::infinity();
+
+// Plain MOTION linearises depth with the planes: the checks on them.
+void motion_planes(rrc_context_desc& d, float near_plane, float far_plane) {
+    d.reprojection = RRC_REPROJECTION_MOTION;
+    d.near_plane = near_plane;
+    d.far_plane = far_plane;
+}
 
 std::vector<DescCase> desc_cases() {
     using D = rrc_context_desc;
@@ -47,27 +55,9 @@ std::vector<DescCase> desc_cases() {
         {"epsilon_scale_inf", [](D& d, C&) { d.epsilon_scale = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon_scale"},
         {"tau_negative", [](D& d, C&) { d.tau = -0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "desc.tau"},
         {"background_nan", [](D& d, C&) { d.background_threshold = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold"},
-        {"motion_needs_near",
-         [](D& d, C&) {
-             d.reprojection = RRC_REPROJECTION_MOTION;
-             d.near_plane = 0;
-             d.far_plane = 100;
-         },
-         RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane"},
-        {"motion_far_below_near",
-         [](D& d, C&) {
-             d.reprojection = RRC_REPROJECTION_MOTION;
-             d.near_plane = 1;
-             d.far_plane = 0.5f;
-         },
-         RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
-        {"motion_infinite_far_standard",
-         [](D& d, C&) {
-             d.reprojection = RRC_REPROJECTION_MOTION;
-             d.near_plane = 1;
-             d.far_plane = kInf;
-         },
-         RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
+        {"motion_needs_near", [](D& d, C&) { motion_planes(d, 0, 100); }, RRC_ERROR_INVALID_ARGUMENT, "desc.near_plane"},
+        {"motion_far_below_near", [](D& d, C&) { motion_planes(d, 1, 0.5f); }, RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
+        {"motion_infinite_far_standard", [](D& d, C&) { motion_planes(d, 1, kInf); }, RRC_ERROR_INVALID_ARGUMENT, "desc.far_plane"},
         {"motion_scale_nan", [](D& d, C&) { d.motion_scale[0] = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "desc.motion_scale"},
         {"no_channels", [](D& d, C&) { d.channel_count = 0; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count"},
         {"too_many_channels", [](D& d, C&) { d.channel_count = RRC_MAX_CHANNELS + 1; }, RRC_ERROR_INVALID_ARGUMENT, "desc.channel_count"},
@@ -86,7 +76,8 @@ std::vector<DescCase> desc_cases() {
         {"blend", [](D&, C& c) { c[0].blend = 3; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
         {"filter", [](D&, C& c) { c[0].filter = 9; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].filter"},
         {"age_cap", [](D&, C& c) { c[0].age_cap = RRC_MAX_AGE_CAP + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].age_cap"},
-        {"channel_next", [](D&, C& c) { c[1].next = &c; }, RRC_ERROR_INVALID_STRUCT, "channels[1].next"},
+        // A base struct in a chain (0.2 rule 5): INVALID_STRUCT.
+        {"channel_next", [](D&, C& c) { c[1].next = &c[0]; }, RRC_ERROR_INVALID_STRUCT, "channels[1].next"},
     };
 }
 
@@ -150,16 +141,8 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
     d.use_nocache_mask = 1;
     Context ctx(d);
     ASSERT_TRUE(ctx);
-    std::vector<float> depth(W * H, 0.5f), clip(W * H * 4, 1.0f), s(W * H, 1.0f), conf(W * H, 1.0f);
+    std::vector<float> depth(W * H, 0.5f), clip = static_prev_clip(W, H, 0.5f), s(W * H, 1.0f), conf(W * H, 1.0f);
     std::vector<uint8_t> nocache(W * H, 0);
-    for (uint32_t j = 0; j < H; ++j)  // a static frame: each pixel's own clip position
-        for (uint32_t i = 0; i < W; ++i) {
-            float* c = &clip[4 * (j * W + i)];
-            c[0] = 2.0f * (i + 0.5f) / W - 1.0f;
-            c[1] = 2.0f * (j + 0.5f) / H - 1.0f;
-            c[2] = 0.5f;
-            c[3] = 1.0f;
-        }
     rrc_channel_input in = channel_input(s.data(), conf.data());
     auto good = [&] {
         rrc_frame_desc f = frame_desc();

@@ -43,9 +43,37 @@
  * RRC_API_VERSION encodes major.minor.patch.  Callers put the version they
  * compiled against in rrc_context_desc.api_version; create refuses another
  * major version (RRC_ERROR_INCOMPATIBLE_VERSION).  Within a major version the
- * API only grows: structs start with a type tag, a `next` pointer and their
- * size, new members are appended, and a zeroed member always means the old
- * default behaviour.
+ * API only grows, and a caller built against an older minor version keeps
+ * working unchanged with a newer library.  The rules that make this true:
+ *
+ *  1. Every struct the caller fills starts with an rrc_struct_header: a type
+ *     tag, a `next` pointer and `size` = sizeof(the struct as the caller
+ *     compiled it).  A size below the struct's first published size (its 0.1
+ *     size) is RRC_ERROR_INVALID_STRUCT.
+ *  2. New members are only ever appended.  The library reads a struct up to
+ *     the caller's `size`; members beyond it read as zero, and a zeroed
+ *     member always means the old behaviour.  A struct larger than the
+ *     library knows (a newer header's) is accepted when every byte beyond
+ *     what the library knows is zero, and refused with RRC_ERROR_UNSUPPORTED
+ *     otherwise (the caller asked for something this library cannot do).
+ *  3. Arrays of tagged structs (desc.channels, frame.channels,
+ *     output.channels) are strided by their elements' `size`: element i
+ *     starts at (const char*)array + i * array[0].size, and every element
+ *     must carry the same size (else RRC_ERROR_INVALID_STRUCT).
+ *  4. Output structs are written only up to the caller's `size`.
+ *  5. `next` is NULL or a chain of extension structs, each starting with an
+ *     rrc_struct_header whose type is an RRC_STRUCT_TYPE_EXT_* tag (tags
+ *     0x525243E0..0x525243FF are reserved for extensions).  The library walks
+ *     the chain, finds the extensions the parent struct documents by type, and
+ *     validates each by rule 1-2.  An extension type this library does not
+ *     know is RRC_ERROR_UNSUPPORTED; a base struct's tag in a chain, a type
+ *     twice, an extension on a parent that does not take it, or a chain
+ *     longer than RRC_MAX_CHAIN (a cycle) is RRC_ERROR_INVALID_STRUCT.
+ *     Version 0.2 defines no extension yet.
+ *  6. Existing exported functions keep their signatures; a better name is
+ *     added beside an old one, which stays exported as an alias until 1.0.
+ *
+ * docs/INTEGRATION.md lists the changes of each minor version.
  *
  * Conventions of this header: one prefix (rrc_, RRC_), fixed-width fields,
  * enums stored as uint32_t, no bool, no unions, zero means default.
@@ -80,25 +108,37 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 1, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 2, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
 
-/* ---- Results ----------------------------------------------------------- */
+/* Enumerated values.  Every value of the enumerations below (and the limits
+ * RRC_MAX_CHANNELS, RRC_MAX_NAME, RRC_MAX_AGE_CAP, RRC_MAX_EXTENT) is
+ * written once, with its comment, in an X-macro list RRC_<TYPE>_VALUES(X) of
+ * <rrc/rrc_values.h>, which the library's GLSL kernels include too.  Here
+ * each list becomes
+ *     typedef enum rrc_<type>_enum { ..., RRC_<TYPE>_MAX_ENUM = 0x7FFFFFFF } rrc_<type>_enum;
+ * (the naming of every enum type of this header), so debuggers show names.
+ * Struct members, parameters and the rrc_<type> typedefs stay uint32_t
+ * (rrc_result: int32_t): the enums never set a size or layout.  In C++11
+ * and later each enum has that fixed underlying type, so its values compare
+ * and combine with the members exactly as unsigned (signed for results)
+ * integers; in C they are int constants. */
+#include "rrc_values.h"
+#if defined(__cplusplus) && (__cplusplus >= 201103L || (defined(_MSVC_LANG) && _MSVC_LANG >= 201103L))
+#    define RRC_ENUM_BASE(type) : type
+#else
+#    define RRC_ENUM_BASE(type)
+#endif
+#define RRC_ENUM_VALUE(name, value) name = value,
+
+/* ---- Results ------------------------------------------------------------ */
 
 typedef int32_t rrc_result;
-#define RRC_SUCCESS 0
-#define RRC_ERROR_INVALID_ARGUMENT -1     /* a NULL pointer, a bad value */
-#define RRC_ERROR_INVALID_STRUCT -2       /* wrong type tag or size */
-#define RRC_ERROR_INCOMPATIBLE_VERSION -3 /* api_version of another major */
-#define RRC_ERROR_UNSUPPORTED -4          /* valid, but not implemented or not on this device */
-#define RRC_ERROR_OUT_OF_MEMORY -5        /* host or device allocation failed */
-#define RRC_ERROR_DEVICE -6               /* no Vulkan device, or a Vulkan call failed */
-#define RRC_ERROR_DEVICE_LOST -7          /* the device was lost; destroy the context */
-#define RRC_ERROR_MISSING_INPUT -8        /* an input the configuration needs is NULL */
-#define RRC_ERROR_SIZE_MISMATCH -9        /* input sizes disagree with the context */
-#define RRC_ERROR_INVALID_HANDLE -10      /* NULL, destroyed or foreign context */
+typedef enum rrc_result_enum RRC_ENUM_BASE(int32_t) {
+    RRC_RESULT_VALUES(RRC_ENUM_VALUE) RRC_RESULT_MAX_ENUM = 0x7FFFFFFF
+} rrc_result_enum;
 
 /** A static, never-NULL name for a result code ("RRC_ERROR_SIZE_MISMATCH"). */
 RRC_API const char* rrc_result_to_string(rrc_result result);
@@ -117,42 +157,53 @@ typedef uint32_t rrc_struct_type;
 #define RRC_STRUCT_TYPE_FRAME_OUTPUT 0x52524305u
 #define RRC_STRUCT_TYPE_CHANNEL_OUTPUT 0x52524306u
 
+/** The first members of every tagged struct, and of every extension struct
+ *  on a `next` chain (Versioning, rules 1-5). */
+typedef struct rrc_struct_header {
+    rrc_struct_type type;
+    const void* next;
+    uint32_t size;
+} rrc_struct_header;
+
+/** Longest `next` chain the library walks before calling it a cycle. */
+#define RRC_MAX_CHAIN 64
+
 /* ---- Enumerations (stored as uint32_t; 0 is the default) --------------- */
 
 /** How the depth the host passes is encoded (docs/CONVENTIONS.md §depth). */
 typedef uint32_t rrc_depth_mode;
-#define RRC_DEPTH_MODE_STANDARD 0 /* NDC z in [0,1], near 0, far 1; background = 1 */
-#define RRC_DEPTH_MODE_REVERSED 1 /* NDC z, near 1, far 0 (far may be infinite); background = 0 */
-#define RRC_DEPTH_MODE_LINEAR 2   /* planar view depth (clip w); background = +inf or >= threshold */
+typedef enum rrc_depth_mode_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_DEPTH_MODE_VALUES(RRC_ENUM_VALUE) RRC_DEPTH_MODE_MAX_ENUM = 0x7FFFFFFF
+} rrc_depth_mode_enum;
 
 /** The host's depth-buffer format: sets epsilon, "the smallest z increment". */
 typedef uint32_t rrc_depth_format;
-#define RRC_DEPTH_FORMAT_FLOAT32 0 /* eps = scale * ulp(z), default scale 4 */
-#define RRC_DEPTH_FORMAT_UNORM16 1 /* eps = scale / 65535, default scale 1 */
-#define RRC_DEPTH_FORMAT_UNORM24 2 /* eps = scale / 16777215, default scale 1 */
+typedef enum rrc_depth_format_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_DEPTH_FORMAT_VALUES(RRC_ENUM_VALUE) RRC_DEPTH_FORMAT_MAX_ENUM = 0x7FFFFFFF
+} rrc_depth_format_enum;
 
 /** Where the previous-frame position of each pixel comes from. */
 typedef uint32_t rrc_reprojection;
-#define RRC_REPROJECTION_PREV_CLIP 0    /* RGBA32F previous clip position (x,y,z,w) per pixel */
-#define RRC_REPROJECTION_MOTION 1       /* RG: uv_prev - uv_cur (times motion_scale) */
-#define RRC_REPROJECTION_MOTION_DEPTH 2 /* RGB: as MOTION plus expected prev depth - current depth */
-#define RRC_REPROJECTION_CAMERA 3       /* no per-pixel data: view-projection matrices (static scenes) */
+typedef enum rrc_reprojection_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_REPROJECTION_VALUES(RRC_ENUM_VALUE) RRC_REPROJECTION_MAX_ENUM = 0x7FFFFFFF
+} rrc_reprojection_enum;
 
 /** The lambda recursive filter's blend (docs/CONVENTIONS.md §filter). */
 typedef uint32_t rrc_blend;
-#define RRC_BLEND_FIXED 0        /* lambda_eff = lambda (the paper) */
-#define RRC_BLEND_AGE_AWARE 1    /* lambda_eff = min(lambda, n/(n+1)) */
-#define RRC_BLEND_RUNNING_MEAN 2 /* lambda_eff = n/(n+1): mean of all samples since the last miss */
+typedef enum rrc_blend_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_BLEND_VALUES(RRC_ENUM_VALUE) RRC_BLEND_MAX_ENUM = 0x7FFFFFFF
+} rrc_blend_enum;
 
 /** How history is resampled at the reprojected position. */
 typedef uint32_t rrc_history_filter;
-#define RRC_HISTORY_FILTER_BILINEAR 0 /* the paper's choice (default) */
-#define RRC_HISTORY_FILTER_NEAREST 1
-#define RRC_HISTORY_FILTER_CATMULL_ROM 2 /* clamped to the 4 bilinear taps' range: cannot ring */
+typedef enum rrc_history_filter_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_HISTORY_FILTER_VALUES(RRC_ENUM_VALUE) RRC_HISTORY_FILTER_MAX_ENUM = 0x7FFFFFFF
+} rrc_history_filter_enum;
 
 typedef uint32_t rrc_history_precision;
-#define RRC_HISTORY_FP16 0 /* RGBA16F/R16F history, rounded to nearest in the shader */
-#define RRC_HISTORY_FP32 1
+typedef enum rrc_history_precision_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_HISTORY_PRECISION_VALUES(RRC_ENUM_VALUE) RRC_HISTORY_PRECISION_MAX_ENUM = 0x7FFFFFFF
+} rrc_history_precision_enum;
 /** fp16 history is kept only while the largest effective lambda a channel can
  *  reach (FIXED: lambda; AGE_AWARE: min(lambda, cap/(cap+1)); RUNNING_MEAN:
  *  cap/(cap+1)) is at most this; above it the channel's history is fp32.
@@ -162,29 +213,27 @@ typedef uint32_t rrc_history_precision;
  *  docs/STABILITY.md). */
 #define RRC_FP16_MAX_LAMBDA 0.95
 
-/** Bits of the per-pixel mask. */
-#define RRC_MASK_HIT 1u
-#define RRC_MASK_REFRESHED 2u
-#define RRC_MASK_BACKGROUND 4u
-#define RRC_MASK_INVALID_SAMPLE 8u    /* some channel's sample was not finite */
-#define RRC_MASK_INVALID_GEOMETRY 16u /* non-finite depth or reprojection data */
+/** Bits of the per-pixel mask (rrc_frame_output.mask is uint8_t). */
+typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_MASK_VALUES(RRC_ENUM_VALUE) RRC_MASK_MAX_ENUM = 0x7FFFFFFF
+} rrc_mask_enum;
 
-/** Channels a context may hold (one fused dispatch serves them all). */
-#define RRC_MAX_CHANNELS 4
-/** Longest channel name, including the terminating NUL. */
-#define RRC_MAX_NAME 64
-/** Largest age cap: ages are stored as 16-bit unsigned integers. */
-#define RRC_MAX_AGE_CAP 65535u
-/** Largest width or height of a context. */
-#define RRC_MAX_EXTENT 16384u
+/* The limits RRC_MAX_CHANNELS, RRC_MAX_NAME, RRC_MAX_AGE_CAP and
+ * RRC_MAX_EXTENT are in <rrc/rrc_values.h> (the kernels need them too). */
+
+/** The defaults a zeroed member stands for (docs/CONVENTIONS.md). */
+#define RRC_DEFAULT_AGE_CAP 255u                  /* rrc_channel_desc.age_cap */
+#define RRC_DEFAULT_BACKGROUND_THRESHOLD 1e10f    /* rrc_context_desc.background_threshold */
+#define RRC_DEFAULT_EPSILON_SCALE_FLOAT32 4.0f    /* rrc_context_desc.epsilon_scale, FLOAT32 */
+#define RRC_DEFAULT_EPSILON_SCALE_UNORM 1.0f      /* rrc_context_desc.epsilon_scale, UNORM16/24 */
+#define RRC_DEFAULT_TAU 0.01f                     /* rrc_context_desc.tau */
 
 /* ---- Logging ----------------------------------------------------------- */
 
 typedef uint32_t rrc_log_level;
-#define RRC_LOG_INFO 0
-#define RRC_LOG_WARNING 1
-#define RRC_LOG_ERROR 2
-#define RRC_LOG_VALIDATION 3 /* a message of the Khronos validation layer */
+typedef enum rrc_log_level_enum RRC_ENUM_BASE(uint32_t) {
+    RRC_LOG_LEVEL_VALUES(RRC_ENUM_VALUE) RRC_LOG_LEVEL_MAX_ENUM = 0x7FFFFFFF
+} rrc_log_level_enum;
 
 /** Receives UTF-8, NUL-terminated text valid only during the call. */
 typedef void (*rrc_log_fn)(void* user, rrc_log_level level, const char* message);
@@ -194,7 +243,7 @@ typedef void (*rrc_log_fn)(void* user, rrc_log_level level, const char* message)
 /** One accumulated signal. */
 typedef struct rrc_channel_desc {
     rrc_struct_type type;            /* RRC_STRUCT_TYPE_CHANNEL_DESC */
-    const void* next;                /* reserved, must be NULL */
+    const void* next;                /* NULL or an extension chain (Versioning, rule 5) */
     uint32_t size;                   /* sizeof(rrc_channel_desc) */
     char name[RRC_MAX_NAME];         /* non-empty, unique in the context, NUL-terminated */
     uint32_t components;             /* 1 or 4 */
@@ -208,7 +257,7 @@ typedef struct rrc_channel_desc {
 
 typedef struct rrc_context_desc {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_CONTEXT_DESC */
-    const void* next;     /* reserved, must be NULL */
+    const void* next;     /* NULL or an extension chain (Versioning, rule 5) */
     uint32_t size;        /* sizeof(rrc_context_desc) */
     uint32_t api_version; /* RRC_API_VERSION the caller compiled against */
 
@@ -270,7 +319,10 @@ RRC_API const char* rrc_context_last_error(const rrc_context* context);
 RRC_API rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, size_t capacity);
 
 /** Device memory the context owns (history, ages, weights, previous depth,
- *  its own input copies and staging), in bytes. */
+ *  its own input copies and staging), in bytes.  (0.2; the 0.1 name
+ *  rrc_get_memory_usage stays exported as an alias until 1.0.) */
+RRC_API rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t* out_bytes);
+/** Deprecated alias of rrc_context_memory_usage (0.1 name). */
 RRC_API rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes);
 
 /** Number of validation-layer messages seen so far (0 if validation is off). */

@@ -25,7 +25,7 @@
  * the library (ping-pong; rrc_get_memory_usage reports the bytes).
  *
  * Device requirements: Vulkan 1.1, the feature
- * shaderStorageImageWriteWithoutFormat enabled, 59 storage images per stage.
+ * shaderStorageImageWriteWithoutFormat enabled, 63 storage images per stage.
  */
 #ifndef RRC_RRC_VULKAN_H
 #define RRC_RRC_VULKAN_H
@@ -44,7 +44,7 @@ extern "C" {
 /** The host's Vulkan objects.  The library uses them and destroys none. */
 typedef struct rrc_vulkan_device_desc {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC */
-    const void* next;     /* reserved, must be NULL */
+    const void* next;     /* NULL or an extension chain (rrc.h Versioning, rule 5) */
     uint32_t size;        /* sizeof(rrc_vulkan_device_desc) */
     VkInstance instance;
     VkPhysicalDevice physical_device;
@@ -75,7 +75,24 @@ typedef struct rrc_vulkan_channel_images {
     rrc_vulkan_image samples;    /* required, SAMPLED usage, any float format: .r (1 component) or .rgba */
     rrc_vulkan_image confidence; /* required iff the channel has confidence: SAMPLED, weight in .r */
     rrc_vulkan_image output;     /* required, STORAGE usage, a float format: receives the accumulated value */
+    /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
+    rrc_vulkan_image age; /* optional (image = NULL: none), STORAGE R16_UINT: the channel's age n after this frame */
 } rrc_vulkan_channel_images;
+
+/** What the kernel writes at rrc_vulkan_frame_desc.stats_buffer + stats_offset
+ *  (std430: eight uint32 counters, 32 bytes): the same counts rrc_frame_stats
+ *  reports on the standalone path.  Valid once the host's own fence (or a
+ *  later barrier) says the recorded frame has finished. */
+typedef struct rrc_vulkan_frame_stats {
+    uint32_t hits;
+    uint32_t misses; /* non-background pixels that are not hits */
+    uint32_t background;
+    uint32_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
+    uint32_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
+    uint32_t refreshed;        /* pixels with RRC_MASK_REFRESHED (0 until a refresh policy exists) */
+    uint32_t pixels;           /* width * height of the frame */
+    uint32_t reserved;         /* 0 */
+} rrc_vulkan_frame_stats;
 
 typedef struct rrc_vulkan_frame_desc {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_FRAME_DESC */
@@ -93,7 +110,16 @@ typedef struct rrc_vulkan_frame_desc {
     float jitter[2];
     float prev_jitter[2];
     uint32_t channel_count; /* the context's */
-    const rrc_vulkan_channel_images* channels;
+    const rrc_vulkan_channel_images* channels; /* strided by channels[0].size (rrc.h Versioning, rule 3) */
+    /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
+    /* Optional (VK_NULL_HANDLE: none): a host buffer with STORAGE_BUFFER and
+     * TRANSFER_DST usage; the recorded commands clear and fill an
+     * rrc_vulkan_frame_stats at stats_offset (a multiple of the device's
+     * minStorageBufferOffsetAlignment; 256 always is) and make it visible to
+     * the host (HOST_READ) and to any later command.  Give each frame in
+     * flight its own offset to read N frames' statistics after one wait. */
+    VkBuffer stats_buffer;
+    VkDeviceSize stats_offset;
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */

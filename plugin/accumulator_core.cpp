@@ -1,0 +1,73 @@
+#include "accumulator_core.h"
+
+#include "frame_constants.h"
+
+namespace rrc {
+
+AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const ContextConfig& config, bool interop, uint32_t sets,
+                                 VkPipelineCache cache)
+    : config_(config), dev_(std::move(device)), inputs_(live_inputs(config)) {
+    pipeline_.reset(new AccumulatePipeline(*dev_, config_, interop, sets, cache));
+    placeholders_.reset(new Placeholders(*dev_));
+    views_.resize(1);
+    for (ViewState& v : views_) {
+        for (auto& img : v.depth) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config_.width, config_.height);
+        for (const ChannelConfig& c : config_.channels) v.channels.emplace_back(new ChannelHistory(*dev_, c, config_.width, config_.height));
+    }
+    mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config_.width, config_.height);
+}
+
+AccumulatorCore::~AccumulatorCore() {
+    // Every image and the pipeline go before the device wrapper.
+    views_.clear();
+    mask_ = GpuImage();
+    placeholders_.reset();
+    pipeline_.reset();
+    dev_.reset();
+}
+
+DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p) const {
+    DescriptorViews v = placeholders_->views();
+    v.view[kPrevDepth][0] = view.depth[1 - p].view;
+    v.view[kMask][0] = mask_.view;
+    for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
+    return v;
+}
+
+void AccumulatorCore::collect_images(std::vector<GpuImage*>& out) {
+    for (ViewState& v : views_) {
+        out.insert(out.end(), {&v.depth[0], &v.depth[1]});
+        for (auto& c : v.channels) c->collect(out);
+    }
+    out.push_back(&mask_);
+    placeholders_->collect(out);
+}
+
+void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const {
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | extra_src_access;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | extra_src_stages, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                                  &b, 0, nullptr, 0, nullptr);
+}
+
+void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid) const {
+    pipeline_->record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height);
+}
+
+void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_frame_index) {
+    view.parity ^= count & 1u;
+    view.have_previous = true;
+    view.frame_index = last_frame_index;
+}
+
+size_t AccumulatorCore::memory_bytes() const {
+    size_t bytes = mask_.bytes();
+    for (const ViewState& v : views_) {
+        bytes += v.depth[0].bytes() + v.depth[1].bytes();
+        for (const auto& c : v.channels) bytes += c->bytes();
+    }
+    return bytes;
+}
+
+}  // namespace rrc

@@ -1,0 +1,74 @@
+// The state and the recording both contexts share: the device wrapper, the
+// fused kernel's pipeline, the placeholders, the library-owned mask, and per
+// view the previous depth, each channel's history and the ping-pong parity.
+// A context differs from another only in where its input images come from
+// (its own uploads, or the host's images) and how work is submitted.
+#pragma once
+
+#include "accumulate_pipeline.h"
+#include "channel_history.h"
+#include "config.h"
+#include "frame.h"
+#include "gpu_resources.h"
+#include "live_inputs.h"
+#include "vulkan_device.h"
+
+#include <memory>
+#include <vector>
+
+namespace rrc {
+
+// What one view (today the only one; a stereo eye or a sub-frame later)
+// carries from frame to frame.
+struct ViewState {
+    GpuImage depth[2];  // [parity]: this frame's depth; the other parity is the previous frame's
+    std::vector<std::unique_ptr<ChannelHistory>> channels;
+    uint32_t parity = 0;         // the image set the next frame writes
+    bool have_previous = false;  // false: first frame, or after a failed creation
+    uint64_t frame_index = 0;    // the last submitted frame's index (refresh clocks)
+};
+
+class AccumulatorCore {
+public:
+    // sets: descriptor sets the pipeline's pool holds.
+    AccumulatorCore(std::unique_ptr<VulkanDevice> device, const ContextConfig& config, bool interop, uint32_t sets,
+                    VkPipelineCache cache = VK_NULL_HANDLE);
+    ~AccumulatorCore();
+    AccumulatorCore(const AccumulatorCore&) = delete;
+    AccumulatorCore& operator=(const AccumulatorCore&) = delete;
+
+    const ContextConfig& config() const { return config_; }
+    VulkanDevice& device() { return *dev_; }
+    const VulkanDevice& device() const { return *dev_; }
+    AccumulatePipeline& pipeline() { return *pipeline_; }
+    const std::vector<LiveInput>& inputs() const { return inputs_; }
+    ViewState& view() { return views_[0]; }
+    const ViewState& view() const { return views_[0]; }
+    GpuImage& own_mask() { return mask_; }
+
+    // Every binding of the frame that writes `parity` of `view`: the
+    // library's own images (previous depth, histories, mask) over
+    // placeholders.  The caller adds its inputs (and, interop, outputs).
+    DescriptorViews library_views(const ViewState& view, uint32_t parity) const;
+    // Images to clear to zero and move to GENERAL once, before first use.
+    void collect_images(std::vector<GpuImage*>& out);
+    // The previous frame's kernel wrote what this one reads and read what
+    // this one overwrites: one global barrier, compute -> compute.
+    void record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const;
+    // Push constants from the frame record and the dispatch.
+    void record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid) const;
+    // After `count` frames were recorded (standalone: and submitted).
+    void advance(ViewState& view, uint32_t count, uint64_t last_frame_index);
+    size_t memory_bytes() const;
+
+private:
+    ContextConfig config_;
+    std::unique_ptr<VulkanDevice> dev_;
+    std::unique_ptr<AccumulatePipeline> pipeline_;
+    std::unique_ptr<Placeholders> placeholders_;
+    std::vector<LiveInput> inputs_;
+    std::vector<ViewState> views_;
+    GpuImage mask_;  // standalone: always bound; interop: when the host gives no mask
+};
+
+}  // namespace rrc

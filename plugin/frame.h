@@ -1,0 +1,72 @@
+// One frame as the library sees it, whichever public descriptor it came
+// from (rrc_frame_desc: CPU arrays; rrc_vulkan_frame_desc: the host's
+// images).  Read by read_frame (struct rules of struct_reader.h), checked by
+// validate_frame (validation.h), turned into push constants by
+// make_frame_constants and into bindings by the accumulator core.
+#pragma once
+
+#include "config.h"
+
+#include <rrc/rrc.h>
+#include <rrc/rrc_vulkan.h>
+
+#include <array>
+#include <cstdint>
+
+namespace rrc {
+
+// Which public path a frame came from: decides only where its inputs live.
+enum class FramePath { Standalone, Vulkan };
+
+struct FrameChannel {
+    // Standalone: CPU arrays.
+    const float* samples = nullptr;
+    const float* confidence = nullptr;
+    // Vulkan: the host's images.
+    rrc_vulkan_image samples_image{}, confidence_image{}, output_image{}, age_image{};
+};
+
+struct Frame {
+    FramePath path = FramePath::Standalone;
+    uint64_t frame_index = 0;
+    bool reset = false;
+    double view_proj[16] = {}, prev_view_proj[16] = {};
+    float jitter[2] = {}, prev_jitter[2] = {};
+    uint32_t channel_count = 0;
+    std::array<FrameChannel, RRC_MAX_CHANNELS> channels{};
+    bool channels_given = false;  // the descriptor's channel array pointer was not NULL
+
+    // Standalone inputs.
+    const float* depth = nullptr;
+    const float* reprojection = nullptr;
+    const uint8_t* nocache = nullptr;
+
+    // Vulkan inputs and outputs.
+    VkCommandBuffer command_buffer = VK_NULL_HANDLE;
+    rrc_vulkan_image depth_image{}, reprojection_image{}, nocache_image{}, mask_image{};
+    VkBuffer stats_buffer = VK_NULL_HANDLE;
+    VkDeviceSize stats_offset = 0;
+};
+
+// Where a standalone frame's results go (rrc_frame_output read by the struct
+// rules); `caller` is written back only up to its size.
+struct FrameOutputs {
+    rrc_frame_output* caller = nullptr;  // NULL: nothing is read back
+    uint8_t* mask = nullptr;
+    uint32_t channel_count = 0;  // 0 or the context's
+    struct Channel {
+        float* values = nullptr;
+        uint16_t* age = nullptr;
+        float* weight = nullptr;
+    };
+    std::array<Channel, RRC_MAX_CHANNELS> channels{};
+};
+
+// Read a public descriptor into a Frame (struct rules only: size, strides,
+// next chains, zero tails).  Throws rrc::Error naming the field.  The
+// channel count is bounded by the context's so `channels` never overflows.
+Frame read_frame(const rrc_frame_desc* desc, size_t context_channels);
+Frame read_frame(const rrc_vulkan_frame_desc* desc, size_t context_channels);
+FrameOutputs read_outputs(rrc_frame_output* output, size_t context_channels);
+
+}  // namespace rrc

@@ -1,0 +1,48 @@
+#include "live_inputs.h"
+
+namespace rrc {
+
+std::vector<LiveInput> live_inputs(const ContextConfig& c) {
+    std::vector<LiveInput> in;
+    in.push_back({InputRole::Depth, 0, kDepth, kHostDepth, VK_FORMAT_R32_SFLOAT, 1, 4});
+    switch (c.reprojection) {
+        case RRC_REPROJECTION_PREV_CLIP: in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4}); break;
+        case RRC_REPROJECTION_MOTION: in.push_back({InputRole::Reprojection, 0, kMotion, kHostReproj, VK_FORMAT_R32G32_SFLOAT, 2, 4}); break;
+        case RRC_REPROJECTION_MOTION_DEPTH:  // 3 floats a pixel, kept as RGBA (no RGB32F storage images)
+            in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 3, 4});
+            break;
+        default: break;  // CAMERA: matrices only
+    }
+    if (c.use_nocache) in.push_back({InputRole::Nocache, 0, kNocache, kHostNocache, VK_FORMAT_R8_UINT, 1, 1});
+    for (uint32_t s = 0; s < c.channels.size(); ++s) {
+        const bool one = c.channels[s].components == 1;
+        in.push_back({InputRole::Samples, s, one ? kSample1 : kSample4, kHostSamples,
+                      one ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, c.channels[s].components, 4});
+        if (c.channels[s].confidence) in.push_back({InputRole::Confidence, s, kConfidence, kHostConfidence, VK_FORMAT_R32_SFLOAT, 1, 4});
+    }
+    return in;
+}
+
+const void* host_array(const Frame& f, const LiveInput& in) {
+    switch (in.role) {
+        case InputRole::Depth: return f.depth;
+        case InputRole::Reprojection: return f.reprojection;
+        case InputRole::Nocache: return f.nocache;
+        case InputRole::Samples: return f.channels[in.slot].samples;
+        case InputRole::Confidence: return f.channels[in.slot].confidence;
+    }
+    return nullptr;
+}
+
+const rrc_vulkan_image& host_image(const Frame& f, const LiveInput& in) {
+    switch (in.role) {
+        case InputRole::Depth: return f.depth_image;
+        case InputRole::Reprojection: return f.reprojection_image;
+        case InputRole::Nocache: return f.nocache_image;
+        case InputRole::Samples: return f.channels[in.slot].samples_image;
+        case InputRole::Confidence: break;
+    }
+    return f.channels[in.slot].confidence_image;
+}
+
+}  // namespace rrc

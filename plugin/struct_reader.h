@@ -1,0 +1,127 @@
+// How the library reads the tagged structs of the public headers, whatever
+// minor version the caller compiled against: the rules of include/rrc/rrc.h
+// "Versioning" in code, and the only place that knows them.  Header-only and
+// device-free (the descriptor fuzzer compiles it without Vulkan calls).
+#pragma once
+
+#include "error.h"
+
+#include <rrc/rrc.h>
+#include <rrc/rrc_vulkan.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace rrc {
+
+// Per struct: its tag and its first published (0.1) size, the smallest a
+// caller may pass.  A struct that grows in a later version names the first
+// appended member here.
+template <typename T>
+struct StructInfo;
+#define RRC_STRUCT_INFO(T, tag, first_size)             \
+    template <>                                         \
+    struct StructInfo<T> {                              \
+        static constexpr rrc_struct_type type = tag;    \
+        static constexpr size_t size_0_1 = first_size;  \
+    }
+RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, sizeof(rrc_context_desc));
+RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc));
+RRC_STRUCT_INFO(rrc_frame_desc, RRC_STRUCT_TYPE_FRAME_DESC, sizeof(rrc_frame_desc));
+RRC_STRUCT_INFO(rrc_channel_input, RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input));
+RRC_STRUCT_INFO(rrc_frame_output, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output));
+RRC_STRUCT_INFO(rrc_channel_output, RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output));
+RRC_STRUCT_INFO(rrc_vulkan_device_desc, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, sizeof(rrc_vulkan_device_desc));
+RRC_STRUCT_INFO(rrc_vulkan_frame_desc, RRC_STRUCT_TYPE_VULKAN_FRAME_DESC, offsetof(rrc_vulkan_frame_desc, stats_buffer));
+RRC_STRUCT_INFO(rrc_vulkan_channel_images, RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES, offsetof(rrc_vulkan_channel_images, age));
+#undef RRC_STRUCT_INFO
+
+// Tags of base structs: never valid inside a `next` chain.
+inline bool is_base_struct_type(rrc_struct_type t) {
+    return (t >= RRC_STRUCT_TYPE_CONTEXT_DESC && t <= RRC_STRUCT_TYPE_CHANNEL_OUTPUT) ||
+           (t >= RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC && t <= RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+}
+
+inline rrc_struct_header read_header(const void* p) {
+    rrc_struct_header h;
+    std::memcpy(&h, p, sizeof h);
+    return h;
+}
+
+// Rule 5: walks a `next` chain.  Its shape is checked first (length, base
+// tags), then the types of its elements.  Version 0.2 defines no extension,
+// so any element is refused; an extension added later is found here by its
+// tag (a table of the tags each parent takes) and read with read_struct.
+inline void check_chain(const void* next, const std::string& what) {
+    int length = 0;
+    for (const void* p = next; p; p = read_header(p).next, ++length) {
+        if (length >= RRC_MAX_CHAIN)
+            fail(RRC_ERROR_INVALID_STRUCT, "%s.next: the chain is longer than %d structs (a cycle?)", what.c_str(), RRC_MAX_CHAIN);
+        const rrc_struct_header h = read_header(p);
+        if (is_base_struct_type(h.type))
+            fail(RRC_ERROR_INVALID_STRUCT, "%s.next[%d].type is 0x%08x, the tag of a base struct, not of an extension", what.c_str(),
+                 length, (unsigned)h.type);
+    }
+    if (next)
+        fail(RRC_ERROR_UNSUPPORTED, "%s.next[0].type is 0x%08x: an extension this library (%u.%u.%u) does not know", what.c_str(),
+             (unsigned)read_header(next).type, RRC_VERSION_MAJOR(RRC_API_VERSION), RRC_VERSION_MINOR(RRC_API_VERSION),
+             RRC_VERSION_PATCH(RRC_API_VERSION));
+}
+
+// Rules 1, 2 and 5: a copy of the caller's struct with every member beyond
+// its `size` zero.  Throws rrc::Error naming `what`.
+template <typename T>
+T read_struct(const void* p, const std::string& what) {
+    using Info = StructInfo<T>;
+    if (!p) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what.c_str());
+    const rrc_struct_header h = read_header(p);
+    if (h.type != Info::type)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.type is 0x%08x, expected 0x%08x", what.c_str(), (unsigned)h.type, (unsigned)Info::type);
+    if (h.size < Info::size_0_1)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, smaller than its first version's %zu", what.c_str(), (unsigned)h.size,
+             Info::size_0_1);
+    T out;
+    std::memset(&out, 0, sizeof out);
+    std::memcpy(&out, p, std::min<size_t>(h.size, sizeof out));
+    const unsigned char* tail = static_cast<const unsigned char*>(p) + sizeof out;
+    for (size_t i = sizeof out; i < h.size; ++i, ++tail)
+        if (*tail)
+            fail(RRC_ERROR_UNSUPPORTED,
+                 "%s.size is %u and byte %zu is non-zero: a member of a newer header than this library's (%zu bytes) knows", what.c_str(),
+                 (unsigned)h.size, i, sizeof out);
+    check_chain(h.next, what);
+    return out;
+}
+
+// Rule 3: an array strided by its elements' size, all equal.
+template <typename T>
+std::vector<T> read_array(const void* base, uint32_t count, const std::string& what) {
+    std::vector<T> out;
+    if (count == 0) return out;
+    if (!base) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what.c_str());
+    const uint32_t stride = read_header(base).size;
+    for (uint32_t i = 0; i < count; ++i) {
+        const void* element = static_cast<const unsigned char*>(base) + (size_t)i * stride;
+        const std::string name = what + "[" + std::to_string(i) + "]";
+        // The size first: an element larger than the stride would be read
+        // beyond the caller's array.
+        const uint32_t size = read_header(element).size;
+        if (size != stride)
+            fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u but %s[0].size is %u: every element of an array has one size", name.c_str(),
+                 (unsigned)size, what.c_str(), (unsigned)stride);
+        out.push_back(read_struct<T>(element, name));
+    }
+    return out;
+}
+
+// Rule 4: writes one member of a caller's output struct only if the
+// caller's `size` covers it.
+template <typename T, typename M>
+void write_member(T* caller, size_t offset, const M& value) {
+    if (caller->size >= offset + sizeof(M)) std::memcpy(reinterpret_cast<unsigned char*>(caller) + offset, &value, sizeof(M));
+}
+
+}  // namespace rrc
