@@ -5,6 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
+/* What every C host does before filling a descriptor: zero it, then its type
+ * tag and size (rrc.h Versioning). */
+#define INIT_STRUCT(s, tag) (memset(&(s), 0, sizeof(s)), (s).type = (tag), (s).size = (uint32_t)sizeof(s))
+
 int main(void) {
     enum { W = 8, H = 4 };
     static float depth[W * H], samples[W * H], values[W * H];
@@ -19,16 +23,12 @@ int main(void) {
     rrc_result r;
     int i, t;
 
-    memset(&ch, 0, sizeof ch);
-    ch.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-    ch.size = sizeof ch;
+    INIT_STRUCT(ch, RRC_STRUCT_TYPE_CHANNEL_DESC);
     strcpy(ch.name, "shadow");
     ch.components = 1;
     ch.precision = RRC_HISTORY_FP32;
     ch.lambda = 0.5f;
-    memset(&desc, 0, sizeof desc);
-    desc.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-    desc.size = sizeof desc;
+    INIT_STRUCT(desc, RRC_STRUCT_TYPE_CONTEXT_DESC);
     desc.api_version = RRC_API_VERSION;
     desc.width = W;
     desc.height = H;
@@ -41,24 +41,16 @@ int main(void) {
         fprintf(stderr, "create: %s: %s\n", rrc_result_to_string(r), rrc_last_error());
         return 1;
     }
-    memset(&in, 0, sizeof in);
-    in.type = RRC_STRUCT_TYPE_CHANNEL_INPUT;
-    in.size = sizeof in;
+    INIT_STRUCT(in, RRC_STRUCT_TYPE_CHANNEL_INPUT);
     in.samples = samples;
-    memset(&frame, 0, sizeof frame);
-    frame.type = RRC_STRUCT_TYPE_FRAME_DESC;
-    frame.size = sizeof frame;
+    INIT_STRUCT(frame, RRC_STRUCT_TYPE_FRAME_DESC);
     frame.depth = depth;
     for (i = 0; i < 16; i += 5) frame.view_proj[i] = frame.prev_view_proj[i] = 1.0;
     frame.channel_count = 1;
     frame.channels = &in;
-    memset(&co, 0, sizeof co);
-    co.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
-    co.size = sizeof co;
+    INIT_STRUCT(co, RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
     co.values = values;
-    memset(&out, 0, sizeof out);
-    out.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-    out.size = sizeof out;
+    INIT_STRUCT(out, RRC_STRUCT_TYPE_FRAME_OUTPUT);
     out.mask = mask;
     out.channel_count = 1;
     out.channels = &co;

@@ -148,6 +148,24 @@ void write_static_sequence(const std::string& pattern, int first, int last, cons
     }
 }
 
+// The sequence and depth options every parse test checks first.
+struct SequenceOptions {
+    const char* input;
+    const char* output;
+    int64_t first, last;
+    rrc_depth_mode depth_mode;
+    rrc_depth_format depth_format;
+};
+
+void expect_sequence(const Options& o, const SequenceOptions& want) {
+    EXPECT_EQ(o.input_pattern, want.input);
+    EXPECT_EQ(o.output_pattern, want.output);
+    EXPECT_EQ(o.first_frame, want.first);
+    EXPECT_EQ(o.last_frame, want.last);
+    EXPECT_EQ(o.depth_mode, want.depth_mode);
+    EXPECT_EQ(o.depth_format, want.depth_format);
+}
+
 }  // namespace
 
 // ======================================================================
@@ -158,12 +176,7 @@ TEST(AccumulateOptions, RequiredOnlyGivesDefaults) {
     ParseResult r = parse_with({});
     ASSERT_TRUE(r.ok()) << r.error;
     const Options& o = r.options;
-    EXPECT_EQ(o.input_pattern, "in/f_%04d.exr");
-    EXPECT_EQ(o.output_pattern, "out/o_%04d.exr");
-    EXPECT_EQ(o.first_frame, 1);
-    EXPECT_EQ(o.last_frame, 3);
-    EXPECT_EQ(o.depth_mode, RRC_DEPTH_MODE_STANDARD);
-    EXPECT_EQ(o.depth_format, RRC_DEPTH_FORMAT_FLOAT32);
+    expect_sequence(o, {"in/f_%04d.exr", "out/o_%04d.exr", 1, 3, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32});
     EXPECT_EQ(o.epsilon, 0.0f);
     EXPECT_EQ(o.epsilon_scale, 0.0f);
     EXPECT_EQ(o.tau, 0.0f);
@@ -222,12 +235,7 @@ TEST(AccumulateOptions, EveryOptionParsed) {
                            "--verbose"});
     ASSERT_TRUE(r.ok()) << r.error;
     const Options& o = r.options;
-    EXPECT_EQ(o.input_pattern, "a/%d.exr");
-    EXPECT_EQ(o.output_pattern, "b/%05d.exr");
-    EXPECT_EQ(o.first_frame, 7);
-    EXPECT_EQ(o.last_frame, 19);
-    EXPECT_EQ(o.depth_mode, RRC_DEPTH_MODE_REVERSED);
-    EXPECT_EQ(o.depth_format, RRC_DEPTH_FORMAT_UNORM24);
+    expect_sequence(o, {"a/%d.exr", "b/%05d.exr", 7, 19, RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_UNORM24});
     EXPECT_FLOAT_EQ(o.epsilon, 1e-6f);
     EXPECT_FLOAT_EQ(o.epsilon_scale, 2.0f);
     EXPECT_FLOAT_EQ(o.tau, 0.05f);
@@ -284,45 +292,11 @@ TEST(AccumulateOptions, HelpNeedsNothingElse) {
 
 TEST(AccumulateOptions, UsageDocumentsEveryOption) {
     const std::string u = rrc_cli::usage_text();
-    for (const char* opt : {"--input",
-                            "--output",
-                            "--frames",
-                            "--depth-mode",
-                            "--depth-format",
-                            "--epsilon",
-                            "--epsilon-scale",
-                            "--tau",
-                            "--background-threshold",
-                            "--near",
-                            "--far",
-                            "--reproject",
-                            "--motion-scale",
-                            "--camera",
-                            "--signal",
-                            "--device",
-                            "--validation",
-                            "--quiet",
-                            "--verbose",
-                            "--help",
-                            "lambda=",
-                            "blend=",
-                            "filter=",
-                            "history=",
-                            "max_age=",
-                            "age_aware",
-                            "running_mean",
-                            "catmull_rom",
-                            "nearest",
-                            "unorm16",
-                            "unorm24",
-                            "prev_clip",
-                            "rrc.mask",
-                            ".age",
-                            "nocache.Y",
-                            "jitter",
-                            "view_proj",
-                            "mv.Z",
-                            "prevclip"})
+    // Every option the parser takes a value for, then the flags, keys and names.
+    for (const std::string& opt : rrc_cli::value_options()) EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
+    for (const char* opt : {"--input",   "--validation", "--quiet",   "--verbose",    "--help",      "lambda=",   "blend=",  "filter=",
+                            "history=",  "max_age=",     "age_aware", "running_mean", "catmull_rom", "nearest",   "unorm16", "unorm24",
+                            "prev_clip", "rrc.mask",     ".age",      "nocache.Y",    "jitter",      "view_proj", "mv.Z",    "prevclip"})
         EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
 }
 

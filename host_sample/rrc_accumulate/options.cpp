@@ -1,6 +1,8 @@
 // rrc-accumulate: command-line parsing.
 #include "options.h"
 
+#include <algorithm>
+
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -404,6 +406,40 @@ missing channel, library error, validation message), 2 a bad command line.
     return text;
 }
 
+const std::vector<std::string>& value_options() {
+    static const std::vector<std::string> names = {"--input",
+                                                   "--output",
+                                                   "--frames",
+                                                   "--depth-mode",
+                                                   "--depth-format",
+                                                   "--epsilon",
+                                                   "--epsilon-scale",
+                                                   "--tau",
+                                                   "--background-threshold",
+                                                   "--near",
+                                                   "--far",
+                                                   "--reproject",
+                                                   "--motion-scale",
+                                                   "--camera",
+                                                   "--signal",
+                                                   "--device",
+                                                   "--preset",
+                                                   "--view-layer",
+                                                   "--depth-channel",
+                                                   "--motion-channels",
+                                                   "--prevclip-channels",
+                                                   "--nocache-channel",
+                                                   "--motion-units",
+                                                   "--motion-y",
+                                                   "--cut",
+                                                   "--coherence",
+                                                   "--reference",
+                                                   "--metrics",
+                                                   "--psnr-peak",
+                                                   "--progress"};
+    return names;
+}
+
 ParseResult parse_arguments(int argc, const char* const* argv) {
     ParseResult r;
     Options& o = r.options;
@@ -440,37 +476,9 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
                 o.verbose = true;
             continue;
         }
-        static const std::set<std::string> valued = {"--input",
-                                                     "--output",
-                                                     "--frames",
-                                                     "--depth-mode",
-                                                     "--depth-format",
-                                                     "--epsilon",
-                                                     "--epsilon-scale",
-                                                     "--tau",
-                                                     "--background-threshold",
-                                                     "--near",
-                                                     "--far",
-                                                     "--reproject",
-                                                     "--motion-scale",
-                                                     "--camera",
-                                                     "--signal",
-                                                     "--device",
-                                                     "--preset",
-                                                     "--view-layer",
-                                                     "--depth-channel",
-                                                     "--motion-channels",
-                                                     "--prevclip-channels",
-                                                     "--nocache-channel",
-                                                     "--motion-units",
-                                                     "--motion-y",
-                                                     "--cut",
-                                                     "--coherence",
-                                                     "--reference",
-                                                     "--metrics",
-                                                     "--psnr-peak",
-                                                     "--progress"};
-        if (!valued.count(arg)) {
+        const std::vector<std::string>& valued = value_options();
+
+        if (std::find(valued.begin(), valued.end(), arg) == valued.end()) {
             if (arg.rfind("-", 0) == 0) return fail("unknown option " + quoted(arg) + " (see --help)");
             return fail("unexpected argument " + quoted(arg) + " (see --help)");
         }

@@ -95,6 +95,9 @@ struct ParseResult {
  *  required. */
 ParseResult parse_arguments(int argc, const char* const* argv);
 
+/** Every option that takes a value (--name VALUE or --name=VALUE), as the parser knows them. */
+const std::vector<std::string>& value_options();
+
 /** The --help text: every option, the channel names, the exit codes. */
 std::string usage_text();
 

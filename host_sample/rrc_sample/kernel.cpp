@@ -95,26 +95,25 @@ void ComputeKernel::release() {
     sets_.clear();
 }
 
-void ComputeKernel::bind_buffer(uint32_t set, uint32_t binding, VkBuffer buffer) {
-    VkDescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
+void ComputeKernel::write(uint32_t set, uint32_t binding, const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = sets_.at(set);
     w.dstBinding = binding;
     w.descriptorCount = 1;
     w.descriptorType = types_.at(binding);
-    w.pBufferInfo = &info;
+    w.pBufferInfo = buffer;
+    w.pImageInfo = image;
     vkUpdateDescriptorSets(gpu_->device, 1, &w, 0, nullptr);
 }
 
+void ComputeKernel::bind_buffer(uint32_t set, uint32_t binding, VkBuffer buffer) {
+    const VkDescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
+    write(set, binding, &info, nullptr);
+}
+
 void ComputeKernel::bind_image(uint32_t set, uint32_t binding, VkImageView view, VkImageLayout layout) {
-    VkDescriptorImageInfo info{sampler_, view, layout};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = sets_.at(set);
-    w.dstBinding = binding;
-    w.descriptorCount = 1;
-    w.descriptorType = types_.at(binding);
-    w.pImageInfo = &info;
-    vkUpdateDescriptorSets(gpu_->device, 1, &w, 0, nullptr);
+    const VkDescriptorImageInfo info{sampler_, view, layout};
+    write(set, binding, nullptr, &info);
 }
 
 void ComputeKernel::dispatch(VkCommandBuffer cmd, uint32_t set, const void* push, uint32_t width, uint32_t height) const {

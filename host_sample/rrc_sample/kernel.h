@@ -28,6 +28,8 @@ public:
     void dispatch(VkCommandBuffer cmd, uint32_t set, const void* push, uint32_t width, uint32_t height) const;
 
 private:
+    // One descriptor of `set`: a buffer or an image.
+    void write(uint32_t set, uint32_t binding, const VkDescriptorBufferInfo* buffer, const VkDescriptorImageInfo* image);
     Gpu* gpu_ = nullptr;
     std::vector<VkDescriptorType> types_;
     uint32_t push_bytes_ = 0;

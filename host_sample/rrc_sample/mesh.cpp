@@ -17,6 +17,17 @@ void quad(MeshData& m, glm::vec3 o, glm::vec3 a, glm::vec3 b, glm::vec3 n) {
     for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
 }
 
+// Two triangles per cell of a (rows + 1) x (columns + 1) vertex grid laid
+// out row by row (spheres: stacks x slices; tori: segments x sides).
+void add_grid_indices(MeshData& m, int rows, int columns) {
+    const uint32_t row = (uint32_t)columns + 1;
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            const uint32_t a = (uint32_t)j * row + (uint32_t)i, b = a + row;
+            for (uint32_t k : {a, b, b + 1, a, b + 1, a + 1}) m.indices.push_back(k);
+        }
+}
+
 }  // namespace
 
 MeshData make_plane(float half, int n) {
@@ -81,12 +92,7 @@ MeshData make_sphere(float radius, int slices, int stacks) {
             m.vertices.push_back({n * radius, n});
         }
     }
-    const uint32_t row = (uint32_t)slices + 1;
-    for (int j = 0; j < stacks; ++j)
-        for (int i = 0; i < slices; ++i) {
-            const uint32_t a = (uint32_t)j * row + (uint32_t)i, b = a + row;
-            for (uint32_t k : {a, b, b + 1, a, b + 1, a + 1}) m.indices.push_back(k);
-        }
+    add_grid_indices(m, stacks, slices);
     return m;
 }
 
@@ -101,12 +107,7 @@ MeshData make_torus(float R, float r, int segments, int sides) {
             m.vertices.push_back({dir * R + n * r, n});
         }
     }
-    const uint32_t row = (uint32_t)sides + 1;
-    for (int j = 0; j < segments; ++j)
-        for (int i = 0; i < sides; ++i) {
-            const uint32_t a = (uint32_t)j * row + (uint32_t)i, b = a + row;
-            for (uint32_t k : {a, b, b + 1, a, b + 1, a + 1}) m.indices.push_back(k);
-        }
+    add_grid_indices(m, segments, sides);
     return m;
 }
 

@@ -120,6 +120,49 @@ void set_viewport(VkCommandBuffer cmd, uint32_t w, uint32_t h) {
     vkCmdSetScissor(cmd, 0, 1, &s);
 }
 
+// Every attachment is cleared, stored, and left for compute and fragment
+// sampling (what rrc and the compute passes read).
+VkAttachmentDescription cleared_attachment(VkFormat format) {
+    return VkAttachmentDescription{0,
+                                   format,
+                                   VK_SAMPLE_COUNT_1_BIT,
+                                   VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                   VK_ATTACHMENT_STORE_OP_STORE,
+                                   VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                   VK_ATTACHMENT_STORE_OP_DONT_CARE,
+                                   VK_IMAGE_LAYOUT_UNDEFINED,
+                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+}
+
+// One subpass over `attachments`, synchronised by external_dependencies().
+VkRenderPass make_render_pass(Gpu& gpu, const std::vector<VkAttachmentDescription>& attachments, const VkSubpassDescription& sub) {
+    std::vector<VkSubpassDependency> deps = external_dependencies();
+    VkRenderPassCreateInfo rci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    rci.attachmentCount = (uint32_t)attachments.size();
+    rci.pAttachments = attachments.data();
+    rci.subpassCount = 1;
+    rci.pSubpasses = &sub;
+    rci.dependencyCount = (uint32_t)deps.size();
+    rci.pDependencies = deps.data();
+    VkRenderPass pass = VK_NULL_HANDLE;
+    vk_check(vkCreateRenderPass(gpu.device, &rci, nullptr, &pass), "vkCreateRenderPass");
+    return pass;
+}
+
+// The scene's descriptor set and `push_bytes` of vertex push constants.
+VkPipelineLayout scene_pipeline_layout(Gpu& gpu, const GpuScene& scene, uint32_t push_bytes) {
+    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, push_bytes};
+    VkDescriptorSetLayout sl = scene.set_layout();
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 1;
+    plci.pSetLayouts = &sl;
+    plci.pushConstantRangeCount = 1;
+    plci.pPushConstantRanges = &range;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    vk_check(vkCreatePipelineLayout(gpu.device, &plci, nullptr, &layout), "vkCreatePipelineLayout");
+    return layout;
+}
+
 }  // namespace
 
 // ---- GpuScene ----------------------------------------------------------------
@@ -199,37 +242,12 @@ void GpuScene::draw(VkCommandBuffer cmd, VkPipelineLayout layout, VkShaderStageF
 // ---- ShadowPass ---------------------------------------------------------------
 
 ShadowPass::ShadowPass(Gpu& gpu, const GpuScene& scene) : gpu_(gpu), scene_(scene) {
-    VkAttachmentDescription a{};
-    a.format = VK_FORMAT_D32_SFLOAT;
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    a.finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
     VkSubpassDescription sub{};
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     sub.pDepthStencilAttachment = &ref;
-    std::vector<VkSubpassDependency> deps = external_dependencies();
-    VkRenderPassCreateInfo rci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rci.attachmentCount = 1;
-    rci.pAttachments = &a;
-    rci.subpassCount = 1;
-    rci.pSubpasses = &sub;
-    rci.dependencyCount = (uint32_t)deps.size();
-    rci.pDependencies = deps.data();
-    vk_check(vkCreateRenderPass(gpu.device, &rci, nullptr, &pass_), "vkCreateRenderPass");
-
-    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, 64 + 4};
-    VkDescriptorSetLayout sl = scene.set_layout();
-    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &sl;
-    plci.pushConstantRangeCount = 1;
-    plci.pPushConstantRanges = &range;
-    vk_check(vkCreatePipelineLayout(gpu.device, &plci, nullptr, &layout_), "vkCreatePipelineLayout");
+    pass_ = make_render_pass(gpu, {cleared_attachment(VK_FORMAT_D32_SFLOAT)}, sub);
+    layout_ = scene_pipeline_layout(gpu, scene, 64 + 4);
     PipelineDesc d{pass_, layout_, rrc_sample_shadow_vert, sizeof rrc_sample_shadow_vert};
     d.depth_compare = VK_COMPARE_OP_LESS;
     d.normals = false;
@@ -282,17 +300,9 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     g_.position = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, colour, "gbuffer position");
     const Image* colours[4] = {&g_.prev_clip, &g_.motion, &g_.normal, &g_.position};
 
-    VkAttachmentDescription a[5] = {};
-    for (int i = 0; i < 5; ++i) {
-        a[i].format = i < 4 ? colours[i]->format : VK_FORMAT_D32_SFLOAT;
-        a[i].samples = VK_SAMPLE_COUNT_1_BIT;
-        a[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        a[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        a[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-        a[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        a[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        a[i].finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // what rrc and the compute passes sample
-    }
+    std::vector<VkAttachmentDescription> a;
+    for (const Image* c : colours) a.push_back(cleared_attachment(c->format));
+    a.push_back(cleared_attachment(VK_FORMAT_D32_SFLOAT));
     VkAttachmentReference refs[4], dref{4, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
     for (uint32_t i = 0; i < 4; ++i) refs[i] = {i, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkSubpassDescription sub{};
@@ -300,15 +310,7 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     sub.colorAttachmentCount = 4;
     sub.pColorAttachments = refs;
     sub.pDepthStencilAttachment = &dref;
-    std::vector<VkSubpassDependency> deps = external_dependencies();
-    VkRenderPassCreateInfo rci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rci.attachmentCount = 5;
-    rci.pAttachments = a;
-    rci.subpassCount = 1;
-    rci.pSubpasses = &sub;
-    rci.dependencyCount = (uint32_t)deps.size();
-    rci.pDependencies = deps.data();
-    vk_check(vkCreateRenderPass(gpu.device, &rci, nullptr, &pass_), "vkCreateRenderPass");
+    pass_ = make_render_pass(gpu, a, sub);
 
     VkImageView views[5] = {g_.prev_clip.view, g_.motion.view, g_.normal.view, g_.position.view, g_.depth.view};
     VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
@@ -320,14 +322,7 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     fci.layers = 1;
     vk_check(vkCreateFramebuffer(gpu.device, &fci, nullptr, &framebuffer_), "vkCreateFramebuffer");
 
-    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT, 0, 4};
-    VkDescriptorSetLayout sl = scene.set_layout();
-    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &sl;
-    plci.pushConstantRangeCount = 1;
-    plci.pPushConstantRanges = &range;
-    vk_check(vkCreatePipelineLayout(gpu.device, &plci, nullptr, &layout_), "vkCreatePipelineLayout");
+    layout_ = scene_pipeline_layout(gpu, scene, 4);
     PipelineDesc d{
         pass_, layout_, rrc_sample_gbuffer_vert, sizeof rrc_sample_gbuffer_vert, rrc_sample_gbuffer_frag, sizeof rrc_sample_gbuffer_frag,
         4};

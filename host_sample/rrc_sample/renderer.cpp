@@ -37,31 +37,16 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
     // Every map is sampled by some descriptor set: give each a defined layout even if its pass never runs.
     gpu.immediate([&](VkCommandBuffer cmd) {
         std::vector<VkImageMemoryBarrier> bs;
-        for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference}) {
-            VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-            b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-            b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-            b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = m->image;
-            b.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-            bs.push_back(b);
-        }
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
-                             (uint32_t)bs.size(), bs.data());
+        for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference})
+            bs.push_back(rrc_host::layout_change(*m, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0,
+                                                 VK_ACCESS_SHADER_READ_BIT));
+        rrc_host::image_barriers(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, bs);
     });
     shadows_.reset(new ShadowPass(gpu, *gpu_scene_));
     gbuffer_.reset(new GBufferPass(gpu, *gpu_scene_, w, h));
     signals_.reset(new SignalPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, w, h));
-    RrcSettings rs;
-    rs.width = w;
-    rs.height = h;
-    rs.signals = s.signals;
-    rs.reprojection = s.reprojection;
-    rs.epsilon_scale = s.epsilon_scale;
-    rs.soft_age_cap = s.soft_age_cap;
-    rs.near_plane = scene.near_plane;
-    rs.far_plane = scene.far_plane;
+    // In RrcSettings' order: extent, signals, reprojection, epsilon scale, planes, soft age cap.
+    const RrcSettings rs{w, h, s.signals, s.reprojection, s.epsilon_scale, scene.near_plane, scene.far_plane, s.soft_age_cap};
     rrc_.reset(new RrcStage(gpu, rs));
     post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
                                signals_->reference(), w, h));

@@ -31,24 +31,27 @@ TEST(Fetch, NearestIsFloorClamped) {
     EXPECT_EQ(nearest_index(1e30, 8), 7);
 }
 
-TEST(Fetch, BilinearOfARampIsExact) {
+namespace {
+
+// ramp() (3x + 5y + 1 on 8 x 8) resampled at pixel coordinates (x, y).
+double fetch_ramp(rrc_history_filter filter, double x, double y) {
     std::vector<float> v = ramp();
     Image img{v.data(), 8, 8, 1};
     double out = 0;
-    resample(img, RRC_HISTORY_FILTER_BILINEAR, 2.3, 4.7, &out);  // p = (1.8, 4.2)
-    EXPECT_NEAR(out, 3 * 1.8 + 5 * 4.2 + 1, 1e-12);
-    resample(img, RRC_HISTORY_FILTER_BILINEAR, 0.2, 4.5, &out);  // left edge: clamped taps
-    EXPECT_NEAR(out, 0 + 5 * 4 + 1, 1e-12);
-    resample(img, RRC_HISTORY_FILTER_NEAREST, 2.3, 4.7, &out);
-    EXPECT_EQ(out, 3 * 2 + 5 * 4 + 1);
+    resample(img, filter, x, y, &out);
+    return out;
+}
+
+}  // namespace
+
+TEST(Fetch, BilinearOfARampIsExact) {
+    EXPECT_NEAR(fetch_ramp(RRC_HISTORY_FILTER_BILINEAR, 2.3, 4.7), 3 * 1.8 + 5 * 4.2 + 1, 1e-12);  // p = (1.8, 4.2)
+    EXPECT_NEAR(fetch_ramp(RRC_HISTORY_FILTER_BILINEAR, 0.2, 4.5), 0 + 5 * 4 + 1, 1e-12);          // left edge: clamped taps
+    EXPECT_EQ(fetch_ramp(RRC_HISTORY_FILTER_NEAREST, 2.3, 4.7), 3 * 2 + 5 * 4 + 1);
 }
 
 TEST(Fetch, CatmullRomReproducesARamp) {
-    std::vector<float> v = ramp();
-    Image img{v.data(), 8, 8, 1};
-    double out = 0;
-    resample(img, RRC_HISTORY_FILTER_CATMULL_ROM, 3.3, 4.1, &out);  // p = (2.8, 3.6)
-    EXPECT_NEAR(out, 3 * 2.8 + 5 * 3.6 + 1, 1e-12);
+    EXPECT_NEAR(fetch_ramp(RRC_HISTORY_FILTER_CATMULL_ROM, 3.3, 4.1), 3 * 2.8 + 5 * 3.6 + 1, 1e-12);  // p = (2.8, 3.6)
 }
 
 TEST(Fetch, CatmullRomIsClampedToTheBilinearTaps) {
