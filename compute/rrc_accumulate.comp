@@ -76,6 +76,14 @@ layout(set = 0, binding = RRC_BINDING_WEIGHT_OUT, r32f) uniform writeonly image2
 layout(set = 0, binding = RRC_BINDING_HOST_SAMPLES) uniform sampler2D s_samples[RRC_MAX_CHANNELS];     // INTEROP
 layout(set = 0, binding = RRC_BINDING_HOST_CONFIDENCE) uniform sampler2D s_confidence[RRC_MAX_CHANNELS];  // INTEROP
 layout(set = 0, binding = RRC_BINDING_HOST_OUT) uniform writeonly image2D u_host_out[RRC_MAX_CHANNELS];  // INTEROP: any float format
+layout(set = 0, binding = RRC_BINDING_HOST_AGE_OUT, r16ui) uniform writeonly uimage2D u_host_age_out[RRC_MAX_CHANNELS];  // INTEROP, optional
+
+// Optional interop outputs, each its own pipeline variant (plugin/accumulate_pipeline.h,
+// KernelVariant): off, their code is compiled out.
+layout(constant_id = RRC_SPEC_STATS) const bool STATS = false;
+layout(constant_id = RRC_SPEC_HOST_AGE_MASK) const uint HOST_AGE_MASK = 0u;
+// rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch.
+layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 
 void main() {
     ivec2 size = rrc_size();
@@ -100,4 +108,13 @@ void main() {
 #undef RRC_CH
 
     imageStore(u_mask, px, uvec4(mask));
+    if (STATS) {
+        bool hit = (mask & RRC_MASK_HIT) != 0u, background = (mask & RRC_MASK_BACKGROUND) != 0u;
+        if (hit) atomicAdd(u_stats.counters[RRC_STAT_HITS], 1u);
+        if (!hit && !background) atomicAdd(u_stats.counters[RRC_STAT_MISSES], 1u);
+        if (background) atomicAdd(u_stats.counters[RRC_STAT_BACKGROUND], 1u);
+        if ((mask & RRC_MASK_INVALID_SAMPLE) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_SAMPLES], 1u);
+        if ((mask & RRC_MASK_INVALID_GEOMETRY) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_GEOMETRY], 1u);
+        if ((mask & RRC_MASK_REFRESHED) != 0u) atomicAdd(u_stats.counters[RRC_STAT_REFRESHED], 1u);
+    }
 }

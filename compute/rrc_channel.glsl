@@ -100,6 +100,7 @@ if (RRC_CH < CH_COUNT) {
     imageStore(u_hist_out[RRC_CH], px, out_v);
     if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
     imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
+    if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
     if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
 }
 

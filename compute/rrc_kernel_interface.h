@@ -15,6 +15,8 @@
 #define RRC_SPEC_HAS_NOCACHE 3    // bool: frames carry a do-not-cache mask
 #define RRC_SPEC_CHANNEL_COUNT 4  // uint 1..RRC_MAX_CHANNELS
 #define RRC_SPEC_INTEROP 5        // bool: host images through samplers
+#define RRC_SPEC_STATS 6          // bool: count the frame's statistics into RRC_BINDING_STATS (interop)
+#define RRC_SPEC_HOST_AGE_MASK 7  // uint: bit c = channel slot c also writes its age to the host's image (interop)
 #define RRC_SPEC_GROUP_SIZE_X 100 // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101 // local_size_y_id
 
@@ -59,8 +61,21 @@
 #define RRC_BINDING_HOST_SAMPLES 22     // interop: sampler
 #define RRC_BINDING_HOST_CONFIDENCE 23  // interop: sampler
 #define RRC_BINDING_HOST_OUT 24         // interop: the host's output image
+#define RRC_BINDING_HOST_AGE_OUT 25     // interop: the host's age image (optional)
 #define RRC_BINDING_FIRST_CHANNEL RRC_BINDING_SAMPLE1
-#define RRC_BINDING_LAST RRC_BINDING_HOST_OUT
+#define RRC_BINDING_LAST RRC_BINDING_HOST_AGE_OUT
+// The one buffer binding, after every image binding: the host's statistics
+// buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]).
+#define RRC_BINDING_STATS 26
+// Counter indices in it (the member order of rrc_vulkan_frame_stats).
+#define RRC_STAT_HITS 0
+#define RRC_STAT_MISSES 1
+#define RRC_STAT_BACKGROUND 2
+#define RRC_STAT_INVALID_SAMPLES 3
+#define RRC_STAT_INVALID_GEOMETRY 4
+#define RRC_STAT_REFRESHED 5
+#define RRC_STAT_PIXELS 6
+#define RRC_STAT_COUNT 8
 
 // ---- Epsilon kinds (the value of RRC_SPEC_EPS_KIND) ------------------------
 #define RRC_EPS_ABSOLUTE 0u  // pc.eps is epsilon itself

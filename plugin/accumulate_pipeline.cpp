@@ -17,6 +17,8 @@ enum : uint32_t {
     kHasNocache = RRC_SPEC_HAS_NOCACHE,
     kChannelCount = RRC_SPEC_CHANNEL_COUNT,
     kInterop = RRC_SPEC_INTEROP,
+    kStats = RRC_SPEC_STATS,
+    kHostAgeMask = RRC_SPEC_HOST_AGE_MASK,
     kGroupXId = RRC_SPEC_GROUP_SIZE_X,
     kGroupYId = RRC_SPEC_GROUP_SIZE_Y
 };
@@ -34,7 +36,8 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // The per-channel ids fill the slots of the kernel (CH0_..CH3_) and stay
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
-static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_INTEROP, "channel ids overlap the dispatch ids");
+static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_HOST_AGE_MASK, "channel ids overlap the dispatch ids");
+static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST, "the stats buffer follows every image binding");
 static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "channel ids overlap the workgroup-size ids");
 
@@ -55,7 +58,7 @@ struct SpecBuilder {
 }  // namespace
 
 AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c, bool interop, uint32_t sets, VkPipelineCache cache)
-    : dev_(dev) {
+    : dev_(dev), config_(c), interop_(interop), cache_(cache) {
     auto& vk = dev.vk;
     try {
         VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -71,6 +74,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
             bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, binding_count(b),
                                 VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
         }
+        bindings.push_back({RRC_BINDING_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         lci.bindingCount = (uint32_t)bindings.size();
         lci.pBindings = bindings.data();
@@ -84,50 +88,18 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         pli.pPushConstantRanges = &range;
         VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layout_), "vkCreatePipelineLayout");
 
-        VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-        smi.codeSize = sizeof(rrc_accumulate_spv);
-        smi.pCode = rrc_accumulate_spv;
-        VkShaderModule module = VK_NULL_HANDLE;
-        VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
-
-        SpecBuilder spec;
-        spec.add(kSource, c.reprojection);
-        spec.add(kDepthMode, c.depth_mode);
-        spec.add(kEpsKind, (uint32_t)c.epsilon_kind);
-        spec.add(kHasNocache, c.use_nocache ? 1u : 0u);
-        spec.add(kChannelCount, (uint32_t)c.channels.size());
-        spec.add(kInterop, interop ? 1u : 0u);
-        spec.add(kGroupXId, kGroupX);
-        spec.add(kGroupYId, kGroupY);
-        for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
-            const ChannelConfig& ch = c.channels[slot];
-            spec.add(channel_constant_id(kComponents, slot), ch.components);
-            spec.add(channel_constant_id(kFp16, slot), ch.fp16 ? 1u : 0u);
-            spec.add(channel_constant_id(kBlend, slot), ch.blend);
-            spec.add(channel_constant_id(kFilter, slot), ch.filter);
-            spec.add(channel_constant_id(kConfidenceOn, slot), ch.confidence ? 1u : 0u);
-            spec.add_float(channel_constant_id(kLambda, slot), ch.lambda);
-            spec.add(channel_constant_id(kAgeCap, slot), ch.age_cap);
-        }
-        VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
-        VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-        pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-        pci.stage.module = module;
-        pci.stage.pName = "main";
-        pci.stage.pSpecializationInfo = &si;
-        pci.layout = layout_;
-        VkResult r = vk.vkCreateComputePipelines(dev.device, cache, 1, &pci, dev.allocator, &pipeline_);
-        vk.vkDestroyShaderModule(dev.device, module, dev.allocator);
-        VulkanDevice::check(r, "vkCreateComputePipelines");
+        pipeline(KernelVariant{});  // the plain variant now: a broken device fails at creation, not mid-frame
 
         uint32_t storage = 0, sampled = 0;
-        for (const auto& b : bindings) (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
-        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled}};
+        for (const auto& b : bindings)
+            if (b.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+                (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
+        VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         dpi.maxSets = sets;
-        dpi.poolSizeCount = 2;
+        dpi.poolSizeCount = 3;
         dpi.pPoolSizes = sizes;
         VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, dev.allocator, &pool_), "vkCreateDescriptorPool");
     } catch (...) {
@@ -136,18 +108,67 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
     }
 }
 
+VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
+    auto found = pipelines_.find(variant.key());
+    if (found != pipelines_.end()) return found->second;
+    auto& vk = dev_.vk;
+    VulkanDevice& dev = dev_;
+    const ContextConfig& c = config_;
+    VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    smi.codeSize = sizeof(rrc_accumulate_spv);
+    smi.pCode = rrc_accumulate_spv;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
+
+    SpecBuilder spec;
+    spec.add(kSource, c.reprojection);
+    spec.add(kDepthMode, c.depth_mode);
+    spec.add(kEpsKind, (uint32_t)c.epsilon_kind);
+    spec.add(kHasNocache, c.use_nocache ? 1u : 0u);
+    spec.add(kChannelCount, (uint32_t)c.channels.size());
+    spec.add(kInterop, interop_ ? 1u : 0u);
+    spec.add(kStats, variant.stats ? 1u : 0u);
+    spec.add(kHostAgeMask, variant.host_age_mask);
+    spec.add(kGroupXId, kGroupX);
+    spec.add(kGroupYId, kGroupY);
+    for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
+        const ChannelConfig& ch = c.channels[slot];
+        spec.add(channel_constant_id(kComponents, slot), ch.components);
+        spec.add(channel_constant_id(kFp16, slot), ch.fp16 ? 1u : 0u);
+        spec.add(channel_constant_id(kBlend, slot), ch.blend);
+        spec.add(channel_constant_id(kFilter, slot), ch.filter);
+        spec.add(channel_constant_id(kConfidenceOn, slot), ch.confidence ? 1u : 0u);
+        spec.add_float(channel_constant_id(kLambda, slot), ch.lambda);
+        spec.add(channel_constant_id(kAgeCap, slot), ch.age_cap);
+    }
+    VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
+    VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    pci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pci.stage.module = module;
+    pci.stage.pName = "main";
+    pci.stage.pSpecializationInfo = &si;
+    pci.layout = layout_;
+    VkPipeline created = VK_NULL_HANDLE;
+    VkResult r = vk.vkCreateComputePipelines(dev.device, cache_, 1, &pci, dev.allocator, &created);
+    vk.vkDestroyShaderModule(dev.device, module, dev.allocator);
+    VulkanDevice::check(r, "vkCreateComputePipelines");
+    pipelines_[variant.key()] = created;
+    return created;
+}
+
 AccumulatePipeline::~AccumulatePipeline() { release(); }
 
 void AccumulatePipeline::release() {
     auto& vk = dev_.vk;
     if (pool_) vk.vkDestroyDescriptorPool(dev_.device, pool_, dev_.allocator);
-    if (pipeline_) vk.vkDestroyPipeline(dev_.device, pipeline_, dev_.allocator);
+    for (auto& p : pipelines_) vk.vkDestroyPipeline(dev_.device, p.second, dev_.allocator);
+    pipelines_.clear();
     if (layout_) vk.vkDestroyPipelineLayout(dev_.device, layout_, dev_.allocator);
     if (set_layout_) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layout_, dev_.allocator);
     if (sampler_) vk.vkDestroySampler(dev_.device, sampler_, dev_.allocator);
     sampler_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
-    pipeline_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;
 }
@@ -180,13 +201,22 @@ void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v
         w.pImageInfo = infos[b];
         writes.push_back(w);
     }
+    if (!v.stats) fail(RRC_ERROR_UNSUPPORTED, "internal: the stats binding has no buffer");
+    const VkDescriptorBufferInfo stats{v.stats, v.stats_offset, RRC_STAT_COUNT * sizeof(uint32_t)};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = RRC_BINDING_STATS;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &stats;
+    writes.push_back(w);
     dev_.vk.vkUpdateDescriptorSets(dev_.device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
 }
 
-void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width,
-                                uint32_t height) const {
+void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height,
+                                const KernelVariant& variant) {
     auto& vk = dev_.vk;
-    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
     vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
     vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
     // Round up; the kernel bounds-checks.

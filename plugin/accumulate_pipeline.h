@@ -10,6 +10,7 @@
 #include <rrc_kernel_interface.h>
 
 #include <cstddef>
+#include <map>
 
 namespace rrc {
 
@@ -40,7 +41,8 @@ enum Binding : uint32_t {
     kWeightOut = RRC_BINDING_WEIGHT_OUT,
     kHostSamples = RRC_BINDING_HOST_SAMPLES,
     kHostConfidence = RRC_BINDING_HOST_CONFIDENCE,
-    kHostOut = RRC_BINDING_HOST_OUT,  // interop
+    kHostOut = RRC_BINDING_HOST_OUT,         // interop
+    kHostAgeOut = RRC_BINDING_HOST_AGE_OUT,  // interop, optional
 };
 constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBinding = RRC_BINDING_LAST, kBindingCount = kLastBinding + 1;
 
@@ -55,6 +57,18 @@ inline uint32_t binding_count(uint32_t b) { return b >= kFirstChannelBinding ? R
 struct DescriptorViews {
     VkImageView view[kBindingCount][RRC_MAX_CHANNELS] = {};
     VkImageLayout layout[kBindingCount][RRC_MAX_CHANNELS] = {};  // 0 = GENERAL
+    VkBuffer stats = VK_NULL_HANDLE;                             // RRC_BINDING_STATS: the host's buffer or a placeholder
+    VkDeviceSize stats_offset = 0;
+};
+
+// What a frame asks of the kernel beyond the context's configuration: the
+// optional interop outputs.  Each combination is its own specialised
+// pipeline, made the first time a frame asks for it, so an output nobody
+// asks for costs nothing.
+struct KernelVariant {
+    bool stats = false;
+    uint32_t host_age_mask = 0;  // bit c: slot c writes the host's age image
+    uint32_t key() const { return (stats ? 1u : 0u) | host_age_mask << 1; }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the
@@ -93,14 +107,21 @@ public:
     // ping-pong parity; interop: 2 x frames in flight).
     VkDescriptorSet allocate_set();
     void write_set(VkDescriptorSet set, const DescriptorViews& views) const;
-    void record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height) const;
+    void record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height,
+                const KernelVariant& variant = {});
+    // Makes (once) and returns the variant's pipeline: call before recording
+    // so that a failure leaves the command buffer untouched.
+    VkPipeline pipeline(const KernelVariant& variant);
 
 private:
     void release();
     VulkanDevice& dev_;
+    ContextConfig config_;
+    bool interop_;
+    VkPipelineCache cache_;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    std::map<uint32_t, VkPipeline> pipelines_;  // by KernelVariant::key()
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;  // nearest, clamp: texelFetch ignores it, the layout needs one
 };

@@ -12,15 +12,18 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     views_.resize(1);
     for (ViewState& v : views_) {
         for (auto& img : v.depth) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config_.width, config_.height);
-        for (const ChannelConfig& c : config_.channels) v.channels.emplace_back(new ChannelHistory(*dev_, c, config_.width, config_.height));
+        for (const ChannelConfig& c : config_.channels)
+            v.channels.emplace_back(new ChannelHistory(*dev_, c, config_.width, config_.height));
     }
     mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config_.width, config_.height);
+    stats_placeholder_ = HostBuffer(*dev_, RRC_STAT_COUNT * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
 AccumulatorCore::~AccumulatorCore() {
     // Every image and the pipeline go before the device wrapper.
     views_.clear();
     mask_ = GpuImage();
+    stats_placeholder_ = HostBuffer();
     placeholders_.reset();
     pipeline_.reset();
     dev_.reset();
@@ -30,6 +33,7 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
     DescriptorViews v = placeholders_->views();
     v.view[kPrevDepth][0] = view.depth[1 - p].view;
     v.view[kMask][0] = mask_.view;
+    v.stats = stats_placeholder_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
     return v;
 }
@@ -43,7 +47,8 @@ void AccumulatorCore::collect_images(std::vector<GpuImage*>& out) {
     placeholders_->collect(out);
 }
 
-void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const {
+void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages,
+                                             VkAccessFlags extra_src_access) const {
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | extra_src_access;
     b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -51,8 +56,9 @@ void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStag
                                   &b, 0, nullptr, 0, nullptr);
 }
 
-void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid) const {
-    pipeline_->record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height);
+void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid,
+                                      const KernelVariant& variant) {
+    pipeline_->record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height, variant);
 }
 
 void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_frame_index) {

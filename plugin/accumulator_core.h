@@ -56,7 +56,7 @@ public:
     // this one overwrites: one global barrier, compute -> compute.
     void record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const;
     // Push constants from the frame record and the dispatch.
-    void record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid) const;
+    void record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid, const KernelVariant& variant = {});
     // After `count` frames were recorded (standalone: and submitted).
     void advance(ViewState& view, uint32_t count, uint64_t last_frame_index);
     size_t memory_bytes() const;
@@ -68,7 +68,8 @@ private:
     std::unique_ptr<Placeholders> placeholders_;
     std::vector<LiveInput> inputs_;
     std::vector<ViewState> views_;
-    GpuImage mask_;  // standalone: always bound; interop: when the host gives no mask
+    GpuImage mask_;                 // standalone: always bound; interop: when the host gives no mask
+    HostBuffer stats_placeholder_;  // bound when no frame statistics are asked for
 };
 
 }  // namespace rrc

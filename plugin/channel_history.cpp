@@ -74,7 +74,7 @@ DescriptorViews Placeholders::views() const {
         v.view[kHistRgba16f][s] = read(VK_FORMAT_R16G16B16A16_SFLOAT);
         v.view[kAge][s] = read(VK_FORMAT_R16_UINT);
         v.view[kHistOut][s] = v.view[kWeightOut][s] = v.view[kHostOut][s] = wf;
-        v.view[kAgeOut][s] = wu;
+        v.view[kAgeOut][s] = v.view[kHostAgeOut][s] = wu;
         v.view[kHostSamples][s] = v.view[kHostConfidence][s] = read(VK_FORMAT_R32_SFLOAT);
     }
     return v;

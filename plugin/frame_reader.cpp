@@ -77,8 +77,7 @@ FrameOutputs read_outputs(rrc_frame_output* caller, size_t context_channels) {
     out.caller = caller;
     out.mask = o.mask;
     out.channel_count = o.channel_count;
-    if (o.channel_count && !o.channels)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", o.channel_count);
+    if (o.channel_count && !o.channels) fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels is NULL with channel_count %u", o.channel_count);
     if (o.channel_count == context_channels && o.channel_count <= RRC_MAX_CHANNELS) {
         const auto channels = read_array<rrc_channel_output>(o.channels, o.channel_count, "output.channels");
         for (uint32_t i = 0; i < o.channel_count; ++i) out.channels[i] = {channels[i].values, channels[i].age, channels[i].weight};

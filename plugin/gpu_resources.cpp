@@ -46,8 +46,9 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     VulkanDevice::check(dev.fi.GetPhysicalDeviceImageFormatProperties(dev.physical, fmt, ci.imageType, ci.tiling, ci.usage, 0, &limits),
                         "vkGetPhysicalDeviceImageFormatProperties");
     if (w > limits.maxExtent.width || h > limits.maxExtent.height || (VkDeviceSize)bytes() > limits.maxResourceSize)
-        fail(RRC_ERROR_OUT_OF_MEMORY, "a %ux%u image of VkFormat %d needs %zu bytes: beyond this device's largest image (%ux%u, %llu bytes of memory)",
-             w, h, (int)fmt, bytes(), limits.maxExtent.width, limits.maxExtent.height, (unsigned long long)limits.maxResourceSize);
+        fail(RRC_ERROR_OUT_OF_MEMORY,
+             "a %ux%u image of VkFormat %d needs %zu bytes: beyond this device's largest image (%ux%u, %llu bytes of memory)", w, h,
+             (int)fmt, bytes(), limits.maxExtent.width, limits.maxExtent.height, (unsigned long long)limits.maxResourceSize);
     try {
         VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, dev.allocator, &image), "vkCreateImage");
         VkMemoryRequirements req;

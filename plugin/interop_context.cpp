@@ -6,8 +6,8 @@ namespace rrc {
 namespace {
 
 bool is_depth_format(VkFormat f) {
-    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
-           f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
+           f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
 }
 bool has_stencil(VkFormat f) {
     return f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
@@ -75,6 +75,30 @@ InteropContext::~InteropContext() {
     core_.reset();
 }
 
+VkBufferMemoryBarrier InteropContext::stats_barrier(const Frame& f, VkAccessFlags src, VkAccessFlags dst) const {
+    VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    b.srcAccessMask = src;
+    b.dstAccessMask = dst;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.buffer = f.stats_buffer;
+    b.offset = f.stats_offset;
+    b.size = sizeof(rrc_vulkan_frame_stats);
+    return b;
+}
+
+// The frame's counters start at zero, `pixels` at the frame's size; the
+// host's earlier use of those bytes (any stage) finishes first.
+void InteropContext::record_stats_clear(VkCommandBuffer cmd, const Frame& f) {
+    auto& vk = core_->device().vk;
+    rrc_vulkan_frame_stats start{};
+    start.pixels = config().width * config().height;
+    VkBufferMemoryBarrier b = stats_barrier(f, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
+    vk.vkCmdUpdateBuffer(cmd, f.stats_buffer, f.stats_offset, sizeof start, &start);
+    b = stats_barrier(f, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
+}
+
 // The library's images start UNDEFINED: to GENERAL, cleared, once, inside
 // the host's first command buffer.
 void InteropContext::record_initialisation(VkCommandBuffer cmd) {
@@ -89,6 +113,11 @@ void InteropContext::record_frame(const Frame& f) {
     VkCommandBuffer cmd = f.command_buffer;
     ViewState& view = core_->view();
     const uint32_t p = view.parity;
+    KernelVariant variant;
+    variant.stats = f.stats_buffer != VK_NULL_HANDLE;
+    for (uint32_t s = 0; s < f.channel_count; ++s)
+        if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
+    core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
 
     // Descriptors: the host's images of this frame over the library's own.
     DescriptorViews v = core_->library_views(view, p);
@@ -107,6 +136,14 @@ void InteropContext::record_frame(const Frame& f) {
     for (uint32_t s = 0; s < f.channel_count; ++s) {
         v.view[kHostOut][s] = f.channels[s].output_image.view;
         hb.add(f.channels[s].output_image, true);
+        if (f.channels[s].age_image.image) {
+            v.view[kHostAgeOut][s] = f.channels[s].age_image.view;
+            hb.add(f.channels[s].age_image, true);
+        }
+    }
+    if (variant.stats) {
+        v.stats = f.stats_buffer;
+        v.stats_offset = f.stats_offset;
     }
     VkDescriptorSet set = ring_[next_set_];
     core_->pipeline().write_set(set, v);
@@ -123,9 +160,17 @@ void InteropContext::record_frame(const Frame& f) {
     core_->record_history_barrier(cmd, 0, 0);
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.before.size(), hb.before.data());
-    core_->record_dispatch(cmd, set, f, view.have_previous);
+    if (variant.stats) record_stats_clear(cmd, f);
+    core_->record_dispatch(cmd, set, f, view.have_previous, variant);
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.after.size(), hb.after.data());
+    if (variant.stats) {
+        // The counters to the host (after its fence) and to any later command.
+        VkBufferMemoryBarrier b =
+            stats_barrier(f, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT | VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                                0, 0, nullptr, 1, &b, 0, nullptr);
+    }
     if (dev.fi.CmdEndDebugUtilsLabelEXT) dev.fi.CmdEndDebugUtilsLabelEXT(cmd);
 
     initialised_ = true;

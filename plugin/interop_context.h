@@ -32,6 +32,8 @@ public:
 
 private:
     void record_initialisation(VkCommandBuffer cmd);
+    void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
+    VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;
 
     std::unique_ptr<AccumulatorCore> core_;
     std::vector<VkDescriptorSet> ring_;  // one set per frame in flight

@@ -6,8 +6,12 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     std::vector<LiveInput> in;
     in.push_back({InputRole::Depth, 0, kDepth, kHostDepth, VK_FORMAT_R32_SFLOAT, 1, 4});
     switch (c.reprojection) {
-        case RRC_REPROJECTION_PREV_CLIP: in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4}); break;
-        case RRC_REPROJECTION_MOTION: in.push_back({InputRole::Reprojection, 0, kMotion, kHostReproj, VK_FORMAT_R32G32_SFLOAT, 2, 4}); break;
+        case RRC_REPROJECTION_PREV_CLIP:
+            in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4});
+            break;
+        case RRC_REPROJECTION_MOTION:
+            in.push_back({InputRole::Reprojection, 0, kMotion, kHostReproj, VK_FORMAT_R32G32_SFLOAT, 2, 4});
+            break;
         case RRC_REPROJECTION_MOTION_DEPTH:  // 3 floats a pixel, kept as RGBA (no RGB32F storage images)
             in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 3, 4});
             break;

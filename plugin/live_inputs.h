@@ -17,12 +17,12 @@ enum class InputRole { Depth, Reprojection, Nocache, Samples, Confidence };
 
 struct LiveInput {
     InputRole role;
-    uint32_t slot;               // the channel slot (Samples, Confidence), else 0
-    Binding own_binding;         // standalone: the library's copy, a storage image
-    Binding host_binding;        // Vulkan path: the host's image through a sampler
-    VkFormat own_format;         // standalone copy's format
-    uint32_t host_components;    // standalone: floats (or bytes, Nocache) per pixel in the host's array
-    uint32_t host_element_bytes; // 4 (float) or 1 (uint8 Nocache)
+    uint32_t slot;                // the channel slot (Samples, Confidence), else 0
+    Binding own_binding;          // standalone: the library's copy, a storage image
+    Binding host_binding;         // Vulkan path: the host's image through a sampler
+    VkFormat own_format;          // standalone copy's format
+    uint32_t host_components;     // standalone: floats (or bytes, Nocache) per pixel in the host's array
+    uint32_t host_element_bytes;  // 4 (float) or 1 (uint8 Nocache)
 };
 
 // Every input the configuration reads, in upload order.

@@ -22,11 +22,11 @@ namespace rrc {
 // appended member here.
 template <typename T>
 struct StructInfo;
-#define RRC_STRUCT_INFO(T, tag, first_size)             \
-    template <>                                         \
-    struct StructInfo<T> {                              \
-        static constexpr rrc_struct_type type = tag;    \
-        static constexpr size_t size_0_1 = first_size;  \
+#define RRC_STRUCT_INFO(T, tag, first_size)            \
+    template <>                                        \
+    struct StructInfo<T> {                             \
+        static constexpr rrc_struct_type type = tag;   \
+        static constexpr size_t size_0_1 = first_size; \
     }
 RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, sizeof(rrc_context_desc));
 RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc));

@@ -168,8 +168,8 @@ const char* source_name(rrc_reprojection r) {
 }
 
 bool is_depth_stencil_format(VkFormat f) {
-    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
-           f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
+           f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
 }
 
 // The depth-format rule of docs/INTEGRATION.md: a depth/stencil image holds
@@ -178,20 +178,25 @@ bool is_depth_stencil_format(VkFormat f) {
 void check_depth_image_format(const ContextConfig& c, VkFormat f) {
     if (!is_depth_stencil_format(f)) return;
     if (c.depth_mode == RRC_DEPTH_MODE_LINEAR)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d, a depth/stencil format, but LINEAR depth is view depth in a colour image",
-             (int)f);
+        fail(RRC_ERROR_INVALID_ARGUMENT,
+             "frame.depth.format is %d, a depth/stencil format, but LINEAR depth is view depth in a colour image", (int)f);
     const bool is_float = f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
     const bool is_unorm16 = f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT;
-    const rrc_depth_format expected = is_float ? RRC_DEPTH_FORMAT_FLOAT32 : is_unorm16 ? RRC_DEPTH_FORMAT_UNORM16 : RRC_DEPTH_FORMAT_UNORM24;
+    const rrc_depth_format expected = is_float     ? RRC_DEPTH_FORMAT_FLOAT32
+                                      : is_unorm16 ? RRC_DEPTH_FORMAT_UNORM16
+                                                   : RRC_DEPTH_FORMAT_UNORM24;
     if (c.depth_format != expected)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d (%s) but the context's depth_format is %u: epsilon would be wrong", (int)f,
-             is_float ? "FLOAT32" : is_unorm16 ? "UNORM16" : "UNORM24", (unsigned)c.depth_format);
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d (%s) but the context's depth_format is %u: epsilon would be wrong",
+             (int)f,
+             is_float     ? "FLOAT32"
+             : is_unorm16 ? "UNORM16"
+                          : "UNORM24",
+             (unsigned)c.depth_format);
 }
 
 // One input is present: a CPU array, or a host image with image and view.
 template <typename P>
-void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_result code, const std::string& what,
-          const std::string& why) {
+void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_result code, const std::string& what, const std::string& why) {
     if (f.path == FramePath::Standalone) {
         if (!array) fail(code, "frame.%s is NULL%s", what.c_str(), why.c_str());
     } else if (!image.image || !image.view) {
@@ -222,7 +227,8 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
     for (int i = 0; i < 2; ++i)
         if (!finite(f.jitter[i]) || !finite(f.prev_jitter[i]) || std::fabs(f.jitter[i]) > 1.0f || std::fabs(f.prev_jitter[i]) > 1.0f)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.jitter/prev_jitter[%d] must be finite and within [-1, 1] pixels", i);
-    if (c.use_nocache) need(f, f.nocache, f.nocache_image, RRC_ERROR_MISSING_INPUT, "nocache", " but the context was created with use_nocache_mask");
+    if (c.use_nocache)
+        need(f, f.nocache, f.nocache_image, RRC_ERROR_MISSING_INPUT, "nocache", " but the context was created with use_nocache_mask");
     if (f.channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f.channel_count, c.channels.size());
     if (!f.channels_given) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
@@ -236,7 +242,8 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
                  " but channel \"" + c.channels[i].name + "\" has confidence");
         if (vulkan) need(f, (const float*)nullptr, ch.output_image, RRC_ERROR_MISSING_INPUT, what + ".output", name);
         if (vulkan && ch.age_image.image && ch.age_image.format != VK_FORMAT_R16_UINT)
-            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(), (int)ch.age_image.format);
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(),
+                 (int)ch.age_image.format);
         if (vulkan && ch.age_image.image && !ch.age_image.view)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.view is VK_NULL_HANDLE with an image", what.c_str());
     }
@@ -261,8 +268,6 @@ void validate_frame(const ContextConfig& c, const rrc_frame_desc* frame, rrc_fra
 }
 
 }  // namespace rrc
-
-
 
 namespace rrc {
 

@@ -14,9 +14,9 @@
 // Every refused call leaves outputs untouched and history intact (the frame
 // after it matches the reference frame for frame).  Contexts run under the
 // validation layer; the Vulkan host's messages must be zero.
-#include "abi_0_1_layout.h"
 #include "abi/struct_support.h"
 #include "abi/vulkan_path.h"
+#include "abi_0_1_layout.h"
 #include "support/rrc_test_context.h"
 
 #include <rrc/rrc_vulkan.h>
@@ -77,8 +77,8 @@ TEST(AbiLayout, OnlyTheTwoVulkanStructsGrew) {
         size_t now = 0;
         for (const rrc_abi_entry* f = kLayout02; f->struct_name; ++f)
             if (!f->member && std::strcmp(f->struct_name, e->struct_name) == 0) now = f->offset;
-        const bool grows = std::strcmp(e->struct_name, "rrc_vulkan_channel_images") == 0 ||
-                           std::strcmp(e->struct_name, "rrc_vulkan_frame_desc") == 0;
+        const bool grows =
+            std::strcmp(e->struct_name, "rrc_vulkan_channel_images") == 0 || std::strcmp(e->struct_name, "rrc_vulkan_frame_desc") == 0;
         if (grows)
             EXPECT_LT(e->offset, now) << e->struct_name << ": 0.2 appends members";
         else
@@ -218,13 +218,17 @@ Outcome run_frame(rrc_context* ctx, int t, const Hooks& h = Hooks()) {
     p.output.channels = outputs.as<rrc_channel_output>();
     Blob frame = h.frame ? h.frame(p.frame) : pack(p.frame, Shape());
     Blob output = h.output ? h.output(p.output) : pack(p.output, Shape());
-    // rrc_frame_output.stats as sentinel (inside every size a caller may pass)
-    std::memset(output.data() + offsetof(rrc_frame_output, stats), 0xEE, sizeof(rrc_frame_stats));
+    // rrc_frame_output.stats as sentinel, as far as the caller's buffer holds
+    // it (a case may pass an exactly-sized buffer smaller than the struct).
+    const size_t stats_at = offsetof(rrc_frame_output, stats);
+    const size_t stats_bytes = output.size() > stats_at ? std::min(sizeof(rrc_frame_stats), output.size() - stats_at) : 0;
+    std::memset(output.data() + stats_at, 0xEE, stats_bytes);
     output.snapshot();
     o.code = rrc_frame_run(ctx, frame.as<rrc_frame_desc>(), output.as<rrc_frame_output>());
     o.message = rrc_last_error();
-    std::memcpy(&o.result.stats, output.data() + offsetof(rrc_frame_output, stats), sizeof o.result.stats);
-    if (o.code != RRC_SUCCESS && output.untouched(offsetof(rrc_frame_output, stats), offsetof(rrc_frame_output, stats) + sizeof(rrc_frame_stats)))
+    std::memset(&o.result.stats, 0xEE, sizeof o.result.stats);
+    std::memcpy(&o.result.stats, output.data() + stats_at, stats_bytes);
+    if (o.code != RRC_SUCCESS && output.untouched(stats_at, stats_at + stats_bytes))
         o.result.stats = rrc_frame_stats{};  // untouched sentinel: report as the default Result's
     o.guards_untouched = beyond_known_untouched<rrc_frame_output>(output, 1) && beyond_known_untouched<rrc_channel_output>(outputs, 2);
     return o;
@@ -247,13 +251,13 @@ const std::vector<Result>& reference() {
 }
 
 // A refused call: code, field named, outputs and guards untouched.
-#define EXPECT_REFUSED(outcome, want_code, field)                                                             \
-    do {                                                                                                      \
-        const Outcome& o_ = (outcome);                                                                        \
-        EXPECT_EQ(o_.code, want_code) << rrc_result_to_string(o_.code) << ": " << o_.message;                 \
+#define EXPECT_REFUSED(outcome, want_code, field)                                                                      \
+    do {                                                                                                               \
+        const Outcome& o_ = (outcome);                                                                                 \
+        EXPECT_EQ(o_.code, want_code) << rrc_result_to_string(o_.code) << ": " << o_.message;                          \
         EXPECT_NE(o_.message.find(field), std::string::npos) << "message must name " << (field) << ": " << o_.message; \
-        EXPECT_TRUE(o_.result.untouched()) << "a refused call wrote outputs";                                 \
-        EXPECT_TRUE(o_.guards_untouched);                                                                     \
+        EXPECT_TRUE(o_.result.untouched()) << "a refused call wrote outputs";                                          \
+        EXPECT_TRUE(o_.guards_untouched);                                                                              \
     } while (0)
 
 // Rule 4 on one `next` member: set(next) puts a chain there, call() runs.
@@ -415,12 +419,11 @@ TEST_P(FrameLevelStruct, RulesOneToFour) {
     }
     {
         SCOPED_TRACE("size 0 (arrays) or 1");
-        EXPECT_REFUSED(run_frame(ctx.get(), t,
-                                 fs.array ? fs.hooks(shape(full), {0, 0}, -1) : fs.hooks(shape(1, 24), {}, -1)),
+        EXPECT_REFUSED(run_frame(ctx.get(), t, fs.array ? fs.hooks(shape(full), {0, 0}, -1) : fs.hooks(shape(1, 24), {}, -1)),
                        RRC_ERROR_INVALID_STRUCT, elem + ".size");
     }
     // A non-zero byte in the extension tail: a newer header's member this library does not know.
-    const long first_tail = fs.array ? (long)big + full : (long)full;      // element 1's first tail byte
+    const long first_tail = fs.array ? (long)big + full : (long)full;       // element 1's first tail byte
     const long last_tail = fs.array ? (long)big + big - 1 : (long)big - 1;  // element 1's last tail byte
     for (long nz : {first_tail, last_tail}) {
         SCOPED_TRACE("non-zero tail byte " + std::to_string(nz));
@@ -835,7 +838,8 @@ TEST_P(VulkanFrameLevelStruct, RulesOneToFour) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Abi, VulkanFrameLevelStruct,
-                         ::testing::Values(VkStruct{"vulkan_frame_desc", "rrc_vulkan_frame_desc", "frame", sizeof(rrc_vulkan_frame_desc), false},
+                         ::testing::Values(VkStruct{"vulkan_frame_desc", "rrc_vulkan_frame_desc", "frame", sizeof(rrc_vulkan_frame_desc),
+                                                    false},
                                            VkStruct{"vulkan_channel_images", "rrc_vulkan_channel_images", "frame.channels",
                                                     sizeof(rrc_vulkan_channel_images), true}),
                          [](const ::testing::TestParamInfo<VkStruct>& i) { return std::string(i.param.name); });
