@@ -186,3 +186,126 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
 }
 
 }  // namespace
+
+// N frames recorded into one command buffer before one wait: each frame
+// names its own output, age images and statistics offset, and after the one
+// fence every frame's results read back one by one equal the standalone
+// path's frame by frame (values, mask, age, every counter).
+TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
+    const int N = 4;
+    rrc_scene::SceneConfig sc;
+    sc.width = W;
+    sc.height = H;
+    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    sc.jitter = true;
+    rrc_scene::Scene scene(sc);
+    std::vector<rrc_channel_desc> channels = test_channels();
+    std::vector<SceneFrameInputs> inputs(N);
+    std::vector<FrameResult> expected;
+    {
+        Context ctx(test_desc(channels));
+        ASSERT_TRUE(ctx);
+        for (int t = 0; t < N; ++t) {
+            inputs[t].frame = scene.render(t);
+            make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+            expected.push_back(ctx.run(inputs[t].desc));
+        }
+    }
+
+    VulkanHost host;
+    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, N);  // N frames pending at once
+    rrc_context_desc cd = test_desc(channels);
+    rrc_context* ctx = nullptr;
+    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+
+    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
+    const VkDeviceSize stride = 256;  // a multiple of every device's minStorageBufferOffsetAlignment
+    rrc_host::Buffer stats = host.create_buffer(stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    std::memset(stats.mapped, 0xAB, stride * N);
+    struct PerFrame {
+        HostImage depth, clip, s1, s4, conf, out1, out4, mask, age1, age4;
+    };
+    std::vector<PerFrame> fr(N);
+    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    for (int t = 0; t < N; ++t) {
+        PerFrame& p = fr[t];
+        p.depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        p.clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+        p.s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+        p.s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+        p.conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+        p.out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
+        p.out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
+        p.mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
+        p.age1 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
+        p.age4 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
+        host.upload(p.depth, inputs[t].frame.depth.data(), W * H * 4, ro);
+        host.upload(p.clip, inputs[t].reprojection.data(), W * H * 16, ro);
+        host.upload(p.s1, inputs[t].frame.signal1.data(), W * H * 4, ro);
+        host.upload(p.s4, inputs[t].frame.signal4.data(), W * H * 16, ro);
+        host.upload(p.conf, inputs[t].confidence[1].data(), W * H * 4, ro);
+        for (HostImage* img : {&p.out1, &p.out4, &p.mask, &p.age1, &p.age4})
+            host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, gen);
+    }
+
+    VkCommandBuffer cmd = host.begin();
+    for (int t = 0; t < N; ++t) {
+        PerFrame& p = fr[t];
+        rrc_vulkan_channel_images ch[2];
+        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+        ch[0].samples = view_of(p.s1, ro);
+        ch[0].output = view_of(p.out1, gen);
+        ch[0].age = view_of(p.age1, gen);
+        ch[1].samples = view_of(p.s4, ro);
+        ch[1].confidence = view_of(p.conf, ro);
+        ch[1].output = view_of(p.out4, gen);
+        ch[1].age = view_of(p.age4, gen);
+        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+        f.frame_index = t;
+        f.depth = view_of(p.depth, ro);
+        f.reprojection = view_of(p.clip, ro);
+        f.mask = view_of(p.mask, gen);
+        std::memcpy(f.jitter, inputs[t].desc.jitter, sizeof f.jitter);
+        std::memcpy(f.prev_jitter, inputs[t].desc.prev_jitter, sizeof f.prev_jitter);
+        f.channel_count = 2;
+        f.channels = ch;
+        f.stats_buffer = stats.buffer;
+        f.stats_offset = stride * t;
+        f.command_buffer = cmd;
+        ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+    }
+    host.submit_and_wait(cmd);  // the one wait
+
+    for (int t = 0; t < N; ++t) {
+        PerFrame& p = fr[t];
+        rrc_vulkan_frame_stats s;
+        std::memcpy(&s, static_cast<const unsigned char*>(stats.mapped) + stride * t, sizeof s);
+        const rrc_frame_stats& e = expected[t].stats;
+        EXPECT_EQ(s.hits, e.hits) << "frame " << t;
+        EXPECT_EQ(s.misses, e.misses) << "frame " << t;
+        EXPECT_EQ(s.background, e.background) << "frame " << t;
+        EXPECT_EQ(s.invalid_samples, e.invalid_samples) << "frame " << t;
+        EXPECT_EQ(s.invalid_geometry, e.invalid_geometry) << "frame " << t;
+        EXPECT_EQ(s.refreshed, 0u) << "frame " << t;
+        EXPECT_EQ(s.pixels, (uint32_t)(W * H)) << "frame " << t;
+        EXPECT_EQ(s.reserved, 0u) << "frame " << t;
+        if (t > 0) EXPECT_GT(s.hits, (uint32_t)(W * H / 3)) << "the comparison must cover hits";
+        EXPECT_EQ(as_floats(host.download(p.out1, gen)), expected[t].values[0]) << "frame " << t;
+        EXPECT_EQ(as_floats(host.download(p.out4, gen)), expected[t].values[1]) << "frame " << t;
+        std::vector<unsigned char> m = host.download(p.mask, gen);
+        EXPECT_EQ(std::vector<uint8_t>(m.begin(), m.end()), expected[t].mask) << "frame " << t;
+        for (int c = 0; c < 2; ++c) {
+            std::vector<unsigned char> a = host.download(c == 0 ? p.age1 : p.age4, gen);
+            std::vector<uint16_t> age(a.size() / 2);
+            std::memcpy(age.data(), a.data(), a.size());
+            EXPECT_EQ(age, expected[t].age[c]) << "frame " << t << " channel " << c;
+        }
+    }
+    rrc_context_destroy(ctx);
+    for (PerFrame& p : fr)
+        for (HostImage* img : {&p.depth, &p.clip, &p.s1, &p.s4, &p.conf, &p.out1, &p.out4, &p.mask, &p.age1, &p.age4}) host.destroy(*img);
+    static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
+}

@@ -9,6 +9,7 @@ uint32_t bytes_of(VkFormat f) {
     switch (f) {
         case VK_FORMAT_R8_UINT: return 1;
         case VK_FORMAT_R16_SFLOAT:
+        case VK_FORMAT_R16_UINT:
         case VK_FORMAT_D16_UNORM: return 2;
         case VK_FORMAT_R32_SFLOAT:
         case VK_FORMAT_D32_SFLOAT: return 4;
