@@ -9,29 +9,8 @@
 namespace rrc {
 namespace {
 
-// Specialization constant ids: compute/rrc_kernel_interface.h.
-enum : uint32_t {
-    kSource = RRC_SPEC_SOURCE,
-    kDepthMode = RRC_SPEC_DEPTH_MODE,
-    kEpsKind = RRC_SPEC_EPS_KIND,
-    kHasNocache = RRC_SPEC_HAS_NOCACHE,
-    kChannelCount = RRC_SPEC_CHANNEL_COUNT,
-    kInterop = RRC_SPEC_INTEROP,
-    kStats = RRC_SPEC_STATS,
-    kHostAgeMask = RRC_SPEC_HOST_AGE_MASK,
-    kGroupXId = RRC_SPEC_GROUP_SIZE_X,
-    kGroupYId = RRC_SPEC_GROUP_SIZE_Y
-};
-// Per-channel property k of slot c has id RRC_SPEC_CHANNEL(k, c) = 16 + 4*k + c.
-enum : uint32_t {
-    kComponents = RRC_CHANNEL_PROPERTY_COMPONENTS,
-    kFp16 = RRC_CHANNEL_PROPERTY_FP16,
-    kBlend = RRC_CHANNEL_PROPERTY_BLEND,
-    kFilter = RRC_CHANNEL_PROPERTY_FILTER,
-    kConfidenceOn = RRC_CHANNEL_PROPERTY_CONFIDENCE,
-    kLambda = RRC_CHANNEL_PROPERTY_LAMBDA,
-    kAgeCap = RRC_CHANNEL_PROPERTY_AGE_CAP
-};
+// Specialization constant ids and channel properties: RRC_SPEC_* and
+// RRC_CHANNEL_PROPERTY_* of compute/rrc_kernel_interface.h.
 uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC_CHANNEL(property, slot); }
 // The per-channel ids fill the slots of the kernel (CH0_..CH3_) and stay
 // clear of the whole-dispatch ones.
@@ -69,7 +48,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         const VkSampler immutable[RRC_MAX_CHANNELS] = {sampler_, sampler_, sampler_, sampler_};
         std::vector<VkDescriptorSetLayoutBinding> bindings;
         for (uint32_t b = 0; b < kBindingCount; ++b) {
-            if (b > kDepthOut && b < kFirstChannelBinding) continue;
+            if (b > RRC_BINDING_DEPTH_OUT && b < kFirstChannelBinding) continue;
             bool sampled = is_sampled_binding(b);
             bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, binding_count(b),
                                 VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
@@ -121,25 +100,25 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
 
     SpecBuilder spec;
-    spec.add(kSource, c.reprojection);
-    spec.add(kDepthMode, c.depth_mode);
-    spec.add(kEpsKind, (uint32_t)c.epsilon_kind);
-    spec.add(kHasNocache, c.use_nocache ? 1u : 0u);
-    spec.add(kChannelCount, (uint32_t)c.channels.size());
-    spec.add(kInterop, interop_ ? 1u : 0u);
-    spec.add(kStats, variant.stats ? 1u : 0u);
-    spec.add(kHostAgeMask, variant.host_age_mask);
-    spec.add(kGroupXId, kGroupX);
-    spec.add(kGroupYId, kGroupY);
+    spec.add(RRC_SPEC_SOURCE, c.reprojection);
+    spec.add(RRC_SPEC_DEPTH_MODE, c.depth_mode);
+    spec.add(RRC_SPEC_EPS_KIND, (uint32_t)c.epsilon_kind);
+    spec.add(RRC_SPEC_HAS_NOCACHE, c.use_nocache ? 1u : 0u);
+    spec.add(RRC_SPEC_CHANNEL_COUNT, (uint32_t)c.channels.size());
+    spec.add(RRC_SPEC_INTEROP, interop_ ? 1u : 0u);
+    spec.add(RRC_SPEC_STATS, variant.stats ? 1u : 0u);
+    spec.add(RRC_SPEC_HOST_AGE_MASK, variant.host_age_mask);
+    spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
+    spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
     for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
         const ChannelConfig& ch = c.channels[slot];
-        spec.add(channel_constant_id(kComponents, slot), ch.components);
-        spec.add(channel_constant_id(kFp16, slot), ch.fp16 ? 1u : 0u);
-        spec.add(channel_constant_id(kBlend, slot), ch.blend);
-        spec.add(channel_constant_id(kFilter, slot), ch.filter);
-        spec.add(channel_constant_id(kConfidenceOn, slot), ch.confidence ? 1u : 0u);
-        spec.add_float(channel_constant_id(kLambda, slot), ch.lambda);
-        spec.add(channel_constant_id(kAgeCap, slot), ch.age_cap);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_COMPONENTS, slot), ch.components);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_FP16, slot), ch.fp16 ? 1u : 0u);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_BLEND, slot), ch.blend);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_FILTER, slot), ch.filter);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_CONFIDENCE, slot), ch.confidence ? 1u : 0u);
+        spec.add_float(channel_constant_id(RRC_CHANNEL_PROPERTY_LAMBDA, slot), ch.lambda);
+        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_AGE_CAP, slot), ch.age_cap);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -187,7 +166,7 @@ void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v
     VkDescriptorImageInfo infos[kBindingCount][RRC_MAX_CHANNELS];
     std::vector<VkWriteDescriptorSet> writes;
     for (uint32_t b = 0; b < kBindingCount; ++b) {
-        if (b > kDepthOut && b < kFirstChannelBinding) continue;
+        if (b > RRC_BINDING_DEPTH_OUT && b < kFirstChannelBinding) continue;
         for (uint32_t s = 0; s < binding_count(b); ++s) {
             if (!v.view[b][s]) fail(RRC_ERROR_UNSUPPORTED, "internal: binding %u slot %u has no view", b, s);
             VkImageLayout layout = v.layout[b][s] ? v.layout[b][s] : VK_IMAGE_LAYOUT_GENERAL;

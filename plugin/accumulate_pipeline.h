@@ -14,41 +14,14 @@
 
 namespace rrc {
 
-// The numbers are RRC_BINDING_* of compute/rrc_kernel_interface.h.
-enum Binding : uint32_t {
-    kDepth = RRC_BINDING_DEPTH,
-    kPrevDepth = RRC_BINDING_PREV_DEPTH,
-    kReproj = RRC_BINDING_REPROJ,
-    kMotion = RRC_BINDING_MOTION,
-    kNocache = RRC_BINDING_NOCACHE,
-    kMask = RRC_BINDING_MASK,
-    kHostDepth = RRC_BINDING_HOST_DEPTH,
-    kHostReproj = RRC_BINDING_HOST_REPROJ,
-    kHostNocache = RRC_BINDING_HOST_NOCACHE,
-    kDepthOut = RRC_BINDING_DEPTH_OUT,  // interop
-    // per channel, arrays of RRC_MAX_CHANNELS
-    kSample1 = RRC_BINDING_SAMPLE1,
-    kSample4 = RRC_BINDING_SAMPLE4,
-    kConfidence = RRC_BINDING_CONFIDENCE,
-    kHistR16f = RRC_BINDING_HIST_R16F,
-    kHistRgba16f = RRC_BINDING_HIST_RGBA16F,
-    kHistR32f = RRC_BINDING_HIST_R32F,
-    kHistRgba32f = RRC_BINDING_HIST_RGBA32F,
-    kAge = RRC_BINDING_AGE,
-    kWeight = RRC_BINDING_WEIGHT,
-    kHistOut = RRC_BINDING_HIST_OUT,
-    kAgeOut = RRC_BINDING_AGE_OUT,
-    kWeightOut = RRC_BINDING_WEIGHT_OUT,
-    kHostSamples = RRC_BINDING_HOST_SAMPLES,
-    kHostConfidence = RRC_BINDING_HOST_CONFIDENCE,
-    kHostOut = RRC_BINDING_HOST_OUT,         // interop
-    kHostAgeOut = RRC_BINDING_HOST_AGE_OUT,  // interop, optional
-};
+// A descriptor binding: one of RRC_BINDING_* (compute/rrc_kernel_interface.h).
+using Binding = uint32_t;
 constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBinding = RRC_BINDING_LAST, kBindingCount = kLastBinding + 1;
 
 // Sampled (combined image sampler) bindings; all others are storage images.
 inline bool is_sampled_binding(uint32_t b) {
-    return b == kHostDepth || b == kHostReproj || b == kHostNocache || b == kHostSamples || b == kHostConfidence;
+    return b == RRC_BINDING_HOST_DEPTH || b == RRC_BINDING_HOST_REPROJ || b == RRC_BINDING_HOST_NOCACHE || b == RRC_BINDING_HOST_SAMPLES ||
+           b == RRC_BINDING_HOST_CONFIDENCE;
 }
 inline uint32_t binding_count(uint32_t b) { return b >= kFirstChannelBinding ? RRC_MAX_CHANNELS : 1; }
 

@@ -31,8 +31,8 @@ AccumulatorCore::~AccumulatorCore() {
 
 DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p) const {
     DescriptorViews v = placeholders_->views();
-    v.view[kPrevDepth][0] = view.depth[1 - p].view;
-    v.view[kMask][0] = mask_.view;
+    v.view[RRC_BINDING_PREV_DEPTH][0] = view.depth[1 - p].view;
+    v.view[RRC_BINDING_MASK][0] = mask_.view;
     v.stats = stats_placeholder_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
     return v;

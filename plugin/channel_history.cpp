@@ -29,16 +29,16 @@ size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].b
 void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint32_t p) {
     const uint32_t prev = 1 - p;
     const VkFormat f = h.history[prev].format;
-    Binding read = f == VK_FORMAT_R16_SFLOAT            ? kHistR16f
-                   : f == VK_FORMAT_R16G16B16A16_SFLOAT ? kHistRgba16f
-                   : f == VK_FORMAT_R32_SFLOAT          ? kHistR32f
-                                                        : kHistRgba32f;
+    Binding read = f == VK_FORMAT_R16_SFLOAT            ? RRC_BINDING_HIST_R16F
+                   : f == VK_FORMAT_R16G16B16A16_SFLOAT ? RRC_BINDING_HIST_RGBA16F
+                   : f == VK_FORMAT_R32_SFLOAT          ? RRC_BINDING_HIST_R32F
+                                                        : RRC_BINDING_HIST_RGBA32F;
     v.view[read][s] = h.history[prev].view;
-    v.view[kAge][s] = h.age[prev].view;
-    if (h.weight[prev].view) v.view[kWeight][s] = h.weight[prev].view;
-    v.view[kHistOut][s] = h.history[p].view;
-    v.view[kAgeOut][s] = h.age[p].view;
-    if (h.weight[p].view) v.view[kWeightOut][s] = h.weight[p].view;
+    v.view[RRC_BINDING_AGE][s] = h.age[prev].view;
+    if (h.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = h.weight[prev].view;
+    v.view[RRC_BINDING_HIST_OUT][s] = h.history[p].view;
+    v.view[RRC_BINDING_AGE_OUT][s] = h.age[p].view;
+    if (h.weight[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.weight[p].view;
 }
 
 Placeholders::Placeholders(VulkanDevice& dev) {
@@ -59,23 +59,24 @@ VkImageView Placeholders::read(VkFormat f) const {
 DescriptorViews Placeholders::views() const {
     DescriptorViews v;
     const VkImageView wf = write_[0].view, wu = write_[1].view;
-    v.view[kDepth][0] = v.view[kPrevDepth][0] = read(VK_FORMAT_R32_SFLOAT);
-    v.view[kReproj][0] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
-    v.view[kMotion][0] = read(VK_FORMAT_R32G32_SFLOAT);
-    v.view[kNocache][0] = read(VK_FORMAT_R8_UINT);
-    // kMask is left empty: every context binds a mask image of its own.
-    v.view[kHostDepth][0] = v.view[kHostReproj][0] = read(VK_FORMAT_R32_SFLOAT);
-    v.view[kHostNocache][0] = read(VK_FORMAT_R8_UINT);
-    v.view[kDepthOut][0] = wf;
+    v.view[RRC_BINDING_DEPTH][0] = v.view[RRC_BINDING_PREV_DEPTH][0] = read(VK_FORMAT_R32_SFLOAT);
+    v.view[RRC_BINDING_REPROJ][0] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
+    v.view[RRC_BINDING_MOTION][0] = read(VK_FORMAT_R32G32_SFLOAT);
+    v.view[RRC_BINDING_NOCACHE][0] = read(VK_FORMAT_R8_UINT);
+    // RRC_BINDING_MASK is left empty: every context binds a mask image of its own.
+    v.view[RRC_BINDING_HOST_DEPTH][0] = v.view[RRC_BINDING_HOST_REPROJ][0] = read(VK_FORMAT_R32_SFLOAT);
+    v.view[RRC_BINDING_HOST_NOCACHE][0] = read(VK_FORMAT_R8_UINT);
+    v.view[RRC_BINDING_DEPTH_OUT][0] = wf;
     for (uint32_t s = 0; s < RRC_MAX_CHANNELS; ++s) {
-        v.view[kSample1][s] = v.view[kConfidence][s] = v.view[kHistR32f][s] = v.view[kWeight][s] = read(VK_FORMAT_R32_SFLOAT);
-        v.view[kSample4][s] = v.view[kHistRgba32f][s] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
-        v.view[kHistR16f][s] = read(VK_FORMAT_R16_SFLOAT);
-        v.view[kHistRgba16f][s] = read(VK_FORMAT_R16G16B16A16_SFLOAT);
-        v.view[kAge][s] = read(VK_FORMAT_R16_UINT);
-        v.view[kHistOut][s] = v.view[kWeightOut][s] = v.view[kHostOut][s] = wf;
-        v.view[kAgeOut][s] = v.view[kHostAgeOut][s] = wu;
-        v.view[kHostSamples][s] = v.view[kHostConfidence][s] = read(VK_FORMAT_R32_SFLOAT);
+        v.view[RRC_BINDING_SAMPLE1][s] = v.view[RRC_BINDING_CONFIDENCE][s] = v.view[RRC_BINDING_HIST_R32F][s] =
+            v.view[RRC_BINDING_WEIGHT][s] = read(VK_FORMAT_R32_SFLOAT);
+        v.view[RRC_BINDING_SAMPLE4][s] = v.view[RRC_BINDING_HIST_RGBA32F][s] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
+        v.view[RRC_BINDING_HIST_R16F][s] = read(VK_FORMAT_R16_SFLOAT);
+        v.view[RRC_BINDING_HIST_RGBA16F][s] = read(VK_FORMAT_R16G16B16A16_SFLOAT);
+        v.view[RRC_BINDING_AGE][s] = read(VK_FORMAT_R16_UINT);
+        v.view[RRC_BINDING_HIST_OUT][s] = v.view[RRC_BINDING_WEIGHT_OUT][s] = v.view[RRC_BINDING_HOST_OUT][s] = wf;
+        v.view[RRC_BINDING_AGE_OUT][s] = v.view[RRC_BINDING_HOST_AGE_OUT][s] = wu;
+        v.view[RRC_BINDING_HOST_SAMPLES][s] = v.view[RRC_BINDING_HOST_CONFIDENCE][s] = read(VK_FORMAT_R32_SFLOAT);
     }
     return v;
 }

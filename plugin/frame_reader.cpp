@@ -7,9 +7,13 @@
 namespace rrc {
 namespace {
 
-// Fields both descriptors share, by name.
+// The descriptor by the struct rules, and the fields both descriptors
+// share, by name.
 template <typename D>
-void read_common(Frame& f, const D& d) {
+Frame read_common(const D* caller, FramePath path, D& d) {
+    d = read_struct<D>(caller, "frame");
+    Frame f;
+    f.path = path;
     f.frame_index = d.frame_index;
     f.reset = d.reset != 0;
     std::memcpy(f.view_proj, d.view_proj, sizeof f.view_proj);
@@ -18,6 +22,7 @@ void read_common(Frame& f, const D& d) {
     std::memcpy(f.prev_jitter, d.prev_jitter, sizeof f.prev_jitter);
     f.channel_count = d.channel_count;
     f.channels_given = d.channels != nullptr;
+    return f;
 }
 
 // The channel array is read only when its count is the context's (else
@@ -26,31 +31,32 @@ bool channels_readable(const Frame& f, size_t context_channels) {
     return f.channels_given && f.channel_count == context_channels && f.channel_count <= RRC_MAX_CHANNELS;
 }
 
+// The channel array, element by element through `assign(FrameChannel&, const C&)`.
+template <typename C, typename D, typename Assign>
+void read_channels(Frame& f, const D& d, size_t context_channels, Assign assign) {
+    if (!channels_readable(f, context_channels)) return;
+    const std::vector<C> channels = read_array<C>(d.channels, d.channel_count, "frame.channels");
+    for (uint32_t i = 0; i < d.channel_count; ++i) assign(f.channels[i], channels[i]);
+}
+
 }  // namespace
 
 Frame read_frame(const rrc_frame_desc* caller, size_t context_channels) {
-    const rrc_frame_desc d = read_struct<rrc_frame_desc>(caller, "frame");
-    Frame f;
-    f.path = FramePath::Standalone;
-    read_common(f, d);
+    rrc_frame_desc d;
+    Frame f = read_common(caller, FramePath::Standalone, d);
     f.depth = d.depth;
     f.reprojection = d.reprojection;
     f.nocache = d.nocache;
-    if (channels_readable(f, context_channels)) {
-        const auto channels = read_array<rrc_channel_input>(d.channels, d.channel_count, "frame.channels");
-        for (uint32_t i = 0; i < d.channel_count; ++i) {
-            f.channels[i].samples = channels[i].samples;
-            f.channels[i].confidence = channels[i].confidence;
-        }
-    }
+    read_channels<rrc_channel_input>(f, d, context_channels, [](FrameChannel& to, const rrc_channel_input& from) {
+        to.samples = from.samples;
+        to.confidence = from.confidence;
+    });
     return f;
 }
 
 Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
-    const rrc_vulkan_frame_desc d = read_struct<rrc_vulkan_frame_desc>(caller, "frame");
-    Frame f;
-    f.path = FramePath::Vulkan;
-    read_common(f, d);
+    rrc_vulkan_frame_desc d;
+    Frame f = read_common(caller, FramePath::Vulkan, d);
     f.command_buffer = d.command_buffer;
     f.depth_image = d.depth;
     f.reprojection_image = d.reprojection;
@@ -58,15 +64,12 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
     f.mask_image = d.mask;
     f.stats_buffer = d.stats_buffer;
     f.stats_offset = d.stats_offset;
-    if (channels_readable(f, context_channels)) {
-        const auto channels = read_array<rrc_vulkan_channel_images>(d.channels, d.channel_count, "frame.channels");
-        for (uint32_t i = 0; i < d.channel_count; ++i) {
-            f.channels[i].samples_image = channels[i].samples;
-            f.channels[i].confidence_image = channels[i].confidence;
-            f.channels[i].output_image = channels[i].output;
-            f.channels[i].age_image = channels[i].age;
-        }
-    }
+    read_channels<rrc_vulkan_channel_images>(f, d, context_channels, [](FrameChannel& to, const rrc_vulkan_channel_images& from) {
+        to.samples_image = from.samples;
+        to.confidence_image = from.confidence;
+        to.output_image = from.output;
+        to.age_image = from.age;
+    });
     return f;
 }
 

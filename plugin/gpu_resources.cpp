@@ -13,6 +13,16 @@ uint32_t find_memory(const VulkanDevice& dev, uint32_t type_bits, VkMemoryProper
     fail(RRC_ERROR_OUT_OF_MEMORY, "no Vulkan memory type with properties 0x%x", (unsigned)want);
 }
 
+// One allocation of the given properties for an image's or a buffer's requirements.
+VkDeviceMemory allocate(const VulkanDevice& dev, const VkMemoryRequirements& req, VkMemoryPropertyFlags want, const char* what) {
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = find_memory(dev, req.memoryTypeBits, want);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, dev.allocator, &memory), what);
+    return memory;
+}
+
 }  // namespace
 
 uint32_t texel_bytes(VkFormat format) {
@@ -53,10 +63,7 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
         VulkanDevice::check(dev.vk.vkCreateImage(dev.device, &ci, dev.allocator, &image), "vkCreateImage");
         VkMemoryRequirements req;
         dev.vk.vkGetImageMemoryRequirements(dev.device, image, &req);
-        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        ai.allocationSize = req.size;
-        ai.memoryTypeIndex = find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, dev.allocator, &memory_), "vkAllocateMemory (image)");
+        memory_ = allocate(dev, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "vkAllocateMemory (image)");
         VulkanDevice::check(dev.vk.vkBindImageMemory(dev.device, image, memory_, 0), "vkBindImageMemory");
         VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         vi.image = image;
@@ -70,18 +77,12 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     }
 }
 
+// Takes o's handles (o keeps ours, released with it) and its description.
 GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
-    if (this != &o) {
-        reset();
-        std::swap(image, o.image);
-        std::swap(view, o.view);
-        std::swap(memory_, o.memory_);
-        std::swap(dev_, o.dev_);
-        format = o.format;
-        width = o.width;
-        height = o.height;
-        texel_bytes = o.texel_bytes;
-    }
+    if (this == &o) return *this;
+    reset();
+    std::swap(image, o.image), std::swap(view, o.view), std::swap(memory_, o.memory_), std::swap(dev_, o.dev_);
+    format = o.format, width = o.width, height = o.height, texel_bytes = o.texel_bytes;
     return *this;
 }
 
@@ -90,9 +91,7 @@ void GpuImage::reset() {
     if (view) dev_->vk.vkDestroyImageView(dev_->device, view, dev_->allocator);
     if (image) dev_->vk.vkDestroyImage(dev_->device, image, dev_->allocator);
     if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, dev_->allocator);
-    view = VK_NULL_HANDLE;
-    image = VK_NULL_HANDLE;
-    memory_ = VK_NULL_HANDLE;
+    view = VK_NULL_HANDLE, image = VK_NULL_HANDLE, memory_ = VK_NULL_HANDLE;
 }
 
 HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage) : size(bytes), dev_(&dev) {
@@ -103,11 +102,8 @@ HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage
         VulkanDevice::check(dev.vk.vkCreateBuffer(dev.device, &ci, dev.allocator, &buffer), "vkCreateBuffer");
         VkMemoryRequirements req;
         dev.vk.vkGetBufferMemoryRequirements(dev.device, buffer, &req);
-        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        ai.allocationSize = req.size;
-        ai.memoryTypeIndex =
-            find_memory(dev, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-        VulkanDevice::check(dev.vk.vkAllocateMemory(dev.device, &ai, dev.allocator, &memory_), "vkAllocateMemory (staging)");
+        memory_ =
+            allocate(dev, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, "vkAllocateMemory (staging)");
         VulkanDevice::check(dev.vk.vkBindBufferMemory(dev.device, buffer, memory_, 0), "vkBindBufferMemory");
         void* p = nullptr;
         VulkanDevice::check(dev.vk.vkMapMemory(dev.device, memory_, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
@@ -119,14 +115,10 @@ HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage
 }
 
 HostBuffer& HostBuffer::operator=(HostBuffer&& o) noexcept {
-    if (this != &o) {
-        reset();
-        std::swap(buffer, o.buffer);
-        std::swap(memory_, o.memory_);
-        std::swap(dev_, o.dev_);
-        std::swap(data, o.data);
-        size = o.size;
-    }
+    if (this == &o) return *this;
+    reset();
+    std::swap(buffer, o.buffer), std::swap(memory_, o.memory_), std::swap(dev_, o.dev_), std::swap(data, o.data);
+    size = o.size;
     return *this;
 }
 

@@ -128,16 +128,16 @@ void InteropContext::record_frame(const Frame& f) {
         v.layout[in.host_binding][in.slot] = kReadLayout;
         hb.add(img, false);
     }
-    v.view[kDepthOut][0] = view.depth[p].view;
+    v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
     if (f.mask_image.image) {
-        v.view[kMask][0] = f.mask_image.view;
+        v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
         hb.add(f.mask_image, true);
     }
     for (uint32_t s = 0; s < f.channel_count; ++s) {
-        v.view[kHostOut][s] = f.channels[s].output_image.view;
+        v.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
         hb.add(f.channels[s].output_image, true);
         if (f.channels[s].age_image.image) {
-            v.view[kHostAgeOut][s] = f.channels[s].age_image.view;
+            v.view[RRC_BINDING_HOST_AGE_OUT][s] = f.channels[s].age_image.view;
             hb.add(f.channels[s].age_image, true);
         }
     }

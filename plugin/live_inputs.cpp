@@ -4,25 +4,26 @@ namespace rrc {
 
 std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     std::vector<LiveInput> in;
-    in.push_back({InputRole::Depth, 0, kDepth, kHostDepth, VK_FORMAT_R32_SFLOAT, 1, 4});
+    in.push_back({InputRole::Depth, 0, RRC_BINDING_DEPTH, RRC_BINDING_HOST_DEPTH, VK_FORMAT_R32_SFLOAT, 1, 4});
     switch (c.reprojection) {
         case RRC_REPROJECTION_PREV_CLIP:
-            in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4});
+            in.push_back({InputRole::Reprojection, 0, RRC_BINDING_REPROJ, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4});
             break;
         case RRC_REPROJECTION_MOTION:
-            in.push_back({InputRole::Reprojection, 0, kMotion, kHostReproj, VK_FORMAT_R32G32_SFLOAT, 2, 4});
+            in.push_back({InputRole::Reprojection, 0, RRC_BINDING_MOTION, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32_SFLOAT, 2, 4});
             break;
         case RRC_REPROJECTION_MOTION_DEPTH:  // 3 floats a pixel, kept as RGBA (no RGB32F storage images)
-            in.push_back({InputRole::Reprojection, 0, kReproj, kHostReproj, VK_FORMAT_R32G32B32A32_SFLOAT, 3, 4});
+            in.push_back({InputRole::Reprojection, 0, RRC_BINDING_REPROJ, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32B32A32_SFLOAT, 3, 4});
             break;
         default: break;  // CAMERA: matrices only
     }
-    if (c.use_nocache) in.push_back({InputRole::Nocache, 0, kNocache, kHostNocache, VK_FORMAT_R8_UINT, 1, 1});
+    if (c.use_nocache) in.push_back({InputRole::Nocache, 0, RRC_BINDING_NOCACHE, RRC_BINDING_HOST_NOCACHE, VK_FORMAT_R8_UINT, 1, 1});
     for (uint32_t s = 0; s < c.channels.size(); ++s) {
         const bool one = c.channels[s].components == 1;
-        in.push_back({InputRole::Samples, s, one ? kSample1 : kSample4, kHostSamples,
+        in.push_back({InputRole::Samples, s, one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4, RRC_BINDING_HOST_SAMPLES,
                       one ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, c.channels[s].components, 4});
-        if (c.channels[s].confidence) in.push_back({InputRole::Confidence, s, kConfidence, kHostConfidence, VK_FORMAT_R32_SFLOAT, 1, 4});
+        if (c.channels[s].confidence)
+            in.push_back({InputRole::Confidence, s, RRC_BINDING_CONFIDENCE, RRC_BINDING_HOST_CONFIDENCE, VK_FORMAT_R32_SFLOAT, 1, 4});
     }
     return in;
 }
