@@ -69,8 +69,17 @@ uint32_t fuzz_small(FuzzedDataProvider& in, uint32_t max) {
     return in.ConsumeIntegralInRange<int>(0, 7) ? in.ConsumeIntegralInRange<uint32_t>(0, max) : in.ConsumeIntegral<uint32_t>();
 }
 
-const int kMarker = 0;  // a non-NULL pointer validation must never follow
-const void* fuzz_next(FuzzedDataProvider& in) { return in.ConsumeIntegralInRange<int>(0, 15) ? nullptr : &kMarker; }
+// `next` chains (rrc.h Versioning, rule 5): NULL mostly, else one of these
+// extension headers: an unknown tag, a base struct's tag, a two-node cycle.
+rrc_struct_header g_unknown{0x525243E7u, nullptr, sizeof(rrc_struct_header)};
+rrc_struct_header g_base{RRC_STRUCT_TYPE_FRAME_DESC, nullptr, sizeof(rrc_struct_header)};
+rrc_struct_header g_cycle_b{0x525243E1u, nullptr, sizeof(rrc_struct_header)};
+rrc_struct_header g_cycle_a{0x525243E0u, &g_cycle_b, sizeof(rrc_struct_header)};
+const void* fuzz_next(FuzzedDataProvider& in) {
+    g_cycle_b.next = &g_cycle_a;
+    const void* targets[] = {&g_unknown, &g_base, &g_cycle_a};
+    return in.ConsumeIntegralInRange<int>(0, 15) ? nullptr : targets[in.ConsumeIntegralInRange<int>(0, 2)];
+}
 
 void check_error(const rrc::Error& e) {
     const rrc_result known[] = {RRC_ERROR_INVALID_ARGUMENT, RRC_ERROR_INVALID_STRUCT, RRC_ERROR_INCOMPATIBLE_VERSION,
