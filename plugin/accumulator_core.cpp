@@ -6,10 +6,12 @@ namespace rrc {
 
 AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const ContextConfig& config, bool interop, uint32_t sets,
                                  VkPipelineCache cache)
-    : config_(config), dev_(std::move(device)), inputs_(live_inputs(config)) {
-    pipeline_.reset(new AccumulatePipeline(*dev_, config_, interop, sets, cache));
-    placeholders_.reset(new Placeholders(*dev_));
-    views_.resize(1);
+    : config_(config),
+      dev_(std::move(device)),
+      inputs_(live_inputs(config)),
+      pipeline_(*dev_, config_, interop, sets, cache),
+      placeholders_(*dev_),
+      views_(1) {
     for (ViewState& v : views_) {
         for (auto& img : v.depth) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config_.width, config_.height);
         for (const ChannelConfig& c : config_.channels)
@@ -19,18 +21,10 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     stats_placeholder_ = HostBuffer(*dev_, RRC_STAT_COUNT * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
-AccumulatorCore::~AccumulatorCore() {
-    // Every image and the pipeline go before the device wrapper.
-    views_.clear();
-    mask_ = GpuImage();
-    stats_placeholder_ = HostBuffer();
-    placeholders_.reset();
-    pipeline_.reset();
-    dev_.reset();
-}
+AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
 
 DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p) const {
-    DescriptorViews v = placeholders_->views();
+    DescriptorViews v = placeholders_.views();
     v.view[RRC_BINDING_PREV_DEPTH][0] = view.depth[1 - p].view;
     v.view[RRC_BINDING_MASK][0] = mask_.view;
     v.stats = stats_placeholder_.buffer;
@@ -44,7 +38,7 @@ void AccumulatorCore::collect_images(std::vector<GpuImage*>& out) {
         for (auto& c : v.channels) c->collect(out);
     }
     out.push_back(&mask_);
-    placeholders_->collect(out);
+    placeholders_.collect(out);
 }
 
 void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages,
@@ -58,7 +52,7 @@ void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStag
 
 void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid,
                                       const KernelVariant& variant) {
-    pipeline_->record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height, variant);
+    pipeline_.record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height, variant);
 }
 
 void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_frame_index) {

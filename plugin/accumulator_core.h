@@ -40,7 +40,7 @@ public:
     const ContextConfig& config() const { return config_; }
     VulkanDevice& device() { return *dev_; }
     const VulkanDevice& device() const { return *dev_; }
-    AccumulatePipeline& pipeline() { return *pipeline_; }
+    AccumulatePipeline& pipeline() { return pipeline_; }
     const std::vector<LiveInput>& inputs() const { return inputs_; }
     ViewState& view() { return views_[0]; }
     const ViewState& view() const { return views_[0]; }
@@ -62,11 +62,13 @@ public:
     size_t memory_bytes() const;
 
 private:
+    // Declaration order is destruction order reversed: every Vulkan object
+    // goes before the device wrapper that destroys the device.
     ContextConfig config_;
     std::unique_ptr<VulkanDevice> dev_;
-    std::unique_ptr<AccumulatePipeline> pipeline_;
-    std::unique_ptr<Placeholders> placeholders_;
     std::vector<LiveInput> inputs_;
+    AccumulatePipeline pipeline_;
+    Placeholders placeholders_;
     std::vector<ViewState> views_;
     GpuImage mask_;                 // standalone: always bound; interop: when the host gives no mask
     HostBuffer stats_placeholder_;  // bound when no frame statistics are asked for

@@ -77,13 +77,9 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     }
 }
 
-// Takes o's handles (o keeps ours, released with it) and its description.
-GpuImage& GpuImage::operator=(GpuImage&& o) noexcept {
-    if (this == &o) return *this;
-    reset();
+void GpuImage::take(GpuImage& o) noexcept {
     std::swap(image, o.image), std::swap(view, o.view), std::swap(memory_, o.memory_), std::swap(dev_, o.dev_);
     format = o.format, width = o.width, height = o.height, texel_bytes = o.texel_bytes;
-    return *this;
 }
 
 void GpuImage::reset() {
@@ -114,12 +110,9 @@ HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage
     }
 }
 
-HostBuffer& HostBuffer::operator=(HostBuffer&& o) noexcept {
-    if (this == &o) return *this;
-    reset();
+void HostBuffer::take(HostBuffer& o) noexcept {
     std::swap(buffer, o.buffer), std::swap(memory_, o.memory_), std::swap(dev_, o.dev_), std::swap(data, o.data);
     size = o.size;
-    return *this;
 }
 
 void HostBuffer::reset() {

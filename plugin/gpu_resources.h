@@ -8,14 +8,25 @@
 
 namespace rrc {
 
+// The move-only RAII members both resource types share: destroyed with
+// their owner; a move releases ours (reset) and takes theirs (take, which
+// leaves the source empty).
+#define RRC_MOVE_ONLY_RESOURCE(T)         \
+    ~T() { reset(); }                     \
+    T(T&& o) noexcept { take(o); }        \
+    T& operator=(T&& o) noexcept {        \
+        if (this != &o) reset(), take(o); \
+        return *this;                     \
+    }                                     \
+    T(const T&) = delete;                 \
+    T& operator=(const T&) = delete;
+
 class GpuImage {
 public:
     GpuImage() = default;
     // A 2D storage image in GENERAL layout once initialised (see Context).
     GpuImage(VulkanDevice& dev, VkFormat format, uint32_t width, uint32_t height);
-    ~GpuImage() { reset(); }
-    GpuImage(GpuImage&& o) noexcept { *this = std::move(o); }
-    GpuImage& operator=(GpuImage&& o) noexcept;
+    RRC_MOVE_ONLY_RESOURCE(GpuImage)
 
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
@@ -26,6 +37,7 @@ public:
 
 private:
     void reset();
+    void take(GpuImage& o) noexcept;  // o's handles and description; o keeps ours (none after reset)
     VulkanDevice* dev_ = nullptr;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
 };
@@ -35,9 +47,7 @@ class HostBuffer {
 public:
     HostBuffer() = default;
     HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage);
-    ~HostBuffer() { reset(); }
-    HostBuffer(HostBuffer&& o) noexcept { *this = std::move(o); }
-    HostBuffer& operator=(HostBuffer&& o) noexcept;
+    RRC_MOVE_ONLY_RESOURCE(HostBuffer)
 
     VkBuffer buffer = VK_NULL_HANDLE;
     unsigned char* data = nullptr;
@@ -45,6 +55,7 @@ public:
 
 private:
     void reset();
+    void take(HostBuffer& o) noexcept;
     VulkanDevice* dev_ = nullptr;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
 };

@@ -47,16 +47,9 @@ struct HostBarriers {
 };
 
 HostDevice host_device(const rrc_vulkan_device_desc& d) {
-    HostDevice host;
-    host.instance = d.instance;
-    host.physical = d.physical_device;
-    host.device = d.device;
-    host.queue_family = d.queue_family_index;
-    host.get_instance_proc_addr = d.get_instance_proc_addr;
-    host.get_device_proc_addr = d.get_device_proc_addr;
-    host.allocator = d.allocator;
-    host.debug_utils = d.debug_utils_enabled != 0;
-    return host;
+    return HostDevice{d.instance,           d.physical_device,         d.device,
+                      d.queue_family_index, d.get_instance_proc_addr,  d.get_device_proc_addr,
+                      d.allocator,          d.debug_utils_enabled != 0};
 }
 
 }  // namespace

@@ -132,13 +132,16 @@ RRC_API uint32_t rrc_get_version(void);
 #    define RRC_ENUM_BASE(type)
 #endif
 #define RRC_ENUM_VALUE(name, value) name = value,
+/* RRC_DEFINE_ENUM(rrc_blend, RRC_BLEND, uint32_t) declares
+ *     typedef uint32_t rrc_blend;
+ *     typedef enum rrc_blend_enum { RRC_BLEND_VALUES..., RRC_BLEND_MAX_ENUM = 0x7FFFFFFF } rrc_blend_enum; */
+#define RRC_DEFINE_ENUM(type, PREFIX, base) \
+    typedef base type;                      \
+    typedef enum type##_enum RRC_ENUM_BASE(base){PREFIX##_VALUES(RRC_ENUM_VALUE) PREFIX##_MAX_ENUM = 0x7FFFFFFF} type##_enum;
 
 /* ---- Results ------------------------------------------------------------ */
 
-typedef int32_t rrc_result;
-typedef enum rrc_result_enum RRC_ENUM_BASE(int32_t) {
-    RRC_RESULT_VALUES(RRC_ENUM_VALUE) RRC_RESULT_MAX_ENUM = 0x7FFFFFFF
-} rrc_result_enum;
+RRC_DEFINE_ENUM(rrc_result, RRC_RESULT, int32_t)
 
 /** A static, never-NULL name for a result code ("RRC_ERROR_SIZE_MISMATCH"). */
 RRC_API const char* rrc_result_to_string(rrc_result result);
@@ -171,39 +174,21 @@ typedef struct rrc_struct_header {
 /* ---- Enumerations (stored as uint32_t; 0 is the default) --------------- */
 
 /** How the depth the host passes is encoded (docs/CONVENTIONS.md §depth). */
-typedef uint32_t rrc_depth_mode;
-typedef enum rrc_depth_mode_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_DEPTH_MODE_VALUES(RRC_ENUM_VALUE) RRC_DEPTH_MODE_MAX_ENUM = 0x7FFFFFFF
-} rrc_depth_mode_enum;
+RRC_DEFINE_ENUM(rrc_depth_mode, RRC_DEPTH_MODE, uint32_t)
 
 /** The host's depth-buffer format: sets epsilon, "the smallest z increment". */
-typedef uint32_t rrc_depth_format;
-typedef enum rrc_depth_format_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_DEPTH_FORMAT_VALUES(RRC_ENUM_VALUE) RRC_DEPTH_FORMAT_MAX_ENUM = 0x7FFFFFFF
-} rrc_depth_format_enum;
+RRC_DEFINE_ENUM(rrc_depth_format, RRC_DEPTH_FORMAT, uint32_t)
 
 /** Where the previous-frame position of each pixel comes from. */
-typedef uint32_t rrc_reprojection;
-typedef enum rrc_reprojection_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_REPROJECTION_VALUES(RRC_ENUM_VALUE) RRC_REPROJECTION_MAX_ENUM = 0x7FFFFFFF
-} rrc_reprojection_enum;
+RRC_DEFINE_ENUM(rrc_reprojection, RRC_REPROJECTION, uint32_t)
 
 /** The lambda recursive filter's blend (docs/CONVENTIONS.md §filter). */
-typedef uint32_t rrc_blend;
-typedef enum rrc_blend_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_BLEND_VALUES(RRC_ENUM_VALUE) RRC_BLEND_MAX_ENUM = 0x7FFFFFFF
-} rrc_blend_enum;
+RRC_DEFINE_ENUM(rrc_blend, RRC_BLEND, uint32_t)
 
 /** How history is resampled at the reprojected position. */
-typedef uint32_t rrc_history_filter;
-typedef enum rrc_history_filter_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_HISTORY_FILTER_VALUES(RRC_ENUM_VALUE) RRC_HISTORY_FILTER_MAX_ENUM = 0x7FFFFFFF
-} rrc_history_filter_enum;
+RRC_DEFINE_ENUM(rrc_history_filter, RRC_HISTORY_FILTER, uint32_t)
 
-typedef uint32_t rrc_history_precision;
-typedef enum rrc_history_precision_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_HISTORY_PRECISION_VALUES(RRC_ENUM_VALUE) RRC_HISTORY_PRECISION_MAX_ENUM = 0x7FFFFFFF
-} rrc_history_precision_enum;
+RRC_DEFINE_ENUM(rrc_history_precision, RRC_HISTORY_PRECISION, uint32_t)
 /** fp16 history is kept only while the largest effective lambda a channel can
  *  reach (FIXED: lambda; AGE_AWARE: min(lambda, cap/(cap+1)); RUNNING_MEAN:
  *  cap/(cap+1)) is at most this; above it the channel's history is fp32.
@@ -214,26 +199,21 @@ typedef enum rrc_history_precision_enum RRC_ENUM_BASE(uint32_t) {
 #define RRC_FP16_MAX_LAMBDA 0.95
 
 /** Bits of the per-pixel mask (rrc_frame_output.mask is uint8_t). */
-typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_MASK_VALUES(RRC_ENUM_VALUE) RRC_MASK_MAX_ENUM = 0x7FFFFFFF
-} rrc_mask_enum;
+typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALUE) RRC_MASK_MAX_ENUM = 0x7FFFFFFF} rrc_mask_enum;
 
 /* The limits RRC_MAX_CHANNELS, RRC_MAX_NAME, RRC_MAX_AGE_CAP and
  * RRC_MAX_EXTENT are in <rrc/rrc_values.h> (the kernels need them too). */
 
 /** The defaults a zeroed member stands for (docs/CONVENTIONS.md). */
-#define RRC_DEFAULT_AGE_CAP 255u                  /* rrc_channel_desc.age_cap */
-#define RRC_DEFAULT_BACKGROUND_THRESHOLD 1e10f    /* rrc_context_desc.background_threshold */
-#define RRC_DEFAULT_EPSILON_SCALE_FLOAT32 4.0f    /* rrc_context_desc.epsilon_scale, FLOAT32 */
-#define RRC_DEFAULT_EPSILON_SCALE_UNORM 1.0f      /* rrc_context_desc.epsilon_scale, UNORM16/24 */
-#define RRC_DEFAULT_TAU 0.01f                     /* rrc_context_desc.tau */
+#define RRC_DEFAULT_AGE_CAP 255u               /* rrc_channel_desc.age_cap */
+#define RRC_DEFAULT_BACKGROUND_THRESHOLD 1e10f /* rrc_context_desc.background_threshold */
+#define RRC_DEFAULT_EPSILON_SCALE_FLOAT32 4.0f /* rrc_context_desc.epsilon_scale, FLOAT32 */
+#define RRC_DEFAULT_EPSILON_SCALE_UNORM 1.0f   /* rrc_context_desc.epsilon_scale, UNORM16/24 */
+#define RRC_DEFAULT_TAU 0.01f                  /* rrc_context_desc.tau */
 
 /* ---- Logging ----------------------------------------------------------- */
 
-typedef uint32_t rrc_log_level;
-typedef enum rrc_log_level_enum RRC_ENUM_BASE(uint32_t) {
-    RRC_LOG_LEVEL_VALUES(RRC_ENUM_VALUE) RRC_LOG_LEVEL_MAX_ENUM = 0x7FFFFFFF
-} rrc_log_level_enum;
+RRC_DEFINE_ENUM(rrc_log_level, RRC_LOG_LEVEL, uint32_t)
 
 /** Receives UTF-8, NUL-terminated text valid only during the call. */
 typedef void (*rrc_log_fn)(void* user, rrc_log_level level, const char* message);
