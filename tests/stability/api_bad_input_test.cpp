@@ -33,6 +33,58 @@ constexpr uint32_t kW = 16, kH = 8, kN = kW * kH;
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 const float kInf = std::numeric_limits<float>::infinity();
 
+// A frame output that writes only `mask`.
+rrc_frame_output mask_output(std::vector<uint8_t>& mask) {
+    rrc_frame_output o = rrc_host::frame_output();
+    o.mask = mask.data();
+    return o;
+}
+
+// A static one-channel frame of w x h (rrc_stab::static_frame, samples 1)
+// and its descriptor.
+struct StaticFrame {
+    rrc_stab::FrameData data;
+    std::vector<rrc_channel_input> inputs;
+    rrc_frame_desc desc;
+    StaticFrame(uint32_t w, uint32_t h) : data(rrc_stab::static_frame(w, h, 0)) {
+        data.samples = {std::vector<float>((size_t)w * h, 1.0f)};
+        desc = rrc_stab::frame_desc_of(data, 1, inputs);
+    }
+    StaticFrame(const StaticFrame&) = delete;
+};
+
+// A static_desc context of one 1-component channel, for the cases that need
+// their own context.
+const std::vector<rrc_channel_desc> kOneChannel = {channel("s", 1, 0.5f)};
+rrc_context_desc one_channel_desc(uint32_t w, uint32_t h) { return rrc_stab::static_desc(w, h, kOneChannel); }
+
+// What create must leave in its output on failure.
+rrc_context* const kSentinelContext = reinterpret_cast<rrc_context*>(0x1234);
+
+// The largest valid extent with the widest inputs (both channels RGBA32F,
+// one with confidence, PREV_CLIP): far more than a device can allocate.
+const std::vector<rrc_channel_desc> kWidestChannels = {
+    channel("a", 4, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1), channel("b", 4, 0.5f, RRC_HISTORY_FP32)};
+rrc_context_desc largest_extent_desc() {
+    rrc_context_desc d = context_desc(RRC_MAX_EXTENT, RRC_MAX_EXTENT, kWidestChannels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    return d;
+}
+
+// rrc_vulkan_record_frame and the queries refuse `ctx` as a handle and write
+// nothing; `message`, where not NULL, is in the Vulkan call's error.
+void expect_vulkan_and_queries_refuse_handle(rrc_context* ctx, const char* message) {
+    rrc_vulkan_frame_desc vf = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+    EXPECT_EQ(rrc_vulkan_record_frame(ctx, &vf), RRC_ERROR_INVALID_HANDLE);
+    if (message) EXPECT_NE(std::string(rrc_last_error()).find(message), std::string::npos) << rrc_last_error();
+    char name[64] = "sentinel";
+    uint64_t count = 99;
+    EXPECT_EQ(rrc_context_device_name(ctx, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_context_validation_messages(ctx, &count), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_STREQ(name, "sentinel");
+    EXPECT_EQ(count, 99u);
+}
+
 // Everything a frame call passes, good by default; cases spoil one thing.
 struct Call {
     std::vector<float> depth = std::vector<float>(kN, 0.5f), clip = std::vector<float>(4 * kN), s1 = std::vector<float>(kN, 1.0f),
@@ -65,20 +117,13 @@ struct Call {
         frame.nocache = nocache.data();
         frame.channel_count = 2;
         frame.channels = inputs;
-        for (int c = 0; c < 2; ++c) {
-            std::memset(&outs[c], 0, sizeof outs[c]);
-            outs[c].type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
-            outs[c].size = sizeof outs[c];
-        }
+        for (rrc_channel_output& o : outs) o = rrc_host::channel_output();
         outs[0].values = out1.data();
         outs[0].age = age1.data();
         outs[0].weight = weight.data();
         outs[1].values = out4.data();
         outs[1].age = age4.data();
-        std::memset(&output, 0, sizeof output);
-        output.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-        output.size = sizeof output;
-        output.mask = mask.data();
+        output = mask_output(mask);
         output.channel_count = 2;
         output.channels = outs;
         output.stats.hits = 4242;
@@ -92,19 +137,37 @@ struct Call {
     }
 };
 
+// One lazily made T for the whole program (SharedTeardown destroys it).
+template <typename T>
+class LazyInstance {
+public:
+    static std::unique_ptr<T>& instance() {
+        static std::unique_ptr<T> s;
+        return s;
+    }
+    static T& get() {
+        if (!instance()) instance().reset(new T);
+        return *instance();
+    }
+};
+
 // One context for all cases: channel 0 has confidence (1 component, fp32),
 // channel 1 has none (4 components, fp16); PREV_CLIP and a do-not-cache mask,
 // so every optional input is required somewhere.
-class Shared {
+const std::vector<rrc_channel_desc> kSharedChannels = {
+    channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
+    channel("color", 4, 0.5f, RRC_HISTORY_FP16)};
+rrc_context_desc shared_desc() {
+    rrc_context_desc d = context_desc(kW, kH, kSharedChannels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    d.use_nocache_mask = 1;
+    return d;
+}
+
+class Shared : public LazyInstance<Shared> {
+    friend LazyInstance<Shared>;
+
 public:
-    static std::unique_ptr<Shared>& instance() {
-        static std::unique_ptr<Shared> s;
-        return s;
-    }
-    static Shared& get() {
-        if (!instance()) instance().reset(new Shared);
-        return *instance();
-    }
     rrc_context* ctx() { return ctx_->get(); }
     // Runs a good frame; returns false unless it hit everywhere with the age
     // one above the previous good frame's.
@@ -121,15 +184,10 @@ public:
 
 private:
     Shared() {
-        channels_ = {channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
-                     channel("color", 4, 0.5f, RRC_HISTORY_FP16)};
-        rrc_context_desc d = context_desc(kW, kH, channels_);
-        d.reprojection = RRC_REPROJECTION_PREV_CLIP;
-        d.use_nocache_mask = 1;
+        rrc_context_desc d = shared_desc();
         ctx_.reset(new Context(d));
         EXPECT_TRUE(good_frame_continues_history());
     }
-    std::vector<rrc_channel_desc> channels_;
     std::unique_ptr<Context> ctx_;
     uint32_t frames_ = 0;
 };
@@ -162,9 +220,9 @@ using rrc_test::vkpath::VkFrame;
 struct FrameCase {
     const char* name;
     rrc_result code;
-    const char* field;                        // must appear in the message
-    std::function<void(Call&)> spoil;         // standalone (NULL: a Vulkan-only case)
-    std::function<void(VkFrame&)> vk_spoil;   // the Vulkan path's equivalent (NULL: none)
+    const char* field;                       // must appear in the message
+    std::function<void(Call&)> spoil;        // standalone (NULL: a Vulkan-only case)
+    std::function<void(VkFrame&)> vk_spoil;  // the Vulkan path's equivalent (NULL: none)
 };
 
 // A chained struct of a type no version defines (rrc.h Versioning, rule 5).
@@ -226,15 +284,27 @@ std::vector<FrameCase> frame_cases() {
         {"output_channels_null", RRC_ERROR_INVALID_ARGUMENT, "output.channels", [](Call& c) { c.output.channels = nullptr; }, {}},
         {"output_channel_wrong_type", RRC_ERROR_INVALID_STRUCT, "output.channels[1].type", [](Call& c) { c.outs[1].type = 99; }, {}},
         {"output_channel_size_too_small", RRC_ERROR_INVALID_STRUCT, "output.channels[0].size", [](Call& c) { c.outs[0].size = 1; }, {}},
-        {"output_weight_without_confidence", RRC_ERROR_INVALID_ARGUMENT, "output.channels[1].weight",
-         [](Call& c) { c.outs[1].weight = c.weight.data(); }, {}},
+        {"output_weight_without_confidence",
+         RRC_ERROR_INVALID_ARGUMENT,
+         "output.channels[1].weight",
+         [](Call& c) { c.outs[1].weight = c.weight.data(); },
+         {}},
         // The Vulkan path's own inputs (no standalone equivalent).
-        {"vk_command_buffer_null", RRC_ERROR_INVALID_ARGUMENT, "frame.command_buffer", {},
+        {"vk_command_buffer_null",
+         RRC_ERROR_INVALID_ARGUMENT,
+         "frame.command_buffer",
+         {},
          [](VkFrame& f) { f.desc.command_buffer = VK_NULL_HANDLE; }},
         {"vk_depth_view_null", RRC_ERROR_MISSING_INPUT, "frame.depth", {}, [](VkFrame& f) { f.desc.depth.view = VK_NULL_HANDLE; }},
-        {"vk_output_image_null", RRC_ERROR_MISSING_INPUT, "frame.channels[1].output", {},
+        {"vk_output_image_null",
+         RRC_ERROR_MISSING_INPUT,
+         "frame.channels[1].output",
+         {},
          [](VkFrame& f) { f.channels[1].output = rrc_vulkan_image{}; }},
-        {"vk_channel_images_mixed_sizes", RRC_ERROR_INVALID_STRUCT, "frame.channels[1].size", {},
+        {"vk_channel_images_mixed_sizes",
+         RRC_ERROR_INVALID_STRUCT,
+         "frame.channels[1].size",
+         {},
          [](VkFrame& f) { f.channels[1].size = (uint32_t)sizeof(rrc_vulkan_channel_images) - 8; }},
     };
 }
@@ -302,16 +372,10 @@ using rrc_test::vkpath::VulkanRig;
 
 // The shared context's twin on a host device: the same channels, PREV_CLIP
 // and do-not-cache mask, so every case above has its equivalent.
-class VulkanShared {
+class VulkanShared : public LazyInstance<VulkanShared> {
+    friend LazyInstance<VulkanShared>;
+
 public:
-    static std::unique_ptr<VulkanShared>& instance() {
-        static std::unique_ptr<VulkanShared> s;
-        return s;
-    }
-    static VulkanShared& get() {
-        if (!instance()) instance().reset(new VulkanShared);
-        return *instance();
-    }
     ~VulkanShared() {
         rig_.reset();
         host_->shutdown();
@@ -345,7 +409,8 @@ public:
             return ::testing::AssertionFailure() << "mask " << (int)rig_->mask_bytes()[0] << " on good frame " << k;
         const uint16_t want_age = (uint16_t)std::min<uint32_t>(k + 1, 255);
         if (rig_->age(0) != std::vector<uint16_t>(kN, want_age) || rig_->age(1) != std::vector<uint16_t>(kN, want_age))
-            return ::testing::AssertionFailure() << "age " << rig_->age(0)[0] << ", expected " << want_age << ": a refused call ran a frame";
+            return ::testing::AssertionFailure()
+                   << "age " << rig_->age(0)[0] << ", expected " << want_age << ": a refused call ran a frame";
         const rrc_vulkan_frame_stats st = rig_->frame_stats();
         if (st.hits != (k ? kN : 0) || st.pixels != kN) return ::testing::AssertionFailure() << st.hits << " hits of " << st.pixels;
         return ::testing::AssertionSuccess();
@@ -353,11 +418,7 @@ public:
 
 private:
     VulkanShared() : host_(new rrc_test::VulkanHost) {
-        channels_ = {channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
-                     channel("color", 4, 0.5f, RRC_HISTORY_FP16)};
-        rrc_context_desc d = context_desc(kW, kH, channels_);
-        d.reprojection = RRC_REPROJECTION_PREV_CLIP;
-        d.use_nocache_mask = 1;
+        rrc_context_desc d = shared_desc();
         rig_.reset(new VulkanRig(*host_, d));
         EXPECT_EQ(rig_->create_result, RRC_SUCCESS) << rrc_last_error();
         Call inputs;  // the standalone cases' static frame
@@ -368,7 +429,6 @@ private:
         EXPECT_TRUE(good_frame_continues_history());
     }
     std::unique_ptr<rrc_test::VulkanHost> host_;
-    std::vector<rrc_channel_desc> channels_;
     std::unique_ptr<VulkanRig> rig_;
     uint32_t frames_ = 0;
     double expected_ = 0.0;
@@ -387,7 +447,8 @@ void reset_vulkan_shared() { VulkanShared::instance().reset(); }
     uint64_t recorded = 99;
     const rrc_result r = rig.record(f, spoil, &recorded);
     const std::string message = rrc_last_error();
-    if (r != code) return ::testing::AssertionFailure() << rrc_result_to_string(r) << " instead of " << rrc_result_to_string(code) << ": " << message;
+    if (r != code)
+        return ::testing::AssertionFailure() << rrc_result_to_string(r) << " instead of " << rrc_result_to_string(code) << ": " << message;
     if (message.find(field) == std::string::npos) return ::testing::AssertionFailure() << "message must name " << field << ": " << message;
     if (message != rrc_context_last_error(rig.ctx)) return ::testing::AssertionFailure() << "rrc_context_last_error differs";
     if (recorded != 0) return ::testing::AssertionFailure() << recorded << " commands recorded by a refused call";
@@ -399,7 +460,8 @@ void reset_vulkan_shared() { VulkanShared::instance().reset(); }
     if (rig.mask_bytes() != std::vector<uint8_t>(rig.pixels(), 0xEE)) return ::testing::AssertionFailure() << "mask written";
     const rrc_vulkan_frame_stats st = rig.frame_stats();
     const std::vector<unsigned char> sb((const unsigned char*)&st, (const unsigned char*)&st + sizeof st);
-    if (sb != std::vector<unsigned char>(sizeof st, 0xEE) || !rig.stats_guard_untouched()) return ::testing::AssertionFailure() << "stats written";
+    if (sb != std::vector<unsigned char>(sizeof st, 0xEE) || !rig.stats_guard_untouched())
+        return ::testing::AssertionFailure() << "stats written";
     return ::testing::AssertionSuccess();
 }
 
@@ -421,8 +483,7 @@ INSTANTIATE_TEST_SUITE_P(Api, VulkanRecord, ::testing::ValuesIn(vulkan_cases()),
 TEST(ApiVulkanCamera, SingularViewProjection) {
     rrc_test::VulkanHost host;
     {
-        std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-        VulkanRig rig(host, rrc_stab::static_desc(4, 4, channels));
+        VulkanRig rig(host, one_channel_desc(4, 4));
         ASSERT_EQ(rig.create_result, RRC_SUCCESS) << rrc_last_error();
         rig.upload_depth(std::vector<float>(16, 0.5f));
         auto zero = [](VkFrame& f) { std::memset(f.desc.view_proj, 0, sizeof f.desc.view_proj); };
@@ -458,8 +519,7 @@ TEST(ApiVulkanDepth, ImageFormatDisagreesWithDepthFormat) {
                                      DepthFormatCase{RRC_DEPTH_FORMAT_UNORM16, VK_FORMAT_D16_UNORM, RRC_SUCCESS},
                                      DepthFormatCase{RRC_DEPTH_FORMAT_FLOAT32, VK_FORMAT_D32_SFLOAT, RRC_SUCCESS}}) {
         SCOPED_TRACE(::testing::Message() << "depth_format " << c.context_format << ", image format " << c.image_format);
-        std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-        rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+        rrc_context_desc d = one_channel_desc(4, 4);
         d.depth_format = c.context_format;
         VulkanRig rig(host, d, c.image_format);
         ASSERT_EQ(rig.create_result, RRC_SUCCESS) << rrc_last_error();
@@ -480,32 +540,26 @@ TEST(ApiVulkanDepth, ImageFormatDisagreesWithDepthFormat) {
 
 TEST(ApiVulkanCreate, NullDescOrDeviceLeavesOutputUntouched) {
     VulkanShared& shared = VulkanShared::get();
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-    rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+    rrc_context_desc d = one_channel_desc(4, 4);
     rrc_vulkan_device_desc dd = rrc_test::vkpath::device_desc(shared.host());
-    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
-    rrc_context* out = sentinel;
+    rrc_context* out = kSentinelContext;
     EXPECT_EQ(rrc_vulkan_context_create(nullptr, &dd, &out), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("desc"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_vulkan_context_create(&d, nullptr, &out), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("device"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(out, sentinel);
+    EXPECT_EQ(out, kSentinelContext);
     done("ApiVulkanCreate.NullDescOrDeviceLeavesOutputUntouched");
 }
 
 // The largest valid extent on the host's device: OUT_OF_MEMORY, nothing left behind.
 TEST(ApiVulkanCreate, LargestExtentBeyondTheDeviceFailsCleanly) {
     VulkanShared& shared = VulkanShared::get();
-    std::vector<rrc_channel_desc> channels = {channel("a", 4, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
-                                              channel("b", 4, 0.5f, RRC_HISTORY_FP32)};
-    rrc_context_desc d = context_desc(RRC_MAX_EXTENT, RRC_MAX_EXTENT, channels);
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    rrc_context_desc d = largest_extent_desc();
     rrc_vulkan_device_desc dd = rrc_test::vkpath::device_desc(shared.host());
-    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
-    rrc_context* out = sentinel;
+    rrc_context* out = kSentinelContext;
     EXPECT_EQ(rrc_vulkan_context_create(&d, &dd, &out), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
     EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(out, sentinel);
+    EXPECT_EQ(out, kSentinelContext);
     EXPECT_TRUE(shared.good_frame_continues_history());
     done("ApiVulkanCreate.LargestExtentBeyondTheDeviceFailsCleanly");
 }
@@ -544,31 +598,17 @@ TEST(ApiBatch, FramesNull) {
 // OUT_OF_MEMORY, outputs untouched, history intact, the context usable.
 TEST(ApiBatch, StagingBeyondTheDeviceFailsCleanly) {
     const uint32_t W = 512, H = 512, count = 65536;
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-    Context ctx(rrc_stab::static_desc(W, H, channels));
+    Context ctx(one_channel_desc(W, H));
     ASSERT_TRUE(ctx);
-    rrc_stab::FrameData f = rrc_stab::static_frame(W, H, 0);
-    f.samples = {std::vector<float>(W * H, 1.0f)};
-    ASSERT_EQ(rrc_stab::run_batch(ctx.get(), ctx.desc(), {f, f}).back().stats.hits, (uint64_t)W * H);
-    rrc_channel_input in = channel_input(f.samples[0].data());
-    rrc_frame_desc d = frame_desc();
-    d.depth = f.depth.data();
-    std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
-    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
-    d.channel_count = 1;
-    d.channels = &in;
-    std::vector<rrc_frame_desc> frames(count, d);
+    StaticFrame f(W, H);
+    ASSERT_EQ(rrc_stab::run_batch(ctx.get(), ctx.desc(), {f.data, f.data}).back().stats.hits, (uint64_t)W * H);
+    std::vector<rrc_frame_desc> frames(count, f.desc);
     std::vector<uint8_t> mask(W * H, 0xEE);
-    rrc_frame_output o;
-    std::memset(&o, 0, sizeof o);
-    o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-    o.size = sizeof o;
-    o.mask = mask.data();
-    std::vector<rrc_frame_output> outputs(count, o);
+    std::vector<rrc_frame_output> outputs(count, mask_output(mask));
     EXPECT_EQ(rrc_frame_run_batch(ctx.get(), count, frames.data(), outputs.data()), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
     EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(mask, std::vector<uint8_t>(W * H, 0xEE));
-    rrc_test::FrameResult after = ctx.run(d);
+    rrc_test::FrameResult after = ctx.run(f.desc);
     EXPECT_EQ(after.stats.hits, (uint64_t)W * H);
     EXPECT_EQ(after.age[0], std::vector<uint16_t>(W * H, 3)) << "the refused batch must not have run";
     done("ApiBatch.StagingBeyondTheDeviceFailsCleanly");
@@ -578,21 +618,10 @@ TEST(ApiBatch, StagingBeyondTheDeviceFailsCleanly) {
 
 TEST(ApiHandle, NullContextEverywhere) {
     Call call;
-    char name[64] = "sentinel";
-    uint64_t count = 99;
     EXPECT_EQ(rrc_frame_run(nullptr, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_last_error()).find("context is NULL"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(rrc_frame_run_batch(nullptr, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
-    rrc_vulkan_frame_desc vf;
-    std::memset(&vf, 0, sizeof vf);
-    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-    vf.size = sizeof vf;
-    EXPECT_EQ(rrc_vulkan_record_frame(nullptr, &vf), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_NE(std::string(rrc_last_error()).find("context is NULL"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(rrc_context_device_name(nullptr, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_EQ(rrc_context_validation_messages(nullptr, &count), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_STREQ(name, "sentinel");
-    EXPECT_EQ(count, 99u);
+    expect_vulkan_and_queries_refuse_handle(nullptr, "context is NULL");
     EXPECT_TRUE(call.outputs_untouched());
     EXPECT_NE(std::string(rrc_context_last_error(nullptr)), "");  // a message, never a crash
     done("ApiHandle.NullContextEverywhere");
@@ -601,34 +630,16 @@ TEST(ApiHandle, NullContextEverywhere) {
 // A destroyed handle is detected (the library tracks live contexts) and a
 // second destroy is ignored: calls in the wrong order fail, never crash.
 TEST(ApiHandle, DestroyedContextEverywhere) {
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-    rrc_context_desc d = rrc_stab::static_desc(4, 4, channels);
+    rrc_context_desc d = one_channel_desc(4, 4);
     rrc_context* ctx = nullptr;
     ASSERT_EQ(rrc_context_create(&d, &ctx), RRC_SUCCESS) << rrc_last_error();
     rrc_context_destroy(ctx);
-    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
-    f.samples = {std::vector<float>(16, 1.0f)};
-    rrc_channel_input in = channel_input(f.samples[0].data());
-    rrc_frame_desc frame = frame_desc();
-    frame.depth = f.depth.data();
-    frame.channel_count = 1;
-    frame.channels = &in;
-    char name[64] = "sentinel";
-    uint64_t count = 99;
-    EXPECT_EQ(rrc_frame_run(ctx, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
+    StaticFrame f(4, 4);
+    EXPECT_EQ(rrc_frame_run(ctx, &f.desc, nullptr), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(rrc_frame_run_batch(ctx, 1, &frame, nullptr), RRC_ERROR_INVALID_HANDLE);
-    rrc_vulkan_frame_desc vf;
-    std::memset(&vf, 0, sizeof vf);
-    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-    vf.size = sizeof vf;
-    EXPECT_EQ(rrc_vulkan_record_frame(ctx, &vf), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(rrc_context_device_name(ctx, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_EQ(rrc_context_validation_messages(ctx, &count), RRC_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(rrc_frame_run_batch(ctx, 1, &f.desc, nullptr), RRC_ERROR_INVALID_HANDLE);
+    expect_vulkan_and_queries_refuse_handle(ctx, "not a live rrc context");
     EXPECT_NE(std::string(rrc_context_last_error(ctx)).find("not a live"), std::string::npos);
-    EXPECT_STREQ(name, "sentinel");
-    EXPECT_EQ(count, 99u);
     rrc_context_destroy(ctx);  // twice: ignored
     done("ApiHandle.DestroyedContextEverywhere");
 }
@@ -638,21 +649,11 @@ TEST(ApiHandle, ForeignPointerEverywhere) {
     std::memset(garbage, 0x5A, sizeof garbage);
     auto* fake = reinterpret_cast<rrc_context*>(garbage);
     Call call;
-    char name[64] = "sentinel";
-    uint64_t count = 99;
     EXPECT_EQ(rrc_frame_run_batch(fake, 1, &call.frame, &call.output), RRC_ERROR_INVALID_HANDLE);
-    rrc_vulkan_frame_desc vf;
-    std::memset(&vf, 0, sizeof vf);
-    vf.type = RRC_STRUCT_TYPE_VULKAN_FRAME_DESC;
-    vf.size = sizeof vf;
-    EXPECT_EQ(rrc_vulkan_record_frame(fake, &vf), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_EQ(rrc_context_device_name(fake, name, sizeof name), RRC_ERROR_INVALID_HANDLE);
-    EXPECT_EQ(rrc_context_validation_messages(fake, &count), RRC_ERROR_INVALID_HANDLE);
+    expect_vulkan_and_queries_refuse_handle(fake, nullptr);
     EXPECT_NE(std::string(rrc_context_last_error(fake)).find("not a live"), std::string::npos);
     rrc_context_destroy(fake);  // ignored, never freed
     EXPECT_EQ(garbage[100], 0x5A);
-    EXPECT_STREQ(name, "sentinel");
-    EXPECT_EQ(count, 99u);
     EXPECT_TRUE(call.outputs_untouched());
     done("ApiHandle.ForeignPointerEverywhere");
 }
@@ -713,11 +714,10 @@ TEST(ApiQuery, LastErrorIsClearedBySuccessAndKeptPerContext) {
 // ---- create ---------------------------------------------------------------
 
 TEST(ApiCreate, NullDescLeavesOutputUntouched) {
-    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
-    rrc_context* out = sentinel;
+    rrc_context* out = kSentinelContext;
     EXPECT_EQ(rrc_context_create(nullptr, &out), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("desc"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(out, sentinel);
+    EXPECT_EQ(out, kSentinelContext);
     done("ApiCreate.NullDescLeavesOutputUntouched");
 }
 
@@ -725,38 +725,24 @@ TEST(ApiCreate, NullDescLeavesOutputUntouched) {
 // device can allocate (a 16384x16384 RGBA32F image is 4 GiB): OUT_OF_MEMORY
 // with a message, quickly, nothing left behind.
 TEST(ApiCreate, LargestExtentBeyondTheDeviceFailsCleanly) {
-    std::vector<rrc_channel_desc> channels = {channel("a", 4, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
-                                              channel("b", 4, 0.5f, RRC_HISTORY_FP32)};
-    rrc_context_desc d = context_desc(RRC_MAX_EXTENT, RRC_MAX_EXTENT, channels);
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    rrc_context_desc d = largest_extent_desc();
     ASSERT_EQ(rrc_validate_context_desc(&d), RRC_SUCCESS) << rrc_last_error();
-    rrc_context* sentinel = reinterpret_cast<rrc_context*>(0x1234);
-    rrc_context* out = sentinel;
+    rrc_context* out = kSentinelContext;
     EXPECT_EQ(rrc_context_create(&d, &out), RRC_ERROR_OUT_OF_MEMORY) << rrc_last_error();
     EXPECT_NE(std::string(rrc_last_error()).find("memory"), std::string::npos) << rrc_last_error();
-    EXPECT_EQ(out, sentinel);
+    EXPECT_EQ(out, kSentinelContext);
     done("ApiCreate.LargestExtentBeyondTheDeviceFailsCleanly");
 }
 
 // A singular view-projection cannot be inverted: CAMERA frames refuse it by name.
 TEST(ApiCamera, SingularViewProjection) {
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-    Context ctx(rrc_stab::static_desc(4, 4, channels));
+    Context ctx(one_channel_desc(4, 4));
     ASSERT_TRUE(ctx);
-    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
-    f.samples = {std::vector<float>(16, 1.0f)};
-    rrc_channel_input in = channel_input(f.samples[0].data());
-    rrc_frame_desc d = frame_desc();
-    d.depth = f.depth.data();
-    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
-    d.channel_count = 1;
-    d.channels = &in;  // view_proj left all zero
+    StaticFrame f(4, 4);
+    rrc_frame_desc& d = f.desc;
+    std::memset(d.view_proj, 0, sizeof d.view_proj);  // all zero
     std::vector<uint8_t> mask(16, 0xEE);
-    rrc_frame_output o;
-    std::memset(&o, 0, sizeof o);
-    o.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-    o.size = sizeof o;
-    o.mask = mask.data();
+    rrc_frame_output o = mask_output(mask);
     EXPECT_EQ(rrc_frame_run(ctx.get(), &d, &o), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("frame.view_proj"), std::string::npos) << rrc_last_error();
     EXPECT_EQ(mask, std::vector<uint8_t>(16, 0xEE));
@@ -768,21 +754,11 @@ TEST(ApiCamera, SingularViewProjection) {
 }
 
 TEST(ApiCamera, NonFiniteMatrices) {
-    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
-    Context ctx(rrc_stab::static_desc(4, 4, channels));
+    Context ctx(one_channel_desc(4, 4));
     ASSERT_TRUE(ctx);
-    rrc_stab::FrameData f = rrc_stab::static_frame(4, 4, 0);
-    f.samples = {std::vector<float>(16, 1.0f)};
-    f.prev_view_proj[7] = std::numeric_limits<double>::quiet_NaN();
-    std::vector<rrc_stab::FrameData> frames = {f};
-    rrc_channel_input in = channel_input(f.samples[0].data());
-    rrc_frame_desc d = frame_desc();
-    d.depth = f.depth.data();
-    std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
-    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
-    d.channel_count = 1;
-    d.channels = &in;
-    EXPECT_EQ(rrc_frame_run(ctx.get(), &d, nullptr), RRC_ERROR_INVALID_ARGUMENT);
+    StaticFrame f(4, 4);
+    f.desc.prev_view_proj[7] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f.desc, nullptr), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("view_proj"), std::string::npos) << rrc_last_error();
     done("ApiCamera.NonFiniteMatrices");
 }

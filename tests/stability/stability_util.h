@@ -54,6 +54,29 @@ inline FrameData static_frame(uint32_t width, uint32_t height, uint64_t index) {
     return f;
 }
 
+// The frame descriptor of `f` over its first `channel_count` channels (their
+// inputs kept in `inputs`, which must outlive the descriptor's use).
+inline rrc_frame_desc frame_desc_of(const FrameData& f, uint32_t channel_count, std::vector<rrc_channel_input>& inputs) {
+    rrc_frame_desc d = rrc_test::frame_desc();
+    d.frame_index = f.index;
+    d.reset = f.reset;
+    d.depth = f.depth.data();
+    d.reprojection = f.reprojection.empty() ? nullptr : f.reprojection.data();
+    std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
+    std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
+    std::memcpy(d.jitter, f.jitter, sizeof d.jitter);
+    std::memcpy(d.prev_jitter, f.prev_jitter, sizeof d.prev_jitter);
+    d.nocache = f.nocache.empty() ? nullptr : f.nocache.data();
+    inputs.clear();
+    for (uint32_t c = 0; c < channel_count; ++c) {
+        const float* conf = c < f.confidence.size() && !f.confidence[c].empty() ? f.confidence[c].data() : nullptr;
+        inputs.push_back(rrc_test::channel_input(f.samples[c].data(), conf));
+    }
+    d.channel_count = channel_count;
+    d.channels = inputs.data();
+    return d;
+}
+
 // Runs `frames` in one rrc_frame_run_batch on a context made from `desc`
 // (its channels in order).  Expects success; returns one result per frame.
 inline std::vector<rrc_test::FrameResult> run_batch(rrc_context* ctx, const rrc_context_desc& desc, const std::vector<FrameData>& frames) {
@@ -65,44 +88,23 @@ inline std::vector<rrc_test::FrameResult> run_batch(rrc_context* ctx, const rrc_
     std::vector<rrc_frame_output> outputs(frames.size());
     std::vector<std::vector<rrc_channel_output>> channel_outputs(frames.size());
     for (size_t k = 0; k < frames.size(); ++k) {
-        const FrameData& f = frames[k];
-        rrc_frame_desc& d = descs[k];
-        d = rrc_test::frame_desc();
-        d.frame_index = f.index;
-        d.reset = f.reset;
-        d.depth = f.depth.data();
-        d.reprojection = f.reprojection.empty() ? nullptr : f.reprojection.data();
-        std::memcpy(d.view_proj, f.view_proj, sizeof d.view_proj);
-        std::memcpy(d.prev_view_proj, f.prev_view_proj, sizeof d.prev_view_proj);
-        std::memcpy(d.jitter, f.jitter, sizeof d.jitter);
-        std::memcpy(d.prev_jitter, f.prev_jitter, sizeof d.prev_jitter);
-        d.nocache = f.nocache.empty() ? nullptr : f.nocache.data();
-        for (uint32_t c = 0; c < nch; ++c) {
-            const float* conf = c < f.confidence.size() && !f.confidence[c].empty() ? f.confidence[c].data() : nullptr;
-            inputs[k].push_back(rrc_test::channel_input(f.samples[c].data(), conf));
-        }
-        d.channel_count = nch;
-        d.channels = inputs[k].data();
+        descs[k] = frame_desc_of(frames[k], nch, inputs[k]);
 
         rrc_test::FrameResult& r = results[k];
         r.mask.resize(n);
         r.values.resize(nch);
         r.age.resize(nch);
         r.weight.resize(nch);
-        std::memset(&outputs[k], 0, sizeof outputs[k]);
-        outputs[k].type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-        outputs[k].size = sizeof outputs[k];
+        outputs[k] = rrc_host::frame_output();
         outputs[k].mask = r.mask.data();
-        if (!f.read_values) continue;
+        if (!frames[k].read_values) continue;
         channel_outputs[k].resize(nch);
         for (uint32_t c = 0; c < nch; ++c) {
             const rrc_channel_desc& ch = desc.channels[c];
             r.values[c].resize(n * ch.components);
             r.age[c].resize(n);
             rrc_channel_output& co = channel_outputs[k][c];
-            std::memset(&co, 0, sizeof co);
-            co.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
-            co.size = sizeof co;
+            co = rrc_host::channel_output();
             co.values = r.values[c].data();
             co.age = r.age[c].data();
             if (ch.confidence) {
