@@ -51,158 +51,44 @@ std::vector<Case> cases() {
     const auto fp16 = RRC_HISTORY_FP16, fp32 = RRC_HISTORY_FP32;
     const auto fixed = RRC_BLEND_FIXED, age = RRC_BLEND_AGE_AWARE, mean = RRC_BLEND_RUNNING_MEAN;
     const auto bil = RRC_HISTORY_FILTER_BILINEAR, nea = RRC_HISTORY_FILTER_NEAREST, cr = RRC_HISTORY_FILTER_CATMULL_ROM;
+    auto chs = [](auto... c) { return std::vector<rrc_channel_desc>{c...}; };
+    // Scene and context: source, depth mode, depth format.
+    const auto clip = RRC_REPROJECTION_PREV_CLIP, md = RRC_REPROJECTION_MOTION_DEPTH, mv = RRC_REPROJECTION_MOTION,
+               cam = RRC_REPROJECTION_CAMERA;
+    const auto S = RRC_DEPTH_MODE_STANDARD, R = RRC_DEPTH_MODE_REVERSED, L = RRC_DEPTH_MODE_LINEAR;
+    const auto F = RRC_DEPTH_FORMAT_FLOAT32, U16 = RRC_DEPTH_FORMAT_UNORM16, U24 = RRC_DEPTH_FORMAT_UNORM24;
     return {
-        {"prev_clip_standard_float32",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_STANDARD,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, cr)},
-         true},
-        {"prev_clip_reversed_infinite",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         kInf,
-         true,
-         true,
-         0,
-         {ch("soft", 1, 0.0f, fp16, mean, nea, 16), ch("env", 4, 0.8f, fp32, fixed, bil, 0, 1)},
-         true},
-        {"prev_clip_reversed_finite",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, age, cr, 0, 1)},
-         true},
-        {"prev_clip_linear",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_LINEAR,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("soft", 1, 0.0f, fp32, mean, bil, 8)},
-         true},
-        {"prev_clip_standard_unorm16",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_STANDARD,
-         RRC_DEPTH_FORMAT_UNORM16,
-         100,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, bil)},
+        {"prev_clip_standard_float32", clip, S, F, 100, true, true, 0,
+         chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, cr)), true},
+        {"prev_clip_reversed_infinite", clip, R, F, kInf, true, true, 0,
+         chs(ch("soft", 1, 0.0f, fp16, mean, nea, 16), ch("env", 4, 0.8f, fp32, fixed, bil, 0, 1)), true},
+        {"prev_clip_reversed_finite", clip, R, F, 100, true, false, 0, chs(ch("pcf", 1, 0.6f, fp32, age, cr, 0, 1)), true},
+        {"prev_clip_linear", clip, L, F, 100, true, true, 0,
+         chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("soft", 1, 0.0f, fp32, mean, bil, 8)), true},
+        {"prev_clip_standard_unorm16", clip, S, U16, 100, true, false, 0, chs(ch("pcf", 1, 0.6f, fp16, fixed, bil)), false},
+        {"prev_clip_standard_unorm24", clip, S, U24, 100, true, false, 0, chs(ch("pcf", 1, 0.6f, fp16, fixed, bil)), false},
+        {"motion_depth_reversed", md, R, F, 100, true, true, 0,
+         chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, fixed, bil)), true},
+        {"motion_depth_linear", md, L, F, 100, true, false, 0, chs(ch("pcf", 1, 0.6f, fp32, age, bil)), true},
+        {"motion_standard_linearised", mv, S, F, 100, true, true, 0, chs(ch("pcf", 1, 0.6f, fp32, fixed, bil)), false},
+        {"motion_reversed_infinite", mv, R, F, kInf, true, false, 0, chs(ch("pcf", 1, 0.6f, fp16, fixed, cr)), false},
+        {"motion_linear", mv, L, F, 100, true, false, 0, chs(ch("pcf", 1, 0.6f, fp32, fixed, nea)), false},
+        {"camera_standard", cam, S, F, 100, false, true, 0, chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil)),
          false},
-        {"prev_clip_standard_unorm24",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_STANDARD,
-         RRC_DEPTH_FORMAT_UNORM24,
-         100,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, bil)},
-         false},
-        {"motion_depth_reversed",
-         RRC_REPROJECTION_MOTION_DEPTH,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, fixed, bil)},
-         true},
-        {"motion_depth_linear",
-         RRC_REPROJECTION_MOTION_DEPTH,
-         RRC_DEPTH_MODE_LINEAR,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, age, bil)},
-         true},
-        {"motion_standard_linearised",
-         RRC_REPROJECTION_MOTION,
-         RRC_DEPTH_MODE_STANDARD,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil)},
-         false},
-        {"motion_reversed_infinite",
-         RRC_REPROJECTION_MOTION,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         kInf,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp16, fixed, cr)},
-         false},
-        {"motion_linear",
-         RRC_REPROJECTION_MOTION,
-         RRC_DEPTH_MODE_LINEAR,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, nea)},
-         false},
-        {"camera_standard",
-         RRC_REPROJECTION_CAMERA,
-         RRC_DEPTH_MODE_STANDARD,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         false,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil)},
-         false},
-        {"camera_reversed_infinite",
-         RRC_REPROJECTION_CAMERA,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         kInf,
-         false,
-         false,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil)},
-         false},
-        {"camera_linear",
-         RRC_REPROJECTION_CAMERA,
-         RRC_DEPTH_MODE_LINEAR,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         false,
-         true,
-         0,
-         {ch("pcf", 1, 0.6f, fp32, mean, bil, 32)},
-         false},
-        {"invalid_samples",
-         RRC_REPROJECTION_PREV_CLIP,
-         RRC_DEPTH_MODE_REVERSED,
-         RRC_DEPTH_FORMAT_FLOAT32,
-         100,
-         true,
-         false,
-         0.03,
-         {ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)},
-         true},
+        {"camera_reversed_infinite", cam, R, F, kInf, false, false, 0, chs(ch("pcf", 1, 0.6f, fp32, fixed, bil)), false},
+        {"camera_linear", cam, L, F, 100, false, true, 0, chs(ch("pcf", 1, 0.6f, fp32, mean, bil, 32)), false},
+        {"invalid_samples", clip, R, F, 100, true, false, 0.03,
+         chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)), true},
     };
+}
+
+// The case's analytic scene of width x height.
+rrc_scene::SceneConfig scene_of(const Case& c, int width, int height) {
+    rrc_scene::SceneConfig sc = scene_config(width, height, c.depth_mode, c.depth_format, c.far_plane);
+    sc.object_motion = c.object_motion;
+    sc.jitter = c.jitter;
+    sc.invalid_fraction = c.invalid_fraction;
+    return sc;
 }
 
 struct Row {
@@ -222,31 +108,9 @@ class KernelVsReference : public ::testing::TestWithParam<Case> {};
 TEST_P(KernelVsReference, OneFrameAtATime) {
     const Case& c = GetParam();
     const int W = 96, H = 64, frames = 10;
-    rrc_scene::SceneConfig sc;
-    sc.width = W;
-    sc.height = H;
-    sc.depth_mode = c.depth_mode;
-    sc.depth_format = c.depth_format;
-    sc.far_plane = c.far_plane;
-    sc.object_motion = c.object_motion;
-    sc.jitter = c.jitter;
-    sc.invalid_fraction = c.invalid_fraction;
-    rrc_scene::Scene scene(sc);
-
-    rrc_context_desc d = context_desc(W, H, c.channels);
-    d.depth_mode = c.depth_mode;
-    d.depth_format = c.depth_format;
-    d.reprojection = c.source;
-    d.near_plane = (float)sc.near_plane;
-    d.far_plane = (float)sc.far_plane;
-    Context ctx(d);
+    rrc_scene::Scene scene(scene_of(c, W, H));
+    Context ctx(scene_context_desc(scene.config(), c.source, c.channels));
     ASSERT_TRUE(ctx);
-    std::vector<uint32_t> comps;
-    std::vector<bool> conf;
-    for (auto& ch : c.channels) {
-        comps.push_back(ch.components);
-        conf.push_back(ch.confidence != 0);
-    }
 
     Row row;
     row.name = c.name;
@@ -255,7 +119,7 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
     for (int t = 0; t < frames; ++t) {
         SceneFrameInputs in;
         in.frame = scene.render(t);
-        make_frame_inputs(in, c.source, comps, conf);
+        make_frame_inputs(in, c.source, c.channels);
         FrameResult k = ctx.run(in.desc);
         rrc_ref::FrameResult r = rrc_ref::run_frame(ctx.desc(), prev, in.desc);
         const size_t n = (size_t)W * H;

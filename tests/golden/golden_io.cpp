@@ -81,24 +81,21 @@ void FrameArrays::bind(const GoldenCase& c) {
     desc.channels = inputs.data();
 }
 
+// The case's scene: jittered, FLOAT32 depth (near 0.1).
+static rrc_scene::SceneConfig scene_config_for(const GoldenCase& c) {
+    rrc_scene::SceneConfig sc = rrc_test::scene_config(kWidth, kHeight, c.depth_mode, RRC_DEPTH_FORMAT_FLOAT32, c.far_plane);
+    sc.object_motion = c.object_motion;
+    sc.jitter = true;
+    return sc;
+}
+
 rrc_context_desc context_for(const GoldenCase& c, std::vector<rrc_channel_desc>& channels) {
     channels = c.channels;
-    rrc_context_desc d = rrc_test::context_desc(kWidth, kHeight, channels);
-    d.depth_mode = c.depth_mode;
-    d.reprojection = c.source;
-    d.near_plane = 0.1f;
-    d.far_plane = (float)c.far_plane;
-    return d;
+    return rrc_test::scene_context_desc(scene_config_for(c), c.source, channels);
 }
 
 FrameArrays arrays_from_scene(const GoldenCase& c, rrc_test::SceneFrameInputs& in) {
-    std::vector<uint32_t> comps;
-    std::vector<bool> conf;
-    for (auto& ch : c.channels) {
-        comps.push_back(ch.components);
-        conf.push_back(ch.confidence != 0);
-    }
-    rrc_test::make_frame_inputs(in, c.source, comps, conf);
+    rrc_test::make_frame_inputs(in, c.source, c.channels);
     FrameArrays a;
     a.depth = in.frame.depth;
     a.reprojection = in.reprojection;
@@ -115,14 +112,7 @@ FrameArrays arrays_from_scene(const GoldenCase& c, rrc_test::SceneFrameInputs& i
 }
 
 GoldenData compute_golden(const GoldenCase& c) {
-    rrc_scene::SceneConfig sc;
-    sc.width = kWidth;
-    sc.height = kHeight;
-    sc.depth_mode = c.depth_mode;
-    sc.far_plane = c.far_plane;
-    sc.object_motion = c.object_motion;
-    sc.jitter = true;
-    rrc_scene::Scene scene(sc);
+    rrc_scene::Scene scene(scene_config_for(c));
     std::vector<rrc_channel_desc> channels;
     rrc_context_desc d = context_for(c, channels);
     GoldenData g;

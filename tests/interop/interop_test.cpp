@@ -23,13 +23,16 @@ std::vector<rrc_channel_desc> test_channels() {
             channel("env", 4, 0.7f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 0, 1)};
 }
 
+// The test's scene (jittered, REVERSED depth, near 0.1, far 100) and the
+// PREV_CLIP context over it.
+rrc_scene::SceneConfig test_scene() {
+    rrc_scene::SceneConfig sc = scene_config(W, H, RRC_DEPTH_MODE_REVERSED);
+    sc.jitter = true;
+    return sc;
+}
+
 rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels) {
-    rrc_context_desc d = context_desc(W, H, channels);
-    d.depth_mode = RRC_DEPTH_MODE_REVERSED;
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
-    d.near_plane = 0.1f;
-    d.far_plane = 100.0f;
-    return d;
+    return scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
 }
 
 // Two frames in flight: the test records a frame while the previous one may still be pending.
@@ -43,27 +46,26 @@ std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
     return f;
 }
 
-TEST(Interop, SameOutputsAsStandaloneBitForBit) {
-    rrc_scene::SceneConfig sc;
-    sc.width = W;
-    sc.height = H;
-    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
-    sc.jitter = true;
-    rrc_scene::Scene scene(sc);
+// The test scene's first inputs.size() frames (jittered, REVERSED depth) into
+// `inputs`, and the standalone path's results for them on the library's own
+// device into `expected`: what the interop path must give.
+void run_standalone(std::vector<SceneFrameInputs>& inputs, std::vector<FrameResult>& expected) {
+    rrc_scene::Scene scene(test_scene());
     std::vector<rrc_channel_desc> channels = test_channels();
-
-    // Standalone: the library's own device.
-    std::vector<FrameResult> expected;
-    {
-        Context ctx(test_desc(channels));
-        ASSERT_TRUE(ctx);
-        for (int t = 0; t < kFrames; ++t) {
-            SceneFrameInputs in;
-            in.frame = scene.render(t);
-            make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
-            expected.push_back(ctx.run(in.desc));
-        }
+    Context ctx(test_desc(channels));
+    ASSERT_TRUE(ctx);
+    for (size_t t = 0; t < inputs.size(); ++t) {
+        inputs[t].frame = scene.render((int)t);
+        make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+        expected.push_back(ctx.run(inputs[t].desc));
     }
+}
+
+TEST(Interop, SameOutputsAsStandaloneBitForBit) {
+    std::vector<rrc_channel_desc> channels = test_channels();
+    std::vector<SceneFrameInputs> inputs(kFrames);
+    std::vector<FrameResult> expected;
+    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
 
     // Interop: the host's device, images and command buffers.
     VulkanHost host;
@@ -91,9 +93,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     // The depth is handed over as a depth attachment would leave it.
     const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, dro = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     for (int t = 0; t < kFrames; ++t) {
-        SceneFrameInputs in;
-        in.frame = scene.render(t);
-        make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+        const SceneFrameInputs& in = inputs[t];
         host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
         host.upload(clip, in.reprojection.data(), W * H * 16, ro);
         host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
@@ -193,24 +193,10 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
 // path's frame by frame (values, mask, age, every counter).
 TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
     const int N = 4;
-    rrc_scene::SceneConfig sc;
-    sc.width = W;
-    sc.height = H;
-    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
-    sc.jitter = true;
-    rrc_scene::Scene scene(sc);
     std::vector<rrc_channel_desc> channels = test_channels();
     std::vector<SceneFrameInputs> inputs(N);
     std::vector<FrameResult> expected;
-    {
-        Context ctx(test_desc(channels));
-        ASSERT_TRUE(ctx);
-        for (int t = 0; t < N; ++t) {
-            inputs[t].frame = scene.render(t);
-            make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
-            expected.push_back(ctx.run(inputs[t].desc));
-        }
-    }
+    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
 
     VulkanHost host;
     rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, N);  // N frames pending at once

@@ -74,26 +74,23 @@ std::vector<DepthCase> cases() {
 // ctest shows the parameter: print its name, not its bytes.
 void PrintTo(const DepthCase& c, std::ostream* os) { *os << c.name; }
 
+// The case's scene of width x height: static geometry, moving camera.
+rrc_scene::SceneConfig scene_of(const DepthCase& c, int width, int height) {
+    rrc_scene::SceneConfig sc = scene_config(width, height, c.mode, c.format, c.far_plane);
+    sc.near_plane = c.near_plane;
+    sc.object_motion = false;
+    return sc;
+}
+
 class DepthPrecision : public ::testing::TestWithParam<DepthCase> {};
 
 TEST_P(DepthPrecision, HitRatioAndFalseHits) {
     const DepthCase& c = GetParam();
     const int W = 96, H = 64, frames = 8;
-    rrc_scene::SceneConfig sc;
-    sc.width = W;
-    sc.height = H;
-    sc.depth_mode = c.mode;
-    sc.depth_format = c.format;
-    sc.near_plane = c.near_plane;
-    sc.far_plane = c.far_plane;
-    sc.object_motion = false;  // static geometry, moving camera
-    rrc_scene::Scene scene(sc);
+    rrc_scene::Scene scene(scene_of(c, W, H));
 
     std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.6f)};
-    rrc_context_desc d = context_desc(W, H, channels);
-    d.depth_mode = c.mode;
-    d.depth_format = c.format;
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    rrc_context_desc d = scene_context_desc(scene.config(), RRC_REPROJECTION_PREV_CLIP, channels);
     d.epsilon_scale = c.epsilon_scale;
     Context ctx(d);
     ASSERT_TRUE(ctx);

@@ -45,10 +45,7 @@ struct Digest {
 // 12 frames of a moving, jittered scene (seed varies the noise) through an
 // fp32 bilinear, an fp16 Catmull-Rom and an fp32 confidence channel.
 uint64_t scenario_digest(uint64_t seed) {
-    rrc_scene::SceneConfig sc;
-    sc.width = 48;
-    sc.height = 32;
-    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    rrc_scene::SceneConfig sc = rrc_test::scene_config(48, 32, RRC_DEPTH_MODE_REVERSED);
     sc.jitter = true;
     sc.seed = seed;
     sc.invalid_fraction = 0.01;
@@ -58,16 +55,13 @@ uint64_t scenario_digest(uint64_t seed) {
         channel("env", 4, 0.8f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM),
         channel("soft", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_BILINEAR, 32, 1),
     };
-    rrc_context_desc d = rrc_test::context_desc(48, 32, channels);
-    d.depth_mode = sc.depth_mode;
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
-    rrc_test::Context ctx(d);
+    rrc_test::Context ctx(rrc_test::scene_context_desc(sc, RRC_REPROJECTION_PREV_CLIP, channels));
     if (!ctx) return 0;
     Digest digest;
     for (int t = 0; t < 12; ++t) {
         rrc_test::SceneFrameInputs in;
         in.frame = scene.render(t);
-        rrc_test::make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, {1, 4, 1}, {false, false, true});
+        rrc_test::make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, channels);
         rrc_test::FrameResult r = ctx.run(in.desc);
         digest.add(r.mask);
         for (size_t c = 0; c < channels.size(); ++c) {

@@ -20,10 +20,7 @@ namespace rrc_stab {
 inline void run_nonfinite_samples(int frame_count) {
     const int W = 16, H = 16, kChunk = 100;  // short batches: validation cost grows with their square
     const size_t n = (size_t)W * H;
-    rrc_scene::SceneConfig sc;
-    sc.width = W;
-    sc.height = H;
-    sc.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    rrc_scene::SceneConfig sc = rrc_test::scene_config(W, H, RRC_DEPTH_MODE_REVERSED);
     sc.invalid_fraction = 0.01;
     rrc_scene::Scene scene(sc);
     std::vector<rrc_channel_desc> channels = {
@@ -32,10 +29,7 @@ inline void run_nonfinite_samples(int frame_count) {
         rrc_test::channel("soft", 1, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_NEAREST, 16, 1),
         rrc_test::channel("acc", 4, 0.95f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
     };
-    rrc_context_desc d = rrc_test::context_desc(W, H, channels);
-    d.depth_mode = sc.depth_mode;
-    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
-    rrc_test::Context ctx(d);
+    rrc_test::Context ctx(rrc_test::scene_context_desc(sc, RRC_REPROJECTION_PREV_CLIP, channels));
     ASSERT_TRUE(ctx);
     const float bad[] = {NAN, INFINITY, -INFINITY};
     int64_t invalid_total = 0, hits = 0, values_checked = 0;

@@ -2,6 +2,7 @@
 // description for a given reprojection source, keeping the arrays alive.
 #pragma once
 
+#include "rrc_descs.h"
 #include "scenes/scene.h"
 
 #include <rrc/rrc.h>
@@ -65,6 +66,42 @@ inline void make_frame_inputs(SceneFrameInputs& in, rrc_reprojection source, con
     std::memcpy(in.desc.prev_jitter, f.prev_jitter, sizeof f.prev_jitter);
     in.desc.channel_count = (uint32_t)in.inputs.size();
     in.desc.channels = in.inputs.data();
+}
+
+// make_frame_inputs for a context's channels: each one's components and
+// whether it takes a confidence.
+inline void make_frame_inputs(SceneFrameInputs& in, rrc_reprojection source, const std::vector<rrc_channel_desc>& channels) {
+    std::vector<uint32_t> comps;
+    std::vector<bool> conf;
+    for (const rrc_channel_desc& ch : channels) {
+        comps.push_back(ch.components);
+        conf.push_back(ch.confidence != 0);
+    }
+    make_frame_inputs(in, source, comps, conf);
+}
+
+// A scene of width x height in one depth mode and format, up to far_plane
+// (near and far: the scene's defaults, 0.1 and 100); the caller sets the rest.
+inline rrc_scene::SceneConfig scene_config(int width, int height, rrc_depth_mode depth_mode,
+                                           rrc_depth_format depth_format = RRC_DEPTH_FORMAT_FLOAT32,
+                                           double far_plane = rrc_scene::SceneConfig().far_plane) {
+    const rrc_scene::SceneConfig defaults;
+    // In SceneConfig's member order; the members after depth_format keep their defaults.
+    return {width, height, depth_mode, defaults.near_plane, far_plane, depth_format};
+}
+
+// The context that accumulates scene `sc` from `source` over `channels`
+// (which must outlive the descriptor's use): the scene's extent, depth mode,
+// depth format and planes.
+inline rrc_context_desc scene_context_desc(const rrc_scene::SceneConfig& sc, rrc_reprojection source,
+                                           const std::vector<rrc_channel_desc>& channels) {
+    rrc_context_desc d = rrc_host::context_desc((uint32_t)sc.width, (uint32_t)sc.height, channels);
+    d.depth_mode = sc.depth_mode;
+    d.depth_format = sc.depth_format;
+    d.reprojection = source;
+    d.near_plane = (float)sc.near_plane;
+    d.far_plane = (float)sc.far_plane;
+    return d;
 }
 
 }  // namespace rrc_test
