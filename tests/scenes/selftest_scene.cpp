@@ -231,19 +231,16 @@ TEST(SceneFrame, MovingSphereLandsOnItselfInPreviousFrame) {
     const Frame g = Scene(still).render(t);
     int total = 0, on_sphere = 0;
     double object_motion_px = 0.0;
-    for (int j = 0; j < f.height; ++j) {
-        for (int i = 0; i < f.width; ++i) {
-            const size_t k = size_t(j) * f.width + i;
-            if (f.object_id[k] != OBJECT_SPHERE_MOVING) continue;
-            const glm::dvec2 uv = clip_uv(&f.prev_clip[4 * k]);
-            // Nearest texel of the previous frame (CONVENTIONS.md).
-            const int x = std::clamp(int(std::floor(uv.x * f.width - f.prev_jitter[0])), 0, f.width - 1);
-            const int y = std::clamp(int(std::floor(uv.y * f.height - f.prev_jitter[1])), 0, f.height - 1);
-            ++total;
-            on_sphere += prev_ids[size_t(y) * f.width + x] == OBJECT_SPHERE_MOVING;
-            if (g.object_id[k] == OBJECT_SPHERE_MOVING)
-                object_motion_px = std::max(object_motion_px, std::abs(double(f.motion[3 * k]) - g.motion[3 * k]) * f.width);
-        }
+    for (const PixelUv& p : pixels_of(f, OBJECT_SPHERE_MOVING)) {
+        const size_t k = p.k;
+        const glm::dvec2 uv = p.uv_prev;
+        // Nearest texel of the previous frame (CONVENTIONS.md).
+        const int x = std::clamp(int(std::floor(uv.x * f.width - f.prev_jitter[0])), 0, f.width - 1);
+        const int y = std::clamp(int(std::floor(uv.y * f.height - f.prev_jitter[1])), 0, f.height - 1);
+        ++total;
+        on_sphere += prev_ids[size_t(y) * f.width + x] == OBJECT_SPHERE_MOVING;
+        if (g.object_id[k] == OBJECT_SPHERE_MOVING)
+            object_motion_px = std::max(object_motion_px, std::abs(double(f.motion[3 * k]) - g.motion[3 * k]) * f.width);
     }
     ASSERT_GT(total, 50);
     EXPECT_GE(on_sphere, 0.9 * total);
@@ -298,19 +295,15 @@ TEST(SceneSignals, TruthSticksToTheSurface) {
     Scene s(c);
     const Frame f = s.render(6);
     int checked = 0;
-    for (int j = 0; j < f.height; ++j) {
-        for (int i = 0; i < f.width; ++i) {
-            const size_t k = size_t(j) * f.width + i;
-            if (f.object_id[k] != OBJECT_SPHERE_MOVING) continue;
-            const glm::dvec2 uv = clip_uv(&f.prev_clip[4 * k]);
-            const Hit h = s.cast(5, uv.x * f.width, uv.y * f.height);
-            ASSERT_EQ(f.truth1[k], float(shade1(OBJECT_SPHERE_MOVING, f.object_pos[k])));
-            // Hidden then (behind the sphere's own front, near its silhouette)?
-            if (h.object_id != OBJECT_SPHERE_MOVING || glm::length(h.object - f.object_pos[k]) > 1e-3) continue;
-            // The same object-space point (up to fp32 prev_clip), so the same truth.
-            ASSERT_NEAR(shade1(h.object_id, h.object), f.truth1[k], 1e-3);
-            ++checked;
-        }
+    for (const PixelUv& p : pixels_of(f, OBJECT_SPHERE_MOVING)) {
+        const size_t k = p.k;
+        const Hit h = s.cast(5, p.uv_prev.x * f.width, p.uv_prev.y * f.height);
+        ASSERT_EQ(f.truth1[k], float(shade1(OBJECT_SPHERE_MOVING, f.object_pos[k])));
+        // Hidden then (behind the sphere's own front, near its silhouette)?
+        if (h.object_id != OBJECT_SPHERE_MOVING || glm::length(h.object - f.object_pos[k]) > 1e-3) continue;
+        // The same object-space point (up to fp32 prev_clip), so the same truth.
+        ASSERT_NEAR(shade1(h.object_id, h.object), f.truth1[k], 1e-3);
+        ++checked;
     }
     EXPECT_GT(checked, 50);
 }

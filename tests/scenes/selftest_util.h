@@ -35,6 +35,20 @@ inline rrc_scene::SceneConfig config_for(const ModeCase& m) {
 // uv of a clip position (double), as CONVENTIONS.md's PREV_CLIP source.
 inline glm::dvec2 clip_uv(const float* c) { return glm::dvec2((double(c[0]) / c[3] + 1.0) * 0.5, (double(c[1]) / c[3] + 1.0) * 0.5); }
 
+// A pixel of a frame (its index) and the uv its prev_clip gives.
+struct PixelUv {
+    size_t k;
+    glm::dvec2 uv_prev;
+};
+
+// Every pixel of `f` that shows `object`, in row order.
+inline std::vector<PixelUv> pixels_of(const rrc_scene::Frame& f, int32_t object) {
+    std::vector<PixelUv> out;
+    for (size_t k = 0; k < f.object_id.size(); ++k)
+        if (f.object_id[k] == object) out.push_back({k, clip_uv(&f.prev_clip[4 * k])});
+    return out;
+}
+
 inline bool is_background(uint32_t mode, float d) {
     if (mode == RRC_DEPTH_MODE_STANDARD) return d >= 1.0f;
     if (mode == RRC_DEPTH_MODE_REVERSED) return d <= 0.0f;

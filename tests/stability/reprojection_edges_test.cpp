@@ -144,52 +144,23 @@ std::vector<PixelCase> motion_cases() {
         m[1] = y;
         m[2] = dz;
     };
+    // The same motion on every pixel.
+    auto uniform = [=](float x, float y, float dz, Expect e) {
+        return [=](int, int, float* m, float&) {
+            mv(m, x, y, dz);
+            return e;
+        };
+    };
     return {
-        {"zero motion (control)",
-         [=](int, int, float* m, float&) {
-             mv(m, 0, 0, 0);
-             return Expect{true, false};
-         }},
-        {"10 images off-screen",
-         [=](int, int, float* m, float&) {
-             mv(m, 10.0f * kW, 0, 0);
-             return Expect{false, false};
-         }},
-        {"1e6 pixels",
-         [=](int, int, float* m, float&) {
-             mv(m, 1e6f, -1e6f, 0);
-             return Expect{false, false};
-         }},
-        {"1e38 pixels (scaled: still finite)",
-         [=](int, int, float* m, float&) {
-             mv(m, 1e38f, 0, 0);
-             return Expect{false, false};
-         }},
-        {"NaN motion",
-         [=](int, int, float* m, float&) {
-             mv(m, kNaN, 0, 0);
-             return Expect{false, true};
-         }},
-        {"Inf motion",
-         [=](int, int, float* m, float&) {
-             mv(m, 0, -kInf, 0);
-             return Expect{false, true};
-         }},
-        {"NaN depth change",
-         [=](int, int, float* m, float&) {
-             mv(m, 0, 0, kNaN);
-             return Expect{false, true};
-         }},
-        {"Inf depth change",
-         [=](int, int, float* m, float&) {
-             mv(m, 0, 0, kInf);
-             return Expect{false, true};
-         }},
-        {"huge depth change",
-         [=](int, int, float* m, float&) {
-             mv(m, 0, 0, 1e30f);
-             return Expect{false, false};
-         }},
+        {"zero motion (control)", uniform(0, 0, 0, {true, false})},
+        {"10 images off-screen", uniform(10.0f * kW, 0, 0, {false, false})},
+        {"1e6 pixels", uniform(1e6f, -1e6f, 0, {false, false})},
+        {"1e38 pixels (scaled: still finite)", uniform(1e38f, 0, 0, {false, false})},
+        {"NaN motion", uniform(kNaN, 0, 0, {false, true})},
+        {"Inf motion", uniform(0, -kInf, 0, {false, true})},
+        {"NaN depth change", uniform(0, 0, kNaN, {false, true})},
+        {"Inf depth change", uniform(0, 0, kInf, {false, true})},
+        {"huge depth change", uniform(0, 0, 1e30f, {false, false})},
         {"just off the left edge",
          [=](int i, int, float* m, float&) {
              mv(m, -(i + 0.5f) - 1e-3f, 0, 0);
