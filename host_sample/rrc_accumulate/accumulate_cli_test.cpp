@@ -92,6 +92,28 @@ struct SceneOptions {
     bool conf = false;
     const char* drop = nullptr;  // a channel left out of frame `drop_frame`
     int drop_frame = -1;
+
+    // mv.X/mv.Y, with mv.Z when `z`, instead of prevclip.
+    static SceneOptions motion_vectors(bool z) {
+        SceneOptions s;
+        s.motion = true;
+        s.motion_z = z;
+        return s;
+    }
+    // color.R/G/B without A, and a confidence when `confidence`.
+    static SceneOptions rgb(bool confidence = false) {
+        SceneOptions s;
+        s.rgb_only = true;
+        s.conf = confidence;
+        return s;
+    }
+    // `channel` left out of frame `frame`.
+    static SceneOptions dropping(const char* channel, int frame) {
+        SceneOptions s;
+        s.drop = channel;
+        s.drop_frame = frame;
+        return s;
+    }
 };
 
 // A static camera looking at a plane at standard NDC depth 0.5: every pixel
@@ -313,28 +335,27 @@ TEST(AccumulateOptions, BadOptionsNameTheOption) {
     expect_error(parse_with({"stray"}), "stray");
     expect_error(parse_with({"--epsilon"}), "--epsilon");           // no value
     expect_error(parse_with({"--camera", "--quiet"}), "--camera");  // an option is not a value
-    expect_error(parse_with({"--epsilon", "abc"}), "--epsilon");
-    expect_error(parse_with({"--epsilon", "-1"}), "--epsilon");
-    expect_error(parse_with({"--epsilon", "0"}), "--epsilon");
-    expect_error(parse_with({"--epsilon", "1e-3x"}), "--epsilon");
-    expect_error(parse_with({"--epsilon", "nan"}), "--epsilon");
-    expect_error(parse_with({"--epsilon", "1e99"}), "--epsilon");
-    expect_error(parse_with({"--epsilon-scale", "0"}), "--epsilon-scale");
-    expect_error(parse_with({"--tau", "-0.1"}), "--tau");
-    expect_error(parse_with({"--tau", "inf"}), "--tau");
-    expect_error(parse_with({"--background-threshold", "x"}), "--background-threshold");
-    expect_error(parse_with({"--near", "0"}), "--near");
-    expect_error(parse_with({"--far", "-inf"}), "--far");
+    // Values each option refuses: the message names the option.
+    const std::vector<std::pair<const char*, std::vector<const char*>>> refused = {
+        {"--epsilon", {"abc", "-1", "0", "1e-3x", "nan", "1e99"}},
+        {"--epsilon-scale", {"0"}},
+        {"--tau", {"-0.1", "inf"}},
+        {"--background-threshold", {"x"}},
+        {"--near", {"0"}},
+        {"--far", {"-inf"}},
+        {"--depth-mode", {"inverted"}},
+        {"--depth-format", {"unorm32"}},
+        {"--reproject", {"flow"}},
+        {"--motion-scale", {"1", "a,b", "0,1", "1,2,3"}},
+        {"--camera", {""}},
+        {"--device", {""}},
+    };
+    for (const auto& option : refused)
+        for (const char* value : option.second) {
+            SCOPED_TRACE(std::string(option.first) + " " + value);
+            expect_error(parse_with({option.first, value}), option.first);
+        }
     expect_error(parse_with({"--near", "10", "--far", "1"}), "--far");
-    expect_error(parse_with({"--depth-mode", "inverted"}), "--depth-mode");
-    expect_error(parse_with({"--depth-format", "unorm32"}), "--depth-format");
-    expect_error(parse_with({"--reproject", "flow"}), "--reproject");
-    expect_error(parse_with({"--motion-scale", "1"}), "--motion-scale");
-    expect_error(parse_with({"--motion-scale", "a,b"}), "--motion-scale");
-    expect_error(parse_with({"--motion-scale", "0,1"}), "--motion-scale");
-    expect_error(parse_with({"--motion-scale", "1,2,3"}), "--motion-scale");
-    expect_error(parse_with({"--camera", ""}), "--camera");
-    expect_error(parse_with({"--device", ""}), "--device");
     expect_error(parse_with({"--depth-mode", "linear", "--depth-mode", "reversed"}), "--depth-mode");
     expect_error(parse_with({"--frames", "2-4"}), "--frames");  // given twice
     expect_error(parse({"--input", "f_%04d.exr", "--output", "f_%04d.exr", "--frames", "1"}), "--output");
@@ -370,18 +391,15 @@ TEST(AccumulateOptions, Patterns) {
 TEST(AccumulateOptions, FrameRanges) {
     int64_t a = -1, b = -1;
     std::string err;
-    EXPECT_TRUE(rrc_cli::parse_frame_range("10-20", a, b, err));
-    EXPECT_EQ(a, 10);
-    EXPECT_EQ(b, 20);
-    EXPECT_TRUE(rrc_cli::parse_frame_range("7", a, b, err));
-    EXPECT_EQ(a, 7);
-    EXPECT_EQ(b, 7);
-    EXPECT_TRUE(rrc_cli::parse_frame_range("0-0", a, b, err));
-    EXPECT_EQ(a, 0);
-    EXPECT_EQ(b, 0);
-    EXPECT_TRUE(rrc_cli::parse_frame_range("0012-0013", a, b, err));
-    EXPECT_EQ(a, 12);
-    EXPECT_EQ(b, 13);
+    struct Range {
+        const char* text;
+        int64_t first, last;
+    };
+    for (const Range& r : {Range{"10-20", 10, 20}, Range{"7", 7, 7}, Range{"0-0", 0, 0}, Range{"0012-0013", 12, 13}}) {
+        EXPECT_TRUE(rrc_cli::parse_frame_range(r.text, a, b, err)) << r.text;
+        EXPECT_EQ(a, r.first) << r.text;
+        EXPECT_EQ(b, r.last) << r.text;
+    }
     for (const char* bad :
          {"5-3", "-3", "a-b", "1-", "-", "", "1-2-3", "1 - 2", "+1-2", "1.5-3", "99999999999999999999-1", "0-1000000000"}) {
         EXPECT_FALSE(rrc_cli::parse_frame_range(bad, a, b, err)) << bad;
@@ -666,10 +684,7 @@ TEST(AccumulateTool, RefusesToOverwriteInputs) {
 TEST(AccumulateTool, NamesTheMissingChannelOrFile) {
     TempDir dir;
     const std::string in = dir / "f_%d.exr", out = dir / "out/o_%d.exr";
-    SceneOptions s;
-    s.drop = "prevclip.W";
-    s.drop_frame = 3;
-    write_static_sequence(in, 1, 4, s);
+    write_static_sequence(in, 1, 4, SceneOptions::dropping("prevclip.W", 3));
     std::string err;
     EXPECT_EQ(run_tool({"--input", in, "--output", out, "--frames", "1-4"}, nullptr, &err), rrc_cli::kExitError);
     EXPECT_NE(err.find("'prevclip.W'"), std::string::npos) << err;
@@ -702,10 +717,7 @@ TEST(AccumulateTool, NamesTheMissingChannelOrFile) {
 
 TEST(AccumulateTool, MotionWithoutDepthChangeNeedsPlanes) {
     TempDir dir;
-    SceneOptions s;
-    s.motion = true;
-    s.motion_z = false;
-    write_static_sequence(dir / "f_%d.exr", 1, 2, s);
+    write_static_sequence(dir / "f_%d.exr", 1, 2, SceneOptions::motion_vectors(false));
     std::string err;
     EXPECT_EQ(
         run_tool({"--input", dir / "f_%d.exr", "--output", dir / "o_%d.exr", "--frames", "1-2", "--reproject", "motion"}, nullptr, &err),
@@ -762,10 +774,7 @@ TEST(AccumulateTool, CameraFileErrors) {
 
 TEST(AccumulateTool, LayoutDiscovery) {
     TempDir dir;
-    SceneOptions s;
-    s.rgb_only = true;
-    s.conf = true;
-    write_static_sequence(dir / "f_%d.exr", 1, 1, s);
+    write_static_sequence(dir / "f_%d.exr", 1, 1, SceneOptions::rgb(true));
     rrc_cli::Options o;
     const rrc_exr::ExrInfo info = rrc_exr::read_exr_info(dir / "f_1.exr");
     const rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, dir / "f_1.exr", o);
@@ -868,9 +877,7 @@ TEST(AccumulateTool, LayoutDiscovery) {
 
 TEST(AccumulateTool, StaticSequenceEndToEnd) {
     TempDir dir;
-    SceneOptions s;
-    s.rgb_only = true;
-    write_static_sequence(dir / "in/f_%03d.exr", 5, 7, s);
+    write_static_sequence(dir / "in/f_%03d.exr", 5, 7, SceneOptions::rgb());
     std::string out, err;
     const int rc = run_tool({"--input", dir / "in/f_%03d.exr", "--output", dir / "out/acc_%03d.exr", "--frames", "5-7", "--signal",
                              "shadow:history=fp32", "--signal", "color:history=fp32,lambda=0.5"},
