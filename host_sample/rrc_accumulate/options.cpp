@@ -1,6 +1,8 @@
 // rrc-accumulate: command-line parsing.
 #include "options.h"
 
+#include "enum_names.h"
+
 #include <algorithm>
 
 #include <cctype>
@@ -54,6 +56,13 @@ bool split_list(const std::string& text, std::vector<std::string>& out) {
     }
 }
 
+using rrc_host::EnumName;
+
+constexpr EnumName<Reproject> kReprojectNames[] = {
+    {"prev_clip", Reproject::PrevClip}, {"motion", Reproject::Motion}, {"camera", Reproject::Camera}};
+constexpr EnumName<MotionUnits> kMotionUnitNames[] = {{"uv", MotionUnits::Uv}, {"pixels", MotionUnits::Pixels}};
+constexpr EnumName<Progress> kProgressNames[] = {{"auto", Progress::Auto}, {"bar", Progress::Bar}, {"lines", Progress::Lines}};
+
 // The layers that carry the per-pixel geometry or our own output.
 bool is_reserved_layer(const std::string& layer) { return layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc"; }
 
@@ -65,23 +74,9 @@ std::string metrics_path(const Options& o) {
     return slash == std::string::npos ? std::string("metrics.csv") : o.output_pattern.substr(0, slash + 1) + "metrics.csv";
 }
 
-const char* reproject_name(Reproject r) {
-    switch (r) {
-        case Reproject::PrevClip: return "prev_clip";
-        case Reproject::Motion: return "motion";
-        case Reproject::Camera: return "camera";
-    }
-    return "?";
-}
+const char* reproject_name(Reproject r) { return rrc_host::enum_name(kReprojectNames, r); }
 
-const char* depth_mode_name(rrc_depth_mode m) {
-    switch (m) {
-        case RRC_DEPTH_MODE_STANDARD: return "standard";
-        case RRC_DEPTH_MODE_REVERSED: return "reversed";
-        case RRC_DEPTH_MODE_LINEAR: return "linear";
-        default: return "?";
-    }
-}
+const char* depth_mode_name(rrc_depth_mode m) { return rrc_host::enum_name(rrc_host::kDepthModeNames, m); }
 
 bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error) {
     SignalOptions s;
@@ -106,6 +101,12 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
         return false;
     }
     std::set<std::string> seen;
+    // key=value naming one of `table`'s values into `field`.
+    auto choose = [&](const std::string& key, const auto& table, auto& field, const std::string& value) {
+        if (rrc_host::enum_value(table, value, field)) return true;
+        error = where + key + " must be " + rrc_host::enum_choices(table) + ", got " + quoted(value);
+        return false;
+    };
     if (colon != std::string::npos) {
         std::string rest = text.substr(colon + 1);
         if (rest.empty()) {
@@ -132,37 +133,11 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
                     error = where + "lambda must be a number in [0, 1), got " + quoted(value);
                     return false;
                 }
-            } else if (key == "blend") {
-                if (value == "fixed")
-                    s.blend = RRC_BLEND_FIXED;
-                else if (value == "age_aware")
-                    s.blend = RRC_BLEND_AGE_AWARE;
-                else if (value == "running_mean")
-                    s.blend = RRC_BLEND_RUNNING_MEAN;
-                else {
-                    error = where + "blend must be fixed, age_aware or running_mean, got " + quoted(value);
-                    return false;
-                }
-            } else if (key == "filter") {
-                if (value == "nearest")
-                    s.filter = RRC_HISTORY_FILTER_NEAREST;
-                else if (value == "bilinear")
-                    s.filter = RRC_HISTORY_FILTER_BILINEAR;
-                else if (value == "catmull_rom")
-                    s.filter = RRC_HISTORY_FILTER_CATMULL_ROM;
-                else {
-                    error = where + "filter must be nearest, bilinear or catmull_rom, got " + quoted(value);
-                    return false;
-                }
-            } else if (key == "history") {
-                if (value == "fp16")
-                    s.history = RRC_HISTORY_FP16;
-                else if (value == "fp32")
-                    s.history = RRC_HISTORY_FP32;
-                else {
-                    error = where + "history must be fp16 or fp32, got " + quoted(value);
-                    return false;
-                }
+            } else if (key == "blend" || key == "filter" || key == "history") {
+                const bool ok = key == "blend"    ? choose(key, rrc_host::kBlendNames, s.blend, value)
+                                : key == "filter" ? choose(key, rrc_host::kHistoryFilterNames, s.filter, value)
+                                                  : choose(key, rrc_host::kHistoryPrecisionNames, s.history, value);
+                if (!ok) return false;
             } else if (key == "max_age") {
                 int64_t v = 0;
                 if (!parse_int(value, v) || v < 1 || v > static_cast<int64_t>(RRC_MAX_AGE_CAP)) {
@@ -516,13 +491,20 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
                 for (std::size_t b = a + 1; b < names.size(); ++b)
                     if (names[a] == names[b]) return fail(where + "channel " + quoted(names[a]) + " named twice");
             (motion ? o.motion_channels : o.prevclip_channels) = names;
-        } else if (arg == "--motion-units") {
-            if (value == "uv")
-                o.motion_units = MotionUnits::Uv;
-            else if (value == "pixels")
-                o.motion_units = MotionUnits::Pixels;
-            else
-                return fail(where + "expected uv or pixels");
+        } else if (arg == "--motion-units" || arg == "--progress" || arg == "--depth-mode" || arg == "--depth-format" ||
+                   arg == "--reproject") {
+            // One of a table's names; the message lists them.
+            std::string choices;
+            auto choose = [&](const auto& table, auto& field) {
+                choices = rrc_host::enum_choices(table);
+                return rrc_host::enum_value(table, value, field);
+            };
+            const bool ok = arg == "--motion-units"   ? choose(kMotionUnitNames, o.motion_units)
+                            : arg == "--progress"     ? choose(kProgressNames, o.progress)
+                            : arg == "--depth-mode"   ? choose(rrc_host::kDepthModeNames, o.depth_mode)
+                            : arg == "--depth-format" ? choose(rrc_host::kDepthFormatNames, o.depth_format)
+                                                      : choose(kReprojectNames, o.reproject);
+            if (!ok) return fail(where + "expected " + choices);
         } else if (arg == "--motion-y") {
             if (value == "down")
                 o.motion_y_up = false;
@@ -530,15 +512,6 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
                 o.motion_y_up = true;
             else
                 return fail(where + "expected down (rows grow downwards, as rrc) or up (as Blender)");
-        } else if (arg == "--progress") {
-            if (value == "auto")
-                o.progress = Progress::Auto;
-            else if (value == "bar")
-                o.progress = Progress::Bar;
-            else if (value == "lines")
-                o.progress = Progress::Lines;
-            else
-                return fail(where + "expected auto, bar or lines");
         } else if (arg == "--cut") {
             std::vector<std::string> items;
             if (!split_list(value, items)) return fail(where + "expected frame numbers F[,F...]");
@@ -555,33 +528,6 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
             std::string err;
             if (!parse_frame_range(value, o.first_frame, o.last_frame, err)) return fail(err);
             frames_given = true;
-        } else if (arg == "--depth-mode") {
-            if (value == "standard")
-                o.depth_mode = RRC_DEPTH_MODE_STANDARD;
-            else if (value == "reversed")
-                o.depth_mode = RRC_DEPTH_MODE_REVERSED;
-            else if (value == "linear")
-                o.depth_mode = RRC_DEPTH_MODE_LINEAR;
-            else
-                return fail(where + "expected standard, reversed or linear");
-        } else if (arg == "--depth-format") {
-            if (value == "float32")
-                o.depth_format = RRC_DEPTH_FORMAT_FLOAT32;
-            else if (value == "unorm16")
-                o.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-            else if (value == "unorm24")
-                o.depth_format = RRC_DEPTH_FORMAT_UNORM24;
-            else
-                return fail(where + "expected float32, unorm16 or unorm24");
-        } else if (arg == "--reproject") {
-            if (value == "prev_clip")
-                o.reproject = Reproject::PrevClip;
-            else if (value == "motion")
-                o.reproject = Reproject::Motion;
-            else if (value == "camera")
-                o.reproject = Reproject::Camera;
-            else
-                return fail(where + "expected prev_clip, motion or camera");
         } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" || arg == "--background-threshold" || arg == "--near") {
             float v = 0;
             if (!parse_float(value, v) || !(v > 0.0f)) return fail(where + "expected a positive number");

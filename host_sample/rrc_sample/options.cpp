@@ -1,5 +1,6 @@
 #include "options.h"
 
+#include "enum_names.h"
 #include "scene.h"
 
 #include <rrc/rrc.h>
@@ -58,15 +59,7 @@ std::string signal_list(uint32_t s) {
     return out;
 }
 
-const char* reprojection_name(uint32_t r) {
-    switch (r) {
-        case RRC_REPROJECTION_PREV_CLIP: return "prev_clip";
-        case RRC_REPROJECTION_MOTION: return "motion";
-        case RRC_REPROJECTION_MOTION_DEPTH: return "motion_depth";
-        case RRC_REPROJECTION_CAMERA: return "camera";
-        default: return "?";
-    }
-}
+const char* reprojection_name(uint32_t r) { return rrc_host::enum_name(rrc_host::kReprojectionNames, r); }
 
 std::string usage() {
     return "usage: rrc-sample [options]\n"
@@ -129,16 +122,8 @@ Options parse_options(int argc, const char* const* argv) {
             o.signals = parse_signals(value());
         else if (a == "--reproject") {
             const std::string v = value();
-            if (v == "prev_clip")
-                o.reprojection = RRC_REPROJECTION_PREV_CLIP;
-            else if (v == "motion")
-                o.reprojection = RRC_REPROJECTION_MOTION;
-            else if (v == "motion_depth")
-                o.reprojection = RRC_REPROJECTION_MOTION_DEPTH;
-            else if (v == "camera")
-                o.reprojection = RRC_REPROJECTION_CAMERA;
-            else
-                throw OptionError("--reproject: expected prev_clip, motion, motion_depth or camera, got \"" + v + "\"");
+            if (!rrc_host::enum_value(rrc_host::kReprojectionNames, v, o.reprojection))
+                throw OptionError("--reproject: expected " + rrc_host::enum_choices(rrc_host::kReprojectionNames) + ", got \"" + v + "\"");
         } else if (a == "--epsilon-scale")
             o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
         else if (a == "--soft-prior")
