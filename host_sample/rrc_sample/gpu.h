@@ -17,6 +17,13 @@ using rrc_host::vk_check;
 /** Compute writes -> later compute reads and writes (storage images, read-modify-write chains). */
 void compute_to_compute(VkCommandBuffer cmd);
 
+/** A base for the passes and resources that own Vulkan objects: never copied. */
+struct NonCopyable {
+    NonCopyable() = default;
+    NonCopyable(const NonCopyable&) = delete;
+    NonCopyable& operator=(const NonCopyable&) = delete;
+};
+
 struct GpuOptions {
     bool validation = false;  // VK_LAYER_KHRONOS_validation + synchronization validation
     std::string device_name;  // substring of the device name; "" = RRC_DEVICE or discrete > integrated > any

@@ -13,12 +13,10 @@ namespace rrc_sample {
 
 /** Vertex/index buffers of every mesh, the frame uniform buffer, the object
  *  storage buffer, and the descriptor set the raster pipelines share. */
-class GpuScene {
+class GpuScene : NonCopyable {
 public:
     GpuScene(Gpu& gpu, const Scene& scene);
     ~GpuScene();
-    GpuScene(const GpuScene&) = delete;
-    GpuScene& operator=(const GpuScene&) = delete;
 
     /** Copies the frame's uniforms and objects (the GPU must be idle on them). */
     void update(const FrameState& state);
@@ -46,12 +44,10 @@ private:
 };
 
 /** Depth-only pass into a D32 shadow map, left in SHADER_READ_ONLY_OPTIMAL. */
-class ShadowPass {
+class ShadowPass : NonCopyable {
 public:
     ShadowPass(Gpu& gpu, const GpuScene& scene);
     ~ShadowPass();
-    ShadowPass(const ShadowPass&) = delete;
-    ShadowPass& operator=(const ShadowPass&) = delete;
     /** Clears `map` and renders the scene with light_vp (standard depth, less). */
     void record(VkCommandBuffer cmd, const Image& map, const glm::mat4& light_vp);
 
@@ -73,12 +69,10 @@ struct GBuffer {
     Image position;   // RGBA32F: world position
 };
 
-class GBufferPass {
+class GBufferPass : NonCopyable {
 public:
     GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t width, uint32_t height);
     ~GBufferPass();
-    GBufferPass(const GBufferPass&) = delete;
-    GBufferPass& operator=(const GBufferPass&) = delete;
     void record(VkCommandBuffer cmd);
     const GBuffer& images() const { return g_; }
 
