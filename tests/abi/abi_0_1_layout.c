@@ -11,14 +11,8 @@ typedef char rrc_abi_header_is_0_1_0[(RRC_API_VERSION == RRC_MAKE_VERSION(0, 1, 
 #if defined(RRC_MAX_CHAIN) || defined(RRC_STRUCT_TYPE_EXT_FIRST)
 #error "abi_0_1_layout.c must be compiled against the 0.1 headers (tests/abi/rrc_0_1), not include/"
 #endif
-#define RRC_ABI_0_1_MEMBER_SIZE(s, m) sizeof(((s*)0)->m)
-
 const rrc_abi_entry rrc_abi_0_1_layout[] = {
-#define RRC_ABI_STRUCT(s, tag) {#s, NULL, sizeof(s), 0, tag},
-#define RRC_ABI_MEMBER(s, m) {#s, #m, offsetof(s, m), RRC_ABI_0_1_MEMBER_SIZE(s, m), 0},
-#include "abi_0_1_layout.inc"
-#undef RRC_ABI_STRUCT
-#undef RRC_ABI_MEMBER
-    {NULL, NULL, 0, 0, 0}};
+#include "abi_0_1_entries.inc"
+};
 
 const uint32_t rrc_abi_0_1_header_version = RRC_API_VERSION;

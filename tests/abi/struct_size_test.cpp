@@ -36,14 +36,9 @@ namespace {
 
 // ---- layout: every 0.1 member where a 0.1 caller put it ---------------------
 
-#define RRC_ABI_MEMBER_SIZE(s, m) sizeof(((s*)nullptr)->m)
 const rrc_abi_entry kLayout02[] = {
-#define RRC_ABI_STRUCT(s, tag) {#s, nullptr, sizeof(s), 0, tag},
-#define RRC_ABI_MEMBER(s, m) {#s, #m, offsetof(s, m), RRC_ABI_MEMBER_SIZE(s, m), 0},
-#include "abi_0_1_layout.inc"
-#undef RRC_ABI_STRUCT
-#undef RRC_ABI_MEMBER
-    {nullptr, nullptr, 0, 0, 0}};
+#include "abi_0_1_entries.inc"
+};
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
@@ -268,56 +263,41 @@ struct ChainCase {
     std::function<const void*(std::vector<ChainNode>&)> make;
 };
 
+// Nodes of `types` into `n`, each pointing at the next; the last points back
+// at node `cycle_to` when that is not negative.  Returns the chain's head.
+const void* linked(std::vector<ChainNode>& n, const std::vector<rrc_struct_type>& types, int cycle_to = -1) {
+    n.clear();
+    for (rrc_struct_type t : types) n.push_back(node(t));
+    for (size_t i = 0; i + 1 < n.size(); ++i) n[i].next = &n[i + 1];
+    if (cycle_to >= 0) n.back().next = &n[(size_t)cycle_to];
+    return &n[0];
+}
+
+// `count` distinct unknown extension types.
+std::vector<rrc_struct_type> unknown_types(uint32_t count) {
+    std::vector<rrc_struct_type> t;
+    for (uint32_t i = 0; i < count; ++i) t.push_back(0x7A000000u + i);
+    return t;
+}
+
 std::vector<ChainCase> chain_cases() {
+    using Nodes = std::vector<ChainNode>;
     return {
-        {"unknown_extension_type", RRC_ERROR_UNSUPPORTED, "[0].type",
-         [](std::vector<ChainNode>& n) {
-             n = {node(kUnknownExtension)};
-             return (const void*)&n[0];
+        {"unknown_extension_type", RRC_ERROR_UNSUPPORTED, "[0].type", [](Nodes& n) { return linked(n, {kUnknownExtension}); }},
+        {"unknown_foreign_type", RRC_ERROR_UNSUPPORTED, "[0].type", [](Nodes& n) { return linked(n, {0x12345678u}); }},
+        {"base_struct_tag", RRC_ERROR_INVALID_STRUCT, "[0].type", [](Nodes& n) { return linked(n, {RRC_STRUCT_TYPE_FRAME_DESC}); }},
+        // After an unknown extension: the walk checks the shape first.
+        {"base_struct_tag_second", RRC_ERROR_INVALID_STRUCT, "[1].type",
+         [](Nodes& n) {
+             return linked(n, {kUnknownExtension, RRC_STRUCT_TYPE_CONTEXT_DESC});
          }},
-        {"unknown_foreign_type", RRC_ERROR_UNSUPPORTED, "[0].type",
-         [](std::vector<ChainNode>& n) {
-             n = {node(0x12345678u)};
-             return (const void*)&n[0];
-         }},
-        {"base_struct_tag", RRC_ERROR_INVALID_STRUCT, "[0].type",
-         [](std::vector<ChainNode>& n) {
-             n = {node(RRC_STRUCT_TYPE_FRAME_DESC)};
-             return (const void*)&n[0];
-         }},
-        {"base_struct_tag_second", RRC_ERROR_INVALID_STRUCT, "[1].type",  // after an unknown extension: the walk checks the shape first
-         [](std::vector<ChainNode>& n) {
-             n = {node(kUnknownExtension), node(RRC_STRUCT_TYPE_CONTEXT_DESC)};
-             n[0].next = &n[1];
-             return (const void*)&n[0];
-         }},
-        {"self_cycle", RRC_ERROR_INVALID_STRUCT, "",
-         [](std::vector<ChainNode>& n) {
-             n = {node(kUnknownExtension)};
-             n[0].next = &n[0];
-             return (const void*)&n[0];
-         }},
+        {"self_cycle", RRC_ERROR_INVALID_STRUCT, "", [](Nodes& n) { return linked(n, {kUnknownExtension}, 0); }},
         {"two_node_cycle", RRC_ERROR_INVALID_STRUCT, "",
-         [](std::vector<ChainNode>& n) {
-             n = {node(kUnknownExtension), node(kUnknownExtension - 1)};
-             n[0].next = &n[1];
-             n[1].next = &n[0];
-             return (const void*)&n[0];
+         [](Nodes& n) {
+             return linked(n, {kUnknownExtension, kUnknownExtension - 1}, 0);
          }},
-        {"chain_of_65", RRC_ERROR_INVALID_STRUCT, "",
-         [](std::vector<ChainNode>& n) {
-             n.clear();
-             for (uint32_t i = 0; i < 65; ++i) n.push_back(node(0x7A000000u + i));
-             for (size_t i = 0; i + 1 < n.size(); ++i) n[i].next = &n[i + 1];
-             return (const void*)&n[0];
-         }},
-        {"chain_of_64_unknown", RRC_ERROR_UNSUPPORTED, "[0].type",
-         [](std::vector<ChainNode>& n) {
-             n.clear();
-             for (uint32_t i = 0; i < 64; ++i) n.push_back(node(0x7A000000u + i));
-             for (size_t i = 0; i + 1 < n.size(); ++i) n[i].next = &n[i + 1];
-             return (const void*)&n[0];
-         }},
+        {"chain_of_65", RRC_ERROR_INVALID_STRUCT, "", [](Nodes& n) { return linked(n, unknown_types(65)); }},
+        {"chain_of_64_unknown", RRC_ERROR_UNSUPPORTED, "[0].type", [](Nodes& n) { return linked(n, unknown_types(64)); }},
     };
 }
 
