@@ -1,7 +1,8 @@
 #version 450
 // The fused kernel: reverse reprojection, the epsilon-depth hit test and the
 // lambda recursive filter for up to RRC_MAX_CHANNELS channels, one pass.
-// Written for lavapipe's costs (SPEC §8): plain storage-image loads with
+// Written for lavapipe's costs (every instruction and image operation is paid;
+// shared memory is emulated lane by lane): plain storage-image loads with
 // format qualifiers, one set of bilinear weights shared by the depth test and
 // every history fetch, wide 128x1 workgroups, no shared memory, straight-line
 // code where the specialization constants have folded the branches.

@@ -70,7 +70,7 @@ static_assert(RRC_PC_SIZE <= 128, "push constants must fit Vulkan's guaranteed 1
 
 class AccumulatePipeline {
 public:
-    static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // SPEC §8: wide groups win on lavapipe
+    static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // wide groups win on lavapipe (128x1 ~2% over 64x1; 8x8 is ~1.45x slower)
     AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
     AccumulatePipeline(const AccumulatePipeline&) = delete;

@@ -18,7 +18,7 @@ struct ChannelConfig {
     float lambda = 0.6f;
     rrc_blend blend = RRC_BLEND_FIXED;
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
-    uint32_t age_cap = 255;
+    uint32_t age_cap = RRC_DEFAULT_AGE_CAP;
     bool confidence = false;
 };
 
@@ -31,11 +31,11 @@ struct ContextConfig {
     rrc_depth_mode depth_mode = RRC_DEPTH_MODE_STANDARD;
     rrc_depth_format depth_format = RRC_DEPTH_FORMAT_FLOAT32;
     float near_plane = 0, far_plane = 0;
-    float background_threshold = 1e10f;
+    float background_threshold = RRC_DEFAULT_BACKGROUND_THRESHOLD;
     rrc_reprojection reprojection = RRC_REPROJECTION_PREV_CLIP;
     std::array<float, 2> motion_scale{1.0f, 1.0f};
     EpsilonKind epsilon_kind = EpsilonKind::Ulp;
-    float epsilon_value = 4.0f;  // absolute epsilon, ulp scale, or tau (by kind)
+    float epsilon_value = RRC_DEFAULT_EPSILON_SCALE_FLOAT32;  // absolute epsilon, ulp scale, or tau (by kind)
     bool use_nocache = false;
     std::vector<ChannelConfig> channels;
     std::string device_name;  // empty: automatic choice

@@ -24,7 +24,7 @@ namespace rrc {
 class GpuImage {
 public:
     GpuImage() = default;
-    // A 2D storage image in GENERAL layout once initialised (see Context).
+    // A 2D storage image; record_initialise (below) moves it to GENERAL, cleared.
     GpuImage(VulkanDevice& dev, VkFormat format, uint32_t width, uint32_t height);
     RRC_MOVE_ONLY_RESOURCE(GpuImage)
 

@@ -20,7 +20,7 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     if (c.use_nocache) in.push_back({InputRole::Nocache, 0, RRC_BINDING_NOCACHE, RRC_BINDING_HOST_NOCACHE, VK_FORMAT_R8_UINT, 1, 1});
     for (uint32_t s = 0; s < c.channels.size(); ++s) {
         const bool one = c.channels[s].components == 1;
-        in.push_back({InputRole::Samples, s, one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4, RRC_BINDING_HOST_SAMPLES,
+        in.push_back({InputRole::Samples, s, uint32_t(one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4), RRC_BINDING_HOST_SAMPLES,
                       one ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, c.channels[s].components, 4});
         if (c.channels[s].confidence)
             in.push_back({InputRole::Confidence, s, RRC_BINDING_CONFIDENCE, RRC_BINDING_HOST_CONFIDENCE, VK_FORMAT_R32_SFLOAT, 1, 4});

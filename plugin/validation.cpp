@@ -57,7 +57,7 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
     out.filter = c.filter;
     if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
-    out.age_cap = c.age_cap == 0 ? 255u : c.age_cap;
+    out.age_cap = c.age_cap == 0 ? RRC_DEFAULT_AGE_CAP : c.age_cap;
     out.confidence = c.confidence != 0;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
@@ -97,7 +97,7 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
     if (!(d->background_threshold >= 0.0f) || std::isinf(d->background_threshold))
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.background_threshold is %g, must be finite and >= 0 (0 = default 1e10)",
              (double)d->background_threshold);
-    c.background_threshold = d->background_threshold == 0.0f ? 1e10f : d->background_threshold;
+    c.background_threshold = d->background_threshold == 0.0f ? RRC_DEFAULT_BACKGROUND_THRESHOLD : d->background_threshold;
 
     // Linearising NDC depth (plain MOTION) needs the planes.
     c.near_plane = d->near_plane;
@@ -123,17 +123,17 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.tau is %g, must be finite and >= 0", (double)d->tau);
     if (d->depth_mode == RRC_DEPTH_MODE_LINEAR || linearise) {
         c.epsilon_kind = EpsilonKind::Relative;
-        c.epsilon_value = d->tau == 0.0f ? 0.01f : d->tau;
+        c.epsilon_value = d->tau == 0.0f ? RRC_DEFAULT_TAU : d->tau;
     } else if (d->epsilon > 0.0f) {
         c.epsilon_kind = EpsilonKind::Absolute;
         c.epsilon_value = d->epsilon;
     } else if (d->depth_format == RRC_DEPTH_FORMAT_FLOAT32) {
         c.epsilon_kind = EpsilonKind::Ulp;
-        c.epsilon_value = d->epsilon_scale == 0.0f ? 4.0f : d->epsilon_scale;
+        c.epsilon_value = d->epsilon_scale == 0.0f ? RRC_DEFAULT_EPSILON_SCALE_FLOAT32 : d->epsilon_scale;
     } else {
         double step = d->depth_format == RRC_DEPTH_FORMAT_UNORM16 ? 1.0 / 65535.0 : 1.0 / 16777215.0;
         c.epsilon_kind = EpsilonKind::Absolute;
-        c.epsilon_value = (float)((d->epsilon_scale == 0.0f ? 1.0 : (double)d->epsilon_scale) * step);
+        c.epsilon_value = (float)((double)(d->epsilon_scale == 0.0f ? RRC_DEFAULT_EPSILON_SCALE_UNORM : d->epsilon_scale) * step);
     }
 
     if (d->motion_scale[0] == 0.0f && d->motion_scale[1] == 0.0f) {

@@ -11,7 +11,7 @@ namespace rrc_sample {
 class ComputeKernel {
 public:
     ComputeKernel() = default;
-    /** bindings[i] is the descriptor type of binding i.  Workgroups are 128x1 (lavapipe's best, SPEC §8). */
+    /** bindings[i] is the descriptor type of binding i.  Workgroups are 128x1 (lavapipe's best: ~2% over 64x1, 8x8 ~1.45x slower). */
     ComputeKernel(Gpu& gpu, const char* name, const uint32_t* spirv, size_t bytes, std::vector<VkDescriptorType> bindings,
                   uint32_t push_bytes, uint32_t sets = 1);
     ~ComputeKernel() { release(); }

@@ -25,7 +25,7 @@ struct RrcSettings {
     uint32_t soft_age_cap = 64;
 };
 
-/** The channel descriptions for the signals (the presets of SPEC §3). */
+/** The channel descriptions for the signals (one preset per application: host_sample/rrc_sample/README.md). */
 std::vector<rrc_channel_desc> channel_descs(uint32_t signals, uint32_t soft_age_cap);
 
 class RrcStage {

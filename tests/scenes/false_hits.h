@@ -1,6 +1,6 @@
 // Ground-truth false-hit evaluation for a cache's hit/miss mask.
 //
-// SPEC §2: "A false hit means the fetched history belongs to a different
+// docs/CONVENTIONS.md (hit test): "A false hit [is a hit whose] fetched history belongs to a different
 // surface point than the pixel (more than half a pixel away on the surface).
 // Contact and intersection lines, where two surfaces share depth, cannot be
 // told apart by depth and are excluded when counting."
@@ -49,7 +49,7 @@ enum Verdict : uint8_t {
 
 struct FalseHitOptions {
     double contact_footprints = 1.0;     // rule 2 distance, in pixel footprints
-    double distance_footprints = 0.5;    // rule 3 distance, in pixel footprints (SPEC: half a pixel)
+    double distance_footprints = 0.5;    // rule 3 distance, in pixel footprints (docs/CONVENTIONS.md: half a pixel)
     double tap_weight_threshold = 1e-3;  // rule 4 ignores taps lighter than this (fp32 weights differ)
     double screen_tolerance_px = 0.01;   // rule 3: how far outside the image uv_prev may land
     bool count_missed = false;           // also classify unmarked pixels (missed_visible)

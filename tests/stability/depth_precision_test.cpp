@@ -5,7 +5,7 @@
 // with a finite and an infinite far plane, and unorm16 / unorm24 depth with
 // their default epsilon (one z increment).
 //
-// Per case, against exact visibility (SPEC §2, scenes/false_hits.h):
+// Per case, against exact visibility (docs/CONVENTIONS.md, scenes/false_hits.h):
 //   hit ratio  kernel hits / pixels that should hit (their surface point was
 //              visible last frame and every bilinear tap lies on it: TRUE_HIT
 //              whether marked or not);
