@@ -3,7 +3,7 @@
 #pragma once
 
 #include <rrc/rrc.h>
-#include "../compute/rrc_kernel_interface.h"  // RRC_EPS_* (by path: tests/fuzz compiles this without compute/)
+#include <rrc_kernel_interface.h>  // RRC_EPS_* (compute/)
 
 #include <array>
 #include <string>

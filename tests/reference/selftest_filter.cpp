@@ -168,7 +168,7 @@ TEST(Filter, RunningMeanIsTheExactMeanOverFrames) {
         }
         FrameResult r = s.run(prev);
         for (size_t k = 0; k < s.size(); ++k) {
-            EXPECT_EQ(r.mask[k], f == 0 ? 0 : RRC_MASK_HIT);
+            EXPECT_EQ(r.mask[k], f == 0 ? 0u : uint32_t(RRC_MASK_HIT));
             EXPECT_NEAR(r.channels[0].out[k], sum[k] / (f + 1), 1e-5) << f << " " << k;
             EXPECT_EQ(r.channels[0].age[k], f + 1);
         }
