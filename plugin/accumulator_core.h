@@ -44,7 +44,7 @@ public:
     const std::vector<LiveInput>& inputs() const { return inputs_; }
     ViewState& view() { return views_[0]; }
     const ViewState& view() const { return views_[0]; }
-    GpuImage& own_mask() { return mask_; }
+    const GpuImage& own_mask() const { return mask_; }
 
     // Every binding of the frame that writes `parity` of `view`: the
     // library's own images (previous depth, histories, mask) over

@@ -233,20 +233,10 @@ rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_f
         // first element's size (rrc.h Versioning, rule 3).
         std::vector<rrc::Frame> f;
         std::vector<rrc::FrameOutputs> out;
-        const uint32_t frame_stride = frames->size, output_stride = outputs ? outputs->size : 0;
         for (uint32_t i = 0; i < count; ++i) {
             try {
-                const auto* frame =
-                    reinterpret_cast<const rrc_frame_desc*>(reinterpret_cast<const char*>(frames) + (size_t)i * frame_stride);
-                auto* output =
-                    outputs ? reinterpret_cast<rrc_frame_output*>(reinterpret_cast<char*>(outputs) + (size_t)i * output_stride) : nullptr;
-                if (frame->size != frame_stride)
-                    rrc::fail(RRC_ERROR_INVALID_STRUCT, "frame.size is %u but frames[0].size is %u: every element of an array has one size",
-                              frame->size, frame_stride);
-                if (output && output->size != output_stride)
-                    rrc::fail(RRC_ERROR_INVALID_STRUCT,
-                              "output.size is %u but outputs[0].size is %u: every element of an array has one size", output->size,
-                              output_stride);
+                const rrc_frame_desc* frame = rrc::strided_element(frames, i, "frames", "frame");
+                rrc_frame_output* output = outputs ? rrc::strided_element(outputs, i, "outputs", "output") : nullptr;
                 f.push_back(rrc::read_frame(frame, config.channels.size()));
                 out.push_back(rrc::read_outputs(output, config.channels.size()));
                 rrc::validate_frame(config, f.back(), &out.back(), 0);

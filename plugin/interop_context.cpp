@@ -1,17 +1,11 @@
 #include "interop_context.h"
 
 #include "error.h"
+#include "vk_formats.h"
 
 namespace rrc {
 namespace {
 
-bool is_depth_format(VkFormat f) {
-    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
-           f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
-}
-bool has_stencil(VkFormat f) {
-    return f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
-}
 VkImageAspectFlags aspects(VkFormat f) {
     if (!is_depth_format(f)) return VK_IMAGE_ASPECT_COLOR_BIT;
     return VK_IMAGE_ASPECT_DEPTH_BIT | (has_stencil(f) ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);

@@ -75,7 +75,7 @@ StandaloneContext::~StandaloneContext() {
 std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const FrameOutputs& out, uint32_t parity) const {
     const ViewState& v = core_->view();
     std::vector<Readback> r;
-    r.push_back({&const_cast<AccumulatorCore&>(*core_).own_mask(), out.caller ? (void*)out.mask : nullptr});
+    r.push_back({&core_->own_mask(), out.caller ? (void*)out.mask : nullptr});
     for (size_t i = 0; i < v.channels.size(); ++i) {
         const ChannelHistory& h = *v.channels[i];
         const FrameOutputs::Channel* co = out.channel_count ? &out.channels[i] : nullptr;

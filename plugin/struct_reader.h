@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace rrc {
@@ -96,23 +97,32 @@ T read_struct(const void* p, const std::string& what) {
     return out;
 }
 
-// Rule 3: an array strided by its elements' size, all equal.
+// Rule 3: element i of a caller's array strided by element 0's size, whose
+// own size must equal that stride.  The size is checked before anything
+// else is read: an element larger than the stride would be read beyond the
+// caller's array.
+// `name`: what messages call the element ("frame", "channels[2]").
 template <typename T>
-std::vector<T> read_array(const void* base, uint32_t count, const std::string& what) {
+T* strided_element(T* base, uint32_t i, const std::string& what, const std::string& name) {
+    using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
+    const uint32_t stride = read_header(base).size;
+    T* element = reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + (size_t)i * stride);
+    const uint32_t size = read_header(element).size;
+    if (size != stride)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u but %s[0].size is %u: every element of an array has one size", name.c_str(),
+             (unsigned)size, what.c_str(), (unsigned)stride);
+    return element;
+}
+
+// Rule 3 for a whole array, each element read by rules 1, 2 and 5.
+template <typename T>
+std::vector<T> read_array(const T* base, uint32_t count, const std::string& what) {
     std::vector<T> out;
     if (count == 0) return out;
     if (!base) fail(RRC_ERROR_INVALID_ARGUMENT, "%s is NULL", what.c_str());
-    const uint32_t stride = read_header(base).size;
     for (uint32_t i = 0; i < count; ++i) {
-        const void* element = static_cast<const unsigned char*>(base) + (size_t)i * stride;
         const std::string name = what + "[" + std::to_string(i) + "]";
-        // The size first: an element larger than the stride would be read
-        // beyond the caller's array.
-        const uint32_t size = read_header(element).size;
-        if (size != stride)
-            fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u but %s[0].size is %u: every element of an array has one size", name.c_str(),
-                 (unsigned)size, what.c_str(), (unsigned)stride);
-        out.push_back(read_struct<T>(element, name));
+        out.push_back(read_struct<T>(strided_element(base, i, what, name), name));
     }
     return out;
 }

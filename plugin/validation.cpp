@@ -2,6 +2,7 @@
 
 #include "error.h"
 #include "struct_reader.h"
+#include "vk_formats.h"
 
 #include <rrc/rrc_vulkan.h>
 
@@ -167,16 +168,11 @@ const char* source_name(rrc_reprojection r) {
     return r == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP" : r == RRC_REPROJECTION_MOTION ? "MOTION" : "MOTION_DEPTH";
 }
 
-bool is_depth_stencil_format(VkFormat f) {
-    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
-           f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
-}
-
 // The depth-format rule of docs/INTEGRATION.md: a depth/stencil image holds
 // NDC depth in exactly the encoding the context's epsilon is built for; a
 // colour image carries depth in .r and its precision is the host's choice.
 void check_depth_image_format(const ContextConfig& c, VkFormat f) {
-    if (!is_depth_stencil_format(f)) return;
+    if (!is_depth_format(f)) return;
     if (c.depth_mode == RRC_DEPTH_MODE_LINEAR)
         fail(RRC_ERROR_INVALID_ARGUMENT,
              "frame.depth.format is %d, a depth/stencil format, but LINEAR depth is view depth in a colour image", (int)f);

@@ -57,7 +57,8 @@
  *     what the library knows is zero, and refused with RRC_ERROR_UNSUPPORTED
  *     otherwise (the caller asked for something this library cannot do).
  *  3. Arrays of tagged structs (desc.channels, frame.channels,
- *     output.channels) are strided by their elements' `size`: element i
+ *     output.channels, and rrc_frame_run_batch's frames and outputs) are
+ *     strided by their elements' `size`: element i
  *     starts at (const char*)array + i * array[0].size, and every element
  *     must carry the same size (else RRC_ERROR_INVALID_STRUCT).
  *  4. Output structs are written only up to the caller's `size`.
