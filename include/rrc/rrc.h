@@ -183,6 +183,9 @@ RRC_DEFINE_ENUM(rrc_depth_format, RRC_DEPTH_FORMAT, uint32_t)
 /** Where the previous-frame position of each pixel comes from. */
 RRC_DEFINE_ENUM(rrc_reprojection, RRC_REPROJECTION, uint32_t)
 
+/** Which depth test decides a hit (docs/CONVENTIONS.md §hit test). */
+RRC_DEFINE_ENUM(rrc_depth_test, RRC_DEPTH_TEST, uint32_t)
+
 /** The lambda recursive filter's blend (docs/CONVENTIONS.md §filter). */
 RRC_DEFINE_ENUM(rrc_blend, RRC_BLEND, uint32_t)
 
@@ -275,6 +278,19 @@ typedef struct rrc_context_desc {
 
     rrc_log_fn log; /* optional */
     void* log_user; /* passed to log */
+
+    /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
+    /* 0 = RRC_DEPTH_TEST_DEFAULT: ADAPTIVE when api_version >= 0.2 and none of
+     * epsilon_scale, epsilon, tau is set; FIXED otherwise (a 0.1 caller keeps
+     * the 0.1 test).  ADAPTIVE with a non-zero epsilon_scale, epsilon or tau
+     * is RRC_ERROR_INVALID_ARGUMENT.  Only the NDC modes' exact tests
+     * (PREV_CLIP, MOTION_DEPTH, CAMERA) adapt; the relative tests (LINEAR,
+     * MOTION on NDC depth) are tau*d under both. */
+    rrc_depth_test depth_test;
+    /* Non-zero: frames carry a per-pixel object id (rrc_frame_desc.object_id,
+     * rrc_vulkan_frame_desc.object_id), and a hit also needs every previous
+     * depth tap with non-zero bilinear weight to carry the pixel's id. */
+    uint32_t use_object_id;
 } rrc_context_desc;
 
 /** Check a context descriptor without touching Vulkan.  Returns RRC_SUCCESS or
@@ -338,6 +354,8 @@ typedef struct rrc_frame_desc {
 
     uint32_t channel_count;            /* must equal the context's */
     const rrc_channel_input* channels; /* in the context's channel order */
+    /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
+    const uint32_t* object_id; /* width*height object ids (any values); required iff use_object_id */
 } rrc_frame_desc;
 
 typedef struct rrc_frame_stats {

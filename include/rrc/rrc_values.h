@@ -41,6 +41,12 @@
     X(RRC_DEPTH_FORMAT_UNORM16, 1) /* eps = scale / 65535, default scale 1 */   \
     X(RRC_DEPTH_FORMAT_UNORM24, 2) /* eps = scale / 16777215, default scale 1 */
 
+/* ---- rrc_depth_test: which epsilon-depth test decides a hit ------------- */
+#define RRC_DEPTH_TEST_VALUES(X)                                                              \
+    X(RRC_DEPTH_TEST_DEFAULT, 0)  /* ADAPTIVE (0.2 callers, no eps/tau set), else FIXED */       \
+    X(RRC_DEPTH_TEST_ADAPTIVE, 1) /* paper eps + capped bilinear-residual bound (CONVENTIONS.md) */ \
+    X(RRC_DEPTH_TEST_FIXED, 2)    /* the paper's test exactly: |diff| <= eps (or tau*d) */
+
 /* ---- rrc_reprojection: where each pixel's previous position comes from -- */
 #define RRC_REPROJECTION_VALUES(X)                                                                  \
     X(RRC_REPROJECTION_PREV_CLIP, 0)    /* RGBA32F previous clip position (x,y,z,w) per pixel */     \

@@ -109,7 +109,7 @@ typedef struct rrc_vulkan_frame_desc {
     double prev_view_proj[16];
     float jitter[2];
     float prev_jitter[2];
-    uint32_t channel_count; /* the context's */
+    uint32_t channel_count;                    /* the context's */
     const rrc_vulkan_channel_images* channels; /* strided by channels[0].size (rrc.h Versioning, rule 3) */
     /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
     /* Optional (VK_NULL_HANDLE: none): a host buffer with STORAGE_BUFFER and
@@ -120,6 +120,9 @@ typedef struct rrc_vulkan_frame_desc {
      * flight its own offset to read N frames' statistics after one wait. */
     VkBuffer stats_buffer;
     VkDeviceSize stats_offset;
+    /* Required iff the context's use_object_id: SAMPLED R16_UINT or R32_UINT,
+     * each pixel's object id (rrc_frame_desc.object_id). */
+    rrc_vulkan_image object_id;
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */
