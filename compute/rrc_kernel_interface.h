@@ -17,8 +17,11 @@
 #define RRC_SPEC_INTEROP 5        // bool: host images through samplers
 #define RRC_SPEC_STATS 6          // bool: count the frame's statistics into RRC_BINDING_STATS (interop)
 #define RRC_SPEC_HOST_AGE_MASK 7  // uint: bit c = channel slot c also writes its age to the host's image (interop)
-#define RRC_SPEC_GROUP_SIZE_X 100 // local_size_x_id
-#define RRC_SPEC_GROUP_SIZE_Y 101 // local_size_y_id
+#define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (NDC tests only; below)
+#define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_OBJECT_ID
+#define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
+#define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 
 // Per-channel constants: property k of channel slot c has id 16 + 4*k + c
 // (4 slots: CH0_..CH3_ in rrc_accumulate.comp).
@@ -37,8 +40,8 @@
 // Geometry (rrc_reproject.glsl) and the mask: one image each.
 #define RRC_BINDING_DEPTH 0
 #define RRC_BINDING_PREV_DEPTH 1
-#define RRC_BINDING_REPROJ 2        // PREV_CLIP, MOTION_DEPTH
-#define RRC_BINDING_MOTION 3        // MOTION
+#define RRC_BINDING_REPROJ 2  // PREV_CLIP, MOTION_DEPTH
+#define RRC_BINDING_MOTION 3  // MOTION
 #define RRC_BINDING_NOCACHE 4
 #define RRC_BINDING_MASK 5
 #define RRC_BINDING_HOST_DEPTH 6    // interop: sampler
@@ -82,19 +85,32 @@
 #define RRC_EPS_ULP 1u       // pc.eps is a scale of ulp(expected depth)
 #define RRC_EPS_RELATIVE 2u  // pc.eps is tau: |diff| <= tau * expected linear depth
 
+// ---- The ADAPTIVE depth test (docs/CONVENTIONS.md, "The ADAPTIVE test") ---
+// eps = eps_paper + min(CAP * |e - z_inf|,
+//                        GAIN * ((fx(1-fx) + fy(1-fy)) max(Cx, Cy) + ox Sx + oy Sy)),
+// C = a 3-tap second difference of the current depth that is not a step,
+// less NOISE_ULPS * ulp(largest tap) + NOISE_STEPS * the format's step;
+// o = overhang beyond the outermost texel centres, S = slope.
+#define RRC_ADAPTIVE_GAIN 2.0         // 4x the Taylor residual f(1-f) z''/2: margin for grid motion, kinks, higher orders
+#define RRC_ADAPTIVE_STEP_RATIO 0.5   // a step: a neighbouring second difference of the other sign, at least this share of it
+#define RRC_ADAPTIVE_CAP 0.04         // of |z - z_inf|: 1% of the linear depth on infinite projections
+#define RRC_ADAPTIVE_FLOOR_ULPS 4.0   // NDC tests: eps_paper is at least this many ulp(e), the kernel's own fp32 noise
+#define RRC_ADAPTIVE_NOISE_ULPS 4.0   // bound of fp32 storage + arithmetic error of a second difference
+#define RRC_ADAPTIVE_NOISE_STEPS 2.0  // bound of UNORM quantisation error of a second difference
+
 // ---- Push constants: byte offsets of the members of `Frame` ----------------
 // (rrc_reproject.glsl declares each member at its offset; the C++ mirror
 // FramePushConstants static_asserts each one.)  124 bytes: fits the 128-byte
 // minimum of maxPushConstantsSize.
-#define RRC_PC_OFFSET_M 0              // mat4
-#define RRC_PC_OFFSET_INV_ROW3 64      // vec4
-#define RRC_PC_OFFSET_JITTER 80        // vec4
-#define RRC_PC_OFFSET_MOTION_SCALE 96  // vec2
-#define RRC_PC_OFFSET_EPS 104          // float
-#define RRC_PC_OFFSET_NEAR_PLANE 108   // float
-#define RRC_PC_OFFSET_FAR_PLANE 112    // float
-#define RRC_PC_OFFSET_BG_THRESHOLD 116 // float
-#define RRC_PC_OFFSET_PREV_VALID 120   // uint
+#define RRC_PC_OFFSET_M 0               // mat4
+#define RRC_PC_OFFSET_INV_ROW3 64       // vec4
+#define RRC_PC_OFFSET_JITTER 80         // vec4
+#define RRC_PC_OFFSET_MOTION_SCALE 96   // vec2
+#define RRC_PC_OFFSET_EPS 104           // float
+#define RRC_PC_OFFSET_NEAR_PLANE 108    // float
+#define RRC_PC_OFFSET_FAR_PLANE 112     // float
+#define RRC_PC_OFFSET_BG_THRESHOLD 116  // float
+#define RRC_PC_OFFSET_PREV_VALID 120    // uint
 #define RRC_PC_SIZE 124
 
 #endif  // RRC_KERNEL_INTERFACE_H

@@ -17,6 +17,8 @@ layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
 // formats included), the library keeps its own copy of depth for the next
 // frame and writes each channel to the host's output image too.
 layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
+// The ADAPTIVE test (docs/CONVENTIONS.md): only with EPS_KIND ULP or ABSOLUTE.
+layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
@@ -110,6 +112,57 @@ RrcTaps rrc_taps(vec2 q, ivec2 size) {
     return t;
 }
 
+// The quantity the bilinear fetch interpolates: z, or 1/d for LINEAR.
+float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1.0 / z : z; }
+
+// One axis of the ADAPTIVE test (docs/CONVENTIONS.md) on five taps of the
+// current depth's interpolated quantity a2, a, c, b, b2 (left/up to
+// right/down, clamped to the image; `edge`: c is on the image's first or last
+// column/row).  x: the centre's second difference where it is curvature, less
+// its fp32 and quantisation noise; 0 for a step, on a plane (within noise)
+// and for non-finite taps.  A step is a second difference larger than the
+// smaller one-sided difference whose neighbour on either side has the other
+// sign and at least STEP_RATIO of its size (+h, -h: curvature and creases
+// keep one sign).  y: the slope for the clamped fetch beyond the outermost
+// texel centres (the smaller one-sided difference; at the image edge, the one
+// that exists).
+vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float step) {
+    float dp = b - c, dm = c - a, s = dp - dm;
+    float sm = dm - (a - a2), sp = (b2 - b) - dp;  // the neighbours' second differences
+    float noise = RRC_ADAPTIVE_NOISE_ULPS * rrc_ulp(max(max(abs(a), abs(b)), abs(c))) + RRC_ADAPTIVE_NOISE_STEPS * step;
+    bool candidate = abs(s) > min(abs(dp), abs(dm));
+    bool opposite = (sm * s < 0.0 && abs(sm) >= RRC_ADAPTIVE_STEP_RATIO * abs(s)) || (sp * s < 0.0 && abs(sp) >= RRC_ADAPTIVE_STEP_RATIO * abs(s));
+    bool finite = rrc_finite4(vec4(s, sm, sp, 0.0));
+    float slope = edge ? max(abs(dp), abs(dm)) : min(abs(dp), abs(dm));
+    return finite ? vec2(candidate && opposite ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
+}
+
+// The tolerance the ADAPTIVE test adds to the paper's epsilon at pixel px
+// (depth d) for the fetch at previous-frame sample coordinate q, expected
+// depth e: GAIN * (the bilinear residual bound + the edge clamp's slope
+// term), at most CAP of the linear depth (docs/CONVENTIONS.md, "The ADAPTIVE test").
+float rrc_adaptive_widening(ivec2 px, ivec2 size, float d, vec2 q, float e) {
+    ivec2 hi = size - 1;
+    float step = EPS_KIND == RRC_EPS_ABSOLUTE ? pc.eps : 0.0;  // ADAPTIVE takes no host epsilon: pc.eps is the format's step
+    ivec2 xm2 = ivec2(max(px.x - 2, 0), px.y), xm1 = ivec2(max(px.x - 1, 0), px.y);
+    ivec2 xp1 = ivec2(min(px.x + 1, hi.x), px.y), xp2 = ivec2(min(px.x + 2, hi.x), px.y);
+    ivec2 ym2 = ivec2(px.x, max(px.y - 2, 0)), ym1 = ivec2(px.x, max(px.y - 1, 0));
+    ivec2 yp1 = ivec2(px.x, min(px.y + 1, hi.y)), yp2 = ivec2(px.x, min(px.y + 2, hi.y));
+    float c = rrc_interpolated(d);
+    vec2 ax = rrc_axis(rrc_interpolated(rrc_load_depth(xm2)), rrc_interpolated(rrc_load_depth(xm1)), c,
+                       rrc_interpolated(rrc_load_depth(xp1)), rrc_interpolated(rrc_load_depth(xp2)), px.x == 0 || px.x == hi.x, step);
+    vec2 ay = rrc_axis(rrc_interpolated(rrc_load_depth(ym2)), rrc_interpolated(rrc_load_depth(ym1)), c,
+                       rrc_interpolated(rrc_load_depth(yp1)), rrc_interpolated(rrc_load_depth(yp2)), px.y == 0 || px.y == hi.y, step);
+    vec2 p = q - 0.5;
+    vec2 f = p - floor(p);
+    vec2 overhang = max(max(-p, p - vec2(hi)), vec2(0.0));  // beyond the outermost texel centres: clamped taps
+    float curvature = max(ax.x, ay.x);                        // one estimate for both axes: a step-flagged axis borrows the other's
+    float widening = RRC_ADAPTIVE_GAIN * (dot(f * (1.0 - f), vec2(curvature)) + dot(overhang, vec2(ax.y, ay.y)));
+    if (DEPTH_MODE == RRC_DEPTH_MODE_LINEAR) return min(widening * e * e, RRC_ADAPTIVE_CAP * e);  // |dd| = d^2 |d(1/d)|
+    float z_inf = DEPTH_MODE == RRC_DEPTH_MODE_STANDARD ? 1.0 : 0.0;
+    return min(widening, RRC_ADAPTIVE_CAP * abs(e - z_inf));
+}
+
 struct RrcGeometry {
     bool background;
     bool invalid;  // INVALID_GEOMETRY
@@ -187,6 +240,11 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
         eps = pc.eps * rrc_ulp(expected);
     } else {
         eps = pc.eps;
+    }
+    if (ADAPTIVE) {
+        // NDC tests: never below the kernel's own fp32 noise (UNORM24 near z = 1 has ulp ~ step).
+        if (EPS_KIND != RRC_EPS_RELATIVE) eps = max(eps, RRC_ADAPTIVE_FLOOR_ULPS * rrc_ulp(expected));
+        eps += rrc_adaptive_widening(px, size, d, q, expected);
     }
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
 

@@ -15,7 +15,7 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // The per-channel ids fill the slots of the kernel (CH0_..CH3_) and stay
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
-static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_HOST_AGE_MASK, "channel ids overlap the dispatch ids");
+static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
 static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST, "the stats buffer follows every image binding");
 static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "channel ids overlap the workgroup-size ids");
@@ -108,6 +108,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_INTEROP, interop_ ? 1u : 0u);
     spec.add(RRC_SPEC_STATS, variant.stats ? 1u : 0u);
     spec.add(RRC_SPEC_HOST_AGE_MASK, variant.host_age_mask);
+    spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
     spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
     for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {

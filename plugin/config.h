@@ -36,6 +36,11 @@ struct ContextConfig {
     std::array<float, 2> motion_scale{1.0f, 1.0f};
     EpsilonKind epsilon_kind = EpsilonKind::Ulp;
     float epsilon_value = RRC_DEFAULT_EPSILON_SCALE_FLOAT32;  // absolute epsilon, ulp scale, or tau (by kind)
+    rrc_depth_test depth_test = RRC_DEPTH_TEST_FIXED;         // resolved: ADAPTIVE or FIXED, never DEFAULT
+    // The kernel's ADAPTIVE constant: the ADAPTIVE test, for every source with
+    // an exact expected depth (plain MOTION's linearised test is tau * d under both).
+    bool adaptive = false;
+    bool use_object_id = false;
     bool use_nocache = false;
     std::vector<ChannelConfig> channels;
     std::string device_name;  // empty: automatic choice

@@ -122,6 +122,18 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.epsilon is %g, must be finite and >= 0", (double)d->epsilon);
     if (!(d->tau >= 0.0f) || std::isinf(d->tau))
         fail(RRC_ERROR_INVALID_ARGUMENT, "desc.tau is %g, must be finite and >= 0", (double)d->tau);
+    // docs/CONVENTIONS.md, "Which test": zero is ADAPTIVE for 0.2 callers that
+    // set no tolerance, FIXED for 0.1 callers (their zero meant the paper's test).
+    const bool tolerance_set = d->epsilon_scale != 0.0f || d->epsilon != 0.0f || d->tau != 0.0f;
+    if (d->depth_test > uint32_t{RRC_DEPTH_TEST_FIXED})
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.depth_test is %u, not an rrc_depth_test", d->depth_test);
+    if (d->depth_test == RRC_DEPTH_TEST_ADAPTIVE && tolerance_set)
+        fail(RRC_ERROR_INVALID_ARGUMENT,
+             "desc.depth_test is ADAPTIVE but epsilon_scale/epsilon/tau is set: a host tolerance selects the FIXED test");
+    if (d->depth_test == RRC_DEPTH_TEST_DEFAULT)
+        c.depth_test = d->api_version >= RRC_MAKE_VERSION(0, 2, 0) && !tolerance_set ? RRC_DEPTH_TEST_ADAPTIVE : RRC_DEPTH_TEST_FIXED;
+    else
+        c.depth_test = d->depth_test;
     if (d->depth_mode == RRC_DEPTH_MODE_LINEAR || linearise) {
         c.epsilon_kind = EpsilonKind::Relative;
         c.epsilon_value = d->tau == 0.0f ? RRC_DEFAULT_TAU : d->tau;
@@ -155,6 +167,9 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
                 fail(RRC_ERROR_INVALID_ARGUMENT, "channels[%u].name \"%s\" repeats channels[%u].name", i, c.channels[i].name.c_str(), k);
     }
     c.use_nocache = d->use_nocache_mask != 0;
+    c.use_object_id = d->use_object_id != 0;
+    c.adaptive =
+        c.depth_test == RRC_DEPTH_TEST_ADAPTIVE && c.reprojection != RRC_REPROJECTION_MOTION;  // plain MOTION: no exact expected depth
     if (d->device_name) c.device_name = d->device_name;
     c.validation = d->enable_validation != 0;
     c.log = d->log;

@@ -130,4 +130,22 @@ DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded
     return f;
 }
 
+Decision taps_hold_id(const std::vector<uint32_t>& ids, int W, int H, Bounded qx, Bounded qy, uint32_t id, double scale) {
+    auto holds = [&](double x, double y) {
+        Cell k = cell_at(x, y, W, H);
+        const double w[4] = {(1 - k.fx) * (1 - k.fy), k.fx * (1 - k.fy), (1 - k.fx) * k.fy, k.fx * k.fy};
+        for (int n = 0; n < 4; ++n) {
+            int tx = std::min(std::max(k.x0 + (n & 1), 0), W - 1), ty = std::min(std::max(k.y0 + (n >> 1), 0), H - 1);
+            if (w[n] > 0.0 && ids[static_cast<size_t>(ty) * W + tx] != id) return false;
+        }
+        return true;
+    };
+    const bool nominal = holds(qx.v, qy.v);
+    const double dx = qx.err * scale, dy = qy.err * scale;
+    bool sure = std::isfinite(dx) && std::isfinite(dy);
+    for (double sx : {-dx, dx})
+        for (double sy : {-dy, dy}) sure = sure && holds(qx.v + sx, qy.v + sy) == nominal;
+    return {nominal, sure};
+}
+
 }  // namespace rrc_ref

@@ -40,6 +40,11 @@ Params resolve(const rrc_context_desc& ctx) {
     p.motion_scale[0] = no_scale ? 1.0 : ctx.motion_scale[0];
     p.motion_scale[1] = no_scale ? 1.0 : ctx.motion_scale[1];
     p.nocache = ctx.use_nocache_mask != 0;
+    p.object_id = ctx.use_object_id != 0;
+    const bool tolerance = ctx.epsilon_scale != 0.0f || ctx.epsilon != 0.0f || ctx.tau != 0.0f;
+    const bool asked = ctx.depth_test == RRC_DEPTH_TEST_ADAPTIVE ||
+                       (ctx.depth_test == RRC_DEPTH_TEST_DEFAULT && !tolerance && ctx.api_version >= RRC_MAKE_VERSION(0, 2, 0));
+    p.adaptive = asked && p.source != RRC_REPROJECTION_MOTION;  // plain MOTION has no exact expected depth
     for (uint32_t c = 0; c < ctx.channel_count; ++c) {
         const rrc_channel_desc& d = ctx.channels[c];
         const unsigned cap = d.age_cap != 0 ? d.age_cap : 255u;

@@ -33,6 +33,10 @@ struct Params {
     rrc_reprojection source;
     double motion_scale[2];
     bool nocache;
+    // docs/CONVENTIONS.md "Which test": the ADAPTIVE test applies (ADAPTIVE
+    // asked for, or the 0.2 default with no tolerance set; not plain MOTION).
+    bool adaptive;
+    bool object_id;  // frames carry object ids: every weighted tap must match
     std::vector<ChannelParams> channels;
 
     // Plain MOTION on NDC depth compares linearised depths relatively.

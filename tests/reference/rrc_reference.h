@@ -46,6 +46,7 @@ struct ChannelHistory {
 struct PreviousFrame {
     bool valid = false;                    // false: first frame / after reset or resize -> all misses
     std::vector<float> depth;              // previous frame's depth exactly as the host passed it (W*H)
+    std::vector<uint32_t> object_id;       // previous frame's object ids (object-id contexts), W*H
     std::vector<ChannelHistory> channels;  // in the context's channel order
 };
 

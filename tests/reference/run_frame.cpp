@@ -75,12 +75,14 @@ void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_de
     require(frame.channel_count == p.channels.size() && frame.channels, "frame channels");
     require(p.source == RRC_REPROJECTION_CAMERA || frame.reprojection, "frame.reprojection is NULL");
     require(!p.nocache || frame.nocache, "frame.nocache is NULL");
+    require(!p.object_id || frame.object_id, "frame.object_id is NULL");
     for (size_t c = 0; c < p.channels.size(); ++c) {
         require(frame.channels[c].samples != nullptr, "channel samples are NULL");
         require(!p.channels[c].confidence || frame.channels[c].confidence, "confidence is NULL");
     }
     if (!prev.valid) return;
     require(prev.depth.size() == n, "previous depth size");
+    require(!p.object_id || prev.object_id.size() == n, "previous object id size");
     require(prev.channels.size() == p.channels.size(), "previous channel count");
     for (size_t c = 0; c < p.channels.size(); ++c) {
         const ChannelHistory& h = prev.channels[c];
@@ -134,7 +136,8 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                 res.expected[px] = r.e.v;
                 bool cacheable = !(p.nocache && frame.nocache[px]);
                 if (prev_valid && cacheable) {
-                    t = hit_test(p, prev.depth, frame.prev_jitter, r, scale);
+                    const CurrentPixel cur{frame.depth, i, j, frame.object_id, &prev.object_id};
+                    t = hit_test(p, prev.depth, frame.prev_jitter, r, cur, scale);
                     res.near_threshold[px] = !t.hit.sure;
                     res.diff[px] = t.diff;
                     res.eps[px] = t.eps;
@@ -177,6 +180,7 @@ PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& fra
     PreviousFrame prev;
     prev.valid = true;
     prev.depth.assign(frame.depth, frame.depth + n);
+    if (ctx.use_object_id && frame.object_id) prev.object_id.assign(frame.object_id, frame.object_id + n);
     for (const ChannelResult& c : result.channels) {
         ChannelHistory h;
         h.history.assign(c.out.begin(), c.out.end());  // fp32 store (fp16 values are exact)
