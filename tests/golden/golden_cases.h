@@ -20,6 +20,9 @@ struct GoldenCase {
     double far_plane;
     bool object_motion;
     std::vector<rrc_channel_desc> channels;  // channel i reads scene signal1 (1 comp) or signal4 (4 comps)
+    // The context's depth_test.  The 0.1 files hold the FIXED test (kept, byte
+    // for byte, under their names); the *_adaptive cases hold the 0.2 default.
+    rrc_depth_test depth_test;
 };
 
 constexpr int kWidth = 48, kHeight = 32;
@@ -34,25 +37,58 @@ inline std::vector<GoldenCase> golden_cases() {
          RRC_DEPTH_MODE_STANDARD,
          100,
          true,
-         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32), channel("env", 4, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE)}},
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32), channel("env", 4, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE)},
+         RRC_DEPTH_TEST_FIXED},
         {"motion_depth_reversed",
          RRC_REPROJECTION_MOTION_DEPTH,
          RRC_DEPTH_MODE_REVERSED,
          100,
          true,
-         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_CATMULL_ROM)}},
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_CATMULL_ROM)},
+         RRC_DEPTH_TEST_FIXED},
         {"motion_linear",
          RRC_REPROJECTION_MOTION,
          RRC_DEPTH_MODE_LINEAR,
          100,
          true,
-         {channel("soft", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_NEAREST, 8)}},
+         {channel("soft", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_NEAREST, 8)},
+         RRC_DEPTH_TEST_FIXED},
         {"camera_reversed_infinite",
          RRC_REPROJECTION_CAMERA,
          RRC_DEPTH_MODE_REVERSED,
          inf,
          false,
-         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)}},
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)},
+         RRC_DEPTH_TEST_FIXED},
+        // The 0.2 default (ADAPTIVE) on the exact sources; plain MOTION has no ADAPTIVE test.
+        {"prev_clip_standard_adaptive",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_STANDARD,
+         100,
+         true,
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32), channel("env", 4, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE)},
+         RRC_DEPTH_TEST_DEFAULT},
+        {"motion_depth_reversed_adaptive",
+         RRC_REPROJECTION_MOTION_DEPTH,
+         RRC_DEPTH_MODE_REVERSED,
+         100,
+         true,
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_CATMULL_ROM)},
+         RRC_DEPTH_TEST_DEFAULT},
+        {"prev_clip_linear_adaptive",
+         RRC_REPROJECTION_PREV_CLIP,
+         RRC_DEPTH_MODE_LINEAR,
+         100,
+         true,
+         {channel("soft", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_NEAREST, 8)},
+         RRC_DEPTH_TEST_DEFAULT},
+        {"camera_reversed_infinite_adaptive",
+         RRC_REPROJECTION_CAMERA,
+         RRC_DEPTH_MODE_REVERSED,
+         inf,
+         false,
+         {channel("pcf", 1, 0.6f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)},
+         RRC_DEPTH_TEST_DEFAULT},
     };
 }
 

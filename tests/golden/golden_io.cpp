@@ -91,7 +91,9 @@ static rrc_scene::SceneConfig scene_config_for(const GoldenCase& c) {
 
 rrc_context_desc context_for(const GoldenCase& c, std::vector<rrc_channel_desc>& channels) {
     channels = c.channels;
-    return rrc_test::scene_context_desc(scene_config_for(c), c.source, channels);
+    rrc_context_desc d = rrc_test::scene_context_desc(scene_config_for(c), c.source, channels);
+    d.depth_test = c.depth_test;
+    return d;
 }
 
 FrameArrays arrays_from_scene(const GoldenCase& c, rrc_test::SceneFrameInputs& in) {
