@@ -92,28 +92,39 @@ rrc_scene::SceneConfig scene_of(const Case& c, int width, int height) {
 }
 
 struct Row {
-    std::string name, tolerance;
+    std::string name, test, tolerance;
     double max_fp32_error = 0, max_fp16_steps = 0, fp16_exact_ratio = 1;
     double max_position_ratio = 0;  // max (error - arithmetic tolerance) / (spread * coordinate resolution)
     int64_t pixels = 0, compared = 0, near_threshold = 0, flips_in_margin = 0, near_edge = 0, mask_mismatch = 0;
     int64_t hits = 0, hits_checked = 0, false_hits = 0, strict_false_hits = 0;
+    int64_t missed_visible = 0;  // misses whose point the false-hit rule calls visible (tests/scenes/false_hits.h)
 };
 std::vector<Row>& report() {
     static std::vector<Row> rows;
     return rows;
 }
 
-class KernelVsReference : public ::testing::TestWithParam<Case> {};
+// Every case runs under both depth tests (docs/CONVENTIONS.md "Which test"):
+// FIXED, the paper's, and the 0.2 default (ADAPTIVE for every source but plain
+// MOTION, whose relative test is the same under both).
+using Param = std::tuple<Case, rrc_depth_test>;
+const char* test_name(rrc_depth_test t) { return t == RRC_DEPTH_TEST_FIXED ? "fixed" : "default"; }
+
+class KernelVsReference : public ::testing::TestWithParam<Param> {};
 
 TEST_P(KernelVsReference, OneFrameAtATime) {
-    const Case& c = GetParam();
+    const Case& c = std::get<0>(GetParam());
+    const rrc_depth_test test = std::get<1>(GetParam());
     const int W = 96, H = 64, frames = 10;
     rrc_scene::Scene scene(scene_of(c, W, H));
-    Context ctx(scene_context_desc(scene.config(), c.source, c.channels));
+    rrc_context_desc desc = scene_context_desc(scene.config(), c.source, c.channels);
+    desc.depth_test = test;
+    Context ctx(desc);
     ASSERT_TRUE(ctx);
 
     Row row;
     row.name = c.name;
+    row.test = test == RRC_DEPTH_TEST_FIXED ? "FIXED" : c.source == RRC_REPROJECTION_MOTION ? "default (FIXED)" : "default (ADAPTIVE)";
     int64_t fp16_values = 0, fp16_exact = 0;
     rrc_ref::PreviousFrame prev;
     for (int t = 0; t < frames; ++t) {
@@ -177,7 +188,10 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
             }
         }
         if (t > 0) {
-            rrc_scene::FalseHitReport fh = rrc_scene::count_false_hits(scene, t, k.mask.data());
+            rrc_scene::FalseHitOptions options;
+            options.count_missed = true;
+            rrc_scene::FalseHitReport fh = rrc_scene::count_false_hits(scene, t, k.mask.data(), options);
+            row.missed_visible += fh.missed_visible;
             row.hits += (int64_t)k.stats.hits;
             row.hits_checked += fh.hits_checked;
             row.false_hits += fh.false_hits;
@@ -195,11 +209,13 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
     }
     row.fp16_exact_ratio = fp16_values ? double(fp16_exact) / fp16_values : 1.0;
     std::printf(
-        "%-30s compared %lld/%lld near-threshold %lld (flipped %lld) near-edge %lld mask-mismatch %lld hits %lld false %lld strict %lld "
-        "max fp32 err %.3g max fp16 steps %.3g position ratio %.3g\n",
-        c.name, (long long)row.compared, (long long)row.pixels, (long long)row.near_threshold, (long long)row.flips_in_margin,
-        (long long)row.near_edge, (long long)row.mask_mismatch, (long long)row.hits, (long long)row.false_hits,
-        (long long)row.strict_false_hits, row.max_fp32_error, row.max_fp16_steps, row.max_position_ratio);
+        "%-30s %-8s compared %lld/%lld near-threshold %lld (flipped %lld) near-edge %lld mask-mismatch %lld hits %lld false %lld strict "
+        "%lld "
+        "missed visible %lld max fp32 err %.3g max fp16 steps %.3g position ratio %.3g\n",
+        c.name, test_name(test), (long long)row.compared, (long long)row.pixels, (long long)row.near_threshold,
+        (long long)row.flips_in_margin, (long long)row.near_edge, (long long)row.mask_mismatch, (long long)row.hits,
+        (long long)row.false_hits, (long long)row.strict_false_hits, (long long)row.missed_visible, row.max_fp32_error, row.max_fp16_steps,
+        row.max_position_ratio);
     if (c.zero_false_hits) EXPECT_EQ(row.false_hits, 0) << c.name;
     EXPECT_GT(row.hits, 0) << c.name << ": a case without hits tests nothing";
     EXPECT_GT(row.compared, row.pixels * 9 / 10) << c.name << ": too few pixels compared";
@@ -209,8 +225,11 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
     report().push_back(row);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, KernelVsReference, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& i) { return std::string(i.param.name); });
+INSTANTIATE_TEST_SUITE_P(Cases, KernelVsReference,
+                         ::testing::Combine(::testing::ValuesIn(cases()), ::testing::Values(RRC_DEPTH_TEST_FIXED, RRC_DEPTH_TEST_DEFAULT)),
+                         [](const ::testing::TestParamInfo<Param>& i) {
+                             return std::string(std::get<0>(i.param).name) + "_" + test_name(std::get<1>(i.param));
+                         });
 
 // Writes the measured table when asked: RRC_ACCURACY_REPORT names a markdown
 // file whose text between the two markers below is replaced (docs/ACCURACY.md).
@@ -231,17 +250,19 @@ public:
         }
         std::ostringstream table;
         table << begin << "\n"
-              << "| case | tolerance | max fp32 error | max fp16 steps | fp16 exact | position ratio | pixels compared "
-                 "| near threshold | flipped within margin | mask mismatches | hits | hits checked | false hits | strict false hits |\n"
-                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+              << "| case | test | tolerance | max fp32 error | max fp16 steps | fp16 exact | position ratio | pixels compared "
+                 "| near threshold | flipped within margin | mask mismatches | hits | hits checked | false hits | strict false hits | "
+                 "visible pixels missed |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Row& r : report()) {
             char line[640];
-            std::snprintf(line, sizeof line,
-                          "| %s | %s | %.3g | %.3g | %.2f%% | %.3g | %lld / %lld | %lld | %lld | %lld | %lld | %lld | %lld | %lld |\n",
-                          r.name.c_str(), r.tolerance.c_str(), r.max_fp32_error, r.max_fp16_steps, 100.0 * r.fp16_exact_ratio,
-                          r.max_position_ratio, (long long)r.compared, (long long)r.pixels, (long long)r.near_threshold,
-                          (long long)r.flips_in_margin, (long long)r.mask_mismatch, (long long)r.hits, (long long)r.hits_checked,
-                          (long long)r.false_hits, (long long)r.strict_false_hits);
+            std::snprintf(
+                line, sizeof line,
+                "| %s | %s | %s | %.3g | %.3g | %.2f%% | %.3g | %lld / %lld | %lld | %lld | %lld | %lld | %lld | %lld | %lld | %lld |\n",
+                r.name.c_str(), r.test.c_str(), r.tolerance.c_str(), r.max_fp32_error, r.max_fp16_steps, 100.0 * r.fp16_exact_ratio,
+                r.max_position_ratio, (long long)r.compared, (long long)r.pixels, (long long)r.near_threshold, (long long)r.flips_in_margin,
+                (long long)r.mask_mismatch, (long long)r.hits, (long long)r.hits_checked, (long long)r.false_hits,
+                (long long)r.strict_false_hits, (long long)r.missed_visible);
             table << line;
         }
         text.replace(b, e - b, table.str());
