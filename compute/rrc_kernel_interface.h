@@ -66,10 +66,15 @@
 #define RRC_BINDING_HOST_OUT 24         // interop: the host's output image
 #define RRC_BINDING_HOST_AGE_OUT 25     // interop: the host's age image (optional)
 #define RRC_BINDING_FIRST_CHANNEL RRC_BINDING_SAMPLE1
-#define RRC_BINDING_LAST RRC_BINDING_HOST_AGE_OUT
+#define RRC_BINDING_LAST_CHANNEL RRC_BINDING_HOST_AGE_OUT
+// Object ids (RRC_SPEC_OBJECT_ID): one image each.
+#define RRC_BINDING_OBJECT_ID 26       // interop: R32_UINT, the kernel's copy of this frame's ids for the next
+#define RRC_BINDING_PREV_OBJECT_ID 27  // sampler: the previous frame's ids (the other parity)
+#define RRC_BINDING_HOST_OBJECT_ID 28  // sampler: this frame's ids (standalone: the upload; interop: the host's image)
+#define RRC_BINDING_LAST RRC_BINDING_HOST_OBJECT_ID
 // The one buffer binding, after every image binding: the host's statistics
 // buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]).
-#define RRC_BINDING_STATS 26
+#define RRC_BINDING_STATS 29
 // Counter indices in it (the member order of rrc_vulkan_frame_stats).
 #define RRC_STAT_HITS 0
 #define RRC_STAT_MISSES 1

@@ -19,6 +19,9 @@ layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
 layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
 // The ADAPTIVE test (docs/CONVENTIONS.md): only with EPS_KIND ULP or ABSOLUTE.
 layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
+// Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
+// previous-depth tap with a non-zero weight to carry the pixel's id.
+layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
@@ -44,6 +47,9 @@ layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;    
 layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
 layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
 layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
+layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage2D u_object_id_out;  // INTEROP: next frame's previous ids
+layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID) uniform usampler2D s_prev_object_id;               // the previous frame's ids
+layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
 
 ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
 float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
@@ -119,8 +125,9 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // current depth's interpolated quantity a2, a, c, b, b2 (left/up to
 // right/down, clamped to the image; `edge`: c is on the image's first or last
 // column/row).  x: the centre's second difference where it is curvature, less
-// its fp32 and quantisation noise; 0 for a step, on a plane (within noise)
-// and for non-finite taps.  A step is a second difference larger than the
+// its fp32 and quantisation noise; 0 for a step, on a plane (within noise),
+// on the image's first and last column/row (no second difference there) and
+// for non-finite taps.  A step is a second difference larger than the
 // smaller one-sided difference whose neighbour on either side has the other
 // sign and at least STEP_RATIO of its size (+h, -h: curvature and creases
 // keep one sign).  y: the slope for the clamped fetch beyond the outermost
@@ -134,7 +141,7 @@ vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float st
     bool opposite = (sm * s < 0.0 && abs(sm) >= RRC_ADAPTIVE_STEP_RATIO * abs(s)) || (sp * s < 0.0 && abs(sp) >= RRC_ADAPTIVE_STEP_RATIO * abs(s));
     bool finite = rrc_finite4(vec4(s, sm, sp, 0.0));
     float slope = edge ? max(abs(dp), abs(dm)) : min(abs(dp), abs(dm));
-    return finite ? vec2(candidate && opposite ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
+    return finite ? vec2(edge || (candidate && opposite) ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
 }
 
 // The tolerance the ADAPTIVE test adds to the paper's epsilon at pixel px
@@ -247,9 +254,18 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
         eps += rrc_adaptive_widening(px, size, d, q, expected);
     }
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
+    bool same_object = true;
+    if (OBJECT_ID) {
+        uint id = texelFetch(s_object_id, px, 0).r;
+        if (INTEROP) imageStore(u_object_id_out, px, uvec4(id));
+        uvec4 taps = uvec4(texelFetch(s_prev_object_id, g.taps.p00, 0).r, texelFetch(s_prev_object_id, g.taps.p10, 0).r,
+                           texelFetch(s_prev_object_id, g.taps.p01, 0).r, texelFetch(s_prev_object_id, g.taps.p11, 0).r);
+        bvec4 foreign = notEqual(taps, uvec4(id)), weighted = greaterThan(g.taps.w, vec4(0.0));
+        same_object = !any(bvec4(foreign.x && weighted.x, foreign.y && weighted.y, foreign.z && weighted.z, foreign.w && weighted.w));
+    }
 
     g.hit = pc.prev_valid != 0u && !g.background && !g.invalid && !nocache && w > 0.0 && inside &&
-            !tap_background && abs(fetched - expected) <= eps;
+            !tap_background && same_object && abs(fetched - expected) <= eps;
     return g;
 }
 

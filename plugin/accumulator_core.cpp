@@ -14,6 +14,8 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
       views_(1) {
     for (ViewState& v : views_) {
         for (auto& img : v.depth) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config_.width, config_.height);
+        if (config_.use_object_id)
+            for (auto& img : v.object_id) img = GpuImage(*dev_, VK_FORMAT_R32_UINT, config_.width, config_.height);
         for (const ChannelConfig& c : config_.channels)
             v.channels.emplace_back(new ChannelHistory(*dev_, c, config_.width, config_.height));
     }
@@ -26,6 +28,7 @@ AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the
 DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p) const {
     DescriptorViews v = placeholders_.views();
     v.view[RRC_BINDING_PREV_DEPTH][0] = view.depth[1 - p].view;
+    if (config_.use_object_id) v.view[RRC_BINDING_PREV_OBJECT_ID][0] = view.object_id[1 - p].view;
     v.view[RRC_BINDING_MASK][0] = mask_.view;
     v.stats = stats_placeholder_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
@@ -35,6 +38,8 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
 void AccumulatorCore::collect_images(std::vector<GpuImage*>& out) {
     for (ViewState& v : views_) {
         out.insert(out.end(), {&v.depth[0], &v.depth[1]});
+        for (auto& img : v.object_id)
+            if (img.image) out.push_back(&img);
         for (auto& c : v.channels) c->collect(out);
     }
     out.push_back(&mask_);
@@ -64,7 +69,7 @@ void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_fra
 size_t AccumulatorCore::memory_bytes() const {
     size_t bytes = mask_.bytes();
     for (const ViewState& v : views_) {
-        bytes += v.depth[0].bytes() + v.depth[1].bytes();
+        bytes += v.depth[0].bytes() + v.depth[1].bytes() + v.object_id[0].bytes() + v.object_id[1].bytes();
         for (const auto& c : v.channels) bytes += c->bytes();
     }
     return bytes;

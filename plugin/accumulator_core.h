@@ -21,7 +21,8 @@ namespace rrc {
 // What one view (today the only one; a stereo eye or a sub-frame later)
 // carries from frame to frame.
 struct ViewState {
-    GpuImage depth[2];  // [parity]: this frame's depth; the other parity is the previous frame's
+    GpuImage depth[2];      // [parity]: this frame's depth; the other parity is the previous frame's
+    GpuImage object_id[2];  // the same for object ids (R32_UINT), when the context uses them
     std::vector<std::unique_ptr<ChannelHistory>> channels;
     uint32_t parity = 0;         // the image set the next frame writes
     bool have_previous = false;  // false: first frame, or after a failed creation

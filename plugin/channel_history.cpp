@@ -42,12 +42,18 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint3
 }
 
 Placeholders::Placeholders(VulkanDevice& dev) {
-    const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,       VK_FORMAT_R32G32B32A32_SFLOAT,
-                                VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8_UINT,
-                                VK_FORMAT_R16_UINT};
+    const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT,
+                                VK_FORMAT_R32G32_SFLOAT,
+                                VK_FORMAT_R32G32B32A32_SFLOAT,
+                                VK_FORMAT_R16_SFLOAT,
+                                VK_FORMAT_R16G16B16A16_SFLOAT,
+                                VK_FORMAT_R8_UINT,
+                                VK_FORMAT_R16_UINT,
+                                VK_FORMAT_R32_UINT};
     for (VkFormat f : formats) read_.emplace_back(dev, f, 1, 1);
     write_.emplace_back(dev, VK_FORMAT_R32_SFLOAT, 1, 1);
     write_.emplace_back(dev, VK_FORMAT_R16_UINT, 1, 1);
+    write_.emplace_back(dev, VK_FORMAT_R32_UINT, 1, 1);
 }
 
 VkImageView Placeholders::read(VkFormat f) const {
@@ -67,6 +73,10 @@ DescriptorViews Placeholders::views() const {
     v.view[RRC_BINDING_HOST_DEPTH][0] = v.view[RRC_BINDING_HOST_REPROJ][0] = read(VK_FORMAT_R32_SFLOAT);
     v.view[RRC_BINDING_HOST_NOCACHE][0] = read(VK_FORMAT_R8_UINT);
     v.view[RRC_BINDING_DEPTH_OUT][0] = wf;
+    // Object ids: bound to real images only when the context uses them (the
+    // kernel's code for them is compiled out otherwise).
+    v.view[RRC_BINDING_PREV_OBJECT_ID][0] = v.view[RRC_BINDING_HOST_OBJECT_ID][0] = read(VK_FORMAT_R32_UINT);
+    v.view[RRC_BINDING_OBJECT_ID][0] = write_[2].view;
     for (uint32_t s = 0; s < RRC_MAX_CHANNELS; ++s) {
         v.view[RRC_BINDING_SAMPLE1][s] = v.view[RRC_BINDING_CONFIDENCE][s] = v.view[RRC_BINDING_HIST_R32F][s] =
             v.view[RRC_BINDING_WEIGHT][s] = read(VK_FORMAT_R32_SFLOAT);

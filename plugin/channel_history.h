@@ -32,7 +32,7 @@ public:
 
 private:
     VkImageView read(VkFormat format) const;
-    std::vector<GpuImage> read_, write_;  // write_: R32F (float writes), R16UI (ages)
+    std::vector<GpuImage> read_, write_;  // write_: R32F (float writes), R16UI (ages), R32UI (object ids)
 };
 
 }  // namespace rrc

@@ -40,10 +40,11 @@ struct Frame {
     const float* depth = nullptr;
     const float* reprojection = nullptr;
     const uint8_t* nocache = nullptr;
+    const uint32_t* object_id = nullptr;
 
     // Vulkan inputs and outputs.
     VkCommandBuffer command_buffer = VK_NULL_HANDLE;
-    rrc_vulkan_image depth_image{}, reprojection_image{}, nocache_image{}, mask_image{};
+    rrc_vulkan_image depth_image{}, reprojection_image{}, nocache_image{}, mask_image{}, object_id_image{};
     VkBuffer stats_buffer = VK_NULL_HANDLE;
     VkDeviceSize stats_offset = 0;
 };

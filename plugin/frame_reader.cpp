@@ -46,7 +46,7 @@ void read_channels(Frame& f, const D& d, size_t context_channels, Assign assign)
 Frame read_frame(const rrc_frame_desc* caller, size_t context_channels) {
     rrc_frame_desc d;
     Frame f = read_common(caller, FramePath::Standalone, d);
-    std::tie(f.depth, f.reprojection, f.nocache) = std::tie(d.depth, d.reprojection, d.nocache);
+    std::tie(f.depth, f.reprojection, f.nocache, f.object_id) = std::tie(d.depth, d.reprojection, d.nocache, d.object_id);
     read_channels<rrc_channel_input>(f, d, context_channels, [](FrameChannel& to, const rrc_channel_input& from) {
         to.samples = from.samples;
         to.confidence = from.confidence;
@@ -58,7 +58,8 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
     rrc_vulkan_frame_desc d;
     Frame f = read_common(caller, FramePath::Vulkan, d);
     std::tie(f.command_buffer, f.stats_buffer, f.stats_offset) = std::tie(d.command_buffer, d.stats_buffer, d.stats_offset);
-    std::tie(f.depth_image, f.reprojection_image, f.nocache_image, f.mask_image) = std::tie(d.depth, d.reprojection, d.nocache, d.mask);
+    std::tie(f.depth_image, f.reprojection_image, f.nocache_image, f.mask_image, f.object_id_image) =
+        std::tie(d.depth, d.reprojection, d.nocache, d.mask, d.object_id);
     read_channels<rrc_vulkan_channel_images>(f, d, context_channels, [](FrameChannel& to, const rrc_vulkan_channel_images& from) {
         to.samples_image = from.samples;
         to.confidence_image = from.confidence;

@@ -30,6 +30,7 @@ uint32_t texel_bytes(VkFormat format) {
         case VK_FORMAT_R8_UINT: return 1;
         case VK_FORMAT_R16_UINT:
         case VK_FORMAT_R16_SFLOAT: return 2;
+        case VK_FORMAT_R32_UINT:
         case VK_FORMAT_R32_SFLOAT: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R32G32_SFLOAT: return 8;

@@ -116,6 +116,7 @@ void InteropContext::record_frame(const Frame& f) {
         hb.add(img, false);
     }
     v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
+    if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
     if (f.mask_image.image) {
         v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
         hb.add(f.mask_image, true);

@@ -18,6 +18,10 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
         default: break;  // CAMERA: matrices only
     }
     if (c.use_nocache) in.push_back({InputRole::Nocache, 0, RRC_BINDING_NOCACHE, RRC_BINDING_HOST_NOCACHE, VK_FORMAT_R8_UINT, 1, 1});
+    if (c.use_object_id)
+        // Both paths read this frame's ids through the sampler binding: the
+        // standalone upload, or the host's image (which the kernel copies to RRC_BINDING_OBJECT_ID).
+        in.push_back({InputRole::ObjectId, 0, RRC_BINDING_HOST_OBJECT_ID, RRC_BINDING_HOST_OBJECT_ID, VK_FORMAT_R32_UINT, 1, 4});
     for (uint32_t s = 0; s < c.channels.size(); ++s) {
         const bool one = c.channels[s].components == 1;
         in.push_back({InputRole::Samples, s, uint32_t(one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4), RRC_BINDING_HOST_SAMPLES,
@@ -33,6 +37,7 @@ const void* host_array(const Frame& f, const LiveInput& in) {
         case InputRole::Depth: return f.depth;
         case InputRole::Reprojection: return f.reprojection;
         case InputRole::Nocache: return f.nocache;
+        case InputRole::ObjectId: return f.object_id;
         case InputRole::Samples: return f.channels[in.slot].samples;
         case InputRole::Confidence: return f.channels[in.slot].confidence;
     }
@@ -44,6 +49,7 @@ const rrc_vulkan_image& host_image(const Frame& f, const LiveInput& in) {
         case InputRole::Depth: return f.depth_image;
         case InputRole::Reprojection: return f.reprojection_image;
         case InputRole::Nocache: return f.nocache_image;
+        case InputRole::ObjectId: return f.object_id_image;
         case InputRole::Samples: return f.channels[in.slot].samples_image;
         case InputRole::Confidence: break;
     }

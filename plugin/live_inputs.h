@@ -13,7 +13,12 @@
 
 namespace rrc {
 
-enum class InputRole { Depth, Reprojection, Nocache, Samples, Confidence };
+enum class InputRole { Depth, Reprojection, Nocache, ObjectId, Samples, Confidence };
+
+// Depth and object ids are kept from frame to frame (ViewState's ping-pong
+// images): the standalone path uploads them into the frame's parity, not
+// into an input image of its own.
+inline bool kept_as_history(InputRole r) { return r == InputRole::Depth || r == InputRole::ObjectId; }
 
 struct LiveInput {
     InputRole role;

@@ -25,7 +25,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
     try {
         const uint32_t w = config.width, h = config.height;
         for (const LiveInput& in : core_->inputs()) {
-            inputs_.emplace_back(in.role == InputRole::Depth ? GpuImage() : GpuImage(d, in.own_format, w, h));
+            inputs_.emplace_back(kept_as_history(in.role) ? GpuImage() : GpuImage(d, in.own_format, w, h));
             upload_bytes_ += align16((size_t)w * h * texel_bytes(in.own_format));
         }
         readback_bytes_ = readback_bytes(0);
@@ -100,13 +100,21 @@ void StandaloneContext::reserve_batch(uint32_t frames) {
     batch_capacity_ = frames;
 }
 
+const GpuImage& StandaloneContext::own_input(const ViewState& view, size_t input, uint32_t parity) const {
+    switch (core_->inputs()[input].role) {
+        case InputRole::Depth: return view.depth[parity];
+        case InputRole::ObjectId: return view.object_id[parity];
+        default: return inputs_[input];
+    }
+}
+
 void StandaloneContext::write_descriptor_sets() {
     const ViewState& view = core_->view();
     for (uint32_t p = 0; p < 2; ++p) {
         DescriptorViews v = core_->library_views(view, p);
         for (size_t i = 0; i < core_->inputs().size(); ++i) {
             const LiveInput& in = core_->inputs()[i];
-            v.view[in.own_binding][in.slot] = in.role == InputRole::Depth ? view.depth[p].view : inputs_[i].view;
+            v.view[in.own_binding][in.slot] = own_input(view, i, p).view;
         }
         core_->pipeline().write_set(sets_[p], v);
     }
@@ -151,8 +159,7 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     auto& vk = core_->device().vk;
     ViewState& view = core_->view();
     std::vector<const GpuImage*> inputs;
-    for (size_t i = 0; i < core_->inputs().size(); ++i)
-        inputs.push_back(core_->inputs()[i].role == InputRole::Depth ? &view.depth[parity] : &inputs_[i]);
+    for (size_t i = 0; i < core_->inputs().size(); ++i) inputs.push_back(&own_input(view, i, parity));
     std::vector<const GpuImage*> outputs;
     for (const Readback& r : readbacks(out, parity))
         if (r.destination || r.image == &core_->own_mask()) outputs.push_back(r.image);

@@ -36,6 +36,8 @@ private:
     };
     std::vector<Readback> readbacks(const FrameOutputs& out, uint32_t parity) const;
     size_t readback_bytes(uint32_t parity) const;
+    // The image live input `input` is uploaded into for the frame writing `parity`.
+    const GpuImage& own_input(const ViewState& view, size_t input, uint32_t parity) const;
     void write_descriptor_sets();
     void initialise_images();
     void reserve_batch(uint32_t frames);

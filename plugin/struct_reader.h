@@ -29,9 +29,9 @@ struct StructInfo;
         static constexpr rrc_struct_type type = tag;   \
         static constexpr size_t size_0_1 = first_size; \
     }
-RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, sizeof(rrc_context_desc));
+RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, offsetof(rrc_context_desc, depth_test));
 RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc));
-RRC_STRUCT_INFO(rrc_frame_desc, RRC_STRUCT_TYPE_FRAME_DESC, sizeof(rrc_frame_desc));
+RRC_STRUCT_INFO(rrc_frame_desc, RRC_STRUCT_TYPE_FRAME_DESC, offsetof(rrc_frame_desc, object_id));
 RRC_STRUCT_INFO(rrc_channel_input, RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input));
 RRC_STRUCT_INFO(rrc_frame_output, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output));
 RRC_STRUCT_INFO(rrc_channel_output, RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output));

@@ -240,6 +240,12 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.jitter/prev_jitter[%d] must be finite and within [-1, 1] pixels", i);
     if (c.use_nocache)
         need(f, f.nocache, f.nocache_image, RRC_ERROR_MISSING_INPUT, "nocache", " but the context was created with use_nocache_mask");
+    if (c.use_object_id) {
+        need(f, f.object_id, f.object_id_image, RRC_ERROR_MISSING_INPUT, "object_id", " but the context was created with use_object_id");
+        const VkFormat idf = f.object_id_image.format;
+        if (vulkan && idf != VK_FORMAT_R16_UINT && idf != VK_FORMAT_R32_UINT)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %d, must be VK_FORMAT_R16_UINT or VK_FORMAT_R32_UINT", (int)idf);
+    }
     if (f.channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f.channel_count, c.channels.size());
     if (!f.channels_given) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");

@@ -42,7 +42,8 @@ struct Case {
     bool jitter;
     double invalid_fraction;
     std::vector<rrc_channel_desc> channels;
-    bool zero_false_hits;  // exact sources must never hit falsely
+    bool zero_false_hits;    // exact sources must never hit falsely
+    bool object_id = false;  // the context takes the scene's object ids
 };
 
 std::vector<Case> cases() {
@@ -79,6 +80,8 @@ std::vector<Case> cases() {
         {"camera_linear", cam, L, F, 100, false, true, 0, chs(ch("pcf", 1, 0.6f, fp32, mean, bil, 32)), false},
         {"invalid_samples", clip, R, F, 100, true, false, 0.03,
          chs(ch("pcf", 1, 0.6f, fp32, fixed, bil), ch("env", 4, 0.6f, fp16, age, bil, 0, 1)), true},
+        {"prev_clip_standard_object_id", clip, S, F, 100, true, true, 0, chs(ch("pcf", 1, 0.6f, fp32, fixed, bil)), true, true},
+        {"camera_linear_object_id", cam, L, F, 100, false, true, 0, chs(ch("pcf", 1, 0.6f, fp16, fixed, bil)), false, true},
     };
 }
 
@@ -119,6 +122,7 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
     rrc_scene::Scene scene(scene_of(c, W, H));
     rrc_context_desc desc = scene_context_desc(scene.config(), c.source, c.channels);
     desc.depth_test = test;
+    desc.use_object_id = c.object_id ? 1u : 0u;
     Context ctx(desc);
     ASSERT_TRUE(ctx);
 
@@ -200,6 +204,7 @@ TEST_P(KernelVsReference, OneFrameAtATime) {
         // The next frame's reference starts from the kernel's stored state.
         prev.valid = true;
         prev.depth = in.frame.depth;
+        prev.object_id = in.object_id;
         prev.channels.resize(c.channels.size());
         for (size_t ch = 0; ch < c.channels.size(); ++ch) {
             prev.channels[ch].history = k.values[ch];

@@ -63,17 +63,19 @@ TEST(AbiLayout, Every01MemberKeepsItsOffsetSizeAndTag) {
     EXPECT_GE(n, 100u);
 }
 
-// Rule 5: only rrc_vulkan_channel_images (age) and rrc_vulkan_frame_desc
-// (stats_buffer, stats_offset) grew; their new members start at or after
-// the 0.1 size.
-TEST(AbiLayout, OnlyTheTwoVulkanStructsGrew) {
+// Rule 2: only the structs 0.2 appends to grew, and their new members start
+// at or after the 0.1 size: rrc_vulkan_channel_images (age),
+// rrc_vulkan_frame_desc (stats_buffer, stats_offset, object_id),
+// rrc_context_desc (depth_test, use_object_id), rrc_frame_desc (object_id).
+TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
+    const char* const appended[] = {"rrc_vulkan_channel_images", "rrc_vulkan_frame_desc", "rrc_context_desc", "rrc_frame_desc"};
     for (const rrc_abi_entry* e = rrc_abi_0_1_layout; e->struct_name; ++e) {
         if (e->member) continue;
         size_t now = 0;
         for (const rrc_abi_entry* f = kLayout02; f->struct_name; ++f)
             if (!f->member && std::strcmp(f->struct_name, e->struct_name) == 0) now = f->offset;
-        const bool grows =
-            std::strcmp(e->struct_name, "rrc_vulkan_channel_images") == 0 || std::strcmp(e->struct_name, "rrc_vulkan_frame_desc") == 0;
+        bool grows = false;
+        for (const char* a : appended) grows = grows || std::strcmp(e->struct_name, a) == 0;
         if (grows)
             EXPECT_LT(e->offset, now) << e->struct_name << ": 0.2 appends members";
         else
@@ -82,6 +84,10 @@ TEST(AbiLayout, OnlyTheTwoVulkanStructsGrew) {
     EXPECT_GE(offsetof(rrc_vulkan_channel_images, age), size01("rrc_vulkan_channel_images"));
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_buffer), size01("rrc_vulkan_frame_desc"));
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_offset), size01("rrc_vulkan_frame_desc"));
+    EXPECT_GE(offsetof(rrc_vulkan_frame_desc, object_id), size01("rrc_vulkan_frame_desc"));
+    EXPECT_GE(offsetof(rrc_context_desc, depth_test), size01("rrc_context_desc"));
+    EXPECT_GE(offsetof(rrc_context_desc, use_object_id), size01("rrc_context_desc"));
+    EXPECT_GE(offsetof(rrc_frame_desc, object_id), size01("rrc_frame_desc"));
     EXPECT_EQ(sizeof(rrc_vulkan_frame_stats), 32u);
 }
 

@@ -48,14 +48,15 @@ PFN_vkVoidFunction install(PFN_vkVoidFunction real) {
 
 // Every command the library could record (those it uses today and the
 // likely ones: copies, fills, clears, queries, labels, sync2 barriers).
-#define RRC_TEST_COUNTED_COMMANDS(X)                                                                                                   \
-    X(vkCmdPipelineBarrier) X(vkCmdPipelineBarrier2) X(vkCmdPipelineBarrier2KHR) X(vkCmdBindPipeline) X(vkCmdBindDescriptorSets)   \
-    X(vkCmdPushConstants) X(vkCmdPushDescriptorSetKHR) X(vkCmdDispatch) X(vkCmdDispatchBase) X(vkCmdDispatchIndirect)              \
-    X(vkCmdClearColorImage) X(vkCmdClearDepthStencilImage) X(vkCmdCopyBuffer) X(vkCmdCopyImage) X(vkCmdCopyBufferToImage)          \
-    X(vkCmdCopyImageToBuffer) X(vkCmdBlitImage) X(vkCmdFillBuffer) X(vkCmdUpdateBuffer) X(vkCmdResetQueryPool)                     \
-    X(vkCmdWriteTimestamp) X(vkCmdBeginQuery) X(vkCmdEndQuery) X(vkCmdCopyQueryPoolResults) X(vkCmdSetEvent) X(vkCmdResetEvent)    \
-    X(vkCmdWaitEvents) X(vkCmdExecuteCommands) X(vkCmdBeginDebugUtilsLabelEXT) X(vkCmdEndDebugUtilsLabelEXT)                       \
-    X(vkCmdInsertDebugUtilsLabelEXT)
+#define RRC_TEST_COUNTED_COMMANDS(X)                                                                                                       \
+    X(vkCmdPipelineBarrier)                                                                                                                \
+    X(vkCmdPipelineBarrier2) X(vkCmdPipelineBarrier2KHR) X(vkCmdBindPipeline) X(vkCmdBindDescriptorSets) X(vkCmdPushConstants)             \
+        X(vkCmdPushDescriptorSetKHR) X(vkCmdDispatch) X(vkCmdDispatchBase) X(vkCmdDispatchIndirect) X(vkCmdClearColorImage)                \
+            X(vkCmdClearDepthStencilImage) X(vkCmdCopyBuffer) X(vkCmdCopyImage) X(vkCmdCopyBufferToImage) X(vkCmdCopyImageToBuffer)        \
+                X(vkCmdBlitImage) X(vkCmdFillBuffer) X(vkCmdUpdateBuffer) X(vkCmdResetQueryPool) X(vkCmdWriteTimestamp) X(vkCmdBeginQuery) \
+                    X(vkCmdEndQuery) X(vkCmdCopyQueryPoolResults) X(vkCmdSetEvent) X(vkCmdResetEvent) X(vkCmdWaitEvents)                   \
+                        X(vkCmdExecuteCommands) X(vkCmdBeginDebugUtilsLabelEXT) X(vkCmdEndDebugUtilsLabelEXT)                              \
+                            X(vkCmdInsertDebugUtilsLabelEXT)
 
 inline PFN_vkVoidFunction wrap(const char* name, PFN_vkVoidFunction real) {
     if (!real) return nullptr;
@@ -132,6 +133,8 @@ public:
         else if (desc.reprojection != RRC_REPROJECTION_CAMERA)
             reprojection = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, sampled);
         if (desc.use_nocache_mask) nocache = host.create_image(VK_FORMAT_R8_UINT, w, h, sampled);
+        if (desc.size > offsetof(rrc_context_desc, use_object_id) && desc.use_object_id)
+            object_id = host.create_image(VK_FORMAT_R32_UINT, w, h, sampled);
         mask = host.create_image(VK_FORMAT_R8_UINT, w, h, storage);
         for (const rrc_channel_desc& c : channels_) {
             const VkFormat f = c.components == 4 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32_SFLOAT;
@@ -150,7 +153,7 @@ public:
     }
     ~VulkanRig() {
         rrc_context_destroy(ctx);
-        for (HostImage* img : {&depth, &reprojection, &nocache, &mask})
+        for (HostImage* img : {&depth, &reprojection, &nocache, &object_id, &mask})
             if (img->image) host_.destroy(*img);
         for (Images& im : images)
             for (HostImage* img : {&im.samples, &im.confidence, &im.output, &im.age})
@@ -165,7 +168,7 @@ public:
     };
     rrc_context* ctx = nullptr;
     rrc_result create_result = RRC_SUCCESS;
-    HostImage depth, reprojection, nocache, mask;
+    HostImage depth, reprojection, nocache, object_id, mask;
     std::vector<Images> images;
     rrc_host::Buffer stats;
     static constexpr VkDeviceSize kStatsOffset = 256;
@@ -185,6 +188,7 @@ public:
     // PREV_CLIP/MOTION_DEPTH: 4 floats a pixel (MOTION_DEPTH uses 3), MOTION: 2.
     void upload_reprojection(const std::vector<float>& r) { host_.upload(reprojection, r.data(), r.size() * 4, kRead); }
     void upload_nocache(const std::vector<uint8_t>& m) { host_.upload(nocache, m.data(), m.size(), kRead); }
+    void upload_object_id(const std::vector<uint32_t>& ids) { host_.upload(object_id, ids.data(), ids.size() * 4, kRead); }
     void upload_samples(uint32_t c, const std::vector<float>& s) { host_.upload(images[c].samples, s.data(), s.size() * 4, kRead); }
     void upload_confidence(uint32_t c, const std::vector<float>& s) { host_.upload(images[c].confidence, s.data(), s.size() * 4, kRead); }
     // Fills every output (values, age, mask, stats) with sentinels.
@@ -210,6 +214,7 @@ public:
         f.desc.depth = view_of(depth, kDepthRead);
         if (reprojection.image) f.desc.reprojection = view_of(reprojection, kRead);
         if (nocache.image) f.desc.nocache = view_of(nocache, kRead);
+        if (object_id.image) f.desc.object_id = view_of(object_id, kRead);
         f.desc.mask = view_of(mask, kGeneral);
         f.desc.stats_buffer = stats.buffer;
         f.desc.stats_offset = kStatsOffset;

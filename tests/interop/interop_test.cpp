@@ -31,8 +31,10 @@ rrc_scene::SceneConfig test_scene() {
     return sc;
 }
 
-rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels) {
-    return scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
+rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels, bool object_id = false) {
+    rrc_context_desc d = scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
+    d.use_object_id = object_id ? 1u : 0u;
+    return d;
 }
 
 // Two frames in flight: the test records a frame while the previous one may still be pending.
@@ -49,10 +51,10 @@ std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
 // The test scene's first inputs.size() frames (jittered, REVERSED depth) into
 // `inputs`, and the standalone path's results for them on the library's own
 // device into `expected`: what the interop path must give.
-void run_standalone(std::vector<SceneFrameInputs>& inputs, std::vector<FrameResult>& expected) {
+void run_standalone(std::vector<SceneFrameInputs>& inputs, std::vector<FrameResult>& expected, bool object_id = false) {
     rrc_scene::Scene scene(test_scene());
     std::vector<rrc_channel_desc> channels = test_channels();
-    Context ctx(test_desc(channels));
+    Context ctx(test_desc(channels, object_id));
     ASSERT_TRUE(ctx);
     for (size_t t = 0; t < inputs.size(); ++t) {
         inputs[t].frame = scene.render((int)t);
@@ -61,22 +63,25 @@ void run_standalone(std::vector<SceneFrameInputs>& inputs, std::vector<FrameResu
     }
 }
 
+// With object ids on, so their path (the host's R16_UINT image, the kernel's
+// copy for the next frame) is compared too.
 TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     std::vector<rrc_channel_desc> channels = test_channels();
     std::vector<SceneFrameInputs> inputs(kFrames);
     std::vector<FrameResult> expected;
-    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
+    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected, true));
 
     // Interop: the host's device, images and command buffers.
     VulkanHost host;
     rrc_vulkan_device_desc dd = device_desc(host);
-    rrc_context_desc cd = test_desc(channels);
+    rrc_context_desc cd = test_desc(channels, true);
     rrc_context* ctx = nullptr;
     ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
     uint64_t bytes = 0;
     ASSERT_EQ(rrc_get_memory_usage(ctx, &bytes), RRC_SUCCESS);
-    // Ping-pong: depth 2 x 4 B, fp16 history + age 2 x (2 + 2) B, fp32 rgba history + age + weight 2 x (16 + 2 + 4) B, mask 1 B.
-    EXPECT_EQ(bytes, (uint64_t)W * H * (8 + 8 + 44 + 1));
+    // Ping-pong: depth 2 x 4 B, object ids 2 x 4 B, fp16 history + age 2 x (2 + 2) B,
+    // fp32 rgba history + age + weight 2 x (16 + 2 + 4) B, mask 1 B.
+    EXPECT_EQ(bytes, (uint64_t)W * H * (8 + 8 + 8 + 44 + 1));
 
     const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
     HostImage depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
@@ -87,6 +92,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
     HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
     HostImage mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
+    HostImage ids = host.create_image(VK_FORMAT_R16_UINT, W, H, sampled);
     std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
     for (HostImage* img : {&out1, &out4, &mask}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
 
@@ -99,6 +105,9 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
         host.upload(s4, in.frame.signal4.data(), W * H * 16, ro);
         host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
+        const std::vector<uint16_t> ids16(in.object_id.begin(),
+                                          in.object_id.end());  // the sky's 0xFFFFFFFF is 0xFFFF here: still its own id
+        host.upload(ids, ids16.data(), W * H * 2, ro);
 
         rrc_vulkan_channel_images ch[2];
         for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
@@ -112,6 +121,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         f.depth = view_of(depth, dro);
         f.reprojection = view_of(clip, ro);
         f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
+        f.object_id = view_of(ids, ro);
         std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
         std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
         f.channel_count = 2;
@@ -129,7 +139,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         if (t > 0) EXPECT_GT(expected[t].stats.hits, (uint64_t)W * H / 3) << "the comparison must cover hits";
     }
     rrc_context_destroy(ctx);
-    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &out1, &out4, &mask}) host.destroy(*img);
+    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &out1, &out4, &mask, &ids}) host.destroy(*img);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
 }

@@ -12,6 +12,7 @@ uint32_t bytes_of(VkFormat f) {
         case VK_FORMAT_R16_UINT:
         case VK_FORMAT_D16_UNORM: return 2;
         case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_R32_UINT:
         case VK_FORMAT_D32_SFLOAT: return 4;
         case VK_FORMAT_R32G32_SFLOAT:
         case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;

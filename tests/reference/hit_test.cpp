@@ -71,6 +71,7 @@ Axis axis(const Params& p, double a2, double a, double c, double b, double b2, b
     };
     const bool step_sure = is_step(err), step_nominal = is_step(0.0), step_maybe = is_step(-err);
     const double smooth = std::max(std::fabs(s) - noise, 0.0), hi = std::max(std::fabs(s) - noise + err, 0.0);
+    if (edge) return r;  // no second difference on the image's first and last column/row
     if (!step_maybe)
         r.curvature = {smooth, std::max(std::fabs(s) - noise - err, 0.0), hi};  // surely curvature
     else if (!step_sure)

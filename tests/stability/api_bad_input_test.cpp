@@ -90,6 +90,7 @@ struct Call {
     std::vector<float> depth = std::vector<float>(kN, 0.5f), clip = std::vector<float>(4 * kN), s1 = std::vector<float>(kN, 1.0f),
                        s4 = std::vector<float>(4 * kN, 1.0f), conf = std::vector<float>(kN, 1.0f);
     std::vector<uint8_t> nocache = std::vector<uint8_t>(kN, 0);
+    std::vector<uint32_t> object_id = std::vector<uint32_t>(kN, 3);
     rrc_channel_input inputs[2];
     rrc_frame_desc frame;
     // Outputs with sentinel contents.
@@ -115,6 +116,7 @@ struct Call {
         frame.depth = depth.data();
         frame.reprojection = clip.data();
         frame.nocache = nocache.data();
+        frame.object_id = object_id.data();
         frame.channel_count = 2;
         frame.channels = inputs;
         for (rrc_channel_output& o : outs) o = rrc_host::channel_output();
@@ -152,7 +154,7 @@ public:
 };
 
 // One context for all cases: channel 0 has confidence (1 component, fp32),
-// channel 1 has none (4 components, fp16); PREV_CLIP and a do-not-cache mask,
+// channel 1 has none (4 components, fp16); PREV_CLIP, a do-not-cache mask and object ids,
 // so every optional input is required somewhere.
 const std::vector<rrc_channel_desc> kSharedChannels = {
     channel("conf", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1),
@@ -161,6 +163,7 @@ rrc_context_desc shared_desc() {
     rrc_context_desc d = context_desc(kW, kH, kSharedChannels);
     d.reprojection = RRC_REPROJECTION_PREV_CLIP;
     d.use_nocache_mask = 1;
+    d.use_object_id = 1;
     return d;
 }
 
@@ -253,6 +256,8 @@ std::vector<FrameCase> frame_cases() {
          [](VkFrame& f) { f.desc.reprojection = rrc_vulkan_image{}; }},
         {"nocache_null", RRC_ERROR_MISSING_INPUT, "frame.nocache", [](Call& c) { c.frame.nocache = nullptr; },
          [](VkFrame& f) { f.desc.nocache = rrc_vulkan_image{}; }},
+        {"object_id_null", RRC_ERROR_MISSING_INPUT, "frame.object_id", [](Call& c) { c.frame.object_id = nullptr; },
+         [](VkFrame& f) { f.desc.object_id = rrc_vulkan_image{}; }},
         {"channel_count_zero", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 0; },
          [](VkFrame& f) { f.desc.channel_count = 0; }},
         {"channel_count_too_many", RRC_ERROR_SIZE_MISMATCH, "frame.channel_count", [](Call& c) { c.frame.channel_count = 3; },
@@ -306,6 +311,11 @@ std::vector<FrameCase> frame_cases() {
          "frame.channels[1].size",
          {},
          [](VkFrame& f) { f.channels[1].size = (uint32_t)sizeof(rrc_vulkan_channel_images) - 8; }},
+        {"vk_object_id_wrong_format",
+         RRC_ERROR_INVALID_ARGUMENT,
+         "frame.object_id.format",
+         {},
+         [](VkFrame& f) { f.desc.object_id.format = VK_FORMAT_R8_UINT; }},
     };
 }
 
@@ -425,6 +435,7 @@ private:
         rig_->upload_depth(inputs.depth);
         rig_->upload_reprojection(inputs.clip);
         rig_->upload_nocache(inputs.nocache);
+        rig_->upload_object_id(inputs.object_id);
         rig_->upload_confidence(0, inputs.conf);
         EXPECT_TRUE(good_frame_continues_history());
     }

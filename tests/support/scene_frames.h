@@ -15,6 +15,7 @@ namespace rrc_test {
 struct SceneFrameInputs {
     rrc_scene::Frame frame;
     std::vector<float> reprojection;             // per the source's layout
+    std::vector<uint32_t> object_id;             // the scene's ids as rrc object ids (sky: 0xFFFFFFFF)
     std::vector<std::vector<float>> confidence;  // per channel; empty = none
     std::vector<rrc_channel_input> inputs;
     rrc_frame_desc desc;
@@ -60,6 +61,9 @@ inline void make_frame_inputs(SceneFrameInputs& in, rrc_reprojection source, con
     in.desc.frame_index = (uint64_t)f.index;
     in.desc.depth = f.depth.data();
     in.desc.reprojection = in.reprojection.empty() ? nullptr : in.reprojection.data();
+    // Always given: a context without use_object_id ignores it.
+    in.object_id.assign(f.object_id.begin(), f.object_id.end());
+    in.desc.object_id = in.object_id.data();
     std::memcpy(in.desc.view_proj, f.view_proj, sizeof f.view_proj);
     std::memcpy(in.desc.prev_view_proj, f.prev_view_proj, sizeof f.prev_view_proj);
     std::memcpy(in.desc.jitter, f.jitter, sizeof f.jitter);
