@@ -597,6 +597,21 @@ TEST_F(BadInput, CorruptPixelDataStopsCleanly) {
     EXPECT_EQ(dir_entries(dir_.path() / "out"), (std::vector<std::string>{"acc_0001.exr", "acc_0002.exr", "coh_0001.png", "coh_0002.png"}));
 }
 
+// An object id is only known once its frame is decoded: a bad one stops
+// the run there, naming the file, the channel and the pixel, and
+// --no-object-id reads past it.
+TEST_F(BadInput, BadObjectIdNamesThePixel) {
+    write_blender_sequence(*scene_, in_, 1, 5);
+    rrc_exr::ExrImage img = rrc_exr::read_exr(frame_path(in_, 3));
+    img.channels.at(kLayer + "IndexOB.X")[std::size_t(7) * 32 + 5] = -2.0f;  // pixel (5, 7)
+    rrc_exr::write_exr(frame_path(in_, 3), img);
+    EXPECT_EQ(run(), rrc_cli::kExitError);
+    expect_contains(err_, "frame_0003.exr: channel 'ViewLayer.IndexOB.X' (the object ids): pixel (5, 7) holds -2");
+    expect_contains(err_, "frames 1-2 were written completely before the error; no partial file was left");
+    EXPECT_EQ(dir_entries(dir_.path() / "out"), (std::vector<std::string>{"acc_0001.exr", "acc_0002.exr"}));
+    EXPECT_EQ(run({"--no-object-id"}), rrc_cli::kExitOk) << err_;
+}
+
 TEST_F(BadInput, OutputsNeverOverwriteInputs) {
     write_blender_sequence(*scene_, in_, 1, 5);
     write_blender_sequence(*scene_, dir_ / "ref/r_%d.exr", 1, 5, BlenderWrite{false, false, "", -1, true});

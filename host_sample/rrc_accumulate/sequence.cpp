@@ -401,7 +401,7 @@ std::vector<uint32_t> object_ids_of(const rrc_exr::ExrImage& image, const std::s
         const double rounded = std::floor(v + 0.5);
         if (!std::isfinite(v) || v < 0.0 || rounded > 4294967295.0) {
             char text[64];
-            std::snprintf(text, sizeof text, "%.9g", v);
+            std::snprintf(text, sizeof text, "%.10g", v);  // every float below 2^32 in full
             const std::size_t w = image.width > 0 ? std::size_t(image.width) : 1;
             throw CliError(path + ": channel " + quoted(channel) + " (the object ids): pixel (" + std::to_string(i % w) + ", " +
                            std::to_string(i / w) + ") holds " + text +
