@@ -302,7 +302,8 @@ Geometry and the hit test:
                          for the NDC modes' exact tests (prev_clip, motion
                          with mv.Z, camera); linear depth and plain motion
                          use tau x depth under both.  adaptive cannot be
-                         combined with --epsilon, --epsilon-scale or --tau
+                         combined with --epsilon, --epsilon-scale, --tau or
+                         --preset blender (which sets --tau)
   --near N, --far F      view distances of the near and far planes (F may be
                          inf); needed by --reproject motion on NDC depth
                          without mv.Z

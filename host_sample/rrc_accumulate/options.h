@@ -60,8 +60,9 @@ struct Options {
      * parse_arguments to every option not given: --depth-mode linear,
      * --reproject motion, --motion-units pixels, --motion-y up, --tau
      * kBlenderPresetTau; the channel names (<view layer>.Depth.Z,
-     * <view layer>.Vector.X/Y, signal <view layer>.Combined) are resolved
-     * from the first frame by discover_layout. */
+     * <view layer>.Vector.X/Y, signal <view layer>.Combined, object ids
+     * <view layer>.IndexOB.X if present) are resolved from the first frame
+     * by discover_layout. */
     std::string preset;
     std::string view_layer; /* --view-layer: Blender's view layer name (the preset finds it otherwise) */
 
