@@ -26,6 +26,34 @@ inline std::vector<ModeCase> all_modes() {
             {"linear", RRC_DEPTH_MODE_LINEAR, 100.0}};
 }
 
+// The default scene with nothing moving (its previous frame is itself).
+inline rrc_scene::SceneConfig static_config(bool jitter) {
+    rrc_scene::SceneConfig c;
+    c.camera_motion = false;
+    c.object_motion = false;
+    c.jitter = jitter;
+    return c;
+}
+
+// A fixed camera and the moving sphere six times as fast: a disoccluded band
+// about 3 pixels wide behind it every frame.
+inline rrc_scene::SceneConfig disocclusion_config() {
+    rrc_scene::SceneConfig c;
+    c.camera_motion = false;
+    c.object_speed = 6.0;
+    return c;
+}
+
+// Everything moving, the sphere six times as fast, reversed-Z: wide
+// disocclusions for the evaluators' mask tests.
+inline rrc_scene::SceneConfig fast_sphere_config(bool jitter) {
+    rrc_scene::SceneConfig c;
+    c.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    c.jitter = jitter;
+    c.object_speed = 6.0;
+    return c;
+}
+
 inline rrc_scene::SceneConfig config_for(const ModeCase& m) {
     rrc_scene::SceneConfig c;
     c.depth_mode = m.mode;

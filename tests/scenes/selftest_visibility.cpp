@@ -49,29 +49,21 @@ int64_t revealed_wall_pixels(const Scene& s, int t, const VisibilityMap& m, int6
 }  // namespace
 
 TEST(Visibility, StaticSceneIsVisibleExceptContactsAndSilhouettes) {
-    for (bool jitter : {false, true}) {
-        SceneConfig c;
-        c.camera_motion = false;
-        c.object_motion = false;
-        c.jitter = jitter;
-        Scene s(c);
-        const VisibilityMap m = true_visibility(s, 3);
+    for (const SceneConfig& c : {static_config(false), static_config(true)}) {
+        const VisibilityMap m = true_visibility(Scene(c), 3);
         EXPECT_EQ(total(m), int64_t(c.width) * c.height);
         EXPECT_EQ(m.counts[VIS_OCCLUDED], 0);
         EXPECT_EQ(m.counts[VIS_OFFSCREEN], 0);
         EXPECT_GT(m.counts[VIS_EXCLUDED_CONTACT], 0);  // boxes and the resting sphere on the ground
         EXPECT_GT(m.counts[VIS_VISIBLE], int64_t(c.width) * c.height / 2);
         // Without jitter every pixel reads exactly its own texel: nothing straddles.
-        if (!jitter) EXPECT_EQ(m.counts[VIS_STRADDLING], 0);
-        if (jitter) EXPECT_GT(m.counts[VIS_STRADDLING], 0);
+        if (!c.jitter) EXPECT_EQ(m.counts[VIS_STRADDLING], 0);
+        if (c.jitter) EXPECT_GT(m.counts[VIS_STRADDLING], 0);
     }
 }
 
 TEST(Visibility, DisocclusionBehindMovingSphereIsOccluded) {
-    SceneConfig c;
-    c.camera_motion = false;
-    c.object_speed = 6.0;  // a band about 3 pixels wide
-    Scene s(c);
+    Scene s(disocclusion_config());
     const int t = 2;
     const VisibilityMap m = true_visibility(s, t);
     const std::vector<int32_t> prev = s.object_ids(t - 1);
@@ -158,11 +150,7 @@ TEST(Visibility, ThinCardRevealedWallIsOccludedOrBelowTheDepthStep) {
 }
 
 TEST(Visibility, ScoreMaskCountsHitsAndFalseHits) {
-    SceneConfig c;
-    c.jitter = true;
-    c.depth_mode = RRC_DEPTH_MODE_REVERSED;
-    c.object_speed = 6.0;
-    Scene s(c);
+    Scene s(fast_sphere_config(true));
     const int t = 2;
     const VisibilityMap m = true_visibility(s, t);
     const size_t n = m.cls.size();
