@@ -45,6 +45,9 @@ struct VisibilityStats {
     VisibilityStats& operator+=(const VisibilityStats& o);
 };
 
+/** Per-pixel verdict bits (VisibilityOracle::judge's optional image). */
+enum Verdict : uint8_t { kVerdictSurface = 1, kVerdictVisible = 2, kVerdictStraddling = 4, kVerdictHit = 8, kVerdictExcluded = 16 };
+
 /** Bounding volume hierarchies of the scene's meshes (object space, built once). */
 class VisibilityOracle {
 public:
@@ -66,9 +69,11 @@ public:
     /** Judges one frame.  mask: rrc's bits this frame; prev_object: the previous
      *  frame's G-buffer object ids (0 background, object + 1), empty when there
      *  is no previous frame (first frame, reset): then nothing was visible.
+     *  verdict (optional): width*height Verdict bits, to see where the test errs.
      *  Threads: all cores (std::thread). */
     VisibilityStats judge(const OracleView& current, const OracleView& previous, uint32_t width, uint32_t height,
-                          const std::vector<uint8_t>& mask, const std::vector<uint16_t>& prev_object) const;
+                          const std::vector<uint8_t>& mask, const std::vector<uint16_t>& prev_object,
+                          std::vector<uint8_t>* verdict = nullptr) const;
 
 private:
     struct MeshBvh;

@@ -98,10 +98,11 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             static const std::vector<uint16_t> kNoPrevious;
             // Its ray casts overlap the frame's errors and files (single-threaded PNG/EXR
             // encoding), so the default run barely slows down; it only reads `out` and `previous`.
+            std::vector<uint8_t> verdict;  // per pixel, for oracle/oracle_NNNN.png
             std::future<double> oracle_done = std::async(std::launch::async, [&] {
                 const auto oracle_start = std::chrono::steady_clock::now();
-                rec.visibility =
-                    oracle.judge(current_view, previous_view, o.width, o.height, out.mask, reset ? kNoPrevious : previous.object);
+                rec.visibility = oracle.judge(current_view, previous_view, o.width, o.height, out.mask,
+                                              reset ? kNoPrevious : previous.object, writer ? &verdict : nullptr);
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - oracle_start).count();
             });
             rec.index = t;
@@ -111,6 +112,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             rec.errors = frame_errors(out);
             if (writer) writer->write(out);
             run.oracle_seconds += oracle_done.get();
+            if (writer) writer->write_oracle(t, verdict);
             if (on_frame) on_frame(out, rec);
             if (progress) *progress << progress_line(rec, o.frames) << std::flush;
             run.frames.push_back(std::move(rec));

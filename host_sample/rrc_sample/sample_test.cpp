@@ -80,7 +80,8 @@ TEST(RrcSample, ShortSequenceUnderValidationLayer) {
 
     namespace fs = std::filesystem;
     for (const char* f : {"summary.md", "summary.csv", "errors.csv", "frames/frame_0005.png", "frames/frame_0005_reference.png",
-                          "coherence/coherence_0005.png", "age/age_0005.png", "exr/pcf_0005.exr", "exr/env_0005.exr", "exr/soft_0005.exr"})
+                          "coherence/coherence_0005.png", "oracle/oracle_0005.png", "age/age_0005.png", "exr/pcf_0005.exr",
+                          "exr/env_0005.exr", "exr/soft_0005.exr"})
         EXPECT_TRUE(fs::exists(fs::path(o.out) / f)) << f;
 }
 
