@@ -223,8 +223,9 @@ void check_recall(const RecallCase& c) {
     const Sequence seq = render(scene, c.source, c.frames, {});
     const std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.6f)};
     const Scoring scoring = scoring_of(c);
-    const Scores fixed = score(seq, run(context_of(scene.config(), c.source, channels, RRC_DEPTH_TEST_FIXED), seq), scoring);
-    const Scores def = score(seq, run(context_of(scene.config(), c.source, channels, RRC_DEPTH_TEST_DEFAULT), seq), scoring);
+    const auto fixed_masks = run(context_of(scene.config(), c.source, channels, RRC_DEPTH_TEST_FIXED), seq);
+    const auto def_masks = run(context_of(scene.config(), c.source, channels, RRC_DEPTH_TEST_DEFAULT), seq);
+    const Scores fixed = score(seq, fixed_masks, scoring), def = score(seq, def_masks, scoring);
 
     const char* filter = scoring == Scoring::STATIC_OBJECTS ? " (static objects)" : scoring == Scoring::SAME_DEPTH ? " (same depth)" : "";
     const bool exact_source = c.source == RRC_REPROJECTION_PREV_CLIP || c.source == RRC_REPROJECTION_MOTION_DEPTH;
@@ -234,7 +235,7 @@ void check_recall(const RecallCase& c) {
         100.0 * def.recall.recall(), (long long)fixed.all.false_hits, (long long)def.all.false_hits, (long long)def.all.not_visible);
     rrc_hit_report::add({c.name, rrc_hit_report::format("%lld%s", (long long)def.recall.scored, filter), excluded_text(def.recall),
                          percent(fixed.recall), percent(def.recall), std::to_string(fixed.all.false_hits),
-                         std::to_string(def.all.false_hits) + (exact_source ? " (asserted 0)" : "")});
+                         std::to_string(def.all.false_hits) + (exact_source ? " (asserted 0)" : ""), fixed_masks == def_masks});
 
     // A case that scores nothing proves nothing.
     ASSERT_GT(def.recall.scored, int64_t(c.width) * c.height * (c.frames - 1) / 4) << c.name;
@@ -335,7 +336,8 @@ TEST_P(ThinCard, RevealedWallMisses) {
     rrc_hit_report::add(
         {c.name, rrc_hit_report::format("%lld revealed wall pixels; %lld visible", (long long)def.revealed, (long long)def_s.recall.scored),
          rrc_hit_report::format("%lld revealed below one depth step", (long long)def.below_step), percent(fixed_s.recall),
-         percent(def_s.recall), std::to_string(fixed.hits) + " revealed hit", std::to_string(def.hits) + " revealed hit" + must});
+         percent(def_s.recall), std::to_string(fixed.hits) + " revealed hit", std::to_string(def.hits) + " revealed hit" + must,
+         fixed_masks == def_masks});
 
     EXPECT_GT(def.revealed, 30) << "the card must reveal wall pixels every frame";
     if (c.resolves) {

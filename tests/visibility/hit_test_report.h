@@ -16,6 +16,7 @@ struct Row {
     std::string scored;    // pixels scored (and the filter)
     std::string excluded;  // excluded pixels by reason
     std::string recall_fixed, recall_default, false_fixed, false_default;
+    bool same_masks = false;  // the default run's masks equal FIXED's, bit for bit
 };
 
 void add(const Row& row);
