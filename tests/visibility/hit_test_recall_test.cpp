@@ -144,7 +144,8 @@ rrc_scene::SceneConfig scene_of(const RecallCase& c) {
 }
 
 Scoring scoring_of(const RecallCase& c) {
-    if (c.source == RRC_REPROJECTION_CAMERA) return Scoring::STATIC_OBJECTS;
+    // CAMERA in a world where nothing moves scores every pixel.
+    if (c.source == RRC_REPROJECTION_CAMERA && c.layout != Layout::STATIC_OBJECTS) return Scoring::STATIC_OBJECTS;
     if (c.source == RRC_REPROJECTION_MOTION) return Scoring::SAME_DEPTH;
     return Scoring::ALL;
 }
