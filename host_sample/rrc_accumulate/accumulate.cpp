@@ -318,7 +318,9 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
         char device[256] = {0};
         check(rrc_context_device_name(context.get(), device, sizeof device));
 
-        // 3. The frames.
+        // 3. The frames.  Whether ids are used changes which pixels may hit,
+        //    so the run says so before the first frame (and in the summary).
+        if (!layout.object_id_report.empty() && !o.quiet) out << "rrc-accumulate: " << layout.object_id_report << "\n";
         const std::size_t n = static_cast<std::size_t>(layout.width) * static_cast<std::size_t>(layout.height);
         const std::size_t k = layout.signals.size();
         CameraFrame previous_camera;
@@ -381,6 +383,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
             frame.prev_jitter[0] = previous_camera.jitter[0];
             frame.prev_jitter[1] = previous_camera.jitter[1];
             frame.nocache = layout.nocache ? data.nocache.data() : nullptr;
+            frame.object_id = data.object_id.empty() ? nullptr : data.object_id.data();
             frame.channel_count = static_cast<uint32_t>(k);
             frame.channels = inputs.data();
 
@@ -491,6 +494,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
             << (ratio_count ? format("%.1f%%", ratio_sum / static_cast<double>(ratio_count)) : std::string("n/a"))
             << " (frames after the first)" << format(", total %.2f s", ms_since(t_start) / 1000.0) << ", device " << device;
         if (o.validation || validation_messages) out << ", " << validation_messages << " validation messages";
+        if (!layout.object_id_report.empty()) out << ", " << layout.object_id_report;
         out << "\n" << std::flush;
         context.reset();
         if (validation_messages) {

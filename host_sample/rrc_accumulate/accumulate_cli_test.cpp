@@ -215,6 +215,9 @@ TEST(AccumulateOptions, RequiredOnlyGivesDefaults) {
     EXPECT_FALSE(o.quiet);
     EXPECT_FALSE(o.verbose);
     EXPECT_FALSE(o.help);
+    EXPECT_EQ(o.depth_test, RRC_DEPTH_TEST_DEFAULT);  // the library decides (rrc.h)
+    EXPECT_TRUE(o.object_id_channel.empty());
+    EXPECT_FALSE(o.no_object_id);
 }
 
 TEST(AccumulateOptions, EveryOptionParsed) {
@@ -293,6 +296,32 @@ TEST(AccumulateOptions, EnumValues) {
     EXPECT_EQ(cam.options.reproject, rrc_cli::Reproject::Camera);
 }
 
+TEST(AccumulateOptions, ObjectIdAndDepthTest) {
+    ParseResult r = parse_with({"--object-id", "L.IndexOB.X", "--depth-test", "adaptive"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_EQ(r.options.object_id_channel, "L.IndexOB.X");
+    EXPECT_EQ(r.options.depth_test, RRC_DEPTH_TEST_ADAPTIVE);
+    EXPECT_TRUE(parse_with({"--no-object-id"}).options.no_object_id);
+    for (rrc_depth_test t : {RRC_DEPTH_TEST_DEFAULT, RRC_DEPTH_TEST_ADAPTIVE, RRC_DEPTH_TEST_FIXED}) {
+        const std::string name = rrc_cli::depth_test_name(t);
+        const ParseResult named = parse_with({"--depth-test", name.c_str()});
+        ASSERT_TRUE(named.ok()) << named.error;
+        EXPECT_EQ(named.options.depth_test, t) << name;
+    }
+    // fixed goes with explicit tolerances; adaptive sets its own (rrc.h), so
+    // the tool refuses the mix before the library would.
+    EXPECT_TRUE(parse_with({"--depth-test", "fixed", "--tau", "0.02", "--epsilon", "1e-5"}).ok());
+    expect_error(parse_with({"--depth-test", "paper"}), "--depth-test");
+    expect_error(parse_with({"--depth-test", "adaptive", "--tau", "0.02"}), "--tau");
+    expect_error(parse_with({"--depth-test", "adaptive", "--epsilon", "1e-5"}), "--epsilon");
+    expect_error(parse_with({"--depth-test", "adaptive", "--epsilon-scale", "2"}), "--epsilon-scale");
+    expect_error(parse_with({"--depth-test", "adaptive", "--preset", "blender"}), "--preset blender");
+    EXPECT_TRUE(parse_with({"--depth-test", "fixed", "--preset", "blender"}).ok());
+    expect_error(parse_with({"--object-id", "id.X", "--no-object-id"}), "--no-object-id");
+    expect_error(parse_with({"--object-id", ""}), "--object-id");
+    expect_error(parse_with({"--no-object-id=1"}), "--no-object-id");
+}
+
 TEST(AccumulateOptions, InlineValues) {
     ParseResult r = parse({"--input=i_%03d.exr", "--output=o_%03d.exr", "--frames=4", "--epsilon=0.001", "--signal=shadow:lambda=0.5"});
     ASSERT_TRUE(r.ok()) << r.error;
@@ -316,9 +345,11 @@ TEST(AccumulateOptions, UsageDocumentsEveryOption) {
     const std::string u = rrc_cli::usage_text();
     // Every option the parser takes a value for, then the flags, keys and names.
     for (const std::string& opt : rrc_cli::value_options()) EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
-    for (const char* opt : {"--input",   "--validation", "--quiet",   "--verbose",    "--help",      "lambda=",   "blend=",  "filter=",
-                            "history=",  "max_age=",     "age_aware", "running_mean", "catmull_rom", "nearest",   "unorm16", "unorm24",
-                            "prev_clip", "rrc.mask",     ".age",      "nocache.Y",    "jitter",      "view_proj", "mv.Z",    "prevclip"})
+    for (const char* opt :
+         {"--input",        "--validation", "--quiet",    "--verbose",    "--help",      "lambda=",   "blend=",  "filter=",
+          "history=",       "max_age=",     "age_aware",  "running_mean", "catmull_rom", "nearest",   "unorm16", "unorm24",
+          "prev_clip",      "rrc.mask",     ".age",       "nocache.Y",    "jitter",      "view_proj", "mv.Z",    "prevclip",
+          "--no-object-id", "IndexOB.X",    "4294967295", "adaptive",     "fixed"})
         EXPECT_NE(u.find(opt), std::string::npos) << "usage does not mention " << opt;
 }
 
@@ -871,6 +902,101 @@ TEST(AccumulateTool, LayoutDiscovery) {
     }
 }
 
+// Object ids: the preset's IndexOB when present, --object-id by name,
+// --no-object-id; float ids rounded, bad ones refused naming the pixel.
+TEST(AccumulateTool, ObjectIdChannel) {
+    TempDir dir;
+    const int w = 4, h = 3;
+    rrc_exr::ExrImage img;
+    img.width = w;
+    img.height = h;
+    for (const char* c : {"ViewLayer.Depth.Z", "ViewLayer.Vector.X", "ViewLayer.Vector.Y", "ViewLayer.Combined.R", "ViewLayer.Combined.G",
+                          "ViewLayer.Combined.B", "ViewLayer.Combined.A"})
+        img.channels[c] = std::vector<float>(std::size_t(w) * h, 1.0f);
+    std::vector<float> index = {0.0f, 1.0f, 2.4f, 2.5f, 2.6f, -0.0f, 7.0f, 16777216.0f, 4294967040.0f, 3.0f, 0.49f, 1.0f};
+    img.channels["ViewLayer.IndexOB.X"] = index;
+    rrc_exr::write_exr(dir / "b_1.exr", img);
+    const std::string path = dir / "b_1.exr";
+    const rrc_exr::ExrInfo info = rrc_exr::read_exr_info(path);
+
+    Options o = parse_with({"--preset", "blender"}).options;
+    rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, path, o);
+    EXPECT_EQ(layout.channels.object_id, "ViewLayer.IndexOB.X");
+    EXPECT_NE(layout.object_id_report.find("object ids from 'ViewLayer.IndexOB.X'"), std::string::npos) << layout.object_id_report;
+    bool required = false;
+    for (const rrc_cli::RequiredChannel& r : rrc_cli::required_channels(layout)) required = required || r.name == "ViewLayer.IndexOB.X";
+    EXPECT_TRUE(required) << "every frame needs the ids once the first has them";
+    const rrc_cli::FrameData data = rrc_cli::load_frame(rrc_exr::read_exr(path), path, layout);
+    EXPECT_EQ(data.object_id, (std::vector<uint32_t>{0, 1, 2, 3, 3, 0, 7, 16777216u, 4294967040u, 3, 0, 1}));
+    std::vector<rrc_channel_desc> channels;
+    rrc_context_desc d = rrc_cli::make_context_desc(o, layout, channels);
+    EXPECT_EQ(d.use_object_id, 1u);
+    EXPECT_EQ(d.depth_test, RRC_DEPTH_TEST_DEFAULT);
+
+    // --no-object-id: none, and said so.
+    o = parse_with({"--preset", "blender", "--no-object-id", "--depth-test", "fixed"}).options;
+    layout = rrc_cli::discover_layout(info, path, o);
+    EXPECT_TRUE(layout.channels.object_id.empty());
+    EXPECT_NE(layout.object_id_report.find("--no-object-id"), std::string::npos) << layout.object_id_report;
+    EXPECT_TRUE(rrc_cli::load_frame(rrc_exr::read_exr(path), path, layout).object_id.empty());
+    d = rrc_cli::make_context_desc(o, layout, channels);
+    EXPECT_EQ(d.use_object_id, 0u);
+    EXPECT_EQ(d.depth_test, RRC_DEPTH_TEST_FIXED);
+
+    // A file without IndexOB: the preset goes without ids and says why.
+    rrc_exr::ExrImage plain = img;
+    plain.channels.erase("ViewLayer.IndexOB.X");
+    rrc_exr::write_exr(dir / "p_1.exr", plain);
+    o = parse_with({"--preset", "blender"}).options;
+    layout = rrc_cli::discover_layout(rrc_exr::read_exr_info(dir / "p_1.exr"), dir / "p_1.exr", o);
+    EXPECT_TRUE(layout.channels.object_id.empty());
+    EXPECT_NE(layout.object_id_report.find("no object ids: " + dir / "p_1.exr" + " has no 'ViewLayer.IndexOB.X'"), std::string::npos)
+        << layout.object_id_report;
+    EXPECT_EQ(rrc_cli::make_context_desc(o, layout, channels).use_object_id, 0u);
+
+    // By name, without the preset: required, and not a signal.
+    o = parse_with({"--object-id", "ViewLayer.IndexOB.X", "--depth-mode", "linear", "--reproject", "motion", "--motion-channels",
+                    "ViewLayer.Vector.X,ViewLayer.Vector.Y", "--depth-channel", "ViewLayer.Depth.Z"})
+            .options;
+    layout = rrc_cli::discover_layout(info, path, o);
+    EXPECT_EQ(layout.channels.object_id, "ViewLayer.IndexOB.X");
+    ASSERT_EQ(layout.signals.size(), 1u);
+    EXPECT_EQ(layout.signals[0].options.layer, "ViewLayer.Combined");
+    try {
+        rrc_cli::check_frame_header(rrc_exr::read_exr_info(dir / "p_1.exr"), dir / "p_1.exr", layout);
+        ADD_FAILURE() << "a frame without the named id channel passed";
+    } catch (const rrc_cli::CliError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing channel 'ViewLayer.IndexOB.X'"), std::string::npos) << e.what();
+    }
+
+    // UINT ids are exact, beyond float's 2^24 too.
+    rrc_exr::ExrImage u;
+    u.width = 2;
+    u.height = 1;
+    u.uint_channels["id"] = {16777217u, 4294967295u};
+    EXPECT_EQ(rrc_cli::object_ids_of(u, "id", "u.exr"), (std::vector<uint32_t>{16777217u, 4294967295u}));
+
+    // Not an object id: the file, the channel and the pixel (x, y) are named.
+    struct Bad {
+        float value;
+        const char* shown;
+    };
+    for (const Bad& b : {Bad{-1.0f, "holds -1"}, Bad{-0.25f, "holds -0.25"}, Bad{std::numeric_limits<float>::quiet_NaN(), "holds nan"},
+                         Bad{std::numeric_limits<float>::infinity(), "holds inf"}, Bad{4294967296.0f, "holds 4294967296"}}) {
+        rrc_exr::ExrImage bad = rrc_exr::read_exr(path);
+        bad.channels["ViewLayer.IndexOB.X"][std::size_t(1) * w + 2] = b.value;  // pixel (2, 1)
+        try {
+            rrc_cli::object_ids_of(bad, "ViewLayer.IndexOB.X", "frames/b_0007.exr");
+            ADD_FAILURE() << b.shown << " accepted";
+        } catch (const rrc_cli::CliError& e) {
+            const std::string m = e.what();
+            for (const std::string& part : {std::string("frames/b_0007.exr: "), std::string("'ViewLayer.IndexOB.X'"),
+                                            std::string("pixel (2, 1)"), std::string(b.shown)})
+                EXPECT_NE(m.find(part), std::string::npos) << "'" << m << "' lacks '" << part << "'";
+        }
+    }
+}
+
 // ======================================================================
 // End to end through the library (skipped when no Vulkan device exists)
 // ======================================================================
@@ -912,4 +1038,48 @@ TEST(AccumulateTool, StaticSequenceEndToEnd) {
     }
     // The inputs are untouched and nothing else was written.
     EXPECT_EQ(dir_entries(dir.path() / "out"), (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
+}
+
+// Object ids through the library: a still camera, so every pixel reprojects
+// onto its own texel (weight 1; its neighbours' weights are 0 up to fp32
+// rounding).  Frame 6 gives the right half a new id: with --object-id those
+// pixels miss (their previous texel is on another object), the left half
+// hits, and frame 7 (same ids as 6) hits again away from the id boundary.
+// Without --object-id every pixel hits, ids or not.
+TEST(AccumulateTool, ObjectIdsEndToEnd) {
+    TempDir dir;
+    const int w = 16, h = 12;
+    write_static_sequence(dir / "in/f_%d.exr", 5, 7, SceneOptions::rgb());
+    for (int f = 5; f <= 7; ++f) {
+        const std::string path = rrc_cli::format_frame_path(dir / "in/f_%d.exr", f);
+        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
+        std::vector<float>& id = img.channels["obj.X"];
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
+        rrc_exr::write_exr(path, img);
+    }
+    auto masks = [&](std::vector<std::string> extra, const std::string& out_dir) {
+        std::vector<std::string> args = {"--input", dir / "in/f_%d.exr", "--output", dir / (out_dir + "/%d.exr"), "--frames", "5-7"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        std::string out, err;
+        EXPECT_EQ(run_tool(args, &out, &err), 0) << err;
+        std::vector<std::vector<float>> m;
+        for (int f = 5; f <= 7; ++f)
+            m.push_back(rrc_exr::read_exr(rrc_cli::format_frame_path(dir / (out_dir + "/%d.exr"), f)).channels.at("rrc.mask"));
+        return std::make_pair(m, out);
+    };
+    const auto [with_ids, ids_text] = masks({"--object-id", "obj.X"}, "ids");
+    const auto [without, none_text] = masks({}, "none");
+    EXPECT_NE(ids_text.find("object ids from 'obj.X'"), std::string::npos) << ids_text;
+    EXPECT_EQ(none_text.find("object ids"), std::string::npos) << "no ids asked, nothing to report: " << none_text;
+    const std::vector<std::string> names = rrc_exr::channel_names(rrc_exr::read_exr(dir / "ids/6.exr"));
+    EXPECT_EQ(std::count(names.begin(), names.end(), "obj.X"), 0) << "the id channel is not accumulated as a signal";
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const std::size_t k = std::size_t(j) * w + i;
+            const bool right = i >= w / 2, boundary = i == w / 2 - 1 || i == w / 2;
+            for (int t = 1; t <= 2; ++t) EXPECT_TRUE(int(without[t][k]) & RRC_MASK_HIT) << "frame " << 5 + t << " pixel " << k;
+            EXPECT_EQ(bool(int(with_ids[1][k]) & RRC_MASK_HIT), !right) << "frame 6 pixel (" << i << ", " << j << ")";
+            if (!boundary) EXPECT_TRUE(int(with_ids[2][k]) & RRC_MASK_HIT) << "frame 7 pixel (" << i << ", " << j << ")";
+        }
 }

@@ -62,6 +62,9 @@ constexpr EnumName<Reproject> kReprojectNames[] = {
     {"prev_clip", Reproject::PrevClip}, {"motion", Reproject::Motion}, {"camera", Reproject::Camera}};
 constexpr EnumName<MotionUnits> kMotionUnitNames[] = {{"uv", MotionUnits::Uv}, {"pixels", MotionUnits::Pixels}};
 constexpr EnumName<Progress> kProgressNames[] = {{"auto", Progress::Auto}, {"bar", Progress::Bar}, {"lines", Progress::Lines}};
+// --depth-test: the library's choices (rrc.h, rrc_context_desc.depth_test).
+constexpr EnumName<rrc_depth_test> kDepthTestNames[] = {
+    {"default", RRC_DEPTH_TEST_DEFAULT}, {"adaptive", RRC_DEPTH_TEST_ADAPTIVE}, {"fixed", RRC_DEPTH_TEST_FIXED}};
 
 // The layers that carry the per-pixel geometry or our own output.
 bool is_reserved_layer(const std::string& layer) { return layer == "mv" || layer == "prevclip" || layer == "nocache" || layer == "rrc"; }
@@ -77,6 +80,8 @@ std::string metrics_path(const Options& o) {
 const char* reproject_name(Reproject r) { return rrc_host::enum_name(kReprojectNames, r); }
 
 const char* depth_mode_name(rrc_depth_mode m) { return rrc_host::enum_name(rrc_host::kDepthModeNames, m); }
+
+const char* depth_test_name(rrc_depth_test t) { return rrc_host::enum_name(kDepthTestNames, t); }
 
 bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error) {
     SignalOptions s;
@@ -270,7 +275,10 @@ Presets:
                          linear (planar) view depth with the sky at 1e10,
                          motion <view layer>.Vector.X/.Y (previous minus
                          current position, pixels, y up; .Z/.W, the next
-                         frame's, are not used), --tau @TAU@, and the signal
+                         frame's, are not used), --tau @TAU@, the object ids
+                         <view layer>.IndexOB.X when the first frame has them
+                         (the Object Index pass; without it the run goes
+                         without ids, and says so), and the signal
                          <view layer>.Combined when no --signal is given.
                          Every option given explicitly overrides the preset.
   --view-layer NAME      the view layer to read (found when there is one)
@@ -286,6 +294,16 @@ Geometry and the hit test:
   --tau T                relative tolerance for linear-depth tests (0.01;
                          @TAU@ with --preset blender)
   --background-threshold T  linear depth >= T is background (1e10)
+  --depth-test T         default | adaptive | fixed: the library's hit test.
+                         default: adaptive unless --epsilon, --epsilon-scale
+                         or --tau is given (or set by --preset), fixed then;
+                         fixed: the paper's |diff| <= eps (or tau x depth);
+                         adaptive: eps plus a bound on the bilinear residual,
+                         for the NDC modes' exact tests (prev_clip, motion
+                         with mv.Z, camera); linear depth and plain motion
+                         use tau x depth under both.  adaptive cannot be
+                         combined with --epsilon, --epsilon-scale, --tau or
+                         --preset blender (which sets --tau)
   --near N, --far F      view distances of the near and far planes (F may be
                          inf); needed by --reproject motion on NDC depth
                          without mv.Z
@@ -315,6 +333,16 @@ Channel names (any channel of the file can be mapped):
                                 channel is the depth change
   --prevclip-channels X,Y,Z,W   previous clip positions (prevclip.X,...)
   --nocache-channel NAME        do-not-cache mask (nocache.Y)
+  --object-id NAME              per-pixel object ids (none by default;
+                                <view layer>.IndexOB.X with --preset blender
+                                when present): a hit then also needs every
+                                previous depth tap of non-zero bilinear weight
+                                to carry the pixel's id.  A float channel
+                                (Blender's IndexOB) is rounded to the nearest
+                                integer; negative, non-finite or values above
+                                4294967295 are an error naming the pixel.
+                                A UINT channel is read exactly
+  --no-object-id                read no object ids (not even the preset's)
 
 Signals:
   --signal NAME[:key=value,...]   accumulate EXR layer NAME (repeatable, at
@@ -333,6 +361,7 @@ Signals:
 
 Other inputs (optional):
   nocache.Y channel      non-zero: the pixel is never a hit ("do not cache")
+  --object-id channel    the object ids (above)
   jitter in --camera     the frame's sub-pixel offset, pixels, x right y down
 
 Measurements and pictures:
@@ -404,6 +433,8 @@ const std::vector<std::string>& value_options() {
                                                    "--motion-channels",
                                                    "--prevclip-channels",
                                                    "--nocache-channel",
+                                                   "--object-id",
+                                                   "--depth-test",
                                                    "--motion-units",
                                                    "--motion-y",
                                                    "--cut",
@@ -439,12 +470,14 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
             }
         }
         // Flags.
-        if (arg == "--help" || arg == "-h" || arg == "--validation" || arg == "--quiet" || arg == "--verbose") {
+        if (arg == "--help" || arg == "-h" || arg == "--validation" || arg == "--quiet" || arg == "--verbose" || arg == "--no-object-id") {
             if (has_inline) return fail("option " + arg + " takes no value");
             if (arg == "--help" || arg == "-h")
                 o.help = true;
             else if (arg == "--validation")
                 o.validation = true;
+            else if (arg == "--no-object-id")
+                o.no_object_id = true;
             else if (arg == "--quiet")
                 o.quiet = true;
             else
@@ -475,11 +508,13 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
         } else if (arg == "--preset") {
             if (value != "blender") return fail(where + "the only preset is blender (Blender 3.x multilayer EXR passes)");
             o.preset = value;
-        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics") {
+        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics" ||
+                   arg == "--object-id") {
             if (value.empty()) return fail("option " + arg + ": the name is empty");
             (arg == "--view-layer"      ? o.view_layer
              : arg == "--depth-channel" ? o.depth_channel
              : arg == "--metrics"       ? o.metrics_file
+             : arg == "--object-id"     ? o.object_id_channel
                                         : o.nocache_channel) = value;
         } else if (arg == "--motion-channels" || arg == "--prevclip-channels") {
             std::vector<std::string> names;
@@ -492,7 +527,7 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
                     if (names[a] == names[b]) return fail(where + "channel " + quoted(names[a]) + " named twice");
             (motion ? o.motion_channels : o.prevclip_channels) = names;
         } else if (arg == "--motion-units" || arg == "--progress" || arg == "--depth-mode" || arg == "--depth-format" ||
-                   arg == "--reproject") {
+                   arg == "--reproject" || arg == "--depth-test") {
             // One of a table's names; the message lists them.
             std::string choices;
             auto choose = [&](const auto& table, auto& field) {
@@ -503,6 +538,7 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
                             : arg == "--progress"     ? choose(kProgressNames, o.progress)
                             : arg == "--depth-mode"   ? choose(rrc_host::kDepthModeNames, o.depth_mode)
                             : arg == "--depth-format" ? choose(rrc_host::kDepthFormatNames, o.depth_format)
+                            : arg == "--depth-test"   ? choose(kDepthTestNames, o.depth_test)
                                                       : choose(kReprojectNames, o.reproject);
             if (!ok) return fail(where + "expected " + choices);
         } else if (arg == "--motion-y") {
@@ -567,6 +603,19 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
     }
 
     if (o.help) return r;
+    if (o.no_object_id && !o.object_id_channel.empty()) return fail("options --object-id and --no-object-id contradict each other");
+    // rrc.h: ADAPTIVE with a non-zero epsilon_scale, epsilon or tau is
+    // refused by the library; say which option it was before any file is read.
+    if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE) {
+        for (const char* tolerance : {"--epsilon", "--epsilon-scale", "--tau"})
+            if (given.count(tolerance))
+                return fail(std::string("option --depth-test adaptive sets its own tolerance: it cannot be combined with ") + tolerance +
+                            " (use --depth-test fixed)");
+        if (o.preset == "blender")
+            return fail(
+                "option --depth-test adaptive cannot be combined with --preset blender, which sets --tau: on linear depth with plain "
+                "motion vectors both tests are tau x depth, so adaptive would only drop the preset's tau (docs/OFFLINE.md)");
+    }
     if (o.preset == "blender") {
         // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
         if (!given.count("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;

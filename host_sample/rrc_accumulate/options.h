@@ -45,6 +45,7 @@ struct Options {
     float epsilon_scale = 0.0f;                               /* --epsilon-scale; 0 = library default */
     float tau = 0.0f;                                         /* --tau; 0 = library default 0.01 */
     float background_threshold = 0.0f;                        /* --background-threshold; 0 = library default */
+    rrc_depth_test depth_test = RRC_DEPTH_TEST_DEFAULT;       /* --depth-test default|adaptive|fixed (rrc.h) */
     float near_plane = 0.0f;                                  /* --near */
     float far_plane = 0.0f;                                   /* --far (may be inf) */
 
@@ -59,8 +60,9 @@ struct Options {
      * parse_arguments to every option not given: --depth-mode linear,
      * --reproject motion, --motion-units pixels, --motion-y up, --tau
      * kBlenderPresetTau; the channel names (<view layer>.Depth.Z,
-     * <view layer>.Vector.X/Y, signal <view layer>.Combined) are resolved
-     * from the first frame by discover_layout. */
+     * <view layer>.Vector.X/Y, signal <view layer>.Combined, object ids
+     * <view layer>.IndexOB.X if present) are resolved from the first frame
+     * by discover_layout. */
     std::string preset;
     std::string view_layer; /* --view-layer: Blender's view layer name (the preset finds it otherwise) */
 
@@ -69,6 +71,12 @@ struct Options {
     std::vector<std::string> motion_channels;   /* --motion-channels X,Y[,Z] (mv.X,mv.Y[,mv.Z]) */
     std::vector<std::string> prevclip_channels; /* --prevclip-channels X,Y,Z,W (prevclip.X,...) */
     std::string nocache_channel;                /* --nocache-channel (nocache.Y) */
+    /* --object-id: the per-pixel object id channel (none by default;
+     * --preset blender: <view layer>.IndexOB.X when the first frame has it).
+     * With ids a hit also needs every previous depth tap of non-zero weight
+     * on the pixel's object (rrc_context_desc.use_object_id). */
+    std::string object_id_channel;
+    bool no_object_id = false; /* --no-object-id: never read object ids (the preset's included) */
 
     std::vector<SignalOptions> signals; /* --signal, repeatable; empty: every layer */
 
@@ -121,6 +129,7 @@ std::string metrics_path(const Options& options);
 /** Names used in messages and output: "prev_clip", "standard", "fp16"... */
 const char* reproject_name(Reproject r);
 const char* depth_mode_name(rrc_depth_mode m);
+const char* depth_test_name(rrc_depth_test t);
 
 }  // namespace rrc_cli
 

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -142,6 +143,7 @@ ChannelMap resolve_channels(const rrc_exr::ExrInfo& first, const std::string& pa
     if (!o.motion_channels.empty()) m.motion = o.motion_channels;
     if (!o.prevclip_channels.empty()) m.prevclip = o.prevclip_channels;
     if (!o.nocache_channel.empty()) m.nocache = o.nocache_channel;
+    m.object_id = o.object_id_channel;
     switch (o.reproject) {
         case Reproject::PrevClip:
             reprojection = RRC_REPROJECTION_PREV_CLIP;
@@ -170,12 +172,28 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
         throw CliError(first_path + ": " + std::to_string(first.width) + "x" + std::to_string(first.height) +
                        " is larger than rrc's limit of " + std::to_string(RRC_MAX_EXTENT) + " pixels a side");
     layout.channels = resolve_channels(first, first_path, options, layout.reprojection);
-    const ChannelMap& map = layout.channels;
+    ChannelMap& map = layout.channels;
     layout.nocache = first.has(map.nocache);
+    // Object ids: named (then required), the preset's when present, or none.
+    if (options.no_object_id) {
+        map.object_id.clear();
+        layout.object_id_report = "no object ids (--no-object-id)";
+    } else if (!map.object_id.empty()) {
+        layout.object_id_report = "object ids from " + quoted(std::as_const(map.object_id)) + " (--object-id)";
+    } else if (options.preset == "blender") {
+        const std::string index = (map.view_layer.empty() ? std::string() : map.view_layer + ".") + "IndexOB.X";
+        if (first.has(index)) {
+            map.object_id = index;
+            layout.object_id_report = "object ids from " + quoted(index);
+        } else {
+            layout.object_id_report = "no object ids: " + first_path + " has no " + quoted(index) +
+                                      " (enable View Layer Properties > Passes > Data > Object Index for them)";
+        }
+    }
 
     // Layers that carry geometry are never signals.
     std::set<std::string> geometry_layers = {"mv", "prevclip", "nocache", "rrc"};
-    for (const std::string& c : {map.depth, map.nocache}) geometry_layers.insert(layer_of(c));
+    for (const std::string& c : {map.depth, map.nocache, map.object_id}) geometry_layers.insert(layer_of(c));
     for (const auto* list : {&map.motion, &map.prevclip})
         for (const std::string& c : *list) geometry_layers.insert(layer_of(c));
 
@@ -246,6 +264,8 @@ std::vector<RequiredChannel> required_channels(const SequenceLayout& layout) {
                            "confidence of signal " + quoted(s.options.layer) + "; the first frame has it, so every frame needs it"});
     }
     if (layout.nocache) req.push_back({map.nocache, "the do-not-cache mask; the first frame has it, so every frame needs it"});
+    if (!map.object_id.empty())
+        req.push_back({map.object_id, "the object ids; every frame needs them once the run uses them (--no-object-id goes without)"});
     return req;
 }
 
@@ -364,7 +384,32 @@ FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, co
         f.nocache.resize(n);
         for (std::size_t i = 0; i < n; ++i) f.nocache[i] = v[i] != 0.0f ? 1 : 0;  // NaN counts as non-zero
     }
+    if (!layout.channels.object_id.empty()) f.object_id = object_ids_of(image, layout.channels.object_id, path);
     return f;
+}
+
+std::vector<uint32_t> object_ids_of(const rrc_exr::ExrImage& image, const std::string& channel, const std::string& path) {
+    // UINT: exact (as_float would round ids above 2^24).
+    if (auto it = image.uint_channels.find(channel); it != image.uint_channels.end()) return it->second;
+    const std::vector<float>* values = image.find(channel);
+    if (!values) throw CliError(path + ": missing channel " + quoted(channel) + " (the object ids)");
+    std::vector<uint32_t> ids(values->size());
+    for (std::size_t i = 0; i < values->size(); ++i) {
+        const double v = (*values)[i];
+        // Round half up; -0.0 and -0.4 are not ids although they round to 0:
+        // a negative value means the channel is not what --object-id says.
+        const double rounded = std::floor(v + 0.5);
+        if (!std::isfinite(v) || v < 0.0 || rounded > 4294967295.0) {
+            char text[64];
+            std::snprintf(text, sizeof text, "%.10g", v);  // every float below 2^32 in full
+            const std::size_t w = image.width > 0 ? std::size_t(image.width) : 1;
+            throw CliError(path + ": channel " + quoted(channel) + " (the object ids): pixel (" + std::to_string(i % w) + ", " +
+                           std::to_string(i / w) + ") holds " + text +
+                           "; an object id must be a finite number in [0, 4294967295] (rounded to the nearest integer)");
+        }
+        ids[i] = static_cast<uint32_t>(rounded);
+    }
+    return ids;
 }
 
 rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layout, std::vector<rrc_channel_desc>& channels) {
@@ -422,6 +467,8 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
     d.channel_count = static_cast<uint32_t>(channels.size());
     d.channels = channels.data();
     d.use_nocache_mask = layout.nocache ? 1u : 0u;
+    d.depth_test = o.depth_test;
+    d.use_object_id = layout.channels.object_id.empty() ? 0u : 1u;
     d.device_name = o.device.empty() ? nullptr : o.device.c_str();
     d.enable_validation = o.validation ? 1u : 0u;
     return d;

@@ -37,6 +37,7 @@ struct ChannelMap {
     std::vector<std::string> prevclip; /* 4 names for PREV_CLIP; empty otherwise */
     std::string nocache = "nocache.Y";
     std::string view_layer; /* --preset blender: the view layer read ("ViewLayer") */
+    std::string object_id;  /* the object id channel; empty: the run has no object ids */
 };
 
 /** What the first frame and the options make of the sequence. */
@@ -46,6 +47,10 @@ struct SequenceLayout {
     bool nocache = false; /* the nocache channel is present */
     ChannelMap channels;
     std::vector<SignalLayout> signals;
+    /* Whether and why the run has object ids, for the progress output:
+     * "object ids from 'ViewLayer.IndexOB.X'", "no object ids (...)";
+     * empty when neither --object-id nor the preset asked for them. */
+    std::string object_id_report;
 };
 
 /** "a, b, c" (at most 40 names, then "... (N in all)"); "none" if empty. */
@@ -62,7 +67,9 @@ struct RequiredChannel {
  *  options), the reprojection (motion becomes MOTION_DEPTH when mv.Z exists
  *  or three motion channels are named), the signals (from --signal, the
  *  preset's Combined, or every layer not used by the geometry), their
- *  components and confidence, and the nocache mask.  Throws CliError naming
+ *  components and confidence, the nocache mask and the object ids
+ *  (--object-id, or the preset's <view layer>.IndexOB.X if the first frame
+ *  has it; never with --no-object-id).  Throws CliError naming
  *  the file and channel and listing the channels the file has. */
 SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string& first_path, const Options& options);
 
@@ -92,7 +99,14 @@ struct FrameData {
     std::vector<std::vector<float>> samples;    /* per signal */
     std::vector<std::vector<float>> confidence; /* per signal; empty without */
     std::vector<uint8_t> nocache;               /* empty without */
+    std::vector<uint32_t> object_id;            /* empty without */
 };
+
+/** A channel of object ids as rrc takes them.  A UINT channel is taken
+ *  exactly; a float one (Blender writes IndexOB as float) is rounded to the
+ *  nearest integer, and a negative, non-finite or larger than UINT32_MAX
+ *  value throws CliError naming the file, the channel and the pixel. */
+std::vector<uint32_t> object_ids_of(const rrc_exr::ExrImage& image, const std::string& channel, const std::string& path);
 
 /** Converts a decoded frame (already checked by check_frame_header). */
 FrameData load_frame(const rrc_exr::ExrImage& image, const std::string& path, const SequenceLayout& layout);

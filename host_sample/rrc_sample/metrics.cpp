@@ -40,42 +40,6 @@ ErrorStats error_against(const std::vector<float>& v, const std::vector<float>& 
     return e;
 }
 
-FalseHitStats count_false_hits(const FrameOutput& prev, const FrameOutput& cur, uint32_t W, uint32_t H) {
-    FalseHitStats s;
-    if (prev.position.empty() || cur.position.empty()) return s;
-    for (uint32_t y = 0; y < H; ++y)
-        for (uint32_t x = 0; x < W; ++x) {
-            const size_t i = (size_t)y * W + x;
-            if (!(cur.mask[i] & RRC_MASK_HIT) || cur.material[i] == kMatBackground || cur.material[i] == kMatMover) continue;
-            ++s.checked;
-            const float* c = &cur.prev_clip[i * 4];
-            const glm::vec3 p(cur.position[i * 4], cur.position[i * 4 + 1], cur.position[i * 4 + 2]);
-            const glm::vec3 n(cur.normal[i * 3], cur.normal[i * 3 + 1], cur.normal[i * 3 + 2]);
-            const float dist = glm::length(p - cur.eye);
-            const float cosv = std::max(std::fabs(glm::dot(n, (cur.eye - p) / dist)), 0.02f);
-            const float limit = 2.0f * dist * cur.pixel_angle / cosv + 0.005f;
-            const float px = ((c[0] / c[3] + 1.0f) * 0.5f) * (float)W - 0.5f, py = ((c[1] / c[3] + 1.0f) * 0.5f) * (float)H - 0.5f;
-            const float fx0 = std::floor(px), fy0 = std::floor(py), fx = px - fx0, fy = py - fy0;
-            float foreign = 0.0f;
-            bool strict = false;
-            for (int t = 0; t < 4; ++t) {
-                const int dx = t & 1, dy = t >> 1;
-                const float w = (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
-                if (w <= 1e-3f) continue;
-                const int tx = std::clamp((int)fx0 + dx, 0, (int)W - 1), ty = std::clamp((int)fy0 + dy, 0, (int)H - 1);
-                const size_t j = (size_t)ty * W + (size_t)tx;
-                const glm::vec3 q(prev.position[j * 4], prev.position[j * 4 + 1], prev.position[j * 4 + 2]);
-                if (prev.material[j] == kMatBackground || prev.material[j] == kMatMover || glm::length(q - p) > limit) {
-                    foreign += w;
-                    strict = true;
-                }
-            }
-            if (foreign >= 0.25f) ++s.false_hits;
-            if (strict) ++s.strict;
-        }
-    return s;
-}
-
 std::vector<SignalErrors> frame_errors(const FrameOutput& f) {
     std::vector<SignalErrors> out;
     if (!f.checkpoint) return out;

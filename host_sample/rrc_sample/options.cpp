@@ -6,6 +6,7 @@
 #include <rrc/rrc.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -61,6 +62,25 @@ std::string signal_list(uint32_t s) {
 
 const char* reprojection_name(uint32_t r) { return rrc_host::enum_name(rrc_host::kReprojectionNames, r); }
 
+namespace {
+// host_sample/common/enum_names.h has no depth-test table yet; the sample keeps its own.
+constexpr rrc_host::EnumName<rrc_depth_test> kDepthTestNames[] = {{"adaptive", RRC_DEPTH_TEST_ADAPTIVE}, {"fixed", RRC_DEPTH_TEST_FIXED}};
+}  // namespace
+
+const char* depth_test_name(uint32_t t) {
+    return t == RRC_DEPTH_TEST_DEFAULT ? "default" : rrc_host::enum_name(kDepthTestNames, (rrc_depth_test)t);
+}
+
+std::string depth_test_description(const Options& o) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%g", o.epsilon_scale > 0.0f ? o.epsilon_scale : RRC_DEFAULT_EPSILON_SCALE_FLOAT32);
+    if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE) return "adaptive (--depth-test adaptive)";
+    if (o.epsilon_scale > 0.0f) return std::string("fixed, epsilon ") + scale + " ulp (--epsilon-scale)";
+    if (o.depth_test == RRC_DEPTH_TEST_FIXED)
+        return std::string("fixed, epsilon ") + scale + " ulp (--depth-test fixed, the library's scale)";
+    return "the library's default (no epsilon given: adaptive for an API 0.2 caller)";
+}
+
 std::string usage() {
     return "usage: rrc-sample [options]\n"
            "A headless Vulkan renderer driving rrc through its interop path: an animated temple scene,\n"
@@ -75,8 +95,10 @@ std::string usage() {
            "  --taps k                 PCF taps and env sub-pixel samples per frame (default 4)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --reproject SRC          prev_clip (default), motion, motion_depth or camera\n"
-           "  --epsilon-scale S        rrc's depth-test epsilon in ulps of the fp32 depth (default 16384, ~0.2% of z;\n"
-           "                           0 = the library default, 4 ulp: see README.md)\n"
+           "  --depth-test TEST        adaptive or fixed (default: none given, the library's default test, which is\n"
+           "                           adaptive for this API 0.2 caller when no --epsilon-scale is given; see README.md)\n"
+           "  --epsilon-scale S        a fixed depth test with epsilon = S ulps of the fp32 depth (default: none given;\n"
+           "                           0 = the library default, 4 ulp under --depth-test fixed; not with --depth-test adaptive)\n"
            "  --soft-prior N           weight of the PCSS fallback on young soft-shadow pixels, in samples (default 4)\n"
            "  --soft-age-cap N         the soft channel's running mean stops growing at N samples (default 64)\n"
            "  --fps F                  animation frames per second of scene time (default 30)\n"
@@ -124,6 +146,12 @@ Options parse_options(int argc, const char* const* argv) {
             const std::string v = value();
             if (!rrc_host::enum_value(rrc_host::kReprojectionNames, v, o.reprojection))
                 throw OptionError("--reproject: expected " + rrc_host::enum_choices(rrc_host::kReprojectionNames) + ", got \"" + v + "\"");
+        } else if (a == "--depth-test") {
+            const std::string v = value();
+            rrc_depth_test t{};
+            if (!rrc_host::enum_value(kDepthTestNames, v, t))
+                throw OptionError("--depth-test: expected " + rrc_host::enum_choices(kDepthTestNames) + ", got \"" + v + "\"");
+            o.depth_test = (uint32_t)t;
         } else if (a == "--epsilon-scale")
             o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
         else if (a == "--soft-prior")
@@ -149,6 +177,9 @@ Options parse_options(int argc, const char* const* argv) {
         else
             throw OptionError("unknown option \"" + a + "\" (--help lists them)");
     }
+    // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
+    if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)
+        throw OptionError("--depth-test adaptive takes no --epsilon-scale (an epsilon makes the test fixed)");
     return o;
 }
 

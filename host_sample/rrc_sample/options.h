@@ -18,7 +18,8 @@ struct Options {
     int taps = 4;                            // k: pcf taps and env sub-pixel samples per frame
     uint32_t signals = 0;                    // Signal bits; 0 = every signal the scene uses
     uint32_t reprojection = 0;               // RRC_REPROJECTION_*
-    float epsilon_scale = 16384.0f;          // rrc's epsilon_scale (ulps of FLOAT32 depth); 0 = the library default (4)
+    float epsilon_scale = 0.0f;              // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
+    uint32_t depth_test = 0;                 // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
     float soft_prior = 4.0f;                 // PCSS fallback weight, in samples (see README.md)
     uint32_t soft_age_cap = 64;              // the soft channel's running-mean cap
     float fps = 30.0f;                       // animation time step = 1/fps
@@ -43,5 +44,9 @@ std::string usage();
 /** "pcf,env,soft" for Signal bits. */
 std::string signal_list(uint32_t signals);
 const char* reprojection_name(uint32_t reprojection);
+/** "default", "adaptive" or "fixed". */
+const char* depth_test_name(uint32_t depth_test);
+/** The test rrc applies for these options, in words (summary, progress). */
+std::string depth_test_description(const Options& options);
 
 }  // namespace rrc_sample

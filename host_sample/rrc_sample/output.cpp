@@ -78,7 +78,37 @@ std::vector<uint8_t> age_heat_map(const std::vector<uint16_t>& age, uint32_t ful
 }
 
 OutputWriter::OutputWriter(const std::string& out_dir, uint32_t w, uint32_t h) : dir_(out_dir), width_(w), height_(h) {
-    for (const char* sub : {"frames", "coherence", "age", "exr"}) std::filesystem::create_directories(std::filesystem::path(dir_) / sub);
+    for (const char* sub : {"frames", "coherence", "age", "exr", "oracle"})
+        std::filesystem::create_directories(std::filesystem::path(dir_) / sub);
+}
+
+std::vector<uint8_t> oracle_map(const std::vector<uint8_t>& verdict) {
+    std::vector<uint8_t> rgb(verdict.size() * 3, 0);
+    for (size_t i = 0; i < verdict.size(); ++i) {
+        const uint8_t v = verdict[i];
+        const bool hit = v & kVerdictHit;
+        uint8_t c[3] = {0, 0, 0};
+        auto set = [&](uint8_t r, uint8_t g, uint8_t b) { c[0] = r, c[1] = g, c[2] = b; };
+        if (v & kVerdictExcluded)
+            set(255, 0, 255);
+        else if (!(v & kVerdictSurface))
+            set(0, 0, 0);
+        else if (hit && !(v & kVerdictVisible))
+            set(255, 0, 0);  // false hits first: they matter most, straddling or not
+        else if (v & kVerdictStraddling)
+            hit ? set(170, 170, 170) : set(80, 80, 80);
+        else if (v & kVerdictVisible)
+            hit ? set(0, 150, 0) : set(255, 220, 0);
+        else
+            set(0, 60, 200);
+        for (int k = 0; k < 3; ++k) rgb[i * 3 + k] = c[k];
+    }
+    return rgb;
+}
+
+void OutputWriter::write_oracle(int index, const std::vector<uint8_t>& verdict) const {
+    rrc_png::write_png(numbered((std::filesystem::path(dir_) / "oracle").string(), "oracle", index, ".png"),
+                       rgb_image(width_, height_, oracle_map(verdict)));
 }
 
 void OutputWriter::write(const FrameOutput& f) const {

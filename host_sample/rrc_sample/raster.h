@@ -66,7 +66,7 @@ struct GBuffer {
     Image prev_clip;  // RGBA32F: previous clip position (rrc PREV_CLIP)
     Image motion;     // RGBA32F: uv_prev - uv_cur, expected previous depth - depth (rrc MOTION / MOTION_DEPTH)
     Image normal;     // RGBA16F: world normal, material id in w
-    Image position;   // RGBA32F: world position
+    Image position;   // RGBA32F: world position, object index + 1 in w (0: background)
 };
 
 class GBufferPass : NonCopyable {

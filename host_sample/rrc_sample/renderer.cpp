@@ -46,7 +46,7 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
     gbuffer_.reset(new GBufferPass(gpu, *gpu_scene_, w, h));
     signals_.reset(new SignalPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, w, h));
     // In RrcSettings' order: extent, signals, reprojection, epsilon scale, planes, soft age cap.
-    const RrcSettings rs{w, h, s.signals, s.reprojection, s.epsilon_scale, scene.near_plane, scene.far_plane, s.soft_age_cap};
+    const RrcSettings rs{w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.soft_age_cap};
     rrc_.reset(new RrcStage(gpu, rs));
     post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
                                signals_->reference(), w, h));
@@ -203,6 +203,8 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
     out.colour[0] = copy_of<uint8_t>(r.data(slot_.colour[0]), r.bytes(slot_.colour[0]));
     out.position = copy_of<float>(r.data(slot_.position), r.bytes(slot_.position));
     out.prev_clip = copy_of<float>(r.data(slot_.prev_clip), r.bytes(slot_.prev_clip));
+    out.object.resize(out.position.size() / 4);
+    for (size_t i = 0; i < out.object.size(); ++i) out.object[i] = (uint16_t)out.position[i * 4 + 3];
     const std::vector<uint16_t> nm = copy_of<uint16_t>(r.data(slot_.normal), r.bytes(slot_.normal));
     out.material.resize(nm.size() / 4);
     out.normal.resize(nm.size() / 4 * 3);

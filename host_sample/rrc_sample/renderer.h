@@ -23,6 +23,7 @@ struct RendererSettings {
     uint32_t signals = 0;
     uint32_t reprojection = 0;
     float epsilon_scale = 0.0f;
+    uint32_t depth_test = 0;  // RRC_DEPTH_TEST_*
     float soft_prior = 4.0f;
     uint32_t soft_age_cap = 64;
     uint32_t reference_samples = 256;
@@ -51,7 +52,8 @@ struct FrameOutput {
     std::vector<uint8_t> mask;                   // rrc's mask bits
     std::vector<uint16_t> age;                   // the host's age map
     std::array<std::vector<uint8_t>, 3> colour;  // RGBA8: accumulated; raw, reference (checkpoints)
-    std::vector<float> position;                 // G-buffer world position, RGBA (false-hit count)
+    std::vector<float> position;                 // G-buffer world position, RGBA
+    std::vector<uint16_t> object;                // G-buffer object index + 1, 0 background (the visibility oracle)
     std::vector<float> prev_clip;                // G-buffer previous clip position, RGBA
     std::vector<uint8_t> material;               // G-buffer material id
     std::vector<float> normal;                   // G-buffer world normal, xyz

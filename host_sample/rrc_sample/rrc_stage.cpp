@@ -49,6 +49,7 @@ RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
     d.near_plane = s.near_plane;  // used by plain MOTION to linearise depth
     d.far_plane = s.far_plane;
     d.epsilon_scale = s.epsilon_scale;
+    d.depth_test = (rrc_depth_test)s.depth_test;
     d.reprojection = s.reprojection;
     d.log = log_to_stderr;
 

@@ -20,7 +20,8 @@ struct RrcSettings {
     uint32_t width = 0, height = 0;
     uint32_t signals = 0;  // one channel per bit, in the order pcf, env, soft
     uint32_t reprojection = RRC_REPROJECTION_PREV_CLIP;
-    float epsilon_scale = 0.0f;  // 0 = library default
+    float epsilon_scale = 0.0f;  // 0 = none given: the library's default test
+    uint32_t depth_test = 0;     // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE for a 0.2 caller with no epsilon)
     float near_plane = 0.1f, far_plane = 200.0f;
     uint32_t soft_age_cap = 64;
 };

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <stdexcept>
 
 namespace rrc_sample {
@@ -55,6 +56,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.signals = run.signals;
     rs.reprojection = o.reprojection;
     rs.epsilon_scale = o.epsilon_scale;
+    rs.depth_test = o.depth_test;
     rs.soft_prior = o.soft_prior;
     rs.soft_age_cap = o.soft_age_cap;
     rs.reference_samples = (uint32_t)o.reference_samples;
@@ -68,7 +70,8 @@ RunResult run_sample(const Options& o, std::ostream* progress,
         for (const rrc_channel_desc& c : renderer.rrc().channels()) run.channels.push_back(channel_line(c));
         if (progress) {
             *progress << "rrc-sample: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.frames << " frames, signals "
-                      << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", k = " << o.taps
+                      << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", depth test "
+                      << depth_test_description(o) << ", k = " << o.taps
                       << (o.reference_every > 0 ? ", reference " + std::to_string(o.reference_samples) + " samples every " +
                                                       std::to_string(o.reference_every) + " frames"
                                                 : std::string(", no reference"))
@@ -82,17 +85,34 @@ RunResult run_sample(const Options& o, std::ostream* progress,
         // Warm-up: lavapipe compiles shaders at their first dispatch; frame 0 then runs again with reset.
         renderer.render(0, true, false);
         const auto start = std::chrono::steady_clock::now();
+        const VisibilityOracle oracle(scene);
         FrameOutput previous;
         for (int t = 0; t < o.frames; ++t) {
-            FrameOutput out = renderer.render(t, t == 0, is_checkpoint(o, t));
+            const bool reset = t == 0;
+            FrameOutput out = renderer.render(t, reset, is_checkpoint(o, t));
             FrameRecord rec;
-            if (t > 0) rec.false_hits = count_false_hits(previous, out, o.width, o.height);
+            // The oracle sees the matrices the renderer drew with (make_frame_state is pure CPU);
+            // after a reset there is no previous frame, so nothing was visible.
+            OracleView current_view, previous_view;
+            oracle_views(make_frame_state(scene, rs.render, t), current_view, previous_view);
+            static const std::vector<uint16_t> kNoPrevious;
+            // Its ray casts overlap the frame's errors and files (single-threaded PNG/EXR
+            // encoding), so the default run barely slows down; it only reads `out` and `previous`.
+            std::vector<uint8_t> verdict;  // per pixel, for oracle/oracle_NNNN.png
+            std::future<double> oracle_done = std::async(std::launch::async, [&] {
+                const auto oracle_start = std::chrono::steady_clock::now();
+                rec.visibility = oracle.judge(current_view, previous_view, o.width, o.height, out.mask,
+                                              reset ? kNoPrevious : previous.object, writer ? &verdict : nullptr);
+                return std::chrono::duration<double>(std::chrono::steady_clock::now() - oracle_start).count();
+            });
             rec.index = t;
             rec.checkpoint = out.checkpoint;
             rec.hits = hit_stats(out.mask);
             rec.timings = out.timings;
             rec.errors = frame_errors(out);
             if (writer) writer->write(out);
+            run.oracle_seconds += oracle_done.get();
+            if (writer) writer->write_oracle(t, verdict);
             if (on_frame) on_frame(out, rec);
             if (progress) *progress << progress_line(rec, o.frames) << std::flush;
             run.frames.push_back(std::move(rec));

@@ -5,6 +5,7 @@
 
 #include "metrics.h"
 #include "options.h"
+#include "oracle.h"
 #include "renderer.h"
 
 #include <functional>
@@ -18,7 +19,7 @@ struct FrameRecord {
     int index = 0;
     bool checkpoint = false;
     HitStats hits;
-    FalseHitStats false_hits;  // against the previous frame's G-buffer (metrics.h)
+    VisibilityStats visibility;  // recall and false hits against the oracle of true visibility (oracle.h)
     FrameTimings timings;
     std::vector<SignalErrors> errors;  // checkpoints only
 };
@@ -31,6 +32,7 @@ struct RunResult {
     std::vector<std::string> channels;  // one line per rrc channel
     std::vector<FrameRecord> frames;
     double wall_seconds = 0.0;          // the frame loop, files included
+    double oracle_seconds = 0.0;        // the visibility oracle's ray casts (overlapping the files)
     uint64_t validation_messages = 0;   // counted through device and instance destruction
     std::vector<std::string> messages;  // the first few
 };

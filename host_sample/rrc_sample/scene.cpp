@@ -23,6 +23,11 @@ AreaLight make_lamp(glm::vec3 centre, glm::vec3 target, float half_size, glm::ve
 
 }  // namespace
 
+const char* material_name(uint32_t m) {
+    static const char* const names[kMaterialCount] = {"background", "ground", "stone", "sphere", "torus"};
+    return m < kMaterialCount ? names[m] : "?";
+}
+
 std::vector<std::string> Scene::names() { return {"temple", "courtyard"}; }
 
 Scene Scene::make(const std::string& name) {

@@ -13,6 +13,9 @@ namespace rrc_sample {
 
 /** Material ids, written to the G-buffer (normal.w); shaders/common.glsl mirrors them. */
 enum Material : uint32_t { kMatBackground = 0, kMatGround = 1, kMatStone = 2, kMatSphere = 3, kMatMover = 4 };
+constexpr uint32_t kMaterialCount = 5;
+/** "ground", "stone", "sphere", "torus" (and "background"). */
+const char* material_name(uint32_t material);
 
 /** The per-frame noisy signals the sample can produce, one rrc channel each. */
 enum Signal : uint32_t { kSignalPcf = 1u, kSignalEnv = 2u, kSignalSoft = 4u };

@@ -25,7 +25,7 @@ double median(std::vector<double> v) {
 
 struct Aggregate {
     double hit_mean = 0, hit_min = 1;
-    uint64_t false_hits = 0, strict = 0, checked = 0;
+    VisibilityStats vis;  // summed over frames 2.. (the oracle, oracle.h)
     int hit_frames = 0;
     double render = 0, rrc = 0, post = 0, reference = 0, cpu = 0, signals = 0, brute = 0;
     // Per signal: mean RMSE and PSNR over checkpoints (raw, accumulated, shown, fallback).
@@ -45,9 +45,7 @@ Aggregate aggregate(const RunResult& run) {
         if (f.index > 0) {  // frame 0 misses everywhere by definition
             a.hit_mean += f.hits.ratio();
             a.hit_min = std::min(a.hit_min, f.hits.ratio());
-            a.false_hits += f.false_hits.false_hits;
-            a.strict += f.false_hits.strict;
-            a.checked += f.false_hits.checked;
+            a.vis += f.visibility;
             ++a.hit_frames;
         }
         render.push_back(f.timings.render());
@@ -100,8 +98,9 @@ void open_or_throw(std::ofstream& f, const std::string& path) {
 std::string progress_line(const FrameRecord& f, int frames) {
     std::ostringstream os;
     char b[256];
-    std::snprintf(b, sizeof b, "frame %3d/%d  hit %5.1f%%  render %7.2f ms  rrc %6.2f ms  post %6.2f ms", f.index + 1, frames,
-                  100.0 * f.hits.ratio(), f.timings.render(), f.timings.rrc, f.timings.post);
+    std::snprintf(b, sizeof b, "frame %3d/%d  hit %5.1f%%  recall %5.1f%%  false hits %4llu  render %7.2f ms  rrc %6.2f ms  post %6.2f ms",
+                  f.index + 1, frames, 100.0 * f.hits.ratio(), 100.0 * f.visibility.recall(), (unsigned long long)f.visibility.false_hits,
+                  f.timings.render(), f.timings.rrc, f.timings.post);
     os << b;
     if (f.checkpoint) {
         std::snprintf(b, sizeof b, "  | reference %.0f ms, RMSE raw -> accumulated:", f.timings.reference);
@@ -120,10 +119,14 @@ void print_summary(const RunResult& run, std::ostream& os) {
     char b[512];
     os << "\nsummary (" << run.frames.size() << " frames, " << run.options.width << "x" << run.options.height << ", " << run.device
        << ")\n";
-    std::snprintf(
-        b, sizeof b, "  hit ratio, frames 2..%zu: mean %.1f%%, min %.1f%%; false hits %.3f%% of static-surface hits (strict %.3f%%)\n",
-        run.frames.size(), 100.0 * a.hit_mean, 100.0 * a.hit_min, a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0,
-        a.checked ? 100.0 * (double)a.strict / (double)a.checked : 0.0);
+    std::snprintf(b, sizeof b,
+                  "  hit ratio, frames 2..%zu: mean %.1f%%, min %.1f%%; depth test: %s\n"
+                  "  against true visibility: recall %.2f%% (%llu of %llu visible pixels off silhouettes), false hits %llu "
+                  "(%llu straddling), straddling %llu, excluded %llu\n",
+                  run.frames.size(), 100.0 * a.hit_mean, 100.0 * a.hit_min, depth_test_description(run.options).c_str(),
+                  100.0 * a.vis.recall(), (unsigned long long)a.vis.clean_hits, (unsigned long long)a.vis.clean_visible,
+                  (unsigned long long)a.vis.false_hits, (unsigned long long)a.vis.false_hits_straddling,
+                  (unsigned long long)a.vis.straddling, (unsigned long long)a.vis.excluded);
     os << b;
     std::snprintf(
         b, sizeof b,
@@ -164,16 +167,19 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     {
         std::ofstream f;
         open_or_throw(f, (fs::path(out_dir) / "summary.csv").string());
-        f << "frame,checkpoint,hit_ratio,hits,misses,background,false_hits,false_hits_strict,false_hits_checked,ms_shadows,ms_gbuffer,ms_"
-             "signals,ms_render,ms_rrc,ms_post,ms_reference,"
+        f << "frame,checkpoint,hit_ratio,hits,misses,background,recall,visible,straddling,clean_visible,clean_hits,false_hits,"
+             "false_hits_straddling,excluded,excluded_hits,ms_shadows,ms_gbuffer,ms_signals,ms_render,ms_rrc,ms_post,ms_reference,"
              "ms_brute_force,ms_cpu_frame\n";
         for (const FrameRecord& r : run.frames) {
             const FrameTimings& t = r.timings;
             f << r.index << "," << (r.checkpoint ? 1 : 0) << "," << fmt("%.6f", r.hits.ratio()) << "," << r.hits.hits << ","
-              << r.hits.misses << "," << r.hits.background << "," << r.false_hits.false_hits << "," << r.false_hits.strict << ","
-              << r.false_hits.checked << "," << fmt("%.4f", t.shadows) << "," << fmt("%.4f", t.gbuffer) << "," << fmt("%.4f", t.signals)
-              << "," << fmt("%.4f", t.render()) << "," << fmt("%.4f", t.rrc) << "," << fmt("%.4f", t.post) << ","
-              << fmt("%.4f", t.reference) << "," << fmt("%.4f", t.brute_force) << "," << fmt("%.4f", t.cpu_frame) << "\n";
+              << r.hits.misses << "," << r.hits.background << ",";
+            const VisibilityStats& v = r.visibility;
+            f << fmt("%.6f", v.recall()) << "," << v.visible << "," << v.straddling << "," << v.clean_visible << "," << v.clean_hits << ","
+              << v.false_hits << "," << v.false_hits_straddling << "," << v.excluded << "," << v.excluded_hits << ","
+              << fmt("%.4f", t.shadows) << "," << fmt("%.4f", t.gbuffer) << "," << fmt("%.4f", t.signals) << "," << fmt("%.4f", t.render())
+              << "," << fmt("%.4f", t.rrc) << "," << fmt("%.4f", t.post) << "," << fmt("%.4f", t.reference) << ","
+              << fmt("%.4f", t.brute_force) << "," << fmt("%.4f", t.cpu_frame) << "\n";
         }
     }
     {
@@ -205,18 +211,26 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     f << "| taps k (pcf taps, env sub-pixel samples) | " << o.taps << " |\n";
     f << "| reference | " << o.reference_samples << " samples per pixel on frames " << o.reference_every - 1 << ", "
       << 2 * o.reference_every - 1 << ", ... and the last |\n";
-    f << "| depth test epsilon scale | " << (o.epsilon_scale > 0 ? fmt("%g", o.epsilon_scale) : std::string("library default")) << " |\n";
+    f << "| depth test | " << depth_test_description(o) << " |\n";
     f << "| device | " << run.device << " |\n| rrc device memory | " << run.rrc_memory_bytes << " bytes |\n";
-    f << "| wall time of the frame loop (files included) | " << fmt("%.1f", run.wall_seconds) << " s |\n";
+    f << "| wall time of the frame loop (files included) | " << fmt("%.1f", run.wall_seconds) << " s; the visibility oracle's ray casts "
+      << fmt("%.1f", run.oracle_seconds) << " s of it, overlapping the files |\n";
     if (o.validation) f << "| validation messages | " << run.validation_messages << " |\n";
     f << "\nrrc channels:\n\n";
     for (const std::string& c : run.channels) f << "- " << c << "\n";
     f << "\n## Results\n\n";
     f << "- hit ratio (frames 2.." << run.frames.size() << "): mean " << fmt("%.1f", 100.0 * a.hit_mean) << "%, min "
-      << fmt("%.1f", 100.0 * a.hit_min) << "%; false hits " << a.false_hits << " of " << a.checked << " static-surface hits ("
-      << fmt("%.3f", a.checked ? 100.0 * (double)a.false_hits / (double)a.checked : 0.0)
-      << "%: a quarter or more of the history fetched from another surface, judged against the previous frame's G-buffer; "
-      << "strict, any bilinear tap of another surface: " << a.strict << ")\n";
+      << fmt("%.1f", 100.0 * a.hit_min) << "%\n";
+    const VisibilityStats& v = a.vis;
+    f << "- against true visibility (the ray-cast oracle, README.md), frames 2.." << run.frames.size() << ": **recall "
+      << fmt("%.2f", 100.0 * v.recall()) << "%** (" << v.clean_hits << " hits of " << v.clean_visible
+      << " visible pixels that straddle no silhouette), **false hits " << v.false_hits << "** (hits whose point was not visible; "
+      << v.false_hits_straddling << " of them straddle a silhouette); of " << v.surface << " surface pixels " << v.visible
+      << " were visible, " << v.straddling << " straddle a silhouette (counted apart from recall), " << v.excluded
+      << " excluded (ray and G-buffer disagree on background; " << v.excluded_hits << " of them hits)\n";
+    f << "- visible pixels off silhouettes that missed, by surface:";
+    for (uint32_t m = 1; m < kMaterialCount; ++m) f << (m > 1 ? "," : "") << " " << material_name(m) << " " << v.missed_by_material[m];
+    f << "\n";
     f << "- GPU time per frame (median): rendering " << fmt("%.2f", a.render) << " ms (shadow maps + G-buffer + signals), rrc "
       << fmt("%.2f", a.rrc) << " ms, post " << fmt("%.2f", a.post) << " ms (age, PCSS fallback, compose); reference "
       << fmt("%.0f", a.reference) << " ms per checkpoint\n";
@@ -252,10 +266,12 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
          "bilinear resampling of the history under motion lowers the variance further but blurs, so the accumulated signals "
          "converge to a slightly blurred version of the reference; a stratified pattern such as a Poisson disk makes "
          "\"4 taps ~ 16\" an approximation.  Disoccluded pixels restart from one frame's samples.\n";
-    f << "\n## Per frame\n\n| frame | hit % | render ms | rrc ms | post ms | reference ms |\n|---|---|---|---|---|---|\n";
+    f << "\n## Per frame\n\n| frame | hit % | recall % | false hits | straddling | excluded | render ms | rrc ms | post ms | reference ms "
+         "|\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const FrameRecord& r : run.frames)
-        f << "| " << r.index << " | " << fmt("%.1f", 100.0 * r.hits.ratio()) << " | " << fmt("%.2f", r.timings.render()) << " | "
-          << fmt("%.2f", r.timings.rrc) << " | " << fmt("%.2f", r.timings.post) << " | "
+        f << "| " << r.index << " | " << fmt("%.1f", 100.0 * r.hits.ratio()) << " | " << fmt("%.2f", 100.0 * r.visibility.recall()) << " | "
+          << r.visibility.false_hits << " | " << r.visibility.straddling << " | " << r.visibility.excluded << " | "
+          << fmt("%.2f", r.timings.render()) << " | " << fmt("%.2f", r.timings.rrc) << " | " << fmt("%.2f", r.timings.post) << " | "
           << (r.checkpoint ? fmt("%.0f", r.timings.reference) : std::string("")) << " |\n";
 }
 

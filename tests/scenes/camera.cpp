@@ -33,6 +33,36 @@ CameraPose camera_pose(double t, double speed) {
     return pose;
 }
 
+CameraPose grazing_camera_pose(double t, double speed, double fovy_degrees, double aspect, double max_ground_angle_degrees) {
+    const double s = t * speed;
+    const double theta = 0.35 + 0.01 * s;
+    CameraPose pose;
+    pose.eye = glm::dvec3(8.0 * std::sin(theta), 1.5 + 0.1 * std::sin(0.03 * s), 8.0 * std::cos(theta));
+    const glm::dvec3 target(0.3 * std::sin(0.02 * s), 0.0, 0.5);
+    glm::dvec3 ahead = target - pose.eye;
+    ahead.y = 0.0;
+    ahead = glm::normalize(ahead);
+    const glm::dvec3 right = glm::normalize(glm::cross(ahead, glm::dvec3(0.0, 1.0, 0.0)));
+    // The top corner ray in view space is (aspect*tn, tn, -1).  Pitched down
+    // by b its world height is tn*cos(b) - sin(b) and its horizontal length
+    // hypot(aspect*tn, tn*sin(b) + cos(b)); its elevation falls as b grows, so
+    // bisect b for elevation -(90 deg - max angle).
+    const double deg = 3.14159265358979323846 / 180.0;
+    const double tn = std::tan(0.5 * fovy_degrees * deg);
+    const double want = -(90.0 - max_ground_angle_degrees) * deg;
+    double lo = 0.0, hi = 0.5 * 3.14159265358979323846;
+    for (int k = 0; k < 80; ++k) {
+        const double b = 0.5 * (lo + hi);
+        const double elevation = std::atan2(tn * std::cos(b) - std::sin(b), std::hypot(aspect * tn, tn * std::sin(b) + std::cos(b)));
+        (elevation > want ? lo : hi) = b;
+    }
+    const double b = 0.5 * (lo + hi);
+    const glm::dvec3 forward = std::cos(b) * ahead - std::sin(b) * glm::dvec3(0.0, 1.0, 0.0);
+    const glm::dvec3 up = glm::cross(right, forward);
+    pose.basis = glm::dmat3(right, up, -forward);
+    return pose;
+}
+
 Projection make_projection(uint32_t depth_mode, double n, double f, double fovy_degrees, double aspect) {
     Projection p;
     p.depth_mode = depth_mode;

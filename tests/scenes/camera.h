@@ -35,6 +35,14 @@ struct CameraPose {
 // slightly: translation and rotation at once.
 CameraPose camera_pose(double t, double speed);
 
+// A low camera grazing the ground (y = 0): it orbits at radius 8 and height
+// ~1.5 without roll, pitched down just so far that the top corners of the
+// image, its rays closest to the horizon, meet the ground at
+// `max_ground_angle_degrees` from its normal.  Every ground pixel is then seen
+// at up to that angle and no sky shows: the regime where one pixel covers a
+// long stretch of ground and depth changes fastest across it.
+CameraPose grazing_camera_pose(double t, double speed, double fovy_degrees, double aspect, double max_ground_angle_degrees);
+
 struct Projection {
     uint32_t depth_mode = 0;  // RRC_DEPTH_MODE_*
     double near_plane = 0.1;

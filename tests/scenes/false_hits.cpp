@@ -1,8 +1,9 @@
 // Ground-truth false-hit evaluation (the rule is documented in false_hits.h).
 #include "scenes/false_hits.h"
 
-#include <algorithm>
 #include <cmath>
+
+#include "scenes/bilinear.h"
 
 namespace rrc_scene {
 
@@ -16,14 +17,6 @@ FalseHitEvaluator::FalseHitEvaluator(const Scene& scene, int frame, int prev_fra
       prev_jitter_(scene.jitter(prev_frame)),
       prev_ids_(scene.object_ids(prev_frame)) {}
 
-bool FalseHitEvaluator::near_other_object(int32_t id, const FrameState& st, const glm::dvec3& world, double distance) const {
-    for (int32_t other = 0; other < OBJECT_COUNT; ++other) {
-        if (other == id) continue;
-        if (surface_distance(other, st.models[other].to_object(world)) < distance) return true;
-    }
-    return false;
-}
-
 Verdict FalseHitEvaluator::classify(int i, int j) const {
     const int w = scene_.width(), h = scene_.height();
     // Rule 1: the pixel's own sample.
@@ -32,7 +25,8 @@ Verdict FalseHitEvaluator::classify(int i, int j) const {
     const int32_t o = cur.object_id;
 
     // Rule 2, current frame.
-    if (near_other_object(o, cur_, cur.world, options_.contact_footprints * scene_.pixel_footprint(cur.depth))) return VERDICT_CONTACT;
+    if (scene_.near_other_object(o, cur_, cur.world, options_.contact_footprints * scene_.pixel_footprint(cur.depth)))
+        return VERDICT_CONTACT;
 
     // P moved with its object to the previous frame and projected there.
     const glm::dvec3 p_prev = prev_.models[o].to_world(cur.object);
@@ -41,7 +35,7 @@ Verdict FalseHitEvaluator::classify(int i, int j) const {
     const double fp_prev = scene_.pixel_footprint(clip.w);
 
     // Rule 2, previous frame.
-    if (near_other_object(o, prev_, p_prev, options_.contact_footprints * fp_prev)) return VERDICT_CONTACT;
+    if (scene_.near_other_object(o, prev_, p_prev, options_.contact_footprints * fp_prev)) return VERDICT_CONTACT;
 
     // Rule 3: is P' the first surface on the previous frame's ray through it?
     const double px = (clip.x / clip.w + 1.0) * 0.5 * w;
@@ -53,16 +47,10 @@ Verdict FalseHitEvaluator::classify(int i, int j) const {
     if (glm::length(seen.world - p_prev) > options_.distance_footprints * fp_prev) return VERDICT_FALSE_HIT;
 
     // Rule 4: the bilinear taps of the history fetch (CONVENTIONS.md).
-    const double qx = px - prev_jitter_.x - 0.5, qy = py - prev_jitter_.y - 0.5;
-    const double fx0 = std::floor(qx), fy0 = std::floor(qy);
-    const double fx = qx - fx0, fy = qy - fy0;
-    const int ix = static_cast<int>(fx0), iy = static_cast<int>(fy0);
-    const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    const BilinearTaps taps = bilinear_taps(glm::dvec2(px, py), prev_jitter_, w, h);
     for (int t = 0; t < 4; ++t) {
-        if (!(weights[t] > options_.tap_weight_threshold)) continue;
-        const int tx = std::clamp(ix + (t & 1), 0, w - 1);
-        const int ty = std::clamp(iy + (t >> 1), 0, h - 1);
-        if (prev_ids_[static_cast<size_t>(ty) * w + tx] != o) return VERDICT_STRICT_FALSE_HIT;
+        if (!(taps.weight[t] > options_.tap_weight_threshold)) continue;
+        if (prev_ids_[taps.index(t, w)] != o) return VERDICT_STRICT_FALSE_HIT;
     }
     return VERDICT_TRUE_HIT;
 }

@@ -10,7 +10,7 @@
 // 2 d tan(fovy/2) / H; all in double):
 //   1. Cast frame t's ray through (i + 0.5 + j_t.x, j + 0.5 + j_t.y): surface
 //      point P on object o.  Nothing hit -> BACKGROUND (a HIT there is false).
-//   2. Contact (excluded, CONTACT): P lies within contact_footprints *
+//   2. Contact (excluded, CONTACT; Scene::near_other_object): P lies within contact_footprints *
 //      footprint(d) of the surface of any other object in frame t, or P moved
 //      to frame t' (P' = M_o(t') M_o(t)^-1 P) lies within contact_footprints *
 //      footprint(d') of another object's surface in frame t' (d' = P''s
@@ -76,8 +76,6 @@ public:
     Verdict classify(int i, int j) const;
 
 private:
-    bool near_other_object(int32_t id, const FrameState& st, const glm::dvec3& world, double distance) const;
-
     const Scene& scene_;
     FrameState cur_, prev_;
     FalseHitOptions options_;

@@ -108,7 +108,10 @@ RigidTransform object_transform(int32_t id, double t, double speed) {
 }
 
 double intersect_object(int32_t id, const glm::dvec3& origin, const glm::dvec3& dir, double t_min, double t_max) {
-    const ObjectShape& s = kShapes[id];
+    return intersect_shape(kShapes[id], origin, dir, t_min, t_max);
+}
+
+double intersect_shape(const ObjectShape& s, const glm::dvec3& origin, const glm::dvec3& dir, double t_min, double t_max) {
     switch (s.shape) {
         case Shape::Plane: return intersect_plane(s.half, origin, dir, t_min, t_max);
         case Shape::Box: return intersect_box(s.half, origin, dir, t_min, t_max);
@@ -117,8 +120,9 @@ double intersect_object(int32_t id, const glm::dvec3& origin, const glm::dvec3& 
     return -1.0;
 }
 
-double surface_distance(int32_t id, const glm::dvec3& p) {
-    const ObjectShape& s = kShapes[id];
+double surface_distance(int32_t id, const glm::dvec3& p) { return shape_distance(kShapes[id], p); }
+
+double shape_distance(const ObjectShape& s, const glm::dvec3& p) {
     switch (s.shape) {
         case Shape::Plane: {
             const double ex = std::max(std::abs(p.x) - s.half.x, 0.0);

@@ -21,7 +21,12 @@ enum ObjectId : int32_t {
     OBJECT_BOX_FLOATING = 3,    // flat box in the air: clean disocclusions, no contact
     OBJECT_SPHERE_RESTING = 4,  // sphere touching the ground in one point (a contact)
     OBJECT_SPHERE_MOVING = 5,   // floating sphere that translates and spins: object motion
-    OBJECT_COUNT = 6
+    OBJECT_COUNT = 6,           // the objects of the default layout (SceneLayout::OBJECTS): ids 0 .. 5
+    // The thin-card layout (SceneLayout::THIN_CARD, scene.h): its own two
+    // objects, whose size and placement depend on the scene's configuration.
+    OBJECT_WALL = 6,     // a large plane seen at a chosen angle from its normal
+    OBJECT_CARD = 7,     // a thin card just in front of the wall, sliding along it
+    OBJECT_ID_COUNT = 8  // every id of every layout: sizes per-id tables
 };
 
 enum class Shape { Plane, Box, Sphere };
@@ -48,6 +53,7 @@ struct RigidTransform {
     glm::dmat4 matrix() const;  // column-major 4x4 model matrix
 };
 
+// The default layout's objects (ids below OBJECT_COUNT).
 const ObjectShape& object_shape(int32_t id);
 
 // Model transform of object `id` at time `t` (in frames).  Only
@@ -60,5 +66,9 @@ double intersect_object(int32_t id, const glm::dvec3& origin, const glm::dvec3& 
 
 // Unsigned Euclidean distance from an object-space point to the object's surface.
 double surface_distance(int32_t id, const glm::dvec3& p);
+
+// The same two for any shape (the thin-card layout's objects are sized at run time).
+double intersect_shape(const ObjectShape& shape, const glm::dvec3& origin, const glm::dvec3& dir, double t_min, double t_max);
+double shape_distance(const ObjectShape& shape, const glm::dvec3& p);
 
 }  // namespace rrc_scene

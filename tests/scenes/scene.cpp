@@ -34,6 +34,23 @@ float invalid_value(uint64_t h) {
 
 void store_matrix(const glm::dmat4& m, double out[16]) { std::memcpy(out, glm::value_ptr(m), 16 * sizeof(double)); }
 
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+// Thin-card layout, in units of the wall distance d: the wall reaches far past
+// the view (its receding side meets the far plane or the horizon); the card
+// spans the centre of the view and the wall beyond it, away from the camera.
+constexpr double kWallHalf = 50.0;
+constexpr double kCardHalfAlong = 0.5;   // along the slide (the wall's horizontal tangent)
+constexpr double kCardHalfAcross = 0.3;  // vertical
+
+// Object space of a plane shape is y = 0 (objects.h): the wall's rotation
+// takes object x to the horizontal tangent t1, y to the normal n (facing the
+// camera) and z to -y (right-handed: t1 x n = (0, -1, 0)).
+glm::dmat3 wall_rotation(double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return glm::dmat3(glm::dvec3(c, 0.0, -s), glm::dvec3(s, 0.0, c), glm::dvec3(0.0, -1.0, 0.0));
+}
+
 }  // namespace
 
 double linearize_depth(uint32_t mode, double z, double n, double f) {
@@ -51,14 +68,58 @@ Scene::Scene(const SceneConfig& c) : config_(c) {
     if (!(c.fovy_degrees > 0.0 && c.fovy_degrees < 180.0)) throw std::invalid_argument("rrc_scene: bad fovy");
     if (!(c.invalid_fraction >= 0.0 && c.invalid_fraction <= 1.0))
         throw std::invalid_argument("rrc_scene: invalid_fraction must be in [0, 1]");
+    if (!(c.grazing_max_angle_degrees > 0.0 && c.grazing_max_angle_degrees < 90.0))
+        throw std::invalid_argument("rrc_scene: grazing_max_angle_degrees must be in (0, 90)");
+    if (!(c.wall_angle_degrees >= 0.0 && c.wall_angle_degrees <= 89.0) || !(c.wall_distance > 0.0) ||
+        !(c.card_gap > 0.0 && c.card_gap < 0.5))
+        throw std::invalid_argument("rrc_scene: thin card needs wall angle in [0, 89], distance > 0, gap in (0, 0.5)");
     projection_ = make_projection(c.depth_mode, c.near_plane, c.far_plane, c.fovy_degrees, static_cast<double>(c.width) / c.height);
+    if (c.layout == SceneLayout::THIN_CARD) {
+        const double d = c.wall_distance;
+        objects_ = {OBJECT_WALL, OBJECT_CARD};
+        shapes_[OBJECT_WALL] = {Shape::Plane, glm::dvec3(kWallHalf * d, 0.0, kWallHalf * d), 0.0};
+        shapes_[OBJECT_CARD] = {Shape::Plane, glm::dvec3(kCardHalfAlong * d, 0.0, kCardHalfAcross * d), 0.0};
+    } else {
+        for (int32_t id = 0; id < OBJECT_COUNT; ++id) {
+            objects_.push_back(id);
+            shapes_[id] = object_shape(id);
+        }
+    }
 }
 
-CameraPose Scene::camera(int frame) const { return camera_pose(config_.camera_motion ? frame : 0, config_.camera_speed); }
+CameraPose Scene::camera(int frame) const {
+    const SceneConfig& c = config_;
+    if (c.layout == SceneLayout::THIN_CARD) return CameraPose{};  // at the origin, looking down -z
+    const double t = c.camera_motion ? frame : 0;
+    if (c.camera_path == CameraPath::GRAZING)
+        return grazing_camera_pose(t, c.camera_speed, c.fovy_degrees, projection_.aspect, c.grazing_max_angle_degrees);
+    return camera_pose(t, c.camera_speed);
+}
+
+RigidTransform Scene::thin_card_model(int32_t object, int frame) const {
+    const SceneConfig& c = config_;
+    const double angle = c.wall_angle_degrees * kDegree, d = c.wall_distance;
+    RigidTransform x;
+    x.rotation = wall_rotation(angle);
+    x.translation = glm::dvec3(0.0, 0.0, -d);
+    if (object != OBJECT_CARD) return x;
+    const glm::dvec3 normal = x.rotation[1], along = x.rotation[0];
+    // The central ray (0, 0, -1) meets the plane n.(p - p0) = g at depth
+    // d - g / cos(angle): a gap of card_gap * d along that ray needs
+    // g = card_gap * d * cos(angle).  The slide: card_speed_px pixels of the
+    // wall's centre, i.e. footprint / cos(angle) along the wall.
+    const double cos_a = std::cos(angle);
+    const double step = c.card_speed_px * pixel_footprint(d) / cos_a;
+    // The card's trailing (camera-side) edge crosses the wall's centre at
+    // frame 2, so the wall it reveals lies near the view distance d.
+    x.translation += normal * (c.card_gap * d * cos_a) + along * (kCardHalfAlong * d + step * (frame - 2));
+    return x;
+}
 
 glm::dmat4 Scene::view_proj(int frame) const { return projection_.matrix * camera(frame).view_matrix(); }
 
 RigidTransform Scene::model(int32_t object, int frame) const {
+    if (config_.layout == SceneLayout::THIN_CARD) return thin_card_model(object, config_.object_motion ? frame : 0);
     return object_transform(object, config_.object_motion ? frame : 0, config_.object_speed);
 }
 
@@ -72,6 +133,24 @@ glm::dvec2 Scene::jitter(int frame) const {
 
 double Scene::pixel_footprint(double d) const { return 2.0 * d * projection_.tan_half_fovy / config_.height; }
 
+bool Scene::near_other_object(int32_t object, const FrameState& st, const glm::dvec3& world, double distance) const {
+    for (int32_t other : objects_) {
+        if (other == object) continue;
+        if (shape_distance(shapes_[other], st.models[other].to_object(world)) < distance) return true;
+    }
+    return false;
+}
+
+float Scene::stored_depth(double d) const {
+    if (config_.depth_mode == RRC_DEPTH_MODE_LINEAR) return static_cast<float>(d);
+    return static_cast<float>(quantize_ndc(projection_.ndc_z(d)));
+}
+
+float Scene::background_depth() const {
+    if (config_.depth_mode == RRC_DEPTH_MODE_LINEAR) return config_.linear_background;
+    return config_.depth_mode == RRC_DEPTH_MODE_REVERSED ? 0.0f : 1.0f;
+}
+
 double Scene::quantize_ndc(double z) const {
     switch (config_.depth_format) {
         case RRC_DEPTH_FORMAT_UNORM16: return std::nearbyint(z * 65535.0) / 65535.0;
@@ -84,7 +163,7 @@ FrameState Scene::frame_state(int frame) const {
     FrameState st;
     st.frame = frame;
     st.camera = camera(frame);
-    for (int32_t id = 0; id < OBJECT_COUNT; ++id) st.models[id] = model(id, frame);
+    for (int32_t id : objects_) st.models[id] = model(id, frame);
     return st;
 }
 
@@ -97,10 +176,10 @@ Hit Scene::cast(const FrameState& st, double px, double py) const {
     Hit hit;
     hit.direction = cam.basis * dir_view;
     double best = config_.far_plane;  // hits must satisfy near <= d < far
-    for (int32_t id = 0; id < OBJECT_COUNT; ++id) {
+    for (int32_t id : objects_) {
         const RigidTransform& m = st.models[id];
         const glm::dvec3 o = m.to_object(cam.eye), d = m.dir_to_object(hit.direction);
-        const double t = intersect_object(id, o, d, config_.near_plane, best);
+        const double t = intersect_shape(shapes_[id], o, d, config_.near_plane, best);
         if (t >= 0.0) {
             best = t;
             hit.object_id = id;
@@ -158,7 +237,7 @@ Frame Scene::render(int frame, int prev_frame) const {
 
     const FrameState st = frame_state(frame), prev_st = frame_state(prev_frame);
 
-    const float background_depth = linear ? c.linear_background : (c.depth_mode == RRC_DEPTH_MODE_REVERSED ? 0.0f : 1.0f);
+    const float background = background_depth();
     for (int j = 0; j < h; ++j) {
         for (int i = 0; i < w; ++i) {
             const size_t k = static_cast<size_t>(j) * w + i;
@@ -171,7 +250,7 @@ Frame Scene::render(int frame, int prev_frame) const {
             double truth1;
             glm::dvec4 truth4;
             if (hit.object_id == OBJECT_BACKGROUND) {
-                f.depth[k] = background_depth;
+                f.depth[k] = background;
                 f.object_pos[k] = glm::dvec3(0.0);
                 f.linear_depth[k] = INFINITY;
                 // The sky is at infinity: a direction (w = 0) only sees the rotation.
@@ -188,13 +267,8 @@ Frame Scene::render(int frame, int prev_frame) const {
                 // The point's clip w is its planar depth: use the ray parameter (exact).
                 const double d = hit.depth;
                 f.linear_depth[k] = d;
-                double stored;
-                if (linear) {
-                    f.depth[k] = static_cast<float>(d);
-                } else {
-                    f.depth[k] = static_cast<float>(quantize_ndc(projection_.ndc_z(d)));
-                }
-                stored = f.depth[k];
+                f.depth[k] = stored_depth(d);
+                const double stored = f.depth[k];
                 // Move P with its object to the previous frame and project it there.
                 const glm::dvec3 p_prev = prev_st.models[hit.object_id].to_world(hit.object);
                 clip_prev = vp_prev * glm::dvec4(p_prev, 1.0);

@@ -34,6 +34,28 @@
 
 namespace rrc_scene {
 
+// Which camera path a scene follows (SceneConfig::camera_path).
+enum class CameraPath {
+    ORBIT,    // camera_pose: orbits the objects from above (the default)
+    GRAZING,  // grazing_camera_pose: low, the ground up to grazing_max_angle_degrees from its normal
+};
+
+// Which objects a scene holds (SceneConfig::layout).
+enum class SceneLayout {
+    OBJECTS,  // ground, boxes and spheres (objects.h, ids 0 .. OBJECT_COUNT - 1; the default)
+    // A wall (OBJECT_WALL) and a thin card (OBJECT_CARD) in front of it, seen
+    // by a fixed camera at the origin looking down -z at the wall's centre
+    // (0, 0, -wall_distance), the wall's normal wall_angle_degrees from the
+    // view axis (turned about y).  The card is parallel to the wall, card_gap *
+    // wall_distance in front of it along the central ray, and slides along the
+    // wall away from the camera by card_speed_px pixels a frame (at the
+    // wall's centre), so wall pixels it covered are revealed every frame; its
+    // trailing edge crosses the wall's centre at frame 2 (the revealed wall
+    // lies near depth wall_distance).
+    // camera_path, camera_motion, object_speed are ignored.
+    THIN_CARD,
+};
+
 struct SceneConfig {
     int width = 96;
     int height = 64;
@@ -53,6 +75,14 @@ struct SceneConfig {
     double noise_amplitude = 0.2;        // signal = truth + U(-a, a), per component, zero mean
     double invalid_fraction = 0.0;       // fraction of samples (per signal) replaced by NaN/+Inf/-Inf
     uint64_t seed = 1;                   // noise and invalid-sample hash seed
+    // Appended members (tests/support/scene_frames.h builds configs by member order).
+    CameraPath camera_path = CameraPath::ORBIT;
+    double grazing_max_angle_degrees = 85.0;  // GRAZING: the largest angle of the ground from its normal
+    SceneLayout layout = SceneLayout::OBJECTS;
+    double wall_angle_degrees = 0.0;  // THIN_CARD: the wall's normal from the view axis, in [0, 89]
+    double wall_distance = 10.0;      // THIN_CARD: d, the wall centre's view distance
+    double card_gap = 1e-3;           // THIN_CARD: card to wall along the central ray, in units of d
+    double card_speed_px = 2.0;       // THIN_CARD: the card's slide per frame, pixels at the wall's centre
 };
 
 // The first surface a ray meets.
@@ -109,7 +139,7 @@ struct Frame {
 struct FrameState {
     int frame = 0;
     CameraPose camera;
-    RigidTransform models[OBJECT_COUNT];
+    RigidTransform models[OBJECT_ID_COUNT];  // those of the scene's objects() are set
 };
 
 class Scene {
@@ -121,6 +151,10 @@ public:
     const Projection& projection() const { return projection_; }
     int width() const { return config_.width; }
     int height() const { return config_.height; }
+
+    // The ids of the layout's objects, and their shapes.
+    const std::vector<int32_t>& objects() const { return objects_; }
+    const ObjectShape& shape(int32_t object) const { return shapes_[object]; }
 
     CameraPose camera(int frame) const;
     glm::dmat4 view_proj(int frame) const;                  // unjittered, column-major
@@ -139,6 +173,17 @@ public:
     // World size of one pixel at planar depth d (square pixels).
     double pixel_footprint(double d) const;
 
+    // Does a world point lie within `distance` of the surface of any object
+    // but `object`, placed as in `state`?  (The contact rule of false_hits.h
+    // and visibility.h.)
+    bool near_other_object(int32_t object, const FrameState& state, const glm::dvec3& world, double distance) const;
+
+    // The value `depth` holds for a surface at planar depth d (finite):
+    // LINEAR d, else NDC z rounded to the format's grid; both as fp32.  And
+    // the value a background pixel holds.
+    float stored_depth(double d) const;
+    float background_depth() const;
+
     // Object ids of the frame's (jittered) samples only: cheaper than render().
     std::vector<int32_t> object_ids(int frame) const;
 
@@ -152,8 +197,12 @@ public:
     double quantize_ndc(double z) const;
 
 private:
+    RigidTransform thin_card_model(int32_t object, int frame) const;
+
     SceneConfig config_;
     Projection projection_;
+    std::vector<int32_t> objects_;
+    ObjectShape shapes_[OBJECT_ID_COUNT] = {};
 };
 
 // Linear (planar) depth from NDC z as in docs/CONVENTIONS.md:

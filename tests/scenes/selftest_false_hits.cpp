@@ -22,10 +22,7 @@ std::vector<uint8_t> all_hits(const Frame& f, bool include_background) {
 
 TEST(FalseHits, StaticSceneHasNoFalseHitsButHasContacts) {
     for (bool jitter : {false, true}) {
-        SceneConfig c;
-        c.camera_motion = false;
-        c.object_motion = false;
-        c.jitter = jitter;
+        const SceneConfig c = static_config(jitter);
         Scene s(c);
         const Frame f = s.render(3);
         const std::vector<uint8_t> mask = all_hits(f, false);
@@ -60,10 +57,7 @@ TEST(FalseHits, DisocclusionBehindMovingSphereIsFalseHit) {
     // Static camera without jitter: for static surfaces the previous frame's
     // ray through P is the pixel's own ray, so a pixel whose previous sample
     // was the moving sphere and whose current one is not was occluded then.
-    SceneConfig c;
-    c.camera_motion = false;
-    c.object_speed = 6.0;  // a wide disoccluded band (about 3 pixels)
-    Scene s(c);
+    Scene s(disocclusion_config());
     const int t = 2;
     const Frame f = s.render(t);
     const std::vector<int32_t> prev_ids = s.object_ids(t - 1);
@@ -85,11 +79,7 @@ TEST(FalseHits, EpsilonTestMaskIsMostlyCorrect) {
     // A tight epsilon test on the scene's own data must hit most visible
     // pixels and almost never hit falsely; an absurd epsilon hits falsely.
     for (bool jitter : {false, true}) {
-        SceneConfig c;
-        c.depth_mode = RRC_DEPTH_MODE_REVERSED;
-        c.jitter = jitter;
-        c.object_speed = 6.0;
-        Scene s(c);
+        Scene s(fast_sphere_config(jitter));
         const int t = 2;
         const Frame prev = s.render(t - 1), cur = s.render(t);
         long visible = 0;

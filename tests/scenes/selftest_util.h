@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scenes/bilinear.h"
 #include "scenes/scene.h"
 
 namespace rrc_scene_test {
@@ -23,6 +24,34 @@ inline std::vector<ModeCase> all_modes() {
             {"reversed", RRC_DEPTH_MODE_REVERSED, 100.0},
             {"reversed_inf", RRC_DEPTH_MODE_REVERSED, INFINITY},
             {"linear", RRC_DEPTH_MODE_LINEAR, 100.0}};
+}
+
+// The default scene with nothing moving (its previous frame is itself).
+inline rrc_scene::SceneConfig static_config(bool jitter) {
+    rrc_scene::SceneConfig c;
+    c.camera_motion = false;
+    c.object_motion = false;
+    c.jitter = jitter;
+    return c;
+}
+
+// A fixed camera and the moving sphere six times as fast: a disoccluded band
+// about 3 pixels wide behind it every frame.
+inline rrc_scene::SceneConfig disocclusion_config() {
+    rrc_scene::SceneConfig c;
+    c.camera_motion = false;
+    c.object_speed = 6.0;
+    return c;
+}
+
+// Everything moving, the sphere six times as fast, reversed-Z: wide
+// disocclusions for the evaluators' mask tests.
+inline rrc_scene::SceneConfig fast_sphere_config(bool jitter) {
+    rrc_scene::SceneConfig c;
+    c.depth_mode = RRC_DEPTH_MODE_REVERSED;
+    c.jitter = jitter;
+    c.object_speed = 6.0;
+    return c;
 }
 
 inline rrc_scene::SceneConfig config_for(const ModeCase& m) {
@@ -72,17 +101,14 @@ inline std::vector<uint8_t> epsilon_test_mask(const rrc_scene::Frame& cur, const
             if (!(c[3] > 0.0f)) continue;
             const glm::dvec2 uv = clip_uv(c);
             if (!(uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0)) continue;
-            const double px = uv.x * w - cur.prev_jitter[0] - 0.5, py = uv.y * h - cur.prev_jitter[1] - 0.5;
-            const double x0 = std::floor(px), y0 = std::floor(py), fx = px - x0, fy = py - y0;
-            const double wt[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+            const rrc_scene::BilinearTaps taps =
+                rrc_scene::bilinear_taps(uv * glm::dvec2(w, h), glm::dvec2(cur.prev_jitter[0], cur.prev_jitter[1]), w, h);
             double fetched = 0.0;
             bool any_background = false;
             for (int t = 0; t < 4; ++t) {
-                const int tx = std::min(std::max(int(x0) + (t & 1), 0), w - 1);
-                const int ty = std::min(std::max(int(y0) + (t >> 1), 0), h - 1);
-                const float d = prev.depth[static_cast<size_t>(ty) * w + tx];
+                const float d = prev.depth[taps.index(t, w)];
                 any_background |= is_background(prev.depth_mode, d);
-                fetched += wt[t] * d;
+                fetched += taps.weight[t] * d;
             }
             if (any_background) continue;
             const double diff = fetched - double(c[2]) / c[3];

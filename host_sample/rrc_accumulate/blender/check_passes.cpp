@@ -4,6 +4,7 @@
 //
 //   rrc-blender-check DIR [OTHER_DIR]
 //   rrc-blender-check DIR --hits OUT_PATTERN
+//   rrc-blender-check --hits IN_PATTERN OUT_PATTERN FIRST-LAST
 //
 // DIR holds frame_0001.exr... and scene.json from render_check_scene.py.
 // With OTHER_DIR (the same scene rendered with another sample count) it also
@@ -11,8 +12,14 @@
 // renders: equal Depth at 1 and 64 samples means Depth comes from one sample.
 // With --hits and rrc-accumulate's outputs of DIR (OUT_PATTERN, printf-style)
 // it counts the hits whose history comes from another object, by Blender's
-// object index: the nearest previous texel's (false) or any bilinear tap's
-// with weight > 1e-3 (strict); hits on the moving sphere are reported too.
+// object index (object_index_hits.h, which rrc_offline_test shares): the
+// nearest previous texel's (nearest) or any bilinear tap's of non-zero
+// weight (object-index false hits; taps below kBorderlineTapWeight are
+// counted apart); hits on the moving sphere are reported too.  The second
+// --hits form needs no scene.json: any Blender sequence (IN_PATTERN) with
+// its IndexOB pass, e.g. tests/data/offline/blender_cycles_%04d.exr.
+#include "object_index_hits.h"
+
 #include <exr_io.h>
 
 #include <glm/glm.hpp>
@@ -115,62 +122,67 @@ struct Stat {
     double mean() const { return n ? sum / n : 0.0; }
 };
 
+std::string frame_name(const std::string& pattern, int f) {
+    char name[1024];
+    std::snprintf(name, sizeof name, pattern.c_str(), f);
+    return name;
+}
+
+// Frames first+1..last of IN_PATTERN against rrc-accumulate's masks in
+// OUT_PATTERN (frame `first` has no previous frame: all misses).
+int count_hits(const std::string& in_pattern, const std::string& out_pattern, int first, int last) {
+    const std::string L = "ViewLayer.";
+    auto ids_of = [&](const rrc_exr::ExrImage& img) {
+        const std::vector<float>& v = img.channels.at(L + "IndexOB.X");
+        std::vector<uint32_t> ids(v.size());
+        for (std::size_t k = 0; k < v.size(); ++k) ids[k] = uint32_t(std::lround(v[k]));
+        return ids;
+    };
+    rrc_cli::ObjectIndexHits total;
+    long sphere = 0, sphere_hits = 0;
+    for (int f = first + 1; f <= last; ++f) {
+        const rrc_exr::ExrImage cur = rrc_exr::read_exr(frame_name(in_pattern, f));
+        const rrc_exr::ExrImage prev = rrc_exr::read_exr(frame_name(in_pattern, f - 1));
+        const std::vector<float> mask = rrc_exr::read_exr(frame_name(out_pattern, f)).channels.at("rrc.mask");
+        const std::vector<uint32_t> ids = ids_of(cur);
+        total += rrc_cli::count_object_index_hits(cur.width, cur.height, mask, ids, ids_of(prev), cur.channels.at(L + "Vector.X"),
+                                                  cur.channels.at(L + "Vector.Y"));
+        for (std::size_t k = 0; k < mask.size(); ++k) {
+            if (int(mask[k]) & 4 || ids[k] != 3) continue;  // index 3: the moving sphere of render_check_scene.py
+            ++sphere;
+            sphere_hits += int(mask[k]) & 1;
+        }
+    }
+    auto pct = [](int64_t a, int64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
+    std::printf(
+        "frames %d-%d: hit ratio %.2f%% (%lld of %lld), object-index false hits %.3f%% (%lld; %lld more only at taps of weight <= %g), "
+        "nearest-texel false hits %.3f%% (%lld), moving sphere hit ratio %.2f%%\n",
+        first + 1, last, pct(total.hits, total.tested), (long long)total.hits, (long long)total.tested, pct(total.foreign, total.hits),
+        (long long)total.foreign, (long long)total.borderline, double(rrc_cli::kBorderlineTapWeight),
+        pct(total.nearest_foreign, total.hits), (long long)total.nearest_foreign, pct(sphere_hits, sphere));
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: rrc-blender-check DIR [OTHER_DIR]\n");
+        std::fprintf(stderr,
+                     "usage: rrc-blender-check DIR [OTHER_DIR] | DIR --hits OUT_PATTERN | --hits IN_PATTERN OUT_PATTERN FIRST-LAST\n");
         return 2;
+    }
+    if (std::string(argv[1]) == "--hits") {
+        int first = 0, last = -1;
+        if (argc != 5 || std::sscanf(argv[4], "%d-%d", &first, &last) != 2 || first < 0 || last <= first) {
+            std::fprintf(stderr, "usage: rrc-blender-check --hits IN_PATTERN OUT_PATTERN FIRST-LAST (two frames or more)\n");
+            return 2;
+        }
+        return count_hits(argv[2], argv[3], first, last);
     }
     const std::string dir = argv[1];
     const Scene s = load_scene(dir);
     const std::string L = "ViewLayer.";
-    if (argc > 3 && std::string(argv[2]) == "--hits") {
-        long hits = 0, tested = 0, false_hits = 0, strict = 0, sphere = 0, sphere_hits = 0;
-        for (int f = 2; f <= s.count; ++f) {
-            char name[64], out[1024];
-            std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
-            const rrc_exr::ExrImage cur = rrc_exr::read_exr(dir + name);
-            std::snprintf(name, sizeof name, "/frame_%04d.exr", f - 1);
-            const rrc_exr::ExrImage prev = rrc_exr::read_exr(dir + name);
-            std::snprintf(out, sizeof out, argv[3], f);
-            const auto& mask = rrc_exr::read_exr(out).channels.at("rrc.mask");
-            const auto &ID = cur.channels.at(L + "IndexOB.X"), &PID = prev.channels.at(L + "IndexOB.X");
-            const auto &VX = cur.channels.at(L + "Vector.X"), &VY = cur.channels.at(L + "Vector.Y");
-            for (int j = 0; j < s.H; ++j)
-                for (int i = 0; i < s.W; ++i) {
-                    const std::size_t k = std::size_t(j) * s.W + i;
-                    const int m = int(mask[k]);
-                    if (m & 4) continue;  // background
-                    ++tested;
-                    const int id = int(std::lround(ID[k]));
-                    sphere += id == 3;
-                    if (!(m & 1)) continue;
-                    ++hits;
-                    sphere_hits += id == 3;
-                    const double qx = i + 0.5 + VX[k], qy = j + 0.5 - VY[k];
-                    const int nx = std::clamp(int(std::floor(qx)), 0, s.W - 1), ny = std::clamp(int(std::floor(qy)), 0, s.H - 1);
-                    const bool wrong = int(std::lround(PID[std::size_t(ny) * s.W + nx])) != id;
-                    bool wrong_tap = false;
-                    const double px = qx - 0.5, py = qy - 0.5;
-                    const int x0 = int(std::floor(px)), y0 = int(std::floor(py));
-                    const double fx = px - x0, fy = py - y0;
-                    for (int t = 0; t < 4; ++t) {
-                        const double w = ((t & 1) ? fx : 1 - fx) * ((t >> 1) ? fy : 1 - fy);
-                        const int x = std::clamp(x0 + (t & 1), 0, s.W - 1), y = std::clamp(y0 + (t >> 1), 0, s.H - 1);
-                        wrong_tap = wrong_tap || (w > 1e-3 && int(std::lround(PID[std::size_t(y) * s.W + x])) != id);
-                    }
-                    false_hits += wrong;
-                    strict += wrong || wrong_tap;
-                }
-        }
-        std::printf(
-            "frames 2-%d: hit ratio %.2f%% (%ld of %ld), false hits %.3f%%, strict false hits %.3f%% "
-            "(object index), moving sphere hit ratio %.2f%%\n",
-            s.count, 100.0 * hits / tested, hits, tested, 100.0 * false_hits / std::max(1L, hits), 100.0 * strict / std::max(1L, hits),
-            100.0 * sphere_hits / std::max(1L, sphere));
-        return 0;
-    }
+    if (argc > 3 && std::string(argv[2]) == "--hits") return count_hits(dir + "/frame_%04d.exr", argv[3], 1, s.count);
     for (int f = 1; f <= s.count; ++f) {
         char name[64];
         std::snprintf(name, sizeof name, "/frame_%04d.exr", f);

@@ -14,6 +14,7 @@ layout(location = 0) out vec4 v_prev_clip;
 layout(location = 1) out vec3 v_world;
 layout(location = 2) out vec3 v_normal;
 layout(location = 3) flat out uint v_material;
+layout(location = 4) flat out uint v_object;
 
 void main() {
     ObjectData o = objects[pc.object];
@@ -24,4 +25,5 @@ void main() {
     v_world = world.xyz;
     v_normal = mat3(o.model) * in_normal;  // rigid motions and uniform scales only
     v_material = o.material.x;
+    v_object = pc.object;
 }
