@@ -98,7 +98,9 @@
 // o = overhang beyond the outermost texel centres, S = slope.
 #define RRC_ADAPTIVE_GAIN 2.0         // 4x the Taylor residual f(1-f) z''/2: margin for grid motion, kinks, higher orders
 #define RRC_ADAPTIVE_STEP_RATIO 0.5   // a step: a neighbouring second difference of the other sign, at least this share of it
-#define RRC_ADAPTIVE_CAP 0.04         // of |z - z_inf|: 1% of the linear depth on infinite projections
+#define RRC_ADAPTIVE_CAP 0.04         // of |z - z_inf|: 4% of the linear depth on infinite projections
+#define RRC_ADAPTIVE_POSITION_ULPS 8.0  // the kernel's fp32 error of q, in units of 2^-24 * size texels (times the slope)
+#define RRC_ADAPTIVE_CAMERA_ULPS 4.0    // CAMERA: fp32 error of e = (M p).z / w, in units of 2^-24 * sum |M_2k p_k| / w
 #define RRC_ADAPTIVE_FLOOR_ULPS 4.0   // NDC tests: eps_paper is at least this many ulp(e), the kernel's own fp32 noise
 #define RRC_ADAPTIVE_NOISE_ULPS 4.0   // bound of fp32 storage + arithmetic error of a second difference
 #define RRC_ADAPTIVE_NOISE_STEPS 2.0  // bound of UNORM quantisation error of a second difference

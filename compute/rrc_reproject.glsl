@@ -127,21 +127,19 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // column/row).  x: the centre's second difference where it is curvature, less
 // its fp32 and quantisation noise; 0 for a step, on a plane (within noise),
 // on the image's first and last column/row (no second difference there) and
-// for non-finite taps.  A step is a second difference larger than the
-// smaller one-sided difference whose neighbour on either side has the other
-// sign and at least STEP_RATIO of its size (+h, -h: curvature and creases
-// keep one sign).  y: the slope for the clamped fetch beyond the outermost
-// texel centres (the smaller one-sided difference; at the image edge, the one
-// that exists).
+// for non-finite taps.  A step: a neighbouring second difference of the other
+// sign and at least STEP_RATIO of its size (+h next to -h; curvature and
+// creases keep one sign).  y: the slope, for the clamped fetch beyond the
+// outermost texel centres and the fp32 position term (the smaller one-sided
+// difference; at the image edge, the one that exists).
 vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float step) {
     float dp = b - c, dm = c - a, s = dp - dm;
     float sm = dm - (a - a2), sp = (b2 - b) - dp;  // the neighbours' second differences
     float noise = RRC_ADAPTIVE_NOISE_ULPS * rrc_ulp(max(max(abs(a), abs(b)), abs(c))) + RRC_ADAPTIVE_NOISE_STEPS * step;
-    bool candidate = abs(s) > min(abs(dp), abs(dm));
     bool opposite = (sm * s < 0.0 && abs(sm) >= RRC_ADAPTIVE_STEP_RATIO * abs(s)) || (sp * s < 0.0 && abs(sp) >= RRC_ADAPTIVE_STEP_RATIO * abs(s));
     bool finite = rrc_finite4(vec4(s, sm, sp, 0.0));
     float slope = edge ? max(abs(dp), abs(dm)) : min(abs(dp), abs(dm));
-    return finite ? vec2(edge || (candidate && opposite) ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
+    return finite ? vec2(edge || opposite ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
 }
 
 // The tolerance the ADAPTIVE test adds to the paper's epsilon at pixel px
@@ -165,6 +163,8 @@ float rrc_adaptive_widening(ivec2 px, ivec2 size, float d, vec2 q, float e) {
     vec2 overhang = max(max(-p, p - vec2(hi)), vec2(0.0));  // beyond the outermost texel centres: clamped taps
     float curvature = max(ax.x, ay.x);                        // one estimate for both axes: a step-flagged axis borrows the other's
     float widening = RRC_ADAPTIVE_GAIN * (dot(f * (1.0 - f), vec2(curvature)) + dot(overhang, vec2(ax.y, ay.y)));
+    // The kernel's own fp32 error of q (uv_prev's rounding, ~2^-24 of the image) times the slope.
+    widening += RRC_ADAPTIVE_POSITION_ULPS * exp2(-24.0) * dot(vec2(size), vec2(ax.y, ay.y));
     if (DEPTH_MODE == RRC_DEPTH_MODE_LINEAR) return min(widening * e * e, RRC_ADAPTIVE_CAP * e);  // |dd| = d^2 |d(1/d)|
     float z_inf = DEPTH_MODE == RRC_DEPTH_MODE_STANDARD ? 1.0 : 0.0;
     return min(widening, RRC_ADAPTIVE_CAP * abs(e - z_inf));
@@ -190,6 +190,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     vec2 uv_s = (vec2(px) + 0.5 + pc.jitter.xy) / fsize;
     vec2 uv_prev;
     float expected;  // in depth-mode units (linear for the relative tests)
+    float expected_err = 0.0;  // ADAPTIVE, CAMERA on NDC depth: a bound on the fp32 error of `expected`
     float w = 1.0;
     if (SOURCE == RRC_REPROJECTION_MOTION) {
         vec2 m = rrc_load_reprojection(px).xy;
@@ -213,7 +214,10 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
                 float a = dot(pc.inv_row3, vec4(ndc, 0.0, 1.0));
                 c = pc.M * vec4(ndc * d, (1.0 - d * a) / pc.inv_row3.z, d);
             } else {
-                c = pc.M * vec4(ndc, d, 1.0);
+                vec4 p = vec4(ndc, d, 1.0);
+                c = pc.M * p;
+                // (M p).z sums four products that may cancel (reversed depth, finite far).
+                if (ADAPTIVE) expected_err = RRC_ADAPTIVE_CAMERA_ULPS * exp2(-24.0) * dot(abs(vec4(pc.M[0][2], pc.M[1][2], pc.M[2][2], pc.M[3][2])), abs(p)) / abs(c.w);
             }
         }
         w = c.w;
@@ -251,7 +255,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     if (ADAPTIVE) {
         // NDC tests: never below the kernel's own fp32 noise (UNORM24 near z = 1 has ulp ~ step).
         if (EPS_KIND != RRC_EPS_RELATIVE) eps = max(eps, RRC_ADAPTIVE_FLOOR_ULPS * rrc_ulp(expected));
-        eps += rrc_adaptive_widening(px, size, d, q, expected);
+        eps += rrc_adaptive_widening(px, size, d, q, expected) + expected_err;
     }
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
     bool same_object = true;

@@ -60,14 +60,12 @@ Axis axis(const Params& p, double a2, double a, double c, double b, double b2, b
     if (!std::isfinite(s) || !std::isfinite(sm) || !std::isfinite(sp)) return r;
     const double slope = edge ? std::max(std::fabs(dp), std::fabs(dm)) : std::min(std::fabs(dp), std::fabs(dm));
     r.slope = {slope, std::max(slope - err, 0.0), slope + err};
-    // (3) a step candidate is larger than the smaller one-sided difference; it
-    // is a step when a neighbour's second difference has the other sign and at
-    // least half its size (+h, -h: a step's signature; curvature and creases keep one sign).
+    // A step: a neighbour's second difference has the other sign and at least
+    // STEP_RATIO of its size (+h, -h: a step's signature; curvature and creases keep one sign).
     auto is_step = [&](double e) {
         const double as = std::fabs(s) + e;
-        const bool candidate = std::fabs(s) - e > std::min(std::fabs(dp), std::fabs(dm)) + e;
         auto opposite = [&](double n) { return n * s < 0.0 && std::fabs(n) - e >= RRC_ADAPTIVE_STEP_RATIO * as; };
-        return candidate && (opposite(sm) || opposite(sp));
+        return opposite(sm) || opposite(sp);
     };
     const bool step_sure = is_step(err), step_nominal = is_step(0.0), step_maybe = is_step(-err);
     const double smooth = std::max(std::fabs(s) - noise, 0.0), hi = std::max(std::fabs(s) - noise + err, 0.0);
@@ -103,9 +101,14 @@ Range adaptive_widening(const Params& p, const CurrentPixel& cur, Bounded qx, Bo
     };
     const Range bx = b(qx), by = b(qy), ox = over(qx, W), oy = over(qy, H);
     const double gain = RRC_ADAPTIVE_GAIN, rel = 8.0 * kU * scale;  // fp32 products and sums
-    const double w = gain * ((bx.value + by.value) * c.value + ox.value * ax.slope.value + oy.value * ay.slope.value);
-    const double w_lo = gain * ((bx.lo + by.lo) * c.lo + ox.lo * ax.slope.lo + oy.lo * ay.slope.lo) * (1.0 - rel);
-    const double w_hi = gain * ((bx.hi + by.hi) * c.hi + ox.hi * ax.slope.hi + oy.hi * ay.slope.hi) * (1.0 + rel);
+    // The kernel's own fp32 error of q times the slope.
+    const double pos = RRC_ADAPTIVE_POSITION_ULPS * 0x1p-24, px = pos * W, py = pos * H;
+    const double w = gain * ((bx.value + by.value) * c.value + ox.value * ax.slope.value + oy.value * ay.slope.value) +
+                     px * ax.slope.value + py * ay.slope.value;
+    const double w_lo =
+        (gain * ((bx.lo + by.lo) * c.lo + ox.lo * ax.slope.lo + oy.lo * ay.slope.lo) + px * ax.slope.lo + py * ay.slope.lo) * (1.0 - rel);
+    const double w_hi =
+        (gain * ((bx.hi + by.hi) * c.hi + ox.hi * ax.slope.hi + oy.hi * ay.slope.hi) + px * ax.slope.hi + py * ay.slope.hi) * (1.0 + rel);
     if (p.mode == RRC_DEPTH_MODE_LINEAR) {  // from 1/d back to d: |dd| = d^2 |d(1/d)|
         const double e2 = e.v * e.v, de2 = 2.0 * std::fabs(e.v) * e.err * scale;
         const double cap = RRC_ADAPTIVE_CAP * std::fabs(e.v), dcap = RRC_ADAPTIVE_CAP * (e.err * scale) + rel * cap;
@@ -141,8 +144,9 @@ HitTest hit_test(const Params& p, const std::vector<float>& prev_depth, const fl
     }
     if (p.adaptive) {
         const Range w = adaptive_widening(p, cur, t.qx, t.qy, r.e, scale);
-        const double add = kU * (eps.hi + w.hi) * scale;  // the fp32 sum eps + widening
-        eps = {eps.value + w.value, eps.lo + w.lo - add, eps.hi + w.hi + add};
+        const double c = r.camera_err, dc = 8.0 * kU * c * scale;  // CAMERA: the allowance for e's own fp32 error
+        const double add = kU * (eps.hi + w.hi + c) * scale;       // the fp32 sums
+        eps = {eps.value + w.value + c, eps.lo + w.lo + c - dc - add, eps.hi + w.hi + c + dc + add};
     }
     double ad = std::fabs(diff.v), dd = diff.err * scale;
 

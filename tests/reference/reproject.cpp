@@ -1,5 +1,7 @@
 #include "reproject.h"
 
+#include "rrc_kernel_interface.h"  // RRC_ADAPTIVE_CAMERA_ULPS
+
 #include <cmath>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -89,7 +91,11 @@ Reprojected reproject(const Params& p, const rrc_frame_desc& frame, const Camera
     Bounded nx = uv_x * two - one, ny = uv_y * two - one;
     if (p.mode != RRC_DEPTH_MODE_LINEAR) {
         Bounded v[4] = {nx, ny, exact(d), one};
-        return from_clip(p, transform(cam.m, v));
+        Reprojected r = from_clip(p, transform(cam.m, v));
+        double terms = 0.0;
+        for (int k = 0; k < 4; ++k) terms += std::fabs((double)(float)cam.m[k][2] * v[k].v);
+        r.camera_err = RRC_ADAPTIVE_CAMERA_ULPS * 0x1p-24 * terms / std::fabs(r.w.v);
+        return r;
     }
     // LINEAR: the point of the pixel's ray whose clip w is d.  Its world
     // position has w = r . c_cur = 1, which fixes the clip z.

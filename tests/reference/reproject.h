@@ -24,6 +24,9 @@ struct Reprojected {
     Bounded uv_x, uv_y;
     Bounded e;  // expected previous depth (linear for LINEAR and plain MOTION)
     Bounded w;  // clip w of the previous position (1 for motion vectors)
+    // CAMERA on NDC depth: the ADAPTIVE test's allowance for the fp32 error of
+    // e (docs/CONVENTIONS.md), CAMERA_ULPS * 2^-24 * sum_k |M_2k v_k| / |w|; else 0.
+    double camera_err = 0.0;
 };
 
 // Whether the pixel's per-pixel reprojection data are all finite.

@@ -1,6 +1,6 @@
 // The ADAPTIVE test of docs/CONVENTIONS.md on hand-made PREV_CLIP frames whose
 // widening can be worked out by hand: a parabola in x (curvature), a plane
-// (none), a card step (none) and object ids.
+// (only the fp32 position term), a card step (none) and object ids.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +13,9 @@ using rrc_ref_test::Scene;
 namespace {
 
 constexpr double kK = 0x1p-10;  // curvature: D(x) = 0.5 + k x^2, exact in fp32
+
+// The fp32 position term on an 8-wide frame with slope `sx` along x and none along y.
+double position_term(double sx) { return 8 * 0x1p-24 * 8 * sx; }
 
 // 8x3 STANDARD FLOAT32 frame whose previous positions are half a texel to the
 // right (fx = 0.5, fy = 0) and whose expected depth is `e(i)`; the previous
@@ -55,8 +58,8 @@ TEST(Adaptive, CurvatureWidensByTheResidualBound) {
             EXPECT_EQ(r.mask[k], 0) << "the paper's epsilon misses the curved surface";
         } else {
             // s = 2k on x (its neighbours too: no step), 0 on y; noise 4 ulp(D5) = 2^-22;
-            // W = GAIN * (0.25 + 0) * (2k - 2^-22).
-            EXPECT_DOUBLE_EQ(r.eps[k], paper + 2.0 * 0.25 * (2 * kK - 0x1p-22));
+            // W = GAIN * (0.25 + 0) * (2k - 2^-22), plus the position term at slope min(7k, 9k).
+            EXPECT_DOUBLE_EQ(r.eps[k], paper + 2.0 * 0.25 * (2 * kK - 0x1p-22) + position_term(7 * kK));
             EXPECT_EQ(r.mask[k], RRC_MASK_HIT);
         }
     }
@@ -69,14 +72,15 @@ TEST(Adaptive, PlaneKeepsThePapersEpsilon) {
     FrameResult r = run(s);
     for (int i = 0; i < 7; ++i) {  // column 7's fetch clamps at the edge
         const size_t k = s.at(i, 1);
-        EXPECT_EQ(r.eps[k], 4 * rrc_ref::ulp_fp32(plane_at_half(i))) << i;
+        // The plane's slope is 2^-8 at every column (the first: its one existing difference).
+        EXPECT_DOUBLE_EQ(r.eps[k], 4 * rrc_ref::ulp_fp32(plane_at_half(i)) + position_term(0x1p-8)) << i;
         EXPECT_EQ(r.mask[k], RRC_MASK_HIT) << i;
     }
     // Beyond the last texel centre the taps clamp: the fetch is off by the
     // slope times the overhang (0.5 texel), and the slope term covers it.
     const size_t k = s.at(7, 1);
     EXPECT_DOUBLE_EQ(r.diff[k], -0x1p-8 * 0.5);
-    EXPECT_DOUBLE_EQ(r.eps[k], 4 * rrc_ref::ulp_fp32(plane_at_half(7)) + 2.0 * 0.5 * 0x1p-8);
+    EXPECT_DOUBLE_EQ(r.eps[k], 4 * rrc_ref::ulp_fp32(plane_at_half(7)) + 2.0 * 0.5 * 0x1p-8 + position_term(0x1p-8));
     EXPECT_EQ(r.mask[k], RRC_MASK_HIT);
 }
 
@@ -88,7 +92,7 @@ TEST(Adaptive, StepIsNotWidened) {
     Scene s = shifted(card, wall, RRC_DEPTH_TEST_DEFAULT);
     FrameResult r = run(s);
     const size_t k = s.at(4, 1);          // taps 4 (wall) and 5 (card): a step from both sides
-    EXPECT_DOUBLE_EQ(r.eps[k], 0x1p-22);  // 4 ulp of e = 0.5, the paper's epsilon
+    EXPECT_DOUBLE_EQ(r.eps[k], 0x1p-22);  // 4 ulp of e = 0.5, the paper's epsilon (slope min(2^-8, 0) = 0: no position term)
     EXPECT_EQ(r.mask[k], 0);
     const size_t k5 = s.at(5, 1);  // on the card, taps 5 and 6 on the card, expects the wall
     EXPECT_EQ(r.mask[k5], 0);

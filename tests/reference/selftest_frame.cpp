@@ -46,9 +46,10 @@ TEST(Frame, StaticIdentityCameraHitsEverywhere) {
         EXPECT_EQ(r.near_threshold[k], 0) << k;     // UNORM16 eps is far above fp32 noise
         EXPECT_EQ(r.near_nearest_edge[k], 0) << k;  // q at texel centres
         EXPECT_NEAR(r.diff[k], 0.0, 1e-12) << k;
-        // The paper's epsilon: the ADAPTIVE default adds nothing on a plane
-        // (only the image edge's slope term times a double-rounding overhang, ~1e-18).
-        EXPECT_NEAR(r.eps[k], 1.0 / 65535.0, 1e-15) << k;
+        // The paper's epsilon plus, under the ADAPTIVE default, only the fp32
+        // allowances on this plane: the position term POSITION_ULPS 2^-24 (W |dz/dx| + H |dz/dy|)
+        // and CAMERA's CAMERA_ULPS 2^-24 |z| (an identity M).
+        EXPECT_NEAR(r.eps[k], 1.0 / 65535.0 + 8 * 0x1p-24 * (8 * 0.01 + 6 * 0.02) + 4 * 0x1p-24 * st.s.depth[k], 1e-9) << k;
     }
     EXPECT_EQ(r.stats.hits, st.s.size());
     EXPECT_EQ(r.stats.misses, 0u);
@@ -59,7 +60,9 @@ TEST(Frame, StaticFloat32DepthHitsToo) {
     FrameResult r = st.s.run(st.prev());
     for (size_t k = 0; k < st.s.size(); ++k) {
         EXPECT_EQ(r.mask[k], RRC_MASK_HIT) << k;
-        EXPECT_NEAR(r.eps[k], 4 * rrc_ref::ulp_fp32(st.s.depth[k]), 1e-15) << k;  // as above
+        EXPECT_NEAR(r.eps[k], 4 * rrc_ref::ulp_fp32(st.s.depth[k]) + 8 * 0x1p-24 * (8 * 0.01 + 6 * 0.02) + 4 * 0x1p-24 * st.s.depth[k],
+                    1e-9)
+            << k;  // as above
     }
 }
 
