@@ -26,6 +26,7 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
+    bool object_id = true;                   // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;
     bool quiet = false;
     bool write_images = true;  // PNG/EXR per frame; the summary is always written

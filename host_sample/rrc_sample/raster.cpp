@@ -298,24 +298,27 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     g_.motion = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, colour, "gbuffer motion");
     g_.normal = gpu.create_image(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, colour, "gbuffer normal+material");
     g_.position = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, colour, "gbuffer position");
-    const Image* colours[4] = {&g_.prev_clip, &g_.motion, &g_.normal, &g_.position};
+    g_.object_id = gpu.create_image(VK_FORMAT_R32_UINT, w, h, colour, "gbuffer object id");
+    constexpr uint32_t kColours = 5;
+    const Image* colours[kColours] = {&g_.prev_clip, &g_.motion, &g_.normal, &g_.position, &g_.object_id};
 
     std::vector<VkAttachmentDescription> a;
     for (const Image* c : colours) a.push_back(cleared_attachment(c->format));
     a.push_back(cleared_attachment(VK_FORMAT_D32_SFLOAT));
-    VkAttachmentReference refs[4], dref{4, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-    for (uint32_t i = 0; i < 4; ++i) refs[i] = {i, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference refs[kColours], dref{kColours, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    for (uint32_t i = 0; i < kColours; ++i) refs[i] = {i, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkSubpassDescription sub{};
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 4;
+    sub.colorAttachmentCount = kColours;
     sub.pColorAttachments = refs;
     sub.pDepthStencilAttachment = &dref;
     pass_ = make_render_pass(gpu, a, sub);
 
-    VkImageView views[5] = {g_.prev_clip.view, g_.motion.view, g_.normal.view, g_.position.view, g_.depth.view};
+    VkImageView views[kColours + 1] = {g_.prev_clip.view, g_.motion.view,    g_.normal.view,
+                                       g_.position.view,  g_.object_id.view, g_.depth.view};
     VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fci.renderPass = pass_;
-    fci.attachmentCount = 5;
+    fci.attachmentCount = kColours + 1;
     fci.pAttachments = views;
     fci.width = w;
     fci.height = h;
@@ -323,9 +326,10 @@ GBufferPass::GBufferPass(Gpu& gpu, const GpuScene& scene, uint32_t w, uint32_t h
     vk_check(vkCreateFramebuffer(gpu.device, &fci, nullptr, &framebuffer_), "vkCreateFramebuffer");
 
     layout_ = scene_pipeline_layout(gpu, scene, 4);
+    // Blending stays off on every attachment (the object id's is an integer format).
     PipelineDesc d{
-        pass_, layout_, rrc_sample_gbuffer_vert, sizeof rrc_sample_gbuffer_vert, rrc_sample_gbuffer_frag, sizeof rrc_sample_gbuffer_frag,
-        4};
+        pass_,   layout_, rrc_sample_gbuffer_vert, sizeof rrc_sample_gbuffer_vert, rrc_sample_gbuffer_frag, sizeof rrc_sample_gbuffer_frag,
+        kColours};
     d.depth_compare = VK_COMPARE_OP_GREATER;  // reversed z
     pipeline_ = make_pipeline(gpu, d);
 }
@@ -335,18 +339,19 @@ GBufferPass::~GBufferPass() {
     vkDestroyPipelineLayout(gpu_.device, layout_, nullptr);
     vkDestroyFramebuffer(gpu_.device, framebuffer_, nullptr);
     vkDestroyRenderPass(gpu_.device, pass_, nullptr);
-    for (Image* i : {&g_.depth, &g_.prev_clip, &g_.motion, &g_.normal, &g_.position}) gpu_.destroy(*i);
+    for (Image* i : {&g_.depth, &g_.prev_clip, &g_.motion, &g_.normal, &g_.position, &g_.object_id}) gpu_.destroy(*i);
 }
 
 void GBufferPass::record(VkCommandBuffer cmd) {
-    VkClearValue clears[5] = {};
+    VkClearValue clears[6] = {};
     clears[2].color = {{0.0f, 0.0f, 1.0f, 0.0f}};  // material 0: background
-    clears[4].depthStencil = {0.0f, 0};            // reversed z: far = 0
+    clears[4].color.uint32[0] = 0;                 // object id 0: background
+    clears[5].depthStencil = {0.0f, 0};            // reversed z: far = 0
     VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     bi.renderPass = pass_;
     bi.framebuffer = framebuffer_;
     bi.renderArea = {{0, 0}, {width_, height_}};
-    bi.clearValueCount = 5;
+    bi.clearValueCount = 6;
     bi.pClearValues = clears;
     vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);

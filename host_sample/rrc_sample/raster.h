@@ -67,6 +67,7 @@ struct GBuffer {
     Image motion;     // RGBA32F: uv_prev - uv_cur, expected previous depth - depth (rrc MOTION / MOTION_DEPTH)
     Image normal;     // RGBA16F: world normal, material id in w
     Image position;   // RGBA32F: world position, object index + 1 in w (0: background)
+    Image object_id;  // R32_UINT: object index + 1 (cleared to 0: background), rrc's object id
 };
 
 class GBufferPass : NonCopyable {

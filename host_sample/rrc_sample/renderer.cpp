@@ -45,8 +45,9 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
     shadows_.reset(new ShadowPass(gpu, *gpu_scene_));
     gbuffer_.reset(new GBufferPass(gpu, *gpu_scene_, w, h));
     signals_.reset(new SignalPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, w, h));
-    // In RrcSettings' order: extent, signals, reprojection, epsilon scale, planes, soft age cap.
-    const RrcSettings rs{w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.soft_age_cap};
+    // In RrcSettings' order: extent, signals, reprojection, epsilon scale, planes, soft age cap, object ids.
+    const RrcSettings rs{
+        w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.soft_age_cap, s.use_object_id};
     rrc_.reset(new RrcStage(gpu, rs));
     post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
                                signals_->reference(), w, h));

@@ -51,6 +51,7 @@ RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
     d.epsilon_scale = s.epsilon_scale;
     d.depth_test = (rrc_depth_test)s.depth_test;
     d.reprojection = s.reprojection;
+    d.use_object_id = s.use_object_id ? 1u : 0u;
     d.log = log_to_stderr;
 
     // One frame in flight: the sample waits for each frame (it reads every frame back).
@@ -92,6 +93,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
     if (settings_.reprojection == RRC_REPROJECTION_PREV_CLIP) f.reprojection = view_of(g.prev_clip, RO);
     if (settings_.reprojection == RRC_REPROJECTION_MOTION || settings_.reprojection == RRC_REPROJECTION_MOTION_DEPTH)
         f.reprojection = view_of(g.motion, RO);
+    if (settings_.use_object_id) f.object_id = view_of(g.object_id, RO);  // left SHADER_READ_ONLY_OPTIMAL, as depth
     f.mask = view_of(mask_, GEN);
     for (int i = 0; i < 16; ++i) {
         f.view_proj[i] = state.view_proj[i / 4][i % 4];  // column-major, as GLM stores it

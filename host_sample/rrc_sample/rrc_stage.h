@@ -24,6 +24,7 @@ struct RrcSettings {
     uint32_t depth_test = 0;     // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE for a 0.2 caller with no epsilon)
     float near_plane = 0.1f, far_plane = 200.0f;
     uint32_t soft_age_cap = 64;
+    bool use_object_id = true;  // rrc_context_desc.use_object_id: the G-buffer's object id image goes to rrc
 };
 
 /** The channel descriptions for the signals (one preset per application: host_sample/rrc_sample/README.md). */

@@ -59,6 +59,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.depth_test = o.depth_test;
     rs.soft_prior = o.soft_prior;
     rs.soft_age_cap = o.soft_age_cap;
+    rs.use_object_id = o.object_id;
     rs.reference_samples = (uint32_t)o.reference_samples;
 
     std::filesystem::create_directories(o.out);
@@ -71,7 +72,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
         if (progress) {
             *progress << "rrc-sample: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.frames << " frames, signals "
                       << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", depth test "
-                      << depth_test_description(o) << ", k = " << o.taps
+                      << depth_test_description(o) << (o.object_id ? ", object ids" : ", no object ids") << ", k = " << o.taps
                       << (o.reference_every > 0 ? ", reference " + std::to_string(o.reference_samples) + " samples every " +
                                                       std::to_string(o.reference_every) + " frames"
                                                 : std::string(", no reference"))

@@ -212,6 +212,7 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     f << "| reference | " << o.reference_samples << " samples per pixel on frames " << o.reference_every - 1 << ", "
       << 2 * o.reference_every - 1 << ", ... and the last |\n";
     f << "| depth test | " << depth_test_description(o) << " |\n";
+    f << "| object ids | " << (o.object_id ? "given (use_object_id = 1)" : "none (--no-object-id)") << " |\n";
     f << "| device | " << run.device << " |\n| rrc device memory | " << run.rrc_memory_bytes << " bytes |\n";
     f << "| wall time of the frame loop (files included) | " << fmt("%.1f", run.wall_seconds) << " s; the visibility oracle's ray casts "
       << fmt("%.1f", run.oracle_seconds) << " s of it, overlapping the files |\n";

@@ -1,7 +1,8 @@
 #version 450
 // G-buffer: previous clip position (rrc's PREV_CLIP input), motion vector
 // and depth change (MOTION / MOTION_DEPTH), world normal + material, world
-// position + object id.  Depth goes to the D32 reversed-z attachment.
+// position + object id, and the object id again as an integer for rrc.  Depth
+// goes to the D32 reversed-z attachment.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -15,6 +16,7 @@ layout(location = 0) out vec4 o_prev_clip;
 layout(location = 1) out vec4 o_motion;
 layout(location = 2) out vec4 o_normal_material;
 layout(location = 3) out vec4 o_position;
+layout(location = 4) out uint o_object_id;
 
 void main() {
     o_prev_clip = v_prev_clip;
@@ -28,4 +30,6 @@ void main() {
     // w: the object's index + 1 (the clear leaves 0 on the background), exact in
     // fp32; the host's visibility oracle reads which object a texel shows (oracle.h).
     o_position = vec4(v_world, float(v_object + 1u));
+    // rrc's object id (rrc_vulkan_frame_desc.object_id): the same index + 1, 0 on the background.
+    o_object_id = v_object + 1u;
 }
