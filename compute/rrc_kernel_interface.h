@@ -91,11 +91,12 @@
 #define RRC_EPS_RELATIVE 2u  // pc.eps is tau: |diff| <= tau * expected linear depth
 
 // ---- The ADAPTIVE depth test (docs/CONVENTIONS.md, "The ADAPTIVE test") ---
-// eps = eps_paper + min(CAP * |e - z_inf|,
-//                        GAIN * ((fx(1-fx) + fy(1-fy)) max(Cx, Cy) + ox Sx + oy Sy)),
-// C = a 3-tap second difference of the current depth that is not a step,
-// less NOISE_ULPS * ulp(largest tap) + NOISE_STEPS * the format's step;
-// o = overhang beyond the outermost texel centres, S = slope.
+// eps = max(eps_paper, FLOOR_ULPS ulp(e)) + min(CAP * |e - z_inf|,
+//         GAIN * ((fx(1-fx) + fy(1-fy)) max(Cx, Cy) + ox Sx + oy Sy)
+//         + POSITION_ULPS 2^-24 (width Sx + height Sy))  [+ CAMERA's allowance],
+// C = the centre's second difference of the current depth (5 taps an axis)
+// unless it is a step, less NOISE_ULPS * ulp(largest tap) + NOISE_STEPS * the
+// format's step; o = overhang beyond the outermost texel centres, S = slope.
 #define RRC_ADAPTIVE_GAIN 2.0         // 4x the Taylor residual f(1-f) z''/2: margin for grid motion, kinks, higher orders
 #define RRC_ADAPTIVE_STEP_RATIO 0.5   // a step: a neighbouring second difference of the other sign, at least this share of it
 #define RRC_ADAPTIVE_CAP 0.04         // of |z - z_inf|: 4% of the linear depth on infinite projections
