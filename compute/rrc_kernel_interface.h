@@ -17,7 +17,7 @@
 #define RRC_SPEC_INTEROP 5        // bool: host images through samplers
 #define RRC_SPEC_STATS 6          // bool: count the frame's statistics into RRC_BINDING_STATS (interop)
 #define RRC_SPEC_HOST_AGE_MASK 7  // uint: bit c = channel slot c also writes its age to the host's image (interop)
-#define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (NDC tests only; below)
+#define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
 #define RRC_SPEC_LAST_DISPATCH RRC_SPEC_OBJECT_ID
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id

@@ -17,7 +17,7 @@ layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
 // formats included), the library keeps its own copy of depth for the next
 // frame and writes each channel to the host's output image too.
 layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
-// The ADAPTIVE test (docs/CONVENTIONS.md): only with EPS_KIND ULP or ABSOLUTE.
+// The ADAPTIVE test (docs/CONVENTIONS.md): every source but plain MOTION.
 layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
 // Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.

@@ -283,9 +283,9 @@ typedef struct rrc_context_desc {
     /* 0 = RRC_DEPTH_TEST_DEFAULT: ADAPTIVE when api_version >= 0.2 and none of
      * epsilon_scale, epsilon, tau is set; FIXED otherwise (a 0.1 caller keeps
      * the 0.1 test).  ADAPTIVE with a non-zero epsilon_scale, epsilon or tau
-     * is RRC_ERROR_INVALID_ARGUMENT.  Only the NDC modes' exact tests
-     * (PREV_CLIP, MOTION_DEPTH, CAMERA) adapt; the relative tests (LINEAR,
-     * MOTION on NDC depth) are tau*d under both. */
+     * is RRC_ERROR_INVALID_ARGUMENT.  Every source with an exact expected
+     * depth (PREV_CLIP, MOTION_DEPTH, CAMERA) adapts, in every depth mode;
+     * plain MOTION's relative test is the same under both. */
     rrc_depth_test depth_test;
     /* Non-zero: frames carry a per-pixel object id (rrc_frame_desc.object_id,
      * rrc_vulkan_frame_desc.object_id), and a hit also needs every previous
