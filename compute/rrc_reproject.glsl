@@ -22,6 +22,17 @@ layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
 // Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.
 layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
+// Interop on a CPU device: a first dispatch (STAGE_PASS, rrc_stage_inputs)
+// copied this frame's depth / ids into the library's own images, so every
+// later read of them, the ADAPTIVE test's eight neighbours included, is a
+// storage load (about a quarter of a sampler fetch's cost on lavapipe).
+layout(constant_id = RRC_SPEC_DEPTH_STAGED) const bool DEPTH_STAGED = false;
+layout(constant_id = RRC_SPEC_OBJECT_ID_STAGED) const bool OBJECT_ID_STAGED = false;
+layout(constant_id = RRC_SPEC_STAGE_PASS) const bool STAGE_PASS = false;
+// Where this frame's depth and ids are read: the host's image through a
+// sampler, or the library's own storage image.
+const bool HOST_DEPTH = INTEROP && !DEPTH_STAGED;
+const bool HOST_OBJECT_ID = INTEROP && !OBJECT_ID_STAGED;
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
@@ -40,24 +51,27 @@ layout(push_constant) uniform Frame {
 
 layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = RRC_BINDING_PREV_DEPTH, r32f) uniform readonly image2D u_prev_depth;
-layout(set = 0, binding = RRC_BINDING_REPROJ, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION_DEPTH
-layout(set = 0, binding = RRC_BINDING_MOTION, rg32f) uniform readonly image2D u_motion;    // MOTION
+layout(set = 0, binding = RRC_BINDING_REPROJ, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION (.xy), MOTION_DEPTH
 layout(set = 0, binding = RRC_BINDING_NOCACHE, r8ui) uniform readonly uimage2D u_nocache;
 layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;        // INTEROP: the host's depth
 layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
 layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
 layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
-layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage2D u_object_id_out;  // INTEROP: next frame's previous ids
-layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID) uniform usampler2D s_prev_object_id;               // the previous frame's ids
-layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
+layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform uimage2D u_object_id;              // this frame's ids, kept for the next
+layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
+layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                     // HOST_OBJECT_ID: the host's ids
 
-ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
-float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
-vec4 rrc_load_reprojection(ivec2 px) {
-    if (INTEROP) return texelFetch(s_reproj, px, 0);
-    return SOURCE == RRC_REPROJECTION_MOTION ? vec4(imageLoad(u_motion, px).xy, 0.0, 0.0) : imageLoad(u_reproj, px);
-}
+ivec2 rrc_size() { return HOST_DEPTH || STAGE_PASS ? textureSize(s_depth, 0) : imageSize(u_depth); }
+float rrc_load_depth(ivec2 px) { return HOST_DEPTH ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
+vec4 rrc_load_reprojection(ivec2 px) { return INTEROP ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
 bool rrc_load_nocache(ivec2 px) { return (INTEROP ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
+
+// The stage pass: the host's depth and ids, through their samplers (any
+// format), into the library's images of this frame, bit for bit.
+void rrc_stage_inputs(ivec2 px) {
+    if (DEPTH_STAGED) imageStore(u_depth_out, px, vec4(texelFetch(s_depth, px, 0).r));
+    if (OBJECT_ID && OBJECT_ID_STAGED) imageStore(u_object_id, px, uvec4(texelFetch(s_object_id, px, 0).r));
+}
 
 bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
 bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
@@ -181,7 +195,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcGeometry g;
     vec2 fsize = vec2(size);
     float d = rrc_load_depth(px);
-    if (INTEROP) imageStore(u_depth_out, px, vec4(d));
+    if (HOST_DEPTH) imageStore(u_depth_out, px, vec4(d));
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -260,10 +274,10 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
     bool same_object = true;
     if (OBJECT_ID) {
-        uint id = texelFetch(s_object_id, px, 0).r;
-        if (INTEROP) imageStore(u_object_id_out, px, uvec4(id));
-        uvec4 taps = uvec4(texelFetch(s_prev_object_id, g.taps.p00, 0).r, texelFetch(s_prev_object_id, g.taps.p10, 0).r,
-                           texelFetch(s_prev_object_id, g.taps.p01, 0).r, texelFetch(s_prev_object_id, g.taps.p11, 0).r);
+        uint id = HOST_OBJECT_ID ? texelFetch(s_object_id, px, 0).r : imageLoad(u_object_id, px).r;
+        if (HOST_OBJECT_ID) imageStore(u_object_id, px, uvec4(id));
+        uvec4 taps = uvec4(imageLoad(u_prev_object_id, g.taps.p00).r, imageLoad(u_prev_object_id, g.taps.p10).r,
+                           imageLoad(u_prev_object_id, g.taps.p01).r, imageLoad(u_prev_object_id, g.taps.p11).r);
         bvec4 foreign = notEqual(taps, uvec4(id)), weighted = greaterThan(g.taps.w, vec4(0.0));
         same_object = !any(bvec4(foreign.x && weighted.x, foreign.y && weighted.y, foreign.z && weighted.z, foreign.w && weighted.w));
     }

@@ -21,7 +21,7 @@ constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBindin
 // Sampled (combined image sampler) bindings; all others are storage images.
 inline bool is_sampled_binding(uint32_t b) {
     return b == RRC_BINDING_HOST_DEPTH || b == RRC_BINDING_HOST_REPROJ || b == RRC_BINDING_HOST_NOCACHE || b == RRC_BINDING_HOST_SAMPLES ||
-           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_PREV_OBJECT_ID || b == RRC_BINDING_HOST_OBJECT_ID;
+           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_HOST_OBJECT_ID;
 }
 inline uint32_t binding_count(uint32_t b) { return b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL ? RRC_MAX_CHANNELS : 1; }
 
@@ -35,13 +35,19 @@ struct DescriptorViews {
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
-// optional interop outputs.  Each combination is its own specialised
-// pipeline, made the first time a frame asks for it, so an output nobody
-// asks for costs nothing.
+// optional interop outputs, and which host inputs were staged into the
+// library's images by a transfer (plugin/interop_context.cpp).  Each
+// combination is its own specialised pipeline, made the first time a frame
+// asks for it, so an output nobody asks for costs nothing.
 struct KernelVariant {
     bool stats = false;
     uint32_t host_age_mask = 0;  // bit c: slot c writes the host's age image
-    uint32_t key() const { return (stats ? 1u : 0u) | host_age_mask << 1; }
+    bool depth_staged = false;
+    bool object_id_staged = false;
+    bool stage_pass = false;  // the first dispatch, which only stages those inputs
+    uint32_t key() const {
+        return (stats ? 1u : 0u) | (depth_staged ? 2u : 0u) | (object_id_staged ? 4u : 0u) | (stage_pass ? 8u : 0u) | host_age_mask << 4;
+    }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the

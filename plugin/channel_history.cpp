@@ -43,7 +43,6 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint3
 
 Placeholders::Placeholders(VulkanDevice& dev) {
     const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT,
-                                VK_FORMAT_R32G32_SFLOAT,
                                 VK_FORMAT_R32G32B32A32_SFLOAT,
                                 VK_FORMAT_R16_SFLOAT,
                                 VK_FORMAT_R16G16B16A16_SFLOAT,
@@ -67,7 +66,6 @@ DescriptorViews Placeholders::views() const {
     const VkImageView wf = write_[0].view, wu = write_[1].view;
     v.view[RRC_BINDING_DEPTH][0] = v.view[RRC_BINDING_PREV_DEPTH][0] = read(VK_FORMAT_R32_SFLOAT);
     v.view[RRC_BINDING_REPROJ][0] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
-    v.view[RRC_BINDING_MOTION][0] = read(VK_FORMAT_R32G32_SFLOAT);
     v.view[RRC_BINDING_NOCACHE][0] = read(VK_FORMAT_R8_UINT);
     // RRC_BINDING_MASK is left empty: every context binds a mask image of its own.
     v.view[RRC_BINDING_HOST_DEPTH][0] = v.view[RRC_BINDING_HOST_REPROJ][0] = read(VK_FORMAT_R32_SFLOAT);
@@ -76,7 +74,7 @@ DescriptorViews Placeholders::views() const {
     // Object ids: bound to real images only when the context uses them (the
     // kernel's code for them is compiled out otherwise).
     v.view[RRC_BINDING_PREV_OBJECT_ID][0] = v.view[RRC_BINDING_HOST_OBJECT_ID][0] = read(VK_FORMAT_R32_UINT);
-    v.view[RRC_BINDING_OBJECT_ID][0] = write_[2].view;
+    v.view[RRC_BINDING_OBJECT_ID][0] = write_[2].view;  // read and written: a storage image either way
     for (uint32_t s = 0; s < RRC_MAX_CHANNELS; ++s) {
         v.view[RRC_BINDING_SAMPLE1][s] = v.view[RRC_BINDING_CONFIDENCE][s] = v.view[RRC_BINDING_HIST_R32F][s] =
             v.view[RRC_BINDING_WEIGHT][s] = read(VK_FORMAT_R32_SFLOAT);

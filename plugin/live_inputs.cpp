@@ -10,7 +10,8 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
             in.push_back({InputRole::Reprojection, 0, RRC_BINDING_REPROJ, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4});
             break;
         case RRC_REPROJECTION_MOTION:
-            in.push_back({InputRole::Reprojection, 0, RRC_BINDING_MOTION, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32_SFLOAT, 2, 4});
+            // kept as RGBA like the others: one binding serves every source
+            in.push_back({InputRole::Reprojection, 0, RRC_BINDING_REPROJ, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32B32A32_SFLOAT, 2, 4});
             break;
         case RRC_REPROJECTION_MOTION_DEPTH:  // 3 floats a pixel, kept as RGBA (no RGB32F storage images)
             in.push_back({InputRole::Reprojection, 0, RRC_BINDING_REPROJ, RRC_BINDING_HOST_REPROJ, VK_FORMAT_R32G32B32A32_SFLOAT, 3, 4});
@@ -19,9 +20,10 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     }
     if (c.use_nocache) in.push_back({InputRole::Nocache, 0, RRC_BINDING_NOCACHE, RRC_BINDING_HOST_NOCACHE, VK_FORMAT_R8_UINT, 1, 1});
     if (c.use_object_id)
-        // Both paths read this frame's ids through the sampler binding: the
-        // standalone upload, or the host's image (which the kernel copies to RRC_BINDING_OBJECT_ID).
-        in.push_back({InputRole::ObjectId, 0, RRC_BINDING_HOST_OBJECT_ID, RRC_BINDING_HOST_OBJECT_ID, VK_FORMAT_R32_UINT, 1, 4});
+        // Standalone: the upload into this frame's kept image, read as a
+        // storage image; interop: the host's image (which the kernel copies to
+        // RRC_BINDING_OBJECT_ID), or that kept image when it was staged.
+        in.push_back({InputRole::ObjectId, 0, RRC_BINDING_OBJECT_ID, RRC_BINDING_HOST_OBJECT_ID, VK_FORMAT_R32_UINT, 1, 4});
     for (uint32_t s = 0; s < c.channels.size(); ++s) {
         const bool one = c.channels[s].components == 1;
         in.push_back({InputRole::Samples, s, uint32_t(one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4), RRC_BINDING_HOST_SAMPLES,
