@@ -90,10 +90,6 @@ void main() {
     ivec2 size = rrc_size();
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (px.x >= size.x || px.y >= size.y) return;  // the dispatch rounds up
-    if (STAGE_PASS) {
-        rrc_stage_inputs(px);
-        return;
-    }
 
     RrcGeometry g = rrc_reproject(px, size);
     uint mask = (g.hit ? RRC_MASK_HIT : 0u) | (g.background ? RRC_MASK_BACKGROUND : 0u) |

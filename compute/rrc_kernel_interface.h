@@ -19,15 +19,7 @@
 #define RRC_SPEC_HOST_AGE_MASK 7  // uint: bit c = channel slot c also writes its age to the host's image (interop)
 #define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
-// Interop on a CPU device (docs/PERFORMANCE.md, "Staged inputs"): a first
-// dispatch (RRC_SPEC_STAGE_PASS) copies the host's depth / object ids into
-// the library's own images of this frame (RRC_BINDING_DEPTH_OUT /
-// RRC_BINDING_OBJECT_ID), which the main dispatch reads as storage images
-// (RRC_BINDING_DEPTH / RRC_BINDING_OBJECT_ID) and does not copy again.
-#define RRC_SPEC_DEPTH_STAGED 10      // bool
-#define RRC_SPEC_OBJECT_ID_STAGED 11  // bool
-#define RRC_SPEC_STAGE_PASS 12        // bool: this dispatch only stages the inputs above
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_STAGE_PASS
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_OBJECT_ID
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 
@@ -76,8 +68,8 @@
 #define RRC_BINDING_FIRST_CHANNEL RRC_BINDING_SAMPLE1
 #define RRC_BINDING_LAST_CHANNEL RRC_BINDING_HOST_AGE_OUT
 // Object ids (RRC_SPEC_OBJECT_ID): one image each.
-#define RRC_BINDING_OBJECT_ID 26       // R32_UINT: this frame's ids, kept for the next (standalone: the upload; interop: staged or the kernel's copy)
-#define RRC_BINDING_HOST_OBJECT_ID 27  // interop: sampler, the host's ids (when not staged)
+#define RRC_BINDING_OBJECT_ID 26       // interop: R32_UINT, the kernel's copy of this frame's ids for the next
+#define RRC_BINDING_HOST_OBJECT_ID 27  // sampler: this frame's ids (standalone: the upload; interop: the host's image)
 #define RRC_BINDING_LAST RRC_BINDING_HOST_OBJECT_ID
 // The one buffer binding, after every image binding: the host's statistics
 // buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]).

@@ -22,17 +22,6 @@ layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
 // Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.
 layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
-// Interop on a CPU device: a first dispatch (STAGE_PASS, rrc_stage_inputs)
-// copied this frame's depth / ids into the library's own images, so every
-// later read of them, the ADAPTIVE test's eight neighbours included, is a
-// storage load (about a quarter of a sampler fetch's cost on lavapipe).
-layout(constant_id = RRC_SPEC_DEPTH_STAGED) const bool DEPTH_STAGED = false;
-layout(constant_id = RRC_SPEC_OBJECT_ID_STAGED) const bool OBJECT_ID_STAGED = false;
-layout(constant_id = RRC_SPEC_STAGE_PASS) const bool STAGE_PASS = false;
-// Where this frame's depth and ids are read: the host's image through a
-// sampler, or the library's own storage image.
-const bool HOST_DEPTH = INTEROP && !DEPTH_STAGED;
-const bool HOST_OBJECT_ID = INTEROP && !OBJECT_ID_STAGED;
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
@@ -57,21 +46,14 @@ layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;    
 layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
 layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
 layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
-layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform uimage2D u_object_id;              // this frame's ids, kept for the next
+layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage2D u_object_id_out;  // INTEROP: next frame's previous ids
 layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
-layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                     // HOST_OBJECT_ID: the host's ids
+layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
 
-ivec2 rrc_size() { return HOST_DEPTH || STAGE_PASS ? textureSize(s_depth, 0) : imageSize(u_depth); }
-float rrc_load_depth(ivec2 px) { return HOST_DEPTH ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
+ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
+float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
 vec4 rrc_load_reprojection(ivec2 px) { return INTEROP ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
 bool rrc_load_nocache(ivec2 px) { return (INTEROP ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
-
-// The stage pass: the host's depth and ids, through their samplers (any
-// format), into the library's images of this frame, bit for bit.
-void rrc_stage_inputs(ivec2 px) {
-    if (DEPTH_STAGED) imageStore(u_depth_out, px, vec4(texelFetch(s_depth, px, 0).r));
-    if (OBJECT_ID && OBJECT_ID_STAGED) imageStore(u_object_id, px, uvec4(texelFetch(s_object_id, px, 0).r));
-}
 
 bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
 bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
@@ -156,22 +138,55 @@ vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float st
     return finite ? vec2(edge || opposite ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
 }
 
+// This frame's depth at px and its eight cross neighbours, clamped to the
+// image (the ADAPTIVE test's taps): h = (x-2, x-1, x+1, x+2), v = (y-2, y-1,
+// y+1, y+2).  Through the host's sampler: five gathers instead of nine
+// fetches (lavapipe pays a gather like one texelFetch).  Each returns the 2x2
+// quad whose lower corner is i0 = (x0, y0), as (T(x0,y0+1), T(x0+1,y0+1),
+// T(x0+1,y0), T(x0,y0)); it is sampled at that quad's centre, half a texel
+// from any other quad's, and clamp-to-edge clamps its texels exactly as the
+// storage path clamps its coordinates.
+struct RrcCross {
+    float c;
+    vec4 h, v;
+};
+vec4 rrc_gather_depth(ivec2 i0, vec2 inv_size) { return textureGather(s_depth, (vec2(i0) + 1.0) * inv_size); }
+RrcCross rrc_depth_cross(ivec2 px, ivec2 size) {
+    RrcCross r;
+    if (INTEROP) {
+        vec2 inv = 1.0 / vec2(size);
+        vec4 b = rrc_gather_depth(px, inv);                 // (x,y+1) (x+1,y+1) (x+1,y) (x,y)
+        vec4 a = rrc_gather_depth(px + ivec2(-2, 0), inv);  // .w (x-2,y), .z (x-1,y)
+        vec4 c = rrc_gather_depth(px + ivec2(2, 0), inv);   // .w (x+2,y)
+        vec4 d = rrc_gather_depth(px + ivec2(0, -2), inv);  // .w (x,y-2), .x (x,y-1)
+        vec4 e = rrc_gather_depth(px + ivec2(0, 2), inv);   // .w (x,y+2)
+        r.c = b.w;
+        r.h = vec4(a.w, a.z, b.z, c.w);
+        r.v = vec4(d.w, d.x, b.x, e.w);
+        return r;
+    }
+    ivec2 hi = size - 1;
+    r.c = rrc_load_depth(px);
+    r.h = vec4(rrc_load_depth(ivec2(max(px.x - 2, 0), px.y)), rrc_load_depth(ivec2(max(px.x - 1, 0), px.y)),
+               rrc_load_depth(ivec2(min(px.x + 1, hi.x), px.y)), rrc_load_depth(ivec2(min(px.x + 2, hi.x), px.y)));
+    r.v = vec4(rrc_load_depth(ivec2(px.x, max(px.y - 2, 0))), rrc_load_depth(ivec2(px.x, max(px.y - 1, 0))),
+               rrc_load_depth(ivec2(px.x, min(px.y + 1, hi.y))), rrc_load_depth(ivec2(px.x, min(px.y + 2, hi.y))));
+    return r;
+}
+
 // The tolerance the ADAPTIVE test adds to the paper's epsilon at pixel px
-// (depth d) for the fetch at previous-frame sample coordinate q, expected
-// depth e: GAIN * (the bilinear residual bound + the edge clamp's slope
-// term), at most CAP of the linear depth (docs/CONVENTIONS.md, "The ADAPTIVE test").
-float rrc_adaptive_widening(ivec2 px, ivec2 size, float d, vec2 q, float e) {
+// (its depth and neighbours: cr) for the fetch at previous-frame sample
+// coordinate q, expected depth e: GAIN * (the bilinear residual bound + the
+// edge clamp's slope term), at most CAP of the linear depth
+// (docs/CONVENTIONS.md, "The ADAPTIVE test").
+float rrc_adaptive_widening(ivec2 px, ivec2 size, RrcCross cr, vec2 q, float e) {
     ivec2 hi = size - 1;
     float step = EPS_KIND == RRC_EPS_ABSOLUTE ? pc.eps : 0.0;  // ADAPTIVE takes no host epsilon: pc.eps is the format's step
-    ivec2 xm2 = ivec2(max(px.x - 2, 0), px.y), xm1 = ivec2(max(px.x - 1, 0), px.y);
-    ivec2 xp1 = ivec2(min(px.x + 1, hi.x), px.y), xp2 = ivec2(min(px.x + 2, hi.x), px.y);
-    ivec2 ym2 = ivec2(px.x, max(px.y - 2, 0)), ym1 = ivec2(px.x, max(px.y - 1, 0));
-    ivec2 yp1 = ivec2(px.x, min(px.y + 1, hi.y)), yp2 = ivec2(px.x, min(px.y + 2, hi.y));
-    float c = rrc_interpolated(d);
-    vec2 ax = rrc_axis(rrc_interpolated(rrc_load_depth(xm2)), rrc_interpolated(rrc_load_depth(xm1)), c,
-                       rrc_interpolated(rrc_load_depth(xp1)), rrc_interpolated(rrc_load_depth(xp2)), px.x == 0 || px.x == hi.x, step);
-    vec2 ay = rrc_axis(rrc_interpolated(rrc_load_depth(ym2)), rrc_interpolated(rrc_load_depth(ym1)), c,
-                       rrc_interpolated(rrc_load_depth(yp1)), rrc_interpolated(rrc_load_depth(yp2)), px.y == 0 || px.y == hi.y, step);
+    float c = rrc_interpolated(cr.c);
+    vec2 ax = rrc_axis(rrc_interpolated(cr.h.x), rrc_interpolated(cr.h.y), c, rrc_interpolated(cr.h.z), rrc_interpolated(cr.h.w),
+                       px.x == 0 || px.x == hi.x, step);
+    vec2 ay = rrc_axis(rrc_interpolated(cr.v.x), rrc_interpolated(cr.v.y), c, rrc_interpolated(cr.v.z), rrc_interpolated(cr.v.w),
+                       px.y == 0 || px.y == hi.y, step);
     vec2 p = q - 0.5;
     vec2 f = p - floor(p);
     vec2 overhang = max(max(-p, p - vec2(hi)), vec2(0.0));  // beyond the outermost texel centres: clamped taps
@@ -194,8 +209,10 @@ struct RrcGeometry {
 RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcGeometry g;
     vec2 fsize = vec2(size);
-    float d = rrc_load_depth(px);
-    if (HOST_DEPTH) imageStore(u_depth_out, px, vec4(d));
+    RrcCross cr;  // ADAPTIVE: the depth's cross of neighbours, the centre among them
+    if (ADAPTIVE) cr = rrc_depth_cross(px, size);
+    float d = ADAPTIVE ? cr.c : rrc_load_depth(px);
+    if (INTEROP) imageStore(u_depth_out, px, vec4(d));
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -269,13 +286,13 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     if (ADAPTIVE) {
         // NDC tests: never below the kernel's own fp32 noise (UNORM24 near z = 1 has ulp ~ step).
         if (EPS_KIND != RRC_EPS_RELATIVE) eps = max(eps, RRC_ADAPTIVE_FLOOR_ULPS * rrc_ulp(expected));
-        eps += rrc_adaptive_widening(px, size, d, q, expected) + expected_err;
+        eps += rrc_adaptive_widening(px, size, cr, q, expected) + expected_err;
     }
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
     bool same_object = true;
     if (OBJECT_ID) {
-        uint id = HOST_OBJECT_ID ? texelFetch(s_object_id, px, 0).r : imageLoad(u_object_id, px).r;
-        if (HOST_OBJECT_ID) imageStore(u_object_id, px, uvec4(id));
+        uint id = texelFetch(s_object_id, px, 0).r;
+        if (INTEROP) imageStore(u_object_id_out, px, uvec4(id));
         uvec4 taps = uvec4(imageLoad(u_prev_object_id, g.taps.p00).r, imageLoad(u_prev_object_id, g.taps.p10).r,
                            imageLoad(u_prev_object_id, g.taps.p01).r, imageLoad(u_prev_object_id, g.taps.p11).r);
         bvec4 foreign = notEqual(taps, uvec4(id)), weighted = greaterThan(g.taps.w, vec4(0.0));

@@ -110,9 +110,6 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_HOST_AGE_MASK, variant.host_age_mask);
     spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
-    spec.add(RRC_SPEC_DEPTH_STAGED, variant.depth_staged ? 1u : 0u);
-    spec.add(RRC_SPEC_OBJECT_ID_STAGED, variant.object_id_staged ? 1u : 0u);
-    spec.add(RRC_SPEC_STAGE_PASS, variant.stage_pass ? 1u : 0u);
     spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
     spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
     for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {

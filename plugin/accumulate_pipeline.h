@@ -35,19 +35,13 @@ struct DescriptorViews {
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
-// optional interop outputs, and which host inputs were staged into the
-// library's images by a transfer (plugin/interop_context.cpp).  Each
-// combination is its own specialised pipeline, made the first time a frame
-// asks for it, so an output nobody asks for costs nothing.
+// optional interop outputs.  Each combination is its own specialised
+// pipeline, made the first time a frame asks for it, so an output nobody
+// asks for costs nothing.
 struct KernelVariant {
     bool stats = false;
     uint32_t host_age_mask = 0;  // bit c: slot c writes the host's age image
-    bool depth_staged = false;
-    bool object_id_staged = false;
-    bool stage_pass = false;  // the first dispatch, which only stages those inputs
-    uint32_t key() const {
-        return (stats ? 1u : 0u) | (depth_staged ? 2u : 0u) | (object_id_staged ? 4u : 0u) | (stage_pass ? 8u : 0u) | host_age_mask << 4;
-    }
+    uint32_t key() const { return (stats ? 1u : 0u) | host_age_mask << 1; }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the

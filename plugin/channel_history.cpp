@@ -74,7 +74,7 @@ DescriptorViews Placeholders::views() const {
     // Object ids: bound to real images only when the context uses them (the
     // kernel's code for them is compiled out otherwise).
     v.view[RRC_BINDING_PREV_OBJECT_ID][0] = v.view[RRC_BINDING_HOST_OBJECT_ID][0] = read(VK_FORMAT_R32_UINT);
-    v.view[RRC_BINDING_OBJECT_ID][0] = write_[2].view;  // read and written: a storage image either way
+    v.view[RRC_BINDING_OBJECT_ID][0] = write_[2].view;
     for (uint32_t s = 0; s < RRC_MAX_CHANNELS; ++s) {
         v.view[RRC_BINDING_SAMPLE1][s] = v.view[RRC_BINDING_CONFIDENCE][s] = v.view[RRC_BINDING_HIST_R32F][s] =
             v.view[RRC_BINDING_WEIGHT][s] = read(VK_FORMAT_R32_SFLOAT);

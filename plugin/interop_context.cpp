@@ -2,7 +2,6 @@
 
 #include "error.h"
 #include "vk_formats.h"
-#include <cstdlib>  // TEMP
 
 namespace rrc {
 namespace {
@@ -95,34 +94,17 @@ void InteropContext::record_initialisation(VkCommandBuffer cmd) {
     record_initialise(core_->device(), cmd, all);
 }
 
-// On a CPU device (lavapipe) a sampler fetch costs about 3.6 storage loads
-// and a second dispatch almost nothing, so this frame's depth (which the
-// ADAPTIVE test reads nine times a pixel) and object ids are first copied,
-// through their samplers, into the library's images of this frame; every
-// later read of them is a storage load.  On a GPU the texture cache makes
-// the one-pass kernel cheaper (docs/PERFORMANCE.md, "Staged inputs").
-KernelVariant InteropContext::variant_for(const Frame& f) const {
-    KernelVariant variant;
-    variant.stats = f.stats_buffer != VK_NULL_HANDLE;
-    for (uint32_t s = 0; s < f.channel_count; ++s)
-        if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
-    variant.depth_staged = core_->device().cpu && !getenv("RRC_NO_STAGE");  // TEMP
-    variant.object_id_staged = core_->device().cpu && core_->config().use_object_id;
-    return variant;
-}
-
 void InteropContext::record_frame(const Frame& f) {
     VulkanDevice& dev = core_->device();
     auto& vk = dev.vk;
     VkCommandBuffer cmd = f.command_buffer;
     ViewState& view = core_->view();
     const uint32_t p = view.parity;
-    const KernelVariant variant = variant_for(f);
-    KernelVariant stage = variant;
-    stage.stage_pass = true;
-    const bool staging = variant.depth_staged || variant.object_id_staged;
+    KernelVariant variant;
+    variant.stats = f.stats_buffer != VK_NULL_HANDLE;
+    for (uint32_t s = 0; s < f.channel_count; ++s)
+        if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
     core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
-    if (staging) core_->pipeline().pipeline(stage);
 
     // Descriptors: the host's images of this frame over the library's own.
     DescriptorViews v = core_->library_views(view, p);
@@ -134,7 +116,6 @@ void InteropContext::record_frame(const Frame& f) {
         hb.add(img, false);
     }
     v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
-    if (variant.depth_staged) v.view[RRC_BINDING_DEPTH][0] = view.depth[p].view;  // the main pass reads the staged copy
     if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
     if (f.mask_image.image) {
         v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
@@ -168,10 +149,6 @@ void InteropContext::record_frame(const Frame& f) {
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.before.size(), hb.before.data());
     if (variant.stats) record_stats_clear(cmd, f);
-    if (staging) {
-        core_->record_dispatch(cmd, set, f, view.have_previous, stage);
-        core_->record_history_barrier(cmd, 0, 0);  // the staged images, written above, read below
-    }
     core_->record_dispatch(cmd, set, f, view.have_previous, variant);
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.after.size(), hb.after.data());

@@ -1,5 +1,5 @@
-// A context on the host's Vulkan device: records its barriers and its
-// dispatch (two on a CPU device: the stage pass first) into the host's command buffer, never submits or waits.  Over
+// A context on the host's Vulkan device: records its barriers and one
+// dispatch into the host's command buffer, never submits or waits.  Over
 // the shared accumulator core it adds only what this path needs: the host's
 // images bound per frame, the barriers that hand them over and back, the
 // descriptor-set ring of the frames in flight, and the statistics buffer.
@@ -31,9 +31,6 @@ public:
     uint64_t stats_alignment() const { return stats_alignment_; }
 
 private:
-    // The kernel variant a frame needs: its optional outputs, and on a CPU
-    // device the stage pass for depth and ids.
-    KernelVariant variant_for(const Frame& frame) const;
     void record_initialisation(VkCommandBuffer cmd);
     void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
     VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;

@@ -20,10 +20,9 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     }
     if (c.use_nocache) in.push_back({InputRole::Nocache, 0, RRC_BINDING_NOCACHE, RRC_BINDING_HOST_NOCACHE, VK_FORMAT_R8_UINT, 1, 1});
     if (c.use_object_id)
-        // Standalone: the upload into this frame's kept image, read as a
-        // storage image; interop: the host's image (which the kernel copies to
-        // RRC_BINDING_OBJECT_ID), or that kept image when it was staged.
-        in.push_back({InputRole::ObjectId, 0, RRC_BINDING_OBJECT_ID, RRC_BINDING_HOST_OBJECT_ID, VK_FORMAT_R32_UINT, 1, 4});
+        // Both paths read this frame's ids through the sampler binding: the
+        // standalone upload, or the host's image (which the kernel copies to RRC_BINDING_OBJECT_ID).
+        in.push_back({InputRole::ObjectId, 0, RRC_BINDING_HOST_OBJECT_ID, RRC_BINDING_HOST_OBJECT_ID, VK_FORMAT_R32_UINT, 1, 4});
     for (uint32_t s = 0; s < c.channels.size(); ++s) {
         const bool one = c.channels[s].components == 1;
         in.push_back({InputRole::Samples, s, uint32_t(one ? RRC_BINDING_SAMPLE1 : RRC_BINDING_SAMPLE4), RRC_BINDING_HOST_SAMPLES,

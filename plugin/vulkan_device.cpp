@@ -226,7 +226,6 @@ void VulkanDevice::check_physical_device() {
     VkPhysicalDeviceProperties p;
     fi.GetPhysicalDeviceProperties(physical, &p);
     limits = p.limits;
-    cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     if (p.limits.maxPerStageDescriptorStorageImages < 64)  // bindings 0-5, 9, 26 (1 each), 10-21, 24 and 25 (x4)
         fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs 64", name.c_str(),
              p.limits.maxPerStageDescriptorStorageImages);

@@ -59,7 +59,6 @@ public:
     uint32_t queue_family = 0;
     VkPhysicalDeviceMemoryProperties memory{};
     VkPhysicalDeviceLimits limits{};
-    bool cpu = false;  // VK_PHYSICAL_DEVICE_TYPE_CPU (lavapipe): sampler reads cost ~3.6x storage reads (docs/PERFORMANCE.md)
     const VkAllocationCallbacks* allocator = nullptr;  // the host's, or NULL
     InstanceFunctions fi{};
     std::string name;
