@@ -1,10 +1,10 @@
 #version 450
 // The fused kernel: reverse reprojection, the epsilon-depth hit test and the
 // lambda recursive filter for up to RRC_MAX_CHANNELS channels, one pass.
-// Written for lavapipe's costs (every instruction and image operation is paid;
+// Written for lavapipe's costs (every instruction and image operation is paid, a store most;
 // shared memory is emulated lane by lane): plain storage-image loads with
 // format qualifiers, one set of bilinear weights shared by the depth test and
-// every history fetch, wide 128x1 workgroups, no shared memory, straight-line
+// every history fetch, value and age in one word for 1-component fp16 channels, wide 128x1 workgroups, no shared memory, straight-line
 // code where the specialization constants have folded the branches.
 #extension GL_GOOGLE_include_directive : require
 
@@ -35,10 +35,17 @@ layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_FILTER, 0)) const uin
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_FILTER, 1)) const uint CH1_FILTER = 0u;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_FILTER, 2)) const uint CH2_FILTER = 0u;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_FILTER, 3)) const uint CH3_FILTER = 0u;
+#ifdef RRC_WITHOUT_CONFIDENCE  // the feature's code removed (tests/spirv)
+const bool CH0_CONFIDENCE = false;
+const bool CH1_CONFIDENCE = false;
+const bool CH2_CONFIDENCE = false;
+const bool CH3_CONFIDENCE = false;
+#else
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_CONFIDENCE, 0)) const bool CH0_CONFIDENCE = false;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_CONFIDENCE, 1)) const bool CH1_CONFIDENCE = false;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_CONFIDENCE, 2)) const bool CH2_CONFIDENCE = false;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_CONFIDENCE, 3)) const bool CH3_CONFIDENCE = false;
+#endif
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_LAMBDA, 0)) const float CH0_LAMBDA = 0.6;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_LAMBDA, 1)) const float CH1_LAMBDA = 0.6;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_LAMBDA, 2)) const float CH2_LAMBDA = 0.6;
@@ -65,14 +72,15 @@ layout(set = 0, binding = RRC_BINDING_MASK, r8ui) uniform writeonly uimage2D u_m
 layout(set = 0, binding = RRC_BINDING_SAMPLE1, r32f) uniform readonly image2D u_sample1[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_SAMPLE4, rgba32f) uniform readonly image2D u_sample4[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_CONFIDENCE, r32f) uniform readonly image2D u_confidence[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_R16F, r16f) uniform readonly image2D u_hist_r16f[RRC_MAX_CHANNELS];
+layout(set = 0, binding = RRC_BINDING_HIST_PACKED, r32ui) uniform readonly uimage2D u_hist_packed[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_HIST_RGBA16F, rgba16f) uniform readonly image2D u_hist_rgba16f[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_HIST_R32F, r32f) uniform readonly image2D u_hist_r32f[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_HIST_RGBA32F, rgba32f) uniform readonly image2D u_hist_rgba32f[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_AGE, r16ui) uniform readonly uimage2D u_age[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_WEIGHT, r32f) uniform readonly image2D u_weight[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_HIST_OUT) uniform writeonly image2D u_hist_out[RRC_MAX_CHANNELS];  // any float format
-layout(set = 0, binding = RRC_BINDING_AGE_OUT, r16ui) uniform writeonly uimage2D u_age_out[RRC_MAX_CHANNELS];
+// R16_UINT ages, or for packed channels their R32_UINT value|age words (so declared without a format).
+layout(set = 0, binding = RRC_BINDING_AGE_OUT) uniform writeonly uimage2D u_age_out[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_WEIGHT_OUT, r32f) uniform writeonly image2D u_weight_out[RRC_MAX_CHANNELS];
 layout(set = 0, binding = RRC_BINDING_HOST_SAMPLES) uniform sampler2D s_samples[RRC_MAX_CHANNELS];     // INTEROP
 layout(set = 0, binding = RRC_BINDING_HOST_CONFIDENCE) uniform sampler2D s_confidence[RRC_MAX_CHANNELS];  // INTEROP
@@ -81,8 +89,16 @@ layout(set = 0, binding = RRC_BINDING_HOST_AGE_OUT, r16ui) uniform writeonly uim
 
 // Optional interop outputs, each its own pipeline variant (plugin/accumulate_pipeline.h,
 // KernelVariant): off, their code is compiled out.
+#ifdef RRC_WITHOUT_STATS
+const bool STATS = false;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_STATS) const bool STATS = false;
+#endif
+#ifdef RRC_WITHOUT_HOST_AGE
+const uint HOST_AGE_MASK = 0u;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_HOST_AGE_MASK) const uint HOST_AGE_MASK = 0u;
+#endif
 // rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch.
 layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 

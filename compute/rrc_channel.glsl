@@ -6,6 +6,11 @@
 // Inputs from the enclosing main(): px, g (RrcGeometry), mask (uint, in/out).
 
 #define CH_(name) ch##name(RRC_CH)
+// A 1-component fp16 channel keeps value and age in one R32_UINT word
+// (docs/PERFORMANCE.md, "Inside the kernel"): one load per tap brings both,
+// and one store writes both.
+#define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
+#define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)
 
 if (RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
@@ -21,16 +26,31 @@ if (RRC_CH < CH_COUNT) {
     w = w < RRC_FLT_MIN ? 0.0 : w;  // denormal weights count as 0 on every device (flushing or not)
 
     // -- history H, weight W (resampled) and age (nearest) at uv_prev
-#define LOAD_H(t) (CH_(_FP16) ? (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r16f[RRC_CH], t) : imageLoad(u_hist_rgba16f[RRC_CH], t)) \
-                              : (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
+#define LOAD_WORD(t) imageLoad(u_hist_packed[RRC_CH], t).r
+#define LOAD_H(t) (PACKED_ ? UNPACK_H(LOAD_WORD(t)) : CH_(_FP16) ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
+                   : (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
 #define LOAD_W(t) (CH_(_CONFIDENCE) ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
     vec4 H;
     float Wh;
+    uint n_prev;
     if (CH_(_FILTER) == RRC_HISTORY_FILTER_NEAREST) {
-        H = LOAD_H(g.taps.nearest);
+        uint word = PACKED_ ? LOAD_WORD(g.taps.nearest) : 0u;
+        H = PACKED_ ? UNPACK_H(word) : LOAD_H(g.taps.nearest);
         Wh = LOAD_W(g.taps.nearest);
+        n_prev = PACKED_ ? word >> 16 : imageLoad(u_age[RRC_CH], g.taps.nearest).r;
     } else {
-        vec4 h00 = LOAD_H(g.taps.p00), h10 = LOAD_H(g.taps.p10), h01 = LOAD_H(g.taps.p01), h11 = LOAD_H(g.taps.p11);
+        vec4 h00, h10, h01, h11;
+        if (PACKED_) {
+            uvec4 words = uvec4(LOAD_WORD(g.taps.p00), LOAD_WORD(g.taps.p10), LOAD_WORD(g.taps.p01), LOAD_WORD(g.taps.p11));
+            h00 = UNPACK_H(words.x), h10 = UNPACK_H(words.y), h01 = UNPACK_H(words.z), h11 = UNPACK_H(words.w);
+            // The nearest texel clamp(floor(q)) is the tap clamp(floor(q - 0.5) + (f >= 0.5)): one of the four.
+            bvec2 upper = greaterThanEqual(g.taps.f, vec2(0.5));
+            uint nearest = upper.y ? (upper.x ? words.w : words.z) : (upper.x ? words.y : words.x);
+            n_prev = nearest >> 16;
+        } else {
+            h00 = LOAD_H(g.taps.p00), h10 = LOAD_H(g.taps.p10), h01 = LOAD_H(g.taps.p01), h11 = LOAD_H(g.taps.p11);
+            n_prev = imageLoad(u_age[RRC_CH], g.taps.nearest).r;
+        }
         vec4 wt = g.taps.w;
         H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
         Wh = CH_(_CONFIDENCE) ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
@@ -55,7 +75,7 @@ if (RRC_CH < CH_COUNT) {
             }
         }
     }
-    uint n_prev = imageLoad(u_age[RRC_CH], g.taps.nearest).r;
+#undef LOAD_WORD
 #undef LOAD_H
 #undef LOAD_W
 
@@ -97,11 +117,18 @@ if (RRC_CH < CH_COUNT) {
     // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp
     // rounds to +-Inf; no history value may be infinite.
     out_v = CH_(_FP16) ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
-    imageStore(u_hist_out[RRC_CH], px, out_v);
+    if (PACKED_) {
+        // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
+        imageStore(u_age_out[RRC_CH], px, uvec4(packHalf2x16(vec2(out_v.x, 0.0)) | (n_out << 16)));
+    } else {
+        imageStore(u_hist_out[RRC_CH], px, out_v);
+        imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
+    }
     if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
-    imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
     if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
     if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
 }
 
+#undef UNPACK_H
+#undef PACKED_
 #undef CH_

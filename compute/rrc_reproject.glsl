@@ -2,7 +2,9 @@
 // Shared by every kernel that classifies pixels: it declares the geometry
 // inputs (set 0, RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and the interop bindings), the frame's push constants and the
 // specialization constants that select the source and depth mode, so a
-// configuration compiles only the path it uses.
+// configuration compiles only the path it uses.  Built with
+// -DRRC_WITHOUT_<FEATURE>, a feature's constant is a plain `false` instead:
+// tests/spirv compares that build with the specialised one (docs/PERFORMANCE.md).
 #ifndef RRC_REPROJECT_GLSL
 #define RRC_REPROJECT_GLSL
 
@@ -12,16 +14,32 @@
 layout(constant_id = RRC_SPEC_SOURCE) const uint SOURCE = RRC_REPROJECTION_PREV_CLIP;
 layout(constant_id = RRC_SPEC_DEPTH_MODE) const uint DEPTH_MODE = RRC_DEPTH_MODE_STANDARD;
 layout(constant_id = RRC_SPEC_EPS_KIND) const uint EPS_KIND = RRC_EPS_ULP;  // RRC_EPS_ABSOLUTE, _ULP, _RELATIVE
+#ifdef RRC_WITHOUT_NOCACHE
+const bool HAS_NOCACHE = false;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
+#endif
 // Interop: the host's images are read through samplers (any format, depth
 // formats included), the library keeps its own copy of depth for the next
 // frame and writes each channel to the host's output image too.
+#ifdef RRC_WITHOUT_INTEROP
+const bool INTEROP = false;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
+#endif
 // The ADAPTIVE test (docs/CONVENTIONS.md): every source but plain MOTION.
+#ifdef RRC_WITHOUT_ADAPTIVE
+const bool ADAPTIVE = false;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
+#endif
 // Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.
+#ifdef RRC_WITHOUT_OBJECT_ID
+const bool OBJECT_ID = false;  // the feature's code removed (tests/spirv)
+#else
 layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
+#endif
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430

@@ -6,7 +6,7 @@ namespace rrc {
 namespace {
 
 VkFormat history_format(const ChannelConfig& ch) {
-    if (ch.fp16) return ch.components == 1 ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+    if (ch.fp16) return ch.components == 1 ? kPackedHistoryFormat : VK_FORMAT_R16G16B16A16_SFLOAT;
     return ch.components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
 }
 
@@ -15,7 +15,7 @@ VkFormat history_format(const ChannelConfig& ch) {
 ChannelHistory::ChannelHistory(VulkanDevice& dev, const ChannelConfig& c, uint32_t w, uint32_t h) {
     for (int p = 0; p < 2; ++p) {
         history[p] = GpuImage(dev, history_format(c), w, h);
-        age[p] = GpuImage(dev, VK_FORMAT_R16_UINT, w, h);
+        if (!packed()) age[p] = GpuImage(dev, VK_FORMAT_R16_UINT, w, h);
         if (c.confidence) weight[p] = GpuImage(dev, VK_FORMAT_R32_SFLOAT, w, h);
     }
 }
@@ -28,16 +28,20 @@ size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].b
 
 void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint32_t p) {
     const uint32_t prev = 1 - p;
-    const VkFormat f = h.history[prev].format;
-    Binding read = f == VK_FORMAT_R16_SFLOAT            ? RRC_BINDING_HIST_R16F
-                   : f == VK_FORMAT_R16G16B16A16_SFLOAT ? RRC_BINDING_HIST_RGBA16F
-                   : f == VK_FORMAT_R32_SFLOAT          ? RRC_BINDING_HIST_R32F
-                                                        : RRC_BINDING_HIST_RGBA32F;
-    v.view[read][s] = h.history[prev].view;
-    v.view[RRC_BINDING_AGE][s] = h.age[prev].view;
+    if (h.packed()) {  // one R32_UINT word: value and age in, value and age out (AGE_OUT takes any uint format)
+        v.view[RRC_BINDING_HIST_PACKED][s] = h.history[prev].view;
+        v.view[RRC_BINDING_AGE_OUT][s] = h.history[p].view;
+    } else {
+        const VkFormat f = h.history[prev].format;
+        Binding read = f == VK_FORMAT_R16G16B16A16_SFLOAT ? RRC_BINDING_HIST_RGBA16F
+                       : f == VK_FORMAT_R32_SFLOAT        ? RRC_BINDING_HIST_R32F
+                                                          : RRC_BINDING_HIST_RGBA32F;
+        v.view[read][s] = h.history[prev].view;
+        v.view[RRC_BINDING_AGE][s] = h.age[prev].view;
+        v.view[RRC_BINDING_HIST_OUT][s] = h.history[p].view;
+        v.view[RRC_BINDING_AGE_OUT][s] = h.age[p].view;
+    }
     if (h.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = h.weight[prev].view;
-    v.view[RRC_BINDING_HIST_OUT][s] = h.history[p].view;
-    v.view[RRC_BINDING_AGE_OUT][s] = h.age[p].view;
     if (h.weight[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.weight[p].view;
 }
 
@@ -79,7 +83,7 @@ DescriptorViews Placeholders::views() const {
         v.view[RRC_BINDING_SAMPLE1][s] = v.view[RRC_BINDING_CONFIDENCE][s] = v.view[RRC_BINDING_HIST_R32F][s] =
             v.view[RRC_BINDING_WEIGHT][s] = read(VK_FORMAT_R32_SFLOAT);
         v.view[RRC_BINDING_SAMPLE4][s] = v.view[RRC_BINDING_HIST_RGBA32F][s] = read(VK_FORMAT_R32G32B32A32_SFLOAT);
-        v.view[RRC_BINDING_HIST_R16F][s] = read(VK_FORMAT_R16_SFLOAT);
+        v.view[RRC_BINDING_HIST_PACKED][s] = read(kPackedHistoryFormat);
         v.view[RRC_BINDING_HIST_RGBA16F][s] = read(VK_FORMAT_R16G16B16A16_SFLOAT);
         v.view[RRC_BINDING_AGE][s] = read(VK_FORMAT_R16_UINT);
         v.view[RRC_BINDING_HIST_OUT][s] = v.view[RRC_BINDING_WEIGHT_OUT][s] = v.view[RRC_BINDING_HOST_OUT][s] = wf;

@@ -11,8 +11,15 @@
 
 namespace rrc {
 
+// A 1-component fp16 channel keeps its value (low 16 bits, fp16) and age
+// (high 16 bits) in one R32_UINT word and has no age image: one load per
+// bilinear tap brings both and one store writes both (docs/PERFORMANCE.md,
+// "Inside the kernel").
+constexpr VkFormat kPackedHistoryFormat = VK_FORMAT_R32_UINT;
+
 struct ChannelHistory {
     GpuImage history[2], age[2], weight[2];  // [parity]: the frame writing parity p reads 1 - p
+    bool packed() const { return history[0].format == kPackedHistoryFormat; }
     ChannelHistory(VulkanDevice& dev, const ChannelConfig& config, uint32_t width, uint32_t height);
     void collect(std::vector<GpuImage*>& out);
     size_t bytes() const;

@@ -79,8 +79,15 @@ std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const Fram
     for (size_t i = 0; i < v.channels.size(); ++i) {
         const ChannelHistory& h = *v.channels[i];
         const FrameOutputs::Channel* co = out.channel_count ? &out.channels[i] : nullptr;
-        r.push_back({&h.history[parity], co ? (void*)co->values : nullptr});
-        r.push_back({&h.age[parity], co ? (void*)co->age : nullptr});
+        if (h.packed()) {
+            // values and ages from one image: copied when either is asked for
+            void* values = co ? (void*)co->values : nullptr;
+            uint16_t* ages = co ? co->age : nullptr;
+            r.push_back({&h.history[parity], values ? values : ages ? (void*)ages : nullptr, ages});
+        } else {
+            r.push_back({&h.history[parity], co ? (void*)co->values : nullptr});
+            r.push_back({&h.age[parity], co ? (void*)co->age : nullptr});
+        }
         r.push_back({&h.weight[parity], co ? (void*)co->weight : nullptr});
     }
     return r;
@@ -261,10 +268,17 @@ void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, uint32
         const unsigned char* src = readback_.data + offset;
         offset += align16(img.bytes());
         if (!img.image || !r.destination) continue;
-        if (img.format == VK_FORMAT_R16_SFLOAT || img.format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        if (img.format == kPackedHistoryFormat) {
+            const uint32_t* words = reinterpret_cast<const uint32_t*>(src);
+            float* values = r.destination == r.age_destination ? nullptr : static_cast<float*>(r.destination);
+            for (size_t i = 0; i < n; ++i) {
+                if (values) values[i] = glm::unpackHalf1x16((uint16_t)(words[i] & 0xFFFFu));
+                if (r.age_destination) r.age_destination[i] = (uint16_t)(words[i] >> 16);
+            }
+        } else if (img.format == VK_FORMAT_R16G16B16A16_SFLOAT) {
             const uint16_t* h = reinterpret_cast<const uint16_t*>(src);
             float* d = static_cast<float*>(r.destination);
-            const size_t count = img.format == VK_FORMAT_R16_SFLOAT ? n : 4 * n;
+            const size_t count = 4 * n;
             for (size_t i = 0; i < count; ++i) d[i] = glm::unpackHalf1x16(h[i]);
         } else {
             std::memcpy(r.destination, src, img.bytes());

@@ -32,7 +32,8 @@ private:
     // One readback target: a library image and where its bytes go.
     struct Readback {
         const GpuImage* image;
-        void* destination;  // NULL: not requested
+        void* destination;               // NULL: not requested
+        uint16_t* age_destination = nullptr;  // a packed history's ages (its value|age words split on the CPU)
     };
     std::vector<Readback> readbacks(const FrameOutputs& out, uint32_t parity) const;
     size_t readback_bytes(uint32_t parity) const;
