@@ -95,7 +95,7 @@ rrc_vulkan_image general(const Image& img) { return rrc_host::vulkan_image(img, 
 }  // namespace
 
 InteropResult run_interop(VulkanBootstrap& vk, const Config& c, const SceneInputs& scene, BenchImages& img, LogCounter& log, int reps,
-                          int warmup, bool check_roof) {
+                          int warmup, bool check_roof, const std::function<void(bool)>& between) {
     InteropResult res;
     ContextSetup setup(c, log);
     // One frame in flight: the bench waits for every submission.
@@ -175,6 +175,7 @@ InteropResult run_interop(VulkanBootstrap& vk, const Config& c, const SceneInput
         for (int i = 0; i < warmup; ++i) {
             kernel();
             roof_pass(0);
+            if (between) between(false);
         }
         for (int r = 0; r < reps; ++r) {
             const int pose = (int)(frame % 2);
@@ -190,6 +191,7 @@ InteropResult run_interop(VulkanBootstrap& vk, const Config& c, const SceneInput
             res.wall_ms.push_back(w);
             res.roof_ms.push_back(t);
             res.ratio.push_back(k / t);
+            if (between) between(true);
         }
         std::memcpy(&res.stats, stats.mapped, sizeof res.stats);
         if (check_roof) {

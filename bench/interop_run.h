@@ -11,6 +11,7 @@
 
 #include <rrc/rrc_vulkan.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,9 @@ struct InteropResult {
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
 
+/** `between(record)`, if given, runs after each warm-up (record false) and
+ *  timed (record true) kernel/roof pair: the standalone path interleaves there. */
 InteropResult run_interop(VulkanBootstrap& vk, const Config& config, const SceneInputs& scene, BenchImages& images, LogCounter& log,
-                          int reps, int warmup, bool check_roof);
+                          int reps, int warmup, bool check_roof, const std::function<void(bool)>& between = {});
 
 }  // namespace rrc_bench

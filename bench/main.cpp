@@ -1,15 +1,24 @@
 // rrc-bench: rrc's kernel timed against its roof (docs/PERFORMANCE.md).
 // Public headers only (include/rrc/) plus the host bootstrap of
 // host_sample/common, as any engine would use the library.
+#include "analysis.h"
 #include "bench_images.h"
 #include "config.h"
 #include "interop_run.h"
 #include "options.h"
+#include "report.h"
+#include "result.h"
+#include "run_info.h"
 #include "scene.h"
-#include "stats.h"
+#include "standalone_run.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <stdexcept>
 
 using namespace rrc_bench;
 
@@ -19,15 +28,15 @@ std::vector<Config> selected(const Options& o) {
     std::vector<Config> all = full_sweep(), out;
     std::vector<std::string> names = o.configs;
     if (names.empty() && !o.full) names = short_sweep_names();
-    for (const Config& c : all) {
-        bool take = names.empty();
-        for (const std::string& n : names) take |= n == c.name;
-        if (take) out.push_back(c);
-    }
     for (const std::string& n : names) {
         bool known = false;
         for (const Config& c : all) known |= n == c.name;
         if (!known) throw std::runtime_error("unknown configuration \"" + n + "\" (rrc-bench --list names them)");
+    }
+    for (const Config& c : all) {
+        bool take = names.empty();
+        for (const std::string& n : names) take |= n == c.name;
+        if (take) out.push_back(c);
     }
     if (o.width)
         for (Config& c : out) {
@@ -37,44 +46,137 @@ std::vector<Config> selected(const Options& o) {
     return out;
 }
 
+Row measure(VulkanBootstrap& vk, const Config& c, const Options& opt, int reps, LogCounter& log) {
+    Row row;
+    row.config = c;
+    row.api_bytes = roof_bytes_from_api(c);
+    const SceneInputs scene = make_scene(c);
+    std::unique_ptr<StandaloneBench> standalone;
+    if (c.standalone) standalone = std::make_unique<StandaloneBench>(c, scene, log, opt.device, opt.validation);
+    std::function<void(bool)> between;
+    if (standalone) between = [&](bool record) { standalone->step(record); };
+    BenchImages images = create_images(vk, c, scene);
+    try {
+        row.interop = run_interop(vk, c, scene, images, log, reps, opt.warmup, opt.check_roof || opt.validation, between);
+    } catch (...) {
+        destroy_images(vk, images);
+        throw;
+    }
+    destroy_images(vk, images);
+    if (standalone) {
+        row.has_standalone = true;
+        row.standalone = standalone->result();
+    }
+    return row;
+}
+
+// bench/plot.py needs python3 with matplotlib; without them the run still
+// succeeds.  The first python3 on PATH may be a virtual environment or
+// pyenv without it while the system's has it (Debian: python3-matplotlib).
+void plot(const Options& opt, const std::string& json, const std::string& png) {
+    if (!opt.plot) return;
+    std::string python;
+    for (const char* candidate : {"python3", "/usr/bin/python3"}) {
+        const std::string probe = std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1";
+        if (std::system(probe.c_str()) == 0) {
+            python = candidate;
+            break;
+        }
+    }
+    if (python.empty()) {
+        std::fprintf(stderr, "rrc-bench: no plot: python3 with matplotlib not found (Debian: python3-matplotlib)\n");
+        return;
+    }
+    const std::string cmd = python + " \"" + opt.plot_script + "\" \"" + json + "\" \"" + png + "\"";
+    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rrc-bench: %s failed\n", cmd.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const Options opt = parse_options(argc, argv);
     try {
         if (opt.configs.size() == 1 && opt.configs[0] == "list") {
-            for (const Config& c : full_sweep()) std::printf("%-20s %s\n", c.name.c_str(), c.factor.c_str());
+            const auto quick = short_sweep_names();
+            for (const Config& c : full_sweep()) {
+                bool in_short = false;
+                for (const std::string& n : quick) in_short |= n == c.name;
+                std::printf("%-20s %-11s %s\n", c.name.c_str(), c.factor.c_str(), in_short ? "(default run)" : "");
+            }
             return 0;
         }
         const std::vector<Config> configs = selected(opt);
-        const int reps = opt.reps ? opt.reps : opt.full ? 15 : 9;
+        RunInfo info;
+        info.command = opt.command_line;
+        info.reps = opt.reps ? opt.reps : opt.full ? 15 : 9;
+        info.warmup = opt.warmup;
+        info.validation = opt.validation;
+        info.size_override = opt.width != 0;
+        info.commit = source_commit();
+        info.date = utc_now();
+        info.cpu = cpu_description();
+
         rrc_host::BootstrapOptions bo;
         bo.application = "rrc-bench";
         bo.validation = opt.validation;
         bo.device_name = opt.device;
         VulkanBootstrap vk(bo);
-        std::fprintf(stderr, "rrc-bench: %s, %zu configuration(s), %d repetitions each\n", vk.device_name().c_str(), configs.size(), reps);
+        info.device = vk.device_name();
+        std::fprintf(stderr, "rrc-bench: %s, commit %s, %zu configuration(s), %d repetitions each\n", info.device.c_str(),
+                     info.commit.c_str(), configs.size(), info.reps);
+        if (!vk.timestamps) std::fprintf(stderr, "rrc-bench: the device has no timestamps: GPU times are wall clock of each submission\n");
+
         LogCounter log;
-        std::printf("%-20s %10s %9s %9s %7s\n", "config", "size", "kernel ms", "roof ms", "ratio");
-        for (const Config& c : configs) {
-            std::fprintf(stderr, "rrc-bench: %s (%ux%u)...\n", c.name.c_str(), c.width, c.height);
-            const SceneInputs scene = make_scene(c);
-            BenchImages images = create_images(vk, c, scene);
-            const InteropResult r = run_interop(vk, c, scene, images, log, reps, opt.warmup, opt.check_roof || opt.validation);
-            destroy_images(vk, images);
-            const Summary k = summarize(r.kernel_ms), t = summarize(r.roof_ms), q = summarize(r.ratio);
-            std::printf("%-20s %4ux%-5u %9.3f %9.3f %7.3f\n", c.name.c_str(), c.width, c.height, k.median, t.median, q.median);
-            std::fflush(stdout);
-            if (!r.roof_check.empty() && r.roof_check != "skipped") throw std::runtime_error("roof check failed: " + r.roof_check);
+        std::vector<Row> rows;
+        bool bookkeeping_ok = true, roof_ok = true;
+        const double start = now_ms();
+        for (size_t i = 0; i < configs.size(); ++i) {
+            const Config& c = configs[i];
+            std::fprintf(stderr, "rrc-bench: [%zu/%zu] %s (%ux%u, %s)...", i + 1, configs.size(), c.name.c_str(), c.width, c.height,
+                         channels_text(c).c_str());
+            rows.push_back(measure(vk, c, opt, info.reps, log));
+            const Row& r = rows.back();
+            std::fprintf(stderr, " kernel %.2f ms, roof %.2f ms, ratio %.3f%s (%.0f s so far)\n", r.kernel().median, r.roof().median,
+                         r.ratio().median, r.has_standalone ? ", standalone done" : "", (now_ms() - start) / 1000.0);
+            if (r.interop.roof_bytes_bound.read != r.api_bytes.read || r.interop.roof_bytes_bound.written != r.api_bytes.written) {
+                std::fprintf(stderr, "rrc-bench: %s: the roof binds %llu+%llu bytes, the API implies %llu+%llu\n", c.name.c_str(),
+                             (unsigned long long)r.interop.roof_bytes_bound.read, (unsigned long long)r.interop.roof_bytes_bound.written,
+                             (unsigned long long)r.api_bytes.read, (unsigned long long)r.api_bytes.written);
+                bookkeeping_ok = false;
+            }
+            if (r.interop.roof_check != "skipped" && !r.interop.roof_check.empty()) {
+                std::fprintf(stderr, "rrc-bench: %s: the roof's outputs are not copies of its inputs: %s\n", c.name.c_str(),
+                             r.interop.roof_check.c_str());
+                roof_ok = false;
+            }
         }
-        const uint64_t messages = vk.message_count() + log.messages;
-        if (opt.validation && messages) {
+        info.validation_messages = vk.message_count() + log.messages;
+        for (const Row& r : rows) info.validation_messages += r.standalone.validation_messages;
+
+        const Linearity lin = analyze_linearity(rows);
+        const std::vector<Target> targets = evaluate_targets(rows, lin);
+        print_table(rows);
+        std::printf("\n");
+        for (const Target& t : targets)
+            std::printf("target %-16s %-12s %s%s%s\n", t.name.c_str(), t.status.c_str(), t.measured.c_str(), t.margin.empty() ? "" : "; ",
+                        t.margin.c_str());
+
+        std::filesystem::create_directories(opt.out);
+        const std::string json = opt.out + "/bench.json";
+        write_csv(opt.out + "/bench.csv", rows);
+        write_json(json, info, rows, lin, targets);
+        write_markdown(opt.out + "/report.md", info, rows, lin, targets);
+        plot(opt, json, opt.out + "/bench.png");
+        std::fprintf(stderr, "rrc-bench: wrote %s/{bench.csv,bench.json,report.md} in %.0f s\n", opt.out.c_str(), (now_ms() - start) / 1000.0);
+
+        if (opt.validation && info.validation_messages) {
             for (const std::string& m : vk.messages()) std::fprintf(stderr, "validation: %s\n", m.c_str());
-            std::fprintf(stderr, "rrc-bench: %llu validation message(s)\n", (unsigned long long)messages);
+            std::fprintf(stderr, "rrc-bench: %llu validation message(s)\n", (unsigned long long)info.validation_messages);
             return 1;
         }
+        if (!bookkeeping_ok || !roof_ok) return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rrc-bench: %s\n", e.what());
+        std::fprintf(stderr, "\nrrc-bench: %s\n", e.what());
         return 1;
     }
     return 0;

@@ -20,7 +20,7 @@ glm::dmat4 projection(double aspect) {
 glm::dmat4 view_proj(int pose, double aspect) {
     // 6 cm sideways between the poses: a few pixels of motion at 1080p.
     const glm::dvec3 eye(-0.03 + 0.06 * pose, 1.6, 5.0);
-    return projection(aspect) * glm::lookAtRH(eye, glm::dvec3(0.0, 0.8, 0.0), glm::dvec3(0.0, 1.0, 0.0));
+    return projection(aspect) * glm::lookAtRH(eye, glm::dvec3(0.0, 0.2, 0.0), glm::dvec3(0.0, 1.0, 0.0));
 }
 
 struct Sphere {
