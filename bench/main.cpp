@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
         info.validation_messages = vk.message_count() + log.messages;
         for (const Row& r : rows) info.validation_messages += r.standalone.validation_messages;
 
-        const Linearity lin = analyze_linearity(rows);
+        // With --size every row has the same size: there is no line to fit.
+        const Linearity lin = info.size_override ? Linearity{} : analyze_linearity(rows);
         const std::vector<Target> targets = evaluate_targets(rows, lin);
         print_table(rows);
         std::printf("\n");
