@@ -115,6 +115,7 @@ int main(int argc, char** argv) {
         info.commit = source_commit();
         info.date = utc_now();
         info.cpu = cpu_description();
+        info.load_start = load_average();
 
         rrc_host::BootstrapOptions bo;
         bo.application = "rrc-bench";
@@ -150,6 +151,7 @@ int main(int argc, char** argv) {
                 roof_ok = false;
             }
         }
+        info.load_end = load_average();
         info.validation_messages = vk.message_count() + log.messages;
         for (const Row& r : rows) info.validation_messages += r.standalone.validation_messages;
 

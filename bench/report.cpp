@@ -154,7 +154,7 @@ void write_json(const std::string& path, const RunInfo& info, const std::vector<
     std::ostringstream o;
     o << "{\n  \"command\": " << json_string(info.command) << ",\n  \"device\": " << json_string(info.device)
       << ",\n  \"commit\": " << json_string(info.commit) << ",\n  \"date\": " << json_string(info.date)
-      << ",\n  \"cpu\": " << json_string(info.cpu) << ",\n  \"reps\": " << info.reps << ",\n  \"warmup\": " << info.warmup
+      << ",\n  \"cpu\": " << json_string(info.cpu) << ",\n  \"load_average\": [" << num(info.load_start, 2) << ", " << num(info.load_end, 2) << "],\n  \"reps\": " << info.reps << ",\n  \"warmup\": " << info.warmup
       << ",\n  \"validation\": " << (info.validation ? "true" : "false") << ",\n  \"validation_messages\": " << info.validation_messages
       << ",\n  \"published_memory_mb\": {\"nrd_sigma_1080p\": " << kNrdSigmaMb1080p << ", \"fsr2_1080p_quality\": " << kFsr2Mb1080pQuality
       << "},\n  \"rows\": [\n";
@@ -185,7 +185,8 @@ void write_json(const std::string& path, const RunInfo& info, const std::vector<
 void write_markdown(const std::string& path, const RunInfo& info, const std::vector<Row>& rows, const Linearity& lin,
                     const std::vector<Target>& targets) {
     std::ostringstream o;
-    o << "Measured on commit `" << info.commit << "`, " << info.date << ", " << info.device << " on " << info.cpu << ".\n\n"
+    o << "Measured on commit `" << info.commit << "`, " << info.date << ", " << info.device << " on " << info.cpu << " (1-minute load average " << num(info.load_start, 2) << " before the run, "
+      << num(info.load_end, 2) << " after, the bench's own threads included).\n\n"
       << "Command: `" << info.command << "` (" << info.reps << " timed repetitions after " << info.warmup << " warm-up frames"
       << (info.validation ? ", under validation: timings not representative" : "") << ").\n\n";
     o << "| config | size | channels | source | kernel ms median (min–max) | roof ms median (min–max) | kernel/roof median (IQR; min–max) | roof GB/s | "

@@ -43,6 +43,7 @@ struct RunInfo {
     bool validation = false;
     bool size_override = false;  // --size: resolution rows are not at their nominal sizes
     uint64_t validation_messages = 0;
+    double load_start = 0, load_end = 0;  // 1-minute load average before and after the run
 };
 
 }  // namespace rrc_bench

@@ -41,4 +41,11 @@ std::string cpu_description() {
     return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " CPUs";
 }
 
+double load_average() {
+    std::ifstream in("/proc/loadavg");
+    double one = -1.0;
+    in >> one;
+    return one;
+}
+
 }  // namespace rrc_bench

@@ -13,5 +13,7 @@ std::string source_commit();
 std::string utc_now();
 /** "model name" of /proc/cpuinfo and the number of CPUs online. */
 std::string cpu_description();
+/** The 1-minute load average (/proc/loadavg): how shared the machine was. */
+double load_average();
 
 }  // namespace rrc_bench
