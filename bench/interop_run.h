@@ -22,7 +22,7 @@ struct InteropResult {
     std::vector<double> wall_ms;                    // CPU wall clock of a kernel frame: record, submit, wait
     bool timestamps = false;                        // false: the device has none, *_ms are wall clock of the submission
     uint64_t memory_bytes = 0;                      // rrc_context_memory_usage
-    rrc_vulkan_frame_stats stats{};                 // of the last timed frame
+    rrc_vulkan_frame_stats stats{};                 // of one untimed frame after the timed ones
     std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
