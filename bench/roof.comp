@@ -8,9 +8,9 @@
 //
 // Specialisation constants select the reads and writes of a configuration;
 // everything a configuration does not use folds away.  Reads are plain
-// imageLoad with a format qualifier (the cheapest read there is); writes are
-// without a format (shaderStorageImageWriteWithoutFormat, which rrc needs
-// anyway).  128x1 workgroups: lavapipe runs a row segment per thread best.
+// imageLoad with a format qualifier (the cheapest read there is); writes
+// have one where the API fixes the format.  128x1 workgroups: lavapipe runs
+// a row segment per thread best.
 //
 // Outputs are exact copies of designated inputs, so a test can read them
 // back and compare: values <- history, age out <- age in, depth copy <-
@@ -62,13 +62,15 @@ layout(binding = 12, rgba32f) uniform readonly image2D u_hist_rgba32f[4];
 layout(binding = 13, r16ui) uniform readonly uimage2D u_age[4];
 layout(binding = 14, r32f) uniform readonly image2D u_confidence[4];
 layout(binding = 15, r32f) uniform readonly image2D u_weight[4];
-// Outputs.
+// Outputs.  The values go to the host's image, "any float format" in the
+// API, so the write has no format (as the kernel's); the others have one
+// fixed format and are written with it (also as the kernel's).
 layout(binding = 16) uniform writeonly image2D u_values_out[4];
-layout(binding = 17) uniform writeonly uimage2D u_age_out[4];
-layout(binding = 18) uniform writeonly image2D u_weight_out[4];
-layout(binding = 19) uniform writeonly uimage2D u_mask;
-layout(binding = 20) uniform writeonly image2D u_depth_copy;
-layout(binding = 21) uniform writeonly uimage2D u_object_id_copy;
+layout(binding = 17, r16ui) uniform writeonly uimage2D u_age_out[4];
+layout(binding = 18, r32f) uniform writeonly image2D u_weight_out[4];
+layout(binding = 19, r8ui) uniform writeonly uimage2D u_mask;
+layout(binding = 20, r32f) uniform writeonly image2D u_depth_copy;
+layout(binding = 21, r32ui) uniform writeonly uimage2D u_object_id_copy;
 
 uint fold(vec4 v, bool four) {
     uint s = floatBitsToUint(v.x);
