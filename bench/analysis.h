@@ -12,6 +12,7 @@ namespace rrc_bench {
 
 struct Linearity {
     bool measured = false;
+    // Fitted round by round (every row ran once per round of repetitions), medians over the rounds.
     double ms_per_mpixel = 0;                  // kernel ms per megapixel, least squares through 0 over 720p..4K
     double intercept_ms = 0, slope_ms = 0;     // ms = intercept + slope * MP over every resolution row (the plot's line)
     std::vector<std::pair<std::string, double>> deviation;  // 720p..4K rows: ms / (k * MP) - 1

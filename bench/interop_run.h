@@ -11,8 +11,9 @@
 
 #include <rrc/rrc_vulkan.h>
 
-#include <functional>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rrc_bench {
@@ -27,9 +28,43 @@ struct InteropResult {
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
 
-/** `between(record)`, if given, runs after each warm-up (record false) and
- *  timed (record true) kernel/roof pair: the standalone path interleaves there. */
-InteropResult run_interop(VulkanBootstrap& vk, const Config& config, const SceneInputs& scene, BenchImages& images, LogCounter& log,
-                          int reps, int warmup, bool check_roof, const std::function<void(bool)>& between = {});
+class Timer;
+class Submitter;
+
+/** One configuration's interop context and roof on the bench's device.
+ *  step() runs one kernel/roof pair, so the caller can interleave
+ *  configurations too: then every configuration sees the same drift of a
+ *  shared machine, and times of different rows compare rep by rep. */
+class InteropBench {
+public:
+    InteropBench(VulkanBootstrap& vk, const Config& config, const SceneInputs& scene, const BenchImages& images, LogCounter& log);
+    ~InteropBench();
+    InteropBench(const InteropBench&) = delete;
+    InteropBench& operator=(const InteropBench&) = delete;
+
+    /** One kernel frame and one roof dispatch (their order swaps every call);
+     *  `record` false: warm-up (lavapipe compiles at the first dispatch, and
+     *  the first frames have no history), not kept. */
+    void step(bool record);
+    /** An untimed frame with statistics, the roof check if asked; the result. */
+    InteropResult finish(bool check_roof);
+
+private:
+    std::pair<double, double> kernel(bool with_stats);
+    double roof_pass(int pose);
+    void release();
+    VulkanBootstrap& vk_;
+    const Config& config_;
+    const SceneInputs& scene_;
+    const BenchImages& img_;
+    rrc_context* ctx_ = nullptr;
+    rrc_host::Buffer stats_;
+    std::unique_ptr<Roof> roof_;
+    std::unique_ptr<Timer> timer_;
+    std::unique_ptr<Submitter> sub_;
+    std::vector<rrc_vulkan_channel_images> channels_;
+    uint64_t frame_ = 0, steps_ = 0;
+    InteropResult res_;
+};
 
 }  // namespace rrc_bench

@@ -46,28 +46,69 @@ std::vector<Config> selected(const Options& o) {
     return out;
 }
 
-Row measure(VulkanBootstrap& vk, const Config& c, const Options& opt, int reps, LogCounter& log) {
-    Row row;
-    row.config = c;
-    row.api_bytes = roof_bytes_from_api(c);
-    const SceneInputs scene = make_scene(c);
+// One configuration's inputs, images and contexts, alive for the whole run.
+struct Job {
+    Config config;
+    std::unique_ptr<SceneInputs> scene;
+    BenchImages images;
     std::unique_ptr<StandaloneBench> standalone;
-    if (c.standalone) standalone = std::make_unique<StandaloneBench>(c, scene, log, opt.device, opt.validation);
-    std::function<void(bool)> between;
-    if (standalone) between = [&](bool record) { standalone->step(record); };
-    BenchImages images = create_images(vk, c, scene);
+    std::unique_ptr<InteropBench> interop;
+};
+
+// Every configuration is set up first, then the repetitions go round all of
+// them (rep-major): a shared machine's drift hits every row alike, so times
+// of different rows (the CAMERA/MOTION and linearity targets) compare
+// repetition by repetition, not only the kernel/roof pairs within a row.
+std::vector<Row> measure_all(VulkanBootstrap& vk, const std::vector<Config>& configs, const Options& opt, int reps, LogCounter& log) {
+    std::vector<Job> jobs(configs.size());
+    const double start = now_ms();
+    auto cleanup = [&]() {
+        for (Job& j : jobs) {
+            j.interop.reset();
+            j.standalone.reset();
+            destroy_images(vk, j.images);
+        }
+    };
+    std::vector<Row> rows;
     try {
-        row.interop = run_interop(vk, c, scene, images, log, reps, opt.warmup, opt.check_roof || opt.validation, between);
+        for (size_t i = 0; i < configs.size(); ++i) {
+            Job& j = jobs[i];
+            j.config = configs[i];
+            std::fprintf(stderr, "rrc-bench: set up [%zu/%zu] %s (%ux%u, %s)\n", i + 1, configs.size(), j.config.name.c_str(),
+                         j.config.width, j.config.height, channels_text(j.config).c_str());
+            j.scene = std::make_unique<SceneInputs>(make_scene(j.config));
+            if (j.config.standalone) j.standalone = std::make_unique<StandaloneBench>(j.config, *j.scene, log, opt.device, opt.validation);
+            j.images = create_images(vk, j.config, *j.scene);
+            j.interop = std::make_unique<InteropBench>(vk, j.config, *j.scene, j.images, log);
+        }
+        for (int r = -opt.warmup; r < reps; ++r) {
+            const bool record = r >= 0;
+            for (Job& j : jobs) {
+                j.interop->step(record);
+                if (j.standalone) j.standalone->step(record);
+            }
+            std::fprintf(stderr, "rrc-bench: %s %d/%d done (%.0f s so far)\n", record ? "repetition" : "warm-up", record ? r + 1 : r + opt.warmup + 1,
+                         record ? reps : opt.warmup, (now_ms() - start) / 1000.0);
+        }
+        for (Job& j : jobs) {
+            Row row;
+            row.config = j.config;
+            row.api_bytes = roof_bytes_from_api(j.config);
+            row.interop = j.interop->finish(opt.check_roof || opt.validation);
+            if (j.standalone) {
+                row.has_standalone = true;
+                row.standalone = j.standalone->result();
+            }
+            std::fprintf(stderr, "rrc-bench: %-18s kernel %.2f ms, roof %.2f ms, ratio %.3f\n", j.config.name.c_str(), row.kernel().median,
+                         row.roof().median, row.ratio().median);
+            rows.push_back(std::move(row));
+        }
     } catch (...) {
-        destroy_images(vk, images);
+        cleanup();
         throw;
     }
-    destroy_images(vk, images);
-    if (standalone) {
-        row.has_standalone = true;
-        row.standalone = standalone->result();
-    }
-    return row;
+    cleanup();
+    return rows;
 }
 
 // bench/plot.py needs python3 with matplotlib; without them the run still
@@ -128,17 +169,11 @@ int main(int argc, char** argv) {
         if (!vk.timestamps) std::fprintf(stderr, "rrc-bench: the device has no timestamps: GPU times are wall clock of each submission\n");
 
         LogCounter log;
-        std::vector<Row> rows;
-        bool bookkeeping_ok = true, roof_ok = true;
         const double start = now_ms();
-        for (size_t i = 0; i < configs.size(); ++i) {
-            const Config& c = configs[i];
-            std::fprintf(stderr, "rrc-bench: [%zu/%zu] %s (%ux%u, %s)...", i + 1, configs.size(), c.name.c_str(), c.width, c.height,
-                         channels_text(c).c_str());
-            rows.push_back(measure(vk, c, opt, info.reps, log));
-            const Row& r = rows.back();
-            std::fprintf(stderr, " kernel %.2f ms, roof %.2f ms, ratio %.3f%s (%.0f s so far)\n", r.kernel().median, r.roof().median,
-                         r.ratio().median, r.has_standalone ? ", standalone done" : "", (now_ms() - start) / 1000.0);
+        const std::vector<Row> rows = measure_all(vk, configs, opt, info.reps, log);
+        bool bookkeeping_ok = true, roof_ok = true;
+        for (const Row& r : rows) {
+            const Config& c = r.config;
             if (r.interop.roof_bytes_bound.read != r.api_bytes.read || r.interop.roof_bytes_bound.written != r.api_bytes.written) {
                 std::fprintf(stderr, "rrc-bench: %s: the roof binds %llu+%llu bytes, the API implies %llu+%llu\n", c.name.c_str(),
                              (unsigned long long)r.interop.roof_bytes_bound.read, (unsigned long long)r.interop.roof_bytes_bound.written,

@@ -219,7 +219,7 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
         if (r.config.name == "base") o << " rrc, base (" << r.config.width << "x" << r.config.height << "): " << num(mb(r.interop.memory_bytes), 1) << " MB.";
     o << "\n\nLinearity (kernel median time against pixels): ";
     if (lin.measured) {
-        o << num(lin.ms_per_mpixel, 2) << " ms per megapixel (least squares through 0, 720p and above); deviations:";
+        o << num(lin.ms_per_mpixel, 2) << " ms per megapixel (least squares through 0 over 720p and above, fitted in each round of repetitions; medians over the rounds); deviations:";
         for (const auto& d : lin.deviation) o << " " << d.first << " " << num(100.0 * d.second, 1) << "%";
         o << "; max |deviation| " << num(100.0 * lin.max_abs_deviation, 1) << "%.";
         if (lin.small_measured) o << " 256x160: " << num(lin.small_share, 2) << "x its linear share.";
