@@ -55,6 +55,19 @@ struct Job {
     std::unique_ptr<InteropBench> interop;
 };
 
+// Frees a scene's per-pixel arrays, keeping the camera matrices: with every
+// configuration alive at once (--full) they would otherwise double the memory.
+void drop_arrays(SceneInputs& s) {
+    for (PoseFrame& p : s.poses) {
+        std::vector<float>().swap(p.depth);
+        std::vector<float>().swap(p.reprojection);
+        std::vector<uint32_t>().swap(p.object_id);
+    }
+    std::vector<std::vector<float>>().swap(s.samples);
+    std::vector<std::vector<float>>().swap(s.confidence);
+    std::vector<uint8_t>().swap(s.nocache);
+}
+
 // Every configuration is set up first, then the repetitions go round all of
 // them (rep-major): a shared machine's drift hits every row alike, so times
 // of different rows (the CAMERA/MOTION and linearity targets) compare
@@ -80,6 +93,7 @@ std::vector<Row> measure_all(VulkanBootstrap& vk, const std::vector<Config>& con
             if (j.config.standalone) j.standalone = std::make_unique<StandaloneBench>(j.config, *j.scene, log, opt.device, opt.validation);
             j.images = create_images(vk, j.config, *j.scene);
             j.interop = std::make_unique<InteropBench>(vk, j.config, *j.scene, j.images, log);
+            if (!j.standalone) drop_arrays(*j.scene);  // on the device now; the interop frames need only the matrices
         }
         for (int r = -opt.warmup; r < reps; ++r) {
             const bool record = r >= 0;
