@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Plots an rrc-bench run: usage  plot.py bench.json bench.png
 
-Left: kernel / roof per configuration (median, bar; whiskers min-max of the
-interleaved pairs), with the 1.45 target of the base.  Right: kernel and
+Left: kernel / roof per configuration (median, bar; whiskers the
+interquartile range of the interleaved pairs: min-max on a shared machine is
+mostly the load), with the 1.45 target of the base.  Right: kernel and
 roof milliseconds against megapixels over the resolution rows, each with a
 least-squares line (intercept = fixed cost of a frame).  The Agg backend:
 no display is needed.
@@ -37,14 +38,14 @@ def main(json_path, png_path):
 
     names = [r["name"] for r in rows]
     ratio = [r["ratio_median"] for r in rows]
-    low = [r["ratio_median"] - r["ratio_min"] for r in rows]
-    high = [r["ratio_max"] - r["ratio_median"] for r in rows]
+    low = [r["ratio_median"] - r["ratio_q1"] for r in rows]
+    high = [r["ratio_q3"] - r["ratio_median"] for r in rows]
     left.bar(range(len(rows)), ratio, yerr=[low, high], capsize=3, color="#4477aa")
     left.axhline(1.45, color="#cc3311", linestyle="--", linewidth=1, label="target 1.45 (base)")
     left.axhline(1.0, color="black", linewidth=0.8)
     left.set_xticks(range(len(rows)))
     left.set_xticklabels(names, rotation=60, ha="right", fontsize=8)
-    left.set_ylabel("kernel / roof (median, whiskers min-max)")
+    left.set_ylabel("kernel / roof (median, whiskers IQR)")
     left.set_title("kernel time over roof time, per configuration")
     left.legend(fontsize=8)
 
