@@ -13,7 +13,7 @@ namespace {
 
 [[noreturn]] void usage(int code) {
     std::fprintf(code ? stderr : stdout,
-                 "usage: rrc-bench [--full] [--config NAME[,NAME...]] [--size WxH] [--reps N] [--warmup N]\n"
+                 "usage: rrc-bench [--full] [--list] [--config NAME[,NAME...]] [--size WxH] [--reps N] [--warmup N]\n"
                  "                 [--device TEXT] [--validation] [--check-roof] [--out DIR] [--no-plot] [--plot-script PATH]\n"
                  "Times rrc's kernel (interop path) against its roof, a copy kernel moving the bytes the API implies,\n"
                  "and the standalone round trip against kernel + memcpy.  Default: a short sweep (under 2 minutes on\n"
