@@ -1,0 +1,102 @@
+#include "config.h"
+
+namespace rrc_bench {
+namespace {
+
+Config base() {
+    Config c;
+    c.name = "base";
+    c.factor = "base";
+    return c;
+}
+
+Config vary(const std::string& name, const std::string& factor) {
+    Config c = base();
+    c.name = name;
+    c.factor = factor;
+    return c;
+}
+
+}  // namespace
+
+std::vector<Config> full_sweep() {
+    std::vector<Config> all{base()};
+    const uint32_t sizes[][2] = {{256, 160}, {640, 360}, {1280, 720}, {2560, 1440}, {3840, 2160}};
+    for (const auto& s : sizes) {
+        Config c = vary("res_" + std::to_string(s[0]) + "x" + std::to_string(s[1]), "resolution");
+        c.width = s[0];
+        c.height = s[1];
+        all.push_back(c);
+    }
+    for (uint32_t n = 1; n <= 4; ++n)
+        for (uint32_t comps : {1u, 4u}) {
+            if (n == 1 && comps == 1) continue;  // that is base
+            Config c = vary("ch_" + std::to_string(n) + "x" + std::to_string(comps), "channels");
+            ChannelConfig ch;
+            ch.components = comps;
+            c.channels.assign(n, ch);
+            all.push_back(c);
+        }
+    {
+        Config c = vary("fp32", "precision");
+        c.channels[0].precision = RRC_HISTORY_FP32;
+        all.push_back(c);
+    }
+    const std::pair<const char*, rrc_reprojection> sources[] = {
+        {"src_motion", RRC_REPROJECTION_MOTION}, {"src_motion_depth", RRC_REPROJECTION_MOTION_DEPTH}, {"src_camera", RRC_REPROJECTION_CAMERA}};
+    for (const auto& s : sources) {
+        Config c = vary(s.first, "source");
+        c.source = s.second;
+        all.push_back(c);
+    }
+    const std::pair<const char*, rrc_history_filter> filters[] = {{"filter_nearest", RRC_HISTORY_FILTER_NEAREST},
+                                                                  {"filter_bilinear", RRC_HISTORY_FILTER_BILINEAR},
+                                                                  {"filter_catmull_rom", RRC_HISTORY_FILTER_CATMULL_ROM}};
+    for (const auto& f : filters) {
+        Config c = vary(f.first, "filter");
+        c.channels[0].filter = f.second;
+        all.push_back(c);
+    }
+    {
+        Config c = vary("confidence", "confidence");
+        c.channels[0].confidence = true;
+        all.push_back(c);
+    }
+    {
+        Config c = vary("nocache", "nocache");
+        c.nocache = true;
+        all.push_back(c);
+    }
+    {
+        Config c = vary("object_id", "object_id");
+        c.object_id = true;
+        all.push_back(c);
+    }
+    {
+        Config c = vary("depth_fixed", "depth_test");
+        c.depth_test = RRC_DEPTH_TEST_FIXED;
+        all.push_back(c);
+    }
+    {
+        Config c = vary("standalone", "path");
+        c.standalone = true;
+        all.push_back(c);
+    }
+    return all;
+}
+
+std::vector<std::string> short_sweep_names() {
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "standalone"};
+}
+
+std::string channels_text(const Config& c) {
+    std::string s;
+    for (const ChannelConfig& ch : c.channels) {
+        if (!s.empty()) s += "+";
+        s += std::to_string(ch.components) + (ch.precision == RRC_HISTORY_FP32 ? "f32" : "f16");
+        if (ch.confidence) s += "c";
+    }
+    return s;
+}
+
+}  // namespace rrc_bench

@@ -1,0 +1,41 @@
+// One benchmark configuration and the sweep around the base: every factor of
+// the issue is varied alone, so a row's change against `base` is that
+// factor's cost.  The short default run is a subset that still covers the
+// targets of docs/PERFORMANCE.md (channels, sources, linearity, standalone).
+#pragma once
+
+#include <rrc/rrc.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rrc_bench {
+
+struct ChannelConfig {
+    uint32_t components = 1;                          // 1 or 4
+    rrc_history_precision precision = RRC_HISTORY_FP16;
+    rrc_history_filter filter = 0;                    // 0: the library's default
+    bool confidence = false;
+};
+
+struct Config {
+    std::string name;    // unique, what --config takes
+    std::string factor;  // the factor varied from base ("base" for base itself)
+    uint32_t width = 1920, height = 1080;
+    std::vector<ChannelConfig> channels{ChannelConfig{}};
+    rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
+    bool nocache = false;
+    bool object_id = false;
+    rrc_depth_test depth_test = 0;  // 0: the library's default (ADAPTIVE)
+    bool standalone = false;        // also time the standalone path (CPU arrays)
+};
+
+/** Every configuration of --full, base first. */
+std::vector<Config> full_sweep();
+/** The names the short default run takes from full_sweep(). */
+std::vector<std::string> short_sweep_names();
+/** "1x fp16 r" style summary of the channels. */
+std::string channels_text(const Config& c);
+
+}  // namespace rrc_bench

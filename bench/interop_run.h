@@ -1,0 +1,70 @@
+// The kernel timed through the interop path, interleaved with the roof: an
+// rrc context on the bench's own device, each frame recorded into the
+// bench's command buffer between two timestamps, and the roof dispatched
+// between two timestamps of its own; the two alternate (order swapped every
+// repetition so a drift of the machine hits both alike).
+#pragma once
+
+#include "bench_images.h"
+#include "context_setup.h"
+#include "roof.h"
+
+#include <rrc/rrc_vulkan.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rrc_bench {
+
+struct InteropResult {
+    std::vector<double> kernel_ms, roof_ms, ratio;  // per repetition (ratio of the pair)
+    std::vector<double> wall_ms;                    // CPU wall clock of a kernel frame: record, submit, wait
+    bool timestamps = false;                        // false: the device has none, *_ms are wall clock of the submission
+    uint64_t memory_bytes = 0;                      // rrc_context_memory_usage
+    rrc_vulkan_frame_stats stats{};                 // of one untimed frame after the timed ones
+    std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)
+    RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
+};
+
+class Timer;
+class Submitter;
+
+/** One configuration's interop context and roof on the bench's device.
+ *  step() runs one kernel/roof pair, so the caller can interleave
+ *  configurations too: then every configuration sees the same drift of a
+ *  shared machine, and times of different rows compare rep by rep. */
+class InteropBench {
+public:
+    InteropBench(VulkanBootstrap& vk, const Config& config, const SceneInputs& scene, const BenchImages& images, LogCounter& log);
+    ~InteropBench();
+    InteropBench(const InteropBench&) = delete;
+    InteropBench& operator=(const InteropBench&) = delete;
+
+    /** One kernel frame and one roof dispatch (their order swaps every call);
+     *  `record` false: warm-up (lavapipe compiles at the first dispatch, and
+     *  the first frames have no history), not kept. */
+    void step(bool record);
+    /** An untimed frame with statistics, the roof check if asked; the result. */
+    InteropResult finish(bool check_roof);
+
+private:
+    std::pair<double, double> kernel(bool with_stats);
+    double roof_pass(int pose);
+    void release();
+    VulkanBootstrap& vk_;
+    const Config& config_;
+    const SceneInputs& scene_;
+    const BenchImages& img_;
+    rrc_context* ctx_ = nullptr;
+    rrc_host::Buffer stats_;
+    std::unique_ptr<Roof> roof_;
+    std::unique_ptr<Timer> timer_;
+    std::unique_ptr<Submitter> sub_;
+    std::vector<rrc_vulkan_channel_images> channels_;
+    uint64_t frame_ = 0, steps_ = 0;
+    InteropResult res_;
+};
+
+}  // namespace rrc_bench
