@@ -1,0 +1,222 @@
+# A disabled feature costs nothing (docs/PERFORMANCE.md): for each optional
+# feature of the fused kernel (compute/rrc_accumulate.comp), the specialised
+# SPIR-V of a configuration without it must equal the SPIR-V built with the
+# feature's code removed (-DRRC_WITHOUT_<F>: its specialization constant
+# becomes a plain `const false` / `0u`).
+#
+#   cmake -DGLSLANG=glslangValidator -DSPIRV_OPT=spirv-opt -DSPIRV_REMAP=spirv-remap
+#         -DSPIRV_DIS=spirv-dis -DKERNEL_DIR=compute -DINCLUDE_DIR=include
+#         -DWORK_DIR=/tmp/rrc_spirv -P tests/spirv/disabled_features.cmake
+#
+# Per variant: glslangValidator -V --target-env vulkan1.1 (as cmake/SPIRV.cmake), then
+#   spirv-opt [--set-spec-const-default-value "<base>"] --freeze-spec-const
+#             --fold-spec-const-op-composite -O      (specialise, remove dead code)
+#   spirv-remap --map all --strip all               (canonical ids, no names)
+#   spirv-opt --compact-ids                          (ids by first appearance)
+# and the two modules must be byte-identical.
+#
+# --fold-spec-const-op-composite is needed: -O alone folds no OpSpecConstantOp,
+# so every branch on a spec-constant expression (`RRC_CH < CH_COUNT`, the
+# DEPTH_MODE and SOURCE tests, ...) survives freezing with its code.
+# --compact-ids is needed: spirv-remap's ids still depend on the input's
+# numbering (where its hashes collide), so two modules equal up to renaming
+# can differ in ids when the front end numbered them differently (CONFIDENCE:
+# four spec constants against one shared `false`, three ids more).  Neither
+# step can hide code: both run on both sides, and the compared modules keep
+# every instruction, in order.
+#
+# A new feature: add its -DRRC_WITHOUT_<F> to the kernel and <F> to
+# `features` with its ids (F_<F>_IDS) and "on" value below.
+#
+# Every base is checked three ways per feature: the built module really has
+# (or, built without the feature, lacks) the feature's SpecId, the two "off"
+# modules are equal, and the instruction counts with the feature on are
+# reported (where "on" equals "off", the feature has no code in that base).
+cmake_minimum_required(VERSION 3.16)
+
+foreach(var GLSLANG SPIRV_OPT SPIRV_REMAP SPIRV_DIS KERNEL_DIR INCLUDE_DIR WORK_DIR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "disabled_features.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+set(kernel ${KERNEL_DIR}/rrc_accumulate.comp)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR}/remap)
+
+# ---- Specialization-constant ids, read from the kernel interface -----------
+file(READ ${KERNEL_DIR}/rrc_kernel_interface.h interface)
+function(rrc_define name out)
+  if(NOT interface MATCHES "#define ${name} ([0-9]+)")
+    message(FATAL_ERROR "rrc_kernel_interface.h defines no ${name}")
+  endif()
+  set(${out} ${CMAKE_MATCH_1} PARENT_SCOPE)
+endfunction()
+foreach(c SOURCE DEPTH_MODE HAS_NOCACHE CHANNEL_COUNT INTEROP STATS HOST_AGE_MASK ADAPTIVE OBJECT_ID CHANNEL_SLOTS)
+  rrc_define(RRC_SPEC_${c} ID_${c})
+endforeach()
+# id of property k of slot c: 16 + slots*k + c (RRC_SPEC_CHANNEL)
+function(rrc_channel_ids property out)
+  rrc_define(RRC_CHANNEL_PROPERTY_${property} k)
+  set(ids "")
+  math(EXPR last "${ID_CHANNEL_SLOTS} - 1")
+  foreach(c RANGE ${last})
+    math(EXPR id "16 + ${ID_CHANNEL_SLOTS} * ${k} + ${c}")
+    list(APPEND ids ${id})
+  endforeach()
+  set(${out} ${ids} PARENT_SCOPE)
+endfunction()
+foreach(p COMPONENTS FP16 BLEND FILTER CONFIDENCE)
+  rrc_channel_ids(${p} IDS_${p})
+endforeach()
+
+# Feature -> its spec ids and the value that turns it on.
+set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE)
+set(F_NOCACHE_IDS ${ID_HAS_NOCACHE})
+set(F_INTEROP_IDS ${ID_INTEROP})
+set(F_ADAPTIVE_IDS ${ID_ADAPTIVE})
+set(F_OBJECT_ID_IDS ${ID_OBJECT_ID})
+set(F_CONFIDENCE_IDS ${IDS_CONFIDENCE})
+set(F_STATS_IDS ${ID_STATS})
+set(F_HOST_AGE_IDS ${ID_HOST_AGE_MASK})
+foreach(f IN LISTS features)
+  set(F_${f}_ON true)
+endforeach()
+set(F_HOST_AGE_ON 15)  # every slot's age to the host
+
+# ---- Bases: the configuration around the feature ----------------------------
+# Each: a list of "id:value" pairs, and the features checked there.
+list(GET IDS_COMPONENTS 1 slot1_components)
+list(GET IDS_FP16 1 slot1_fp16)
+list(GET IDS_FILTER 1 slot1_filter)
+list(GET IDS_BLEND 1 slot1_blend)
+# defaults: what rrc_create's defaults specialise (every feature off).
+set(base_names defaults interop all_on)
+set(BASE_defaults_SET "")
+set(BASE_defaults_FEATURES ${features})
+# interop: host images, REVERSED depth, two channels: slot 0 the default
+# packed fp16 scalar, slot 1 RGBA fp32, Catmull-Rom, AGE_AWARE.
+set(BASE_interop_SET ${ID_INTEROP}:true ${ID_DEPTH_MODE}:1 ${ID_CHANNEL_COUNT}:2
+    ${slot1_components}:4 ${slot1_fp16}:false ${slot1_filter}:2 ${slot1_blend}:1)
+set(BASE_interop_FEATURES NOCACHE ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE)
+# all_on: the interop base with every other feature on (leave one out;
+# INTEROP itself off when it is the feature checked).
+set(BASE_all_on_SET ${BASE_interop_SET})
+set(BASE_all_on_FEATURES ${features})
+set(BASE_all_on_OTHERS_ON TRUE)
+
+# ---- Tools -------------------------------------------------------------------
+function(rrc_run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}${err}")
+  endif()
+endfunction()
+
+# Front end: <name>.spv with the given -D defines, as the library builds it
+# (cmake/SPIRV.cmake: --target-env vulkan1.1).
+function(rrc_compile name)
+  rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} ${ARGN} ${kernel} -o ${WORK_DIR}/${name}.spv)
+endfunction()
+
+# The SpecIds a module declares.
+function(rrc_spec_ids name out)
+  execute_process(COMMAND ${SPIRV_DIS} ${WORK_DIR}/${name}.spv OUTPUT_VARIABLE dis RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "spirv-dis failed on ${name}.spv")
+  endif()
+  string(REGEX MATCHALL "SpecId [0-9]+" decorations "${dis}")
+  string(REPLACE "SpecId " "" ids "${decorations}")
+  set(${out} ${ids} PARENT_SCOPE)
+endfunction()
+
+# Specialise <src>.spv with the "id:value" list, optimise, canonicalise:
+# <dst>.spv and its disassembly <dst>.dis; <count_out> = its instruction count.
+function(rrc_specialise src dst settings count_out)
+  set(args "")
+  if(settings)
+    string(REPLACE ";" " " pairs "${settings}")
+    set(args --set-spec-const-default-value "${pairs}")
+  endif()
+  rrc_run(${SPIRV_OPT} ${args} --freeze-spec-const --fold-spec-const-op-composite -O
+          ${WORK_DIR}/${src}.spv -o ${WORK_DIR}/${dst}.opt.spv)
+  rrc_run(${SPIRV_REMAP} --map all --strip all -i ${WORK_DIR}/${dst}.opt.spv -o ${WORK_DIR}/remap)
+  rrc_run(${SPIRV_OPT} --compact-ids ${WORK_DIR}/remap/${dst}.opt.spv -o ${WORK_DIR}/${dst}.spv)
+  rrc_run(${SPIRV_DIS} --raw-id --no-header --no-color ${WORK_DIR}/${dst}.spv -o ${WORK_DIR}/${dst}.dis)
+  file(STRINGS ${WORK_DIR}/${dst}.dis lines REGEX "Op[A-Z]")
+  list(LENGTH lines n)
+  if(n EQUAL 0)
+    message(FATAL_ERROR "${dst}: no instructions")
+  endif()
+  set(${count_out} ${n} PARENT_SCOPE)
+endfunction()
+
+# ---- The check ---------------------------------------------------------------
+rrc_compile(spec)
+rrc_spec_ids(spec spec_ids)
+foreach(f IN LISTS features)
+  rrc_compile(without_${f} -DRRC_WITHOUT_${f})
+  rrc_spec_ids(without_${f} without_ids)
+  foreach(id IN LISTS F_${f}_IDS)
+    # Else the check would compare a build with itself, or miss the feature.
+    if(NOT id IN_LIST spec_ids)
+      message(FATAL_ERROR "${f}: the kernel declares no SpecId ${id}")
+    endif()
+    if(id IN_LIST without_ids)
+      message(FATAL_ERROR "${f}: built with -DRRC_WITHOUT_${f}, the kernel still declares SpecId ${id}")
+    endif()
+  endforeach()
+endforeach()
+
+set(table "")
+set(failures "")
+foreach(base IN LISTS base_names)
+  foreach(f IN LISTS BASE_${base}_FEATURES)
+    # The configuration without f: the base, every other feature on in all_on.
+    set(off ${BASE_${base}_SET})
+    if(BASE_${base}_OTHERS_ON)
+      foreach(g IN LISTS features)
+        if(NOT g STREQUAL f)
+          foreach(id IN LISTS F_${g}_IDS)
+            list(APPEND off ${id}:${F_${g}_ON})
+          endforeach()
+        endif()
+      endforeach()
+    endif()
+    list(REMOVE_DUPLICATES off)  # INTEROP: in the base and among the others
+    # f's own constants keep their defaults (off), whatever the base sets.
+    foreach(id IN LISTS F_${f}_IDS)
+      list(FILTER off EXCLUDE REGEX "^${id}:")
+    endforeach()
+    set(on ${off})
+    foreach(id IN LISTS F_${f}_IDS)
+      list(APPEND on ${id}:${F_${f}_ON})
+    endforeach()
+    rrc_specialise(spec ${base}_${f}_spec "${off}" n_spec)
+    rrc_specialise(without_${f} ${base}_${f}_removed "${off}" n_removed)
+    string(MD5 key "${on}")
+    if(NOT DEFINED on_count_${key})  # all_on: one "every feature on" module
+      rrc_specialise(spec ${base}_${f}_on "${on}" on_count_${key})
+    endif()
+    set(n_on ${on_count_${key}})
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+                    ${WORK_DIR}/${base}_${f}_spec.spv ${WORK_DIR}/${base}_${f}_removed.spv RESULT_VARIABLE differ)
+    if(differ)
+      set(verdict DIFFERENT)
+      list(APPEND failures "${base}/${f}: ${WORK_DIR}/${base}_${f}_spec.dis vs ${WORK_DIR}/${base}_${f}_removed.dis")
+    else()
+      set(verdict equal)
+    endif()
+    string(APPEND table "| ${base} | ${f} | ${n_spec} | ${n_removed} | ${verdict} | ${n_on} |\n")
+  endforeach()
+endforeach()
+
+message(STATUS "SPIR-V instructions after specialisation (tests/spirv/disabled_features.cmake):\n\n"
+        "| base | feature | spec constant off | code removed | comparison | feature on |\n"
+        "|---|---|---:|---:|---|---:|\n${table}")
+if(failures)
+  string(REPLACE ";" "\n  " failures "${failures}")
+  message(FATAL_ERROR "A disabled feature costs something: the specialised SPIR-V differs from the build "
+                      "without the feature's code (diff the disassemblies):\n  ${failures}")
+endif()
+message(STATUS "every disabled feature specialises to the SPIR-V built without its code")
