@@ -78,6 +78,11 @@ std::vector<Config> full_sweep() {
         all.push_back(c);
     }
     {
+        Config c = vary("sampled_inputs", "inputs");
+        c.sampled_inputs = true;
+        all.push_back(c);
+    }
+    {
         Config c = vary("standalone", "path");
         c.standalone = true;
         all.push_back(c);
@@ -86,7 +91,7 @@ std::vector<Config> full_sweep() {
 }
 
 std::vector<std::string> short_sweep_names() {
-    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "standalone"};
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone"};
 }
 
 std::string channels_text(const Config& c) {

@@ -29,6 +29,12 @@ struct Config {
     bool object_id = false;
     rrc_depth_test depth_test = 0;  // 0: the library's default (ADAPTIVE)
     bool standalone = false;        // also time the standalone path (CPU arrays)
+    // The host's input images have STORAGE usage in the kernel's formats, so
+    // every configuration passes rrc_vulkan_frame_desc.storage_inputs (the
+    // roof reads them the same way) but MOTION, whose RG32F vectors the
+    // kernel only samples; sampled_inputs times the sampler path that any
+    // host's images allow.
+    bool sampled_inputs = false;
 };
 
 /** Every configuration of --full, base first. */

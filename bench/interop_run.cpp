@@ -147,6 +147,8 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     if (config_.nocache) f.nocache = general(img_.nocache);
     if (config_.object_id) f.object_id = general(img_.poses[pose].object_id);
     f.mask = general(img_.mask);
+    // MOTION's RG32F vectors have no storage binding in the kernel (storage_inputs asks RGBA32F): sampled.
+    f.storage_inputs = config_.sampled_inputs || config_.source == RRC_REPROJECTION_MOTION ? 0u : 1u;
     for (int i = 0; i < 16; ++i) {
         f.view_proj[i] = pf.view_proj[i / 4][i % 4];  // column-major, as GLM stores it
         f.prev_view_proj[i] = pf.prev_view_proj[i / 4][i % 4];

@@ -14,12 +14,12 @@
 
 if (RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
-    vec4 s = INTEROP                        ? texelFetch(s_samples[RRC_CH], px, 0)
+    vec4 s = SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], px, 0)
              : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)
                                       : imageLoad(u_sample4[RRC_CH], px);
     if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
     float w = !CH_(_CONFIDENCE) ? 1.0
-              : INTEROP         ? texelFetch(s_confidence[RRC_CH], px, 0).r
+              : SAMPLED_INPUTS  ? texelFetch(s_confidence[RRC_CH], px, 0).r
                                 : imageLoad(u_confidence[RRC_CH], px).r;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);

@@ -19,7 +19,8 @@
 #define RRC_SPEC_HOST_AGE_MASK 7  // uint: bit c = channel slot c also writes its age to the host's image (interop)
 #define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_OBJECT_ID
+#define RRC_SPEC_STORAGE_INPUTS 10  // bool: interop, the host's inputs read as storage images (rrc_vulkan_frame_desc.storage_inputs)
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_STORAGE_INPUTS
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 

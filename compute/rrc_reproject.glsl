@@ -28,6 +28,11 @@ const bool INTEROP = false;  // the feature's code removed (tests/spirv)
 layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
 #endif
 // The ADAPTIVE test (docs/CONVENTIONS.md): every source but plain MOTION.
+// Interop with rrc_vulkan_frame_desc.storage_inputs: the host's input
+// images are bound where the standalone path binds its own copies and read
+// with storage loads (a sampler fetch costs several of them on lavapipe).
+layout(constant_id = RRC_SPEC_STORAGE_INPUTS) const bool STORAGE_INPUTS = false;
+const bool SAMPLED_INPUTS = INTEROP && !STORAGE_INPUTS;  // the inputs come through samplers
 #ifdef RRC_WITHOUT_ADAPTIVE
 const bool ADAPTIVE = false;  // the feature's code removed (tests/spirv)
 #else
@@ -68,10 +73,10 @@ layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage
 layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
 layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
 
-ivec2 rrc_size() { return INTEROP ? textureSize(s_depth, 0) : imageSize(u_depth); }
-float rrc_load_depth(ivec2 px) { return INTEROP ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
-vec4 rrc_load_reprojection(ivec2 px) { return INTEROP ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
-bool rrc_load_nocache(ivec2 px) { return (INTEROP ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
+ivec2 rrc_size() { return SAMPLED_INPUTS ? textureSize(s_depth, 0) : imageSize(u_depth); }
+float rrc_load_depth(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
+vec4 rrc_load_reprojection(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
+bool rrc_load_nocache(ivec2 px) { return (SAMPLED_INPUTS ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
 
 bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
 bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
@@ -171,7 +176,7 @@ struct RrcCross {
 vec4 rrc_gather_depth(ivec2 i0, vec2 inv_size) { return textureGather(s_depth, (vec2(i0) + 1.0) * inv_size); }
 RrcCross rrc_depth_cross(ivec2 px, ivec2 size) {
     RrcCross r;
-    if (INTEROP) {
+    if (SAMPLED_INPUTS) {
         vec2 inv = 1.0 / vec2(size);
         vec4 b = rrc_gather_depth(px, inv);                 // (x,y+1) (x+1,y+1) (x+1,y) (x,y)
         vec4 a = rrc_gather_depth(px + ivec2(-2, 0), inv);  // .w (x-2,y), .z (x-1,y)

@@ -110,6 +110,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_HOST_AGE_MASK, variant.host_age_mask);
     spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
+    spec.add(RRC_SPEC_STORAGE_INPUTS, variant.storage_inputs ? 1u : 0u);
     spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
     spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
     for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {

@@ -35,13 +35,14 @@ struct DescriptorViews {
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
-// optional interop outputs.  Each combination is its own specialised
+// optional interop outputs, and how it reads the host's inputs.  Each combination is its own specialised
 // pipeline, made the first time a frame asks for it, so an output nobody
 // asks for costs nothing.
 struct KernelVariant {
     bool stats = false;
-    uint32_t host_age_mask = 0;  // bit c: slot c writes the host's age image
-    uint32_t key() const { return (stats ? 1u : 0u) | host_age_mask << 1; }
+    bool storage_inputs = false;  // the host's inputs bound to the storage bindings (rrc_vulkan_frame_desc.storage_inputs)
+    uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
+    uint32_t key() const { return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2; }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the

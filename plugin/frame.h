@@ -47,6 +47,7 @@ struct Frame {
     rrc_vulkan_image depth_image{}, reprojection_image{}, nocache_image{}, mask_image{}, object_id_image{};
     VkBuffer stats_buffer = VK_NULL_HANDLE;
     VkDeviceSize stats_offset = 0;
+    bool storage_inputs = false;  // the host's input images are read as storage images (rrc_vulkan_frame_desc)
 };
 
 // Where a standalone frame's results go (rrc_frame_output read by the struct

@@ -17,9 +17,10 @@ constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
 struct HostBarriers {
     std::vector<VkImageMemoryBarrier> before, after;
-    // `write`: the kernel stores to it (GENERAL); else it samples it.
-    void add(const rrc_vulkan_image& img, bool write) {
-        VkImageLayout use = write ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;
+    // `write`: the kernel stores to it (GENERAL); else it reads it, through
+    // a sampler or (`storage`) as a storage image, which needs GENERAL.
+    void add(const rrc_vulkan_image& img, bool write, bool storage = false) {
+        VkImageLayout use = write || storage ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;
         VkImageLayout final_layout = img.final_layout ? img.final_layout : img.layout;
         VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
@@ -102,6 +103,7 @@ void InteropContext::record_frame(const Frame& f) {
     const uint32_t p = view.parity;
     KernelVariant variant;
     variant.stats = f.stats_buffer != VK_NULL_HANDLE;
+    variant.storage_inputs = f.storage_inputs;
     for (uint32_t s = 0; s < f.channel_count; ++s)
         if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
     core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
@@ -111,9 +113,12 @@ void InteropContext::record_frame(const Frame& f) {
     HostBarriers hb;
     for (const LiveInput& in : core_->inputs()) {
         const rrc_vulkan_image& img = host_image(f, in);
-        v.view[in.host_binding][in.slot] = img.view;
-        v.layout[in.host_binding][in.slot] = kReadLayout;
-        hb.add(img, false);
+        // storage_inputs: where the standalone path binds its own copy (ids are sampled either way)
+        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId;
+        const Binding b = storage ? in.own_binding : in.host_binding;
+        v.view[b][in.slot] = img.view;
+        v.layout[b][in.slot] = storage ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;
+        hb.add(img, false, storage);
     }
     v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
     if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;

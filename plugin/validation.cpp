@@ -205,6 +205,25 @@ void check_depth_image_format(const ContextConfig& c, VkFormat f) {
              (unsigned)c.depth_format);
 }
 
+// storage_inputs: each input image in the one format the kernel's storage
+// binding for it declares (rrc_vulkan.h).  Checked after every input is known present.
+void check_storage_format(const rrc_vulkan_image& img, VkFormat want, const std::string& what) {
+    if (img.image && img.format != want)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.format is %d; with storage_inputs it must be %d (%s)", what.c_str(), (int)img.format,
+             (int)want, want == VK_FORMAT_R32_SFLOAT ? "VK_FORMAT_R32_SFLOAT" : want == VK_FORMAT_R8_UINT ? "VK_FORMAT_R8_UINT" : "VK_FORMAT_R32G32B32A32_SFLOAT");
+}
+void check_storage_input_formats(const ContextConfig& c, const Frame& f) {
+    check_storage_format(f.depth_image, VK_FORMAT_R32_SFLOAT, "depth");
+    if (c.reprojection != RRC_REPROJECTION_CAMERA) check_storage_format(f.reprojection_image, VK_FORMAT_R32G32B32A32_SFLOAT, "reprojection");
+    if (c.use_nocache) check_storage_format(f.nocache_image, VK_FORMAT_R8_UINT, "nocache");
+    for (uint32_t i = 0; i < f.channel_count && i < c.channels.size(); ++i) {
+        const std::string what = "channels[" + std::to_string(i) + "]";
+        check_storage_format(f.channels[i].samples_image, c.channels[i].components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT,
+                             what + ".samples");
+        if (c.channels[i].confidence) check_storage_format(f.channels[i].confidence_image, VK_FORMAT_R32_SFLOAT, what + ".confidence");
+    }
+}
+
 // One input is present: a CPU array, or a host image with image and view.
 template <typename P>
 void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_result code, const std::string& what, const std::string& why) {
@@ -246,6 +265,7 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
         if (vulkan && idf != VK_FORMAT_R16_UINT && idf != VK_FORMAT_R32_UINT)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %d, must be VK_FORMAT_R16_UINT or VK_FORMAT_R32_UINT", (int)idf);
     }
+    if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
     if (f.channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f.channel_count, c.channels.size());
     if (!f.channels_given) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");

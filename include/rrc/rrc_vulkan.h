@@ -123,6 +123,16 @@ typedef struct rrc_vulkan_frame_desc {
     /* Required iff the context's use_object_id: SAMPLED R16_UINT or R32_UINT,
      * each pixel's object id (rrc_frame_desc.object_id). */
     rrc_vulkan_image object_id;
+    /* Non-zero: this frame's depth, reprojection, nocache, samples and
+     * confidence images also have STORAGE usage and are in the formats the
+     * kernel loads directly: depth R32_SFLOAT (a colour image), reprojection
+     * R32G32B32A32_SFLOAT (every source that reads it), nocache R8_UINT,
+     * samples R32_SFLOAT (1 component) or R32G32B32A32_SFLOAT (4),
+     * confidence R32_SFLOAT.  The kernel then reads them with storage loads,
+     * not through samplers: on lavapipe a sampler fetch costs several
+     * storage loads (docs/PERFORMANCE.md, "Sampled or storage inputs").
+     * Zero: any sampled format, as above.  Object ids are sampled either way. */
+    uint32_t storage_inputs;
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */

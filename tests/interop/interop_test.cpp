@@ -64,8 +64,10 @@ void run_standalone(std::vector<SceneFrameInputs>& inputs, std::vector<FrameResu
 }
 
 // With object ids on, so their path (the host's R16_UINT image, the kernel's
-// copy for the next frame) is compared too.
-TEST(Interop, SameOutputsAsStandaloneBitForBit) {
+// copy for the next frame) is compared too.  `storage`: the host's inputs
+// are storage images in the kernel's formats (rrc_vulkan_frame_desc.storage_inputs),
+// read with storage loads, and must give the same bits as the sampled path.
+void interop_matches_standalone(bool storage) {
     std::vector<rrc_channel_desc> channels = test_channels();
     std::vector<SceneFrameInputs> inputs(kFrames);
     std::vector<FrameResult> expected;
@@ -84,11 +86,13 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     EXPECT_EQ(bytes, (uint64_t)W * H * (8 + 8 + 8 + 44 + 1));
 
     const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
-    HostImage depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    const VkImageUsageFlags in_usage = sampled | (storage ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
+    HostImage depth = storage ? host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage)
+                              : host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, in_usage);
+    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage);
+    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, in_usage);
+    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage);
     HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
     HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
     HostImage mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
@@ -96,8 +100,11 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
     for (HostImage* img : {&out1, &out4, &mask}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
 
-    // The depth is handed over as a depth attachment would leave it.
-    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, dro = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    // The depth is handed over as a depth attachment would leave it; storage
+    // inputs as a compute pass that wrote them would.
+    const VkImageLayout ro = storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const VkImageLayout dro = storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    const VkImageLayout id_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // ids are sampled either way
     for (int t = 0; t < kFrames; ++t) {
         const SceneFrameInputs& in = inputs[t];
         host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
@@ -107,7 +114,7 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
         const std::vector<uint16_t> ids16(in.object_id.begin(),
                                           in.object_id.end());  // the sky's 0xFFFFFFFF is 0xFFFF here: still its own id
-        host.upload(ids, ids16.data(), W * H * 2, ro);
+        host.upload(ids, ids16.data(), W * H * 2, id_layout);
 
         rrc_vulkan_channel_images ch[2];
         for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
@@ -121,7 +128,8 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
         f.depth = view_of(depth, dro);
         f.reprojection = view_of(clip, ro);
         f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
-        f.object_id = view_of(ids, ro);
+        f.object_id = view_of(ids, id_layout);
+        f.storage_inputs = storage ? 1u : 0u;
         std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
         std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
         f.channel_count = 2;
@@ -143,6 +151,9 @@ TEST(Interop, SameOutputsAsStandaloneBitForBit) {
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
 }
+
+TEST(Interop, SameOutputsAsStandaloneBitForBit) { interop_matches_standalone(false); }
+TEST(Interop, StorageInputsGiveTheSameBits) { interop_matches_standalone(true); }
 
 TEST(Interop, WrongModeAndBadInputAreRefused) {
     VulkanHost host;

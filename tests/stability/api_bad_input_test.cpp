@@ -316,6 +316,22 @@ std::vector<FrameCase> frame_cases() {
          "frame.object_id.format",
          {},
          [](VkFrame& f) { f.desc.object_id.format = VK_FORMAT_R8_UINT; }},
+        {"vk_storage_inputs_depth_attachment",
+         RRC_ERROR_INVALID_ARGUMENT,
+         "frame.depth.format",
+         {},
+         [](VkFrame& f) {
+             f.desc.storage_inputs = 1;  // a depth format is never a storage image
+             f.desc.depth.format = VK_FORMAT_D32_SFLOAT;
+         }},
+        {"vk_storage_inputs_samples_fp16",
+         RRC_ERROR_INVALID_ARGUMENT,
+         "frame.channels[0].samples.format",
+         {},
+         [](VkFrame& f) {
+             f.desc.storage_inputs = 1;
+             f.channels[0].samples.format = VK_FORMAT_R16_SFLOAT;
+         }},
     };
 }
 
