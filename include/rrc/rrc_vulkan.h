@@ -25,7 +25,7 @@
  * the library (ping-pong; rrc_get_memory_usage reports the bytes).
  *
  * Device requirements: Vulkan 1.1, the feature
- * shaderStorageImageWriteWithoutFormat enabled, 63 storage images per stage.
+ * shaderStorageImageWriteWithoutFormat enabled, 64 storage images per stage.
  */
 #ifndef RRC_RRC_VULKAN_H
 #define RRC_RRC_VULKAN_H

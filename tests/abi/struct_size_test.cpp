@@ -65,7 +65,7 @@ TEST(AbiLayout, Every01MemberKeepsItsOffsetSizeAndTag) {
 
 // Rule 2: only the structs 0.2 appends to grew, and their new members start
 // at or after the 0.1 size: rrc_vulkan_channel_images (age),
-// rrc_vulkan_frame_desc (stats_buffer, stats_offset, object_id),
+// rrc_vulkan_frame_desc (stats_buffer, stats_offset, object_id, storage_inputs),
 // rrc_context_desc (depth_test, use_object_id), rrc_frame_desc (object_id).
 TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     const char* const appended[] = {"rrc_vulkan_channel_images", "rrc_vulkan_frame_desc", "rrc_context_desc", "rrc_frame_desc"};
@@ -85,6 +85,7 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_buffer), size01("rrc_vulkan_frame_desc"));
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_offset), size01("rrc_vulkan_frame_desc"));
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, object_id), size01("rrc_vulkan_frame_desc"));
+    EXPECT_GE(offsetof(rrc_vulkan_frame_desc, storage_inputs), size01("rrc_vulkan_frame_desc"));
     EXPECT_GE(offsetof(rrc_context_desc, depth_test), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_context_desc, use_object_id), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_frame_desc, object_id), size01("rrc_frame_desc"));
