@@ -72,6 +72,9 @@ layout(binding = 19, r8ui) uniform writeonly uimage2D u_mask;
 layout(binding = 20, r32f) uniform writeonly image2D u_depth_copy;
 layout(binding = 21, r32ui) uniform writeonly uimage2D u_object_id_copy;
 
+#define STORE(image, at, value) \
+    if (in_image) imageStore(image, at, value)
+
 uint fold(vec4 v, bool four) {
     uint s = floatBitsToUint(v.x);
     if (four) s ^= floatBitsToUint(v.y) ^ floatBitsToUint(v.z) ^ floatBitsToUint(v.w);
@@ -90,20 +93,26 @@ uint fold(vec4 v, bool four) {
         if (KIND == 2u) h = imageLoad(u_hist_r32f[C], p);                                            \
         if (KIND == 3u) h = imageLoad(u_hist_rgba32f[C], p);                                         \
         sink ^= fold(s, four);                                                                       \
-        imageStore(u_values_out[C], p, h);                                                           \
-        imageStore(u_age_out[C], p, imageLoad(u_age[C], p));                                         \
+        STORE(u_values_out[C], p, h);                                                           \
+        STORE(u_age_out[C], p, imageLoad(u_age[C], p));                                         \
         if ((CONFIDENCE_MASK & (1u << C)) != 0u) {                                                   \
             sink ^= floatBitsToUint(imageLoad(u_confidence[C], p).x);                                \
-            imageStore(u_weight_out[C], p, imageLoad(u_weight[C], p));                               \
+            STORE(u_weight_out[C], p, imageLoad(u_weight[C], p));                               \
         }                                                                                            \
     }
 
 void main() {
-    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (p.x >= int(pc.width) || p.y >= int(pc.height)) return;
+    // No early return, as in rrc's kernel (compute/rrc_reproject.glsl,
+    // rrc_store): lavapipe runs what follows a divergent return lane by lane.
+    // Invocations beyond the image (the dispatch rounds up) load a clamped
+    // texel and store nothing.
+    const ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    const ivec2 size = ivec2(pc.width, pc.height);
+    const bool in_image = all(lessThan(id, size));
+    const ivec2 p = min(id, size - 1);
     uint sink = 0u;
 
-    imageStore(u_depth_copy, p, imageLoad(u_depth, p));
+    STORE(u_depth_copy, p, imageLoad(u_depth, p));
     if (REPROJECTION == 1u) sink ^= fold(imageLoad(u_reproj4, p), true);
     if (REPROJECTION == 2u) {
         const vec4 m = imageLoad(u_reproj2, p);
@@ -117,10 +126,10 @@ void main() {
     RRC_ROOF_CHANNEL(3, KIND3)
 
     if (OBJECT_ID) {
-        imageStore(u_object_id_copy, p, imageLoad(u_object_id, p));
+        STORE(u_object_id_copy, p, imageLoad(u_object_id, p));
         sink ^= imageLoad(u_prev_object_id, p).x;
     }
     uint mask = NOCACHE ? imageLoad(u_nocache, p).x : 0u;
     if (sink == pc.sentinel) mask |= 0x80u;
-    imageStore(u_mask, p, uvec4(mask));
+    STORE(u_mask, p, uvec4(mask));
 }

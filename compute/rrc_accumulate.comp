@@ -104,8 +104,9 @@ layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counter
 
 void main() {
     ivec2 size = rrc_size();
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x >= size.x || px.y >= size.y) return;  // the dispatch rounds up
+    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    rrc_store = all(lessThan(id, size));  // the dispatch rounds up: no early return (rrc_reproject.glsl says why)
+    ivec2 px = min(id, size - 1);
 
     RrcGeometry g = rrc_reproject(px, size);
     uint mask = (g.hit ? RRC_MASK_HIT : 0u) | (g.background ? RRC_MASK_BACKGROUND : 0u) |
@@ -124,8 +125,8 @@ void main() {
 #include "rrc_channel.glsl"
 #undef RRC_CH
 
-    imageStore(u_mask, px, uvec4(mask));
-    if (STATS) {
+    if (rrc_store) imageStore(u_mask, px, uvec4(mask));
+    if (STATS && rrc_store) {
         bool hit = (mask & RRC_MASK_HIT) != 0u, background = (mask & RRC_MASK_BACKGROUND) != 0u;
         if (hit) atomicAdd(u_stats.counters[RRC_STAT_HITS], 1u);
         if (!hit && !background) atomicAdd(u_stats.counters[RRC_STAT_MISSES], 1u);

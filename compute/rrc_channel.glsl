@@ -117,16 +117,18 @@ if (RRC_CH < CH_COUNT) {
     // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp
     // rounds to +-Inf; no history value may be infinite.
     out_v = CH_(_FP16) ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
-    if (PACKED_) {
-        // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
-        imageStore(u_age_out[RRC_CH], px, uvec4(packHalf2x16(vec2(out_v.x, 0.0)) | (n_out << 16)));
-    } else {
-        imageStore(u_hist_out[RRC_CH], px, out_v);
-        imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
+    if (rrc_store) {
+        if (PACKED_) {
+            // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
+            imageStore(u_age_out[RRC_CH], px, uvec4(packHalf2x16(vec2(out_v.x, 0.0)) | (n_out << 16)));
+        } else {
+            imageStore(u_hist_out[RRC_CH], px, out_v);
+            imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
+        }
+        if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
+        if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
+        if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
     }
-    if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
-    if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
-    if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
 }
 
 #undef UNPACK_H

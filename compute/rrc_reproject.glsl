@@ -73,6 +73,13 @@ layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage
 layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
 layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
 
+// False for the invocations beyond the image (the dispatch rounds up): they
+// run on a clamped pixel and store nothing.  A kernel guards its stores with
+// it instead of returning early, because lavapipe runs everything after a
+// divergent return lane by lane, push-constant loads included (CAMERA's
+// matrix: docs/PERFORMANCE.md, "Inside the kernel").
+bool rrc_store = true;
+
 ivec2 rrc_size() { return SAMPLED_INPUTS ? textureSize(s_depth, 0) : imageSize(u_depth); }
 float rrc_load_depth(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
 vec4 rrc_load_reprojection(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
@@ -235,7 +242,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcCross cr;  // ADAPTIVE: the depth's cross of neighbours, the centre among them
     if (ADAPTIVE) cr = rrc_depth_cross(px, size);
     float d = ADAPTIVE ? cr.c : rrc_load_depth(px);
-    if (INTEROP) imageStore(u_depth_out, px, vec4(d));
+    if (INTEROP && rrc_store) imageStore(u_depth_out, px, vec4(d));
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -315,7 +322,7 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     bool same_object = true;
     if (OBJECT_ID) {
         uint id = texelFetch(s_object_id, px, 0).r;
-        if (INTEROP) imageStore(u_object_id_out, px, uvec4(id));
+        if (INTEROP && rrc_store) imageStore(u_object_id_out, px, uvec4(id));
         uvec4 taps = uvec4(imageLoad(u_prev_object_id, g.taps.p00).r, imageLoad(u_prev_object_id, g.taps.p10).r,
                            imageLoad(u_prev_object_id, g.taps.p01).r, imageLoad(u_prev_object_id, g.taps.p11).r);
         bvec4 foreign = notEqual(taps, uvec4(id)), weighted = greaterThan(g.taps.w, vec4(0.0));
