@@ -57,34 +57,22 @@ std::vector<Config> full_sweep() {
         c.channels[0].filter = f.second;
         all.push_back(c);
     }
-    {
-        Config c = vary("confidence", "confidence");
-        c.channels[0].confidence = true;
-        all.push_back(c);
-    }
-    {
-        Config c = vary("nocache", "nocache");
-        c.nocache = true;
-        all.push_back(c);
-    }
-    {
-        Config c = vary("object_id", "object_id");
-        c.object_id = true;
-        all.push_back(c);
-    }
-    {
-        Config c = vary("depth_fixed", "depth_test");
-        c.depth_test = RRC_DEPTH_TEST_FIXED;
-        all.push_back(c);
-    }
-    {
-        Config c = vary("sampled_inputs", "inputs");
-        c.sampled_inputs = true;
-        all.push_back(c);
-    }
-    {
-        Config c = vary("standalone", "path");
-        c.standalone = true;
+    // One switch away from base each.
+    const struct {
+        const char* name;
+        const char* factor;
+        void (*set)(Config&);
+    } switches[] = {
+        {"confidence", "confidence", [](Config& c) { c.channels[0].confidence = true; }},
+        {"nocache", "nocache", [](Config& c) { c.nocache = true; }},
+        {"object_id", "object_id", [](Config& c) { c.object_id = true; }},
+        {"depth_fixed", "depth_test", [](Config& c) { c.depth_test = RRC_DEPTH_TEST_FIXED; }},
+        {"sampled_inputs", "inputs", [](Config& c) { c.sampled_inputs = true; }},
+        {"standalone", "path", [](Config& c) { c.standalone = true; }},
+    };
+    for (const auto& sw : switches) {
+        Config c = vary(sw.name, sw.factor);
+        sw.set(c);
         all.push_back(c);
     }
     return all;
