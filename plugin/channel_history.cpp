@@ -48,7 +48,6 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint3
 Placeholders::Placeholders(VulkanDevice& dev) {
     const VkFormat formats[] = {VK_FORMAT_R32_SFLOAT,
                                 VK_FORMAT_R32G32B32A32_SFLOAT,
-                                VK_FORMAT_R16_SFLOAT,
                                 VK_FORMAT_R16G16B16A16_SFLOAT,
                                 VK_FORMAT_R8_UINT,
                                 VK_FORMAT_R16_UINT,
