@@ -38,10 +38,23 @@ glm::mat4 lamp_view_proj(const AreaLight& lamp, glm::vec3 point) {
     return glm::perspectiveRH_ZO(lamp.fov, 1.0f, lamp.near_plane, lamp.far_plane) * view;
 }
 
-glm::vec3 lamp_sequence_point(const AreaLight& lamp, int index) {
-    const double a = std::fmod(0.5 + 0.75487766624669276 * (double)index, 1.0);
-    const double b = std::fmod(0.5 + 0.56984029099805327 * (double)index, 1.0);
+glm::vec3 lamp_sequence_point(const AreaLight& lamp, int index, uint32_t seed) {
+    double shift_a = 0.0, shift_b = 0.0;
+    if (seed != 0) {
+        std::mt19937 rng(0x50f7u + seed);
+        std::uniform_real_distribution<double> uni(0.0, 1.0);
+        shift_a = uni(rng);
+        shift_b = uni(rng);
+    }
+    const double a = std::fmod(0.5 + shift_a + 0.75487766624669276 * (double)index, 1.0);
+    const double b = std::fmod(0.5 + shift_b + 0.56984029099805327 * (double)index, 1.0);
     return lamp.centre + (float)(2.0 * a - 1.0) * lamp.half_u + (float)(2.0 * b - 1.0) * lamp.half_v;
+}
+
+std::vector<glm::vec3> lamp_frame_points(const AreaLight& lamp, int index, int k, uint32_t seed) {
+    std::vector<glm::vec3> points;
+    for (int j = 0; j < k; ++j) points.push_back(lamp_sequence_point(lamp, index * k + j, seed));
+    return points;
 }
 
 glm::vec3 lamp_grid_point(const AreaLight& lamp, int j, int count) {
@@ -96,7 +109,7 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& s, int ind
     // This frame's point on the area light: the R2 low-discrepancy sequence,
     // so any run of consecutive frames covers the light evenly.
     const AreaLight& L = scene.lamp;
-    const glm::vec3 point = lamp_sequence_point(L, index);
+    const glm::vec3 point = lamp_sequence_point(L, index, s.seed);  // = lamp_frame_points(L, index, 1, seed)[0]
     u.lamp_point_vp = lamp_view_proj(L, point);
     u.lamp_centre_vp = lamp_view_proj(L, L.centre);
     u.lamp_centre = glm::vec4(L.centre, L.near_plane);

@@ -54,6 +54,8 @@ struct RenderSettings {
     float fps = 30.0f;
     uint32_t sun_map = 512, lamp_map = 512;
     float pcf_radius = 3.0f;  // sun-map texels
+    uint32_t seed = 0;        // ensemble member: moves every random stream (0: the sample's own)
+    uint32_t pcf_pattern = 0; // 0 the uniform disk (unbiased for the exact target), 1 the paper's rotated Poisson disk
 };
 
 struct FrameState {
@@ -69,8 +71,12 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& settings, 
 glm::mat4 reversed_perspective(float fov_y, float aspect, float near_plane, float far_plane);
 /** The area light's perspective (standard depth) from `point`. */
 glm::mat4 lamp_view_proj(const AreaLight& lamp, glm::vec3 point);
-/** Point `index` of the R2 low-discrepancy sequence on the light (the per-frame sample point). */
-glm::vec3 lamp_sequence_point(const AreaLight& lamp, int index);
+/** Point `index` of the R2 low-discrepancy sequence on the light (the per-frame sample point),
+ *  toroidally shifted by a random offset drawn from `seed` (0: no shift), so each point's
+ *  marginal over seeds is uniform on the light. */
+glm::vec3 lamp_sequence_point(const AreaLight& lamp, int index, uint32_t seed = 0);
+/** The soft signal's k light points of frame `index`: sequence points index*k .. index*k + k - 1. */
+std::vector<glm::vec3> lamp_frame_points(const AreaLight& lamp, int index, int k, uint32_t seed);
 /** Points j of the m x m midpoint grid on the light (the soft-shadow reference), m*m >= count. */
 glm::vec3 lamp_grid_point(const AreaLight& lamp, int j, int count);
 /** k points in the unit disk, well spread (best candidate, fixed seed). */

@@ -101,6 +101,12 @@ std::string usage() {
            "                           0 = the library default, 4 ulp under --depth-test fixed; not with --depth-test adaptive)\n"
            "  --soft-prior N           weight of the PCSS fallback on young soft-shadow pixels, in samples (default 4)\n"
            "  --soft-age-cap N         the soft channel's running mean stops growing at N samples (default 64)\n"
+           "  --lambda L               pcf and env channels' lambda, in [0, 1) (default 0.6)\n"
+           "  --blend B                pcf and env channels' blend: fixed (default), age_aware or running_mean\n"
+           "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest\n"
+           "  --pcf-pattern P          disk (default: k taps uniform over the filter disk, unbiased for the exact disk\n"
+           "                           mean the reference is) or rotated (the paper's Poisson disk, rotated per pixel)\n"
+           "  --seed N                 ensemble member: moves every random stream of the signals (default 0)\n"
            "  --fps F                  animation frames per second of scene time (default 30)\n"
            "  --shadow-map-size S      sun and lamp shadow maps, S x S texels (default 512)\n"
            "  --pcf-radius R           PCF disk radius in sun shadow-map texels (default 3)\n"
@@ -159,7 +165,26 @@ Options parse_options(int argc, const char* const* argv) {
         else if (a == "--soft-prior")
             o.soft_prior = to_float(a, value(), 0.0f, 1e6f);
         else if (a == "--soft-age-cap")
-            o.soft_age_cap = (uint32_t)to_int(a, value(), 1, 65535);
+            o.channels.soft.age_cap = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP);
+        else if (a == "--lambda")
+            o.channels.pcf.lambda = o.channels.env.lambda = to_float(a, value(), 0.0f, 0.9999f);
+        else if (a == "--blend") {
+            const std::string v = value();
+            if (!rrc_host::enum_value(rrc_host::kBlendNames, v, o.channels.pcf.blend))
+                throw OptionError("--blend: expected " + rrc_host::enum_choices(rrc_host::kBlendNames) + ", got \"" + v + "\"");
+            o.channels.env.blend = o.channels.pcf.blend;
+        } else if (a == "--history-filter") {
+            const std::string v = value();
+            if (!rrc_host::enum_value(rrc_host::kHistoryFilterNames, v, o.channels.pcf.filter))
+                throw OptionError("--history-filter: expected " + rrc_host::enum_choices(rrc_host::kHistoryFilterNames) + ", got \"" + v +
+                                  "\"");
+            o.channels.env.filter = o.channels.soft.filter = o.channels.pcf.filter;
+        } else if (a == "--pcf-pattern") {
+            const std::string v = value();
+            if (v != "disk" && v != "rotated") throw OptionError("--pcf-pattern: expected disk or rotated, got \"" + v + "\"");
+            o.pcf_pattern = v == "rotated" ? 1u : 0u;
+        } else if (a == "--seed")
+            o.seed = (uint32_t)to_int(a, value(), 0, 65535);
         else if (a == "--fps")
             o.fps = to_float(a, value(), 0.1f, 10000.0f);
         else if (a == "--shadow-map-size")

@@ -1,6 +1,8 @@
 // rrc-sample's command line.
 #pragma once
 
+#include "channel_presets.h"
+
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -21,7 +23,9 @@ struct Options {
     float epsilon_scale = 0.0f;              // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
     uint32_t depth_test = 0;                 // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
     float soft_prior = 4.0f;                 // PCSS fallback weight, in samples (see README.md)
-    uint32_t soft_age_cap = 64;              // the soft channel's running-mean cap
+    ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
+    uint32_t seed = 0;                       // ensemble member: moves every random stream
+    uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
     float fps = 30.0f;                       // animation time step = 1/fps
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels

@@ -29,25 +29,13 @@ void label(const Gpu& gpu, VkCommandBuffer cmd, const char* name) {
 Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gpu_(gpu), scene_(scene), s_(s) {
     const uint32_t w = s.render.width, h = s.render.height;
     gpu_scene_.reset(new GpuScene(gpu, scene));
-    const VkImageUsageFlags map_use = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    maps_.sun = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.sun_map, s.render.sun_map, map_use, "sun shadow map");
-    maps_.lamp_point = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "lamp point map");
-    maps_.lamp_centre = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "lamp centre map");
-    maps_.reference = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.render.lamp_map, s.render.lamp_map, map_use, "reference lamp map");
-    // Every map is sampled by some descriptor set: give each a defined layout even if its pass never runs.
-    gpu.immediate([&](VkCommandBuffer cmd) {
-        std::vector<VkImageMemoryBarrier> bs;
-        for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference})
-            bs.push_back(rrc_host::layout_change(*m, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0,
-                                                 VK_ACCESS_SHADER_READ_BIT));
-        rrc_host::image_barriers(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, bs);
-    });
+    maps_ = create_shadow_maps(gpu, s.render);
     shadows_.reset(new ShadowPass(gpu, *gpu_scene_));
     gbuffer_.reset(new GBufferPass(gpu, *gpu_scene_, w, h));
     signals_.reset(new SignalPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, w, h));
-    // In RrcSettings' order: extent, signals, reprojection, epsilon scale, planes, soft age cap, object ids.
+    // In RrcSettings' order: extent, signals, reprojection, epsilon scale, depth test, planes, channels, object ids.
     const RrcSettings rs{
-        w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.soft_age_cap, s.use_object_id};
+        w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.channels, s.use_object_id};
     rrc_.reset(new RrcStage(gpu, rs));
     post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
                                signals_->reference(), w, h));
@@ -98,7 +86,7 @@ Renderer::~Renderer() {
     signals_.reset();
     gbuffer_.reset();
     shadows_.reset();
-    for (Image* m : {&maps_.sun, &maps_.lamp_point, &maps_.lamp_centre, &maps_.reference}) gpu_.destroy(*m);
+    destroy_shadow_maps(gpu_, maps_);
     gpu_scene_.reset();
 }
 
@@ -133,7 +121,8 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     gbuffer_->record(cmd);
     stamp(kGBuffer);
     label(gpu_, cmd, "signals");
-    signals_->record(cmd, sig, state);
+    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern};
+    signals_->record(cmd, sig, state, sampling);
     stamp(kSignals);
     rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset);
     stamp(kRrc);
@@ -145,7 +134,9 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
         label(gpu_, cmd, "reference");
         signals_->record_reference(cmd, sig, s_.reference_samples, scene_, *shadows_);
         stamp(kReference);
-        signals_->record_brute_force(cmd, sig, (uint32_t)s_.render.taps, index, scene_, *shadows_);
+        // 4x the per-frame budget: 4k pcf taps and env rays, soft from 4 light points (it has one a frame).
+        signals_->record_brute_force(cmd, sig & ~kSignalSoft, 4 * (uint32_t)s_.render.taps, index, sampling, scene_, *shadows_);
+        signals_->record_brute_force(cmd, sig & kSignalSoft, 4, index, sampling, scene_, *shadows_);
         stamp(kBrute);
         compute_to_compute(cmd);
         post_->record_compose(cmd, sig, kComposeRaw);

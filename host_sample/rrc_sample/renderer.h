@@ -25,7 +25,7 @@ struct RendererSettings {
     float epsilon_scale = 0.0f;
     uint32_t depth_test = 0;  // RRC_DEPTH_TEST_*
     float soft_prior = 4.0f;
-    uint32_t soft_age_cap = 64;
+    ChannelPresets channels;
     bool use_object_id = true;  // rrc_context_desc.use_object_id
     uint32_t reference_samples = 256;
 };

@@ -9,11 +9,6 @@
 namespace rrc_sample {
 namespace {
 
-rrc_channel_desc make_channel(const char* name, uint32_t components, float lambda, rrc_blend blend, rrc_history_precision precision,
-                              uint32_t age_cap) {
-    return rrc_host::channel(name, components, lambda, precision, blend, RRC_HISTORY_FILTER_BILINEAR, age_cap);
-}
-
 void log_to_stderr(void*, rrc_log_level level, const char* message) {
     if (level >= RRC_LOG_WARNING) std::fprintf(stderr, "rrc: %s\n", message);
 }
@@ -22,20 +17,21 @@ rrc_vulkan_image view_of(const Image& img, VkImageLayout layout) { return rrc_ho
 
 }  // namespace
 
-std::vector<rrc_channel_desc> channel_descs(uint32_t signals, uint32_t soft_age_cap) {
+std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPresets& p) {
+    auto make = [](const char* name, uint32_t components, const ChannelSettings& c, rrc_history_precision precision) {
+        return rrc_host::channel(name, components, c.lambda, precision, c.blend, c.filter, c.age_cap);
+    };
     std::vector<rrc_channel_desc> c;
-    // Amortized PCF: lambda = 3/5 (variance to 1/4: 4 taps a frame ~ 16), the paper's fixed blend, bilinear.
-    if (signals & kSignalPcf) c.push_back(make_channel("pcf", 1, 0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FP16, 0));
-    // Env-mapped bump mapping: 4 components, lambda = 0.6.
-    if (signals & kSignalEnv) c.push_back(make_channel("env", 4, 0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FP16, 0));
-    // Soft shadow: the running mean of one light point a frame, up to the age cap.  fp32 history:
-    // a mean of binary samples over 64 frames would drift by fp16 rounding (2^-11 a step).
-    if (signals & kSignalSoft) c.push_back(make_channel("soft", 1, 0.0f, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FP32, soft_age_cap));
+    // Amortized PCF and env-mapped bump mapping: fp16 history (rrc keeps fp32 above RRC_FP16_MAX_LAMBDA).
+    if (signals & kSignalPcf) c.push_back(make("pcf", 1, p.pcf, RRC_HISTORY_FP16));
+    if (signals & kSignalEnv) c.push_back(make("env", 4, p.env, RRC_HISTORY_FP16));
+    // Soft shadow: fp32 history: a mean of binary samples over 64 frames would drift by fp16 rounding (2^-11 a step).
+    if (signals & kSignalSoft) c.push_back(make("soft", 1, p.soft, RRC_HISTORY_FP32));
     return c;
 }
 
 RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
-    channels_ = channel_descs(s.signals, s.soft_age_cap);
+    channels_ = channel_descs(s.signals, s.channels);
     const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     out_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, s.width, s.height, use, "pcf accumulated");
     out_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, use, "env accumulated");

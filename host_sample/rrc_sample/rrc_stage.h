@@ -3,6 +3,7 @@
 // the signal passes.  Owns the accumulated output images and the mask.
 #pragma once
 
+#include "channel_presets.h"
 #include "frame_state.h"
 #include "gpu.h"
 #include "raster.h"
@@ -23,12 +24,12 @@ struct RrcSettings {
     float epsilon_scale = 0.0f;  // 0 = none given: the library's default test
     uint32_t depth_test = 0;     // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE for a 0.2 caller with no epsilon)
     float near_plane = 0.1f, far_plane = 200.0f;
-    uint32_t soft_age_cap = 64;
+    ChannelPresets channels;
     bool use_object_id = true;  // rrc_context_desc.use_object_id: the G-buffer's object id image goes to rrc
 };
 
-/** The channel descriptions for the signals (one preset per application: host_sample/rrc_sample/README.md). */
-std::vector<rrc_channel_desc> channel_descs(uint32_t signals, uint32_t soft_age_cap);
+/** The channel descriptions for the signals, in the order pcf, env, soft. */
+std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPresets& presets);
 
 class RrcStage {
 public:

@@ -58,7 +58,9 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.epsilon_scale = o.epsilon_scale;
     rs.depth_test = o.depth_test;
     rs.soft_prior = o.soft_prior;
-    rs.soft_age_cap = o.soft_age_cap;
+    rs.channels = o.channels;
+    rs.render.seed = o.seed;
+    rs.render.pcf_pattern = o.pcf_pattern;
     rs.use_object_id = o.object_id;
     rs.reference_samples = (uint32_t)o.reference_samples;
 

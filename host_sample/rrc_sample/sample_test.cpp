@@ -285,7 +285,24 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* adaptive[] = {"rrc-sample", "--depth-test", "adaptive"};
     EXPECT_EQ(parse_options(3, adaptive).depth_test, (uint32_t)RRC_DEPTH_TEST_ADAPTIVE);
 
+    const char* channels[] = {"rrc-sample", "--lambda", "0.9", "--blend", "age_aware", "--history-filter", "catmull_rom",
+                              "--pcf-pattern", "rotated", "--seed", "3", "--soft-age-cap", "32"};
+    o = parse_options((int)(sizeof channels / sizeof *channels), channels);
+    EXPECT_EQ(o.channels.pcf.lambda, 0.9f);
+    EXPECT_EQ(o.channels.env.lambda, 0.9f);
+    EXPECT_EQ(o.channels.pcf.blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(o.channels.env.blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(o.channels.soft.blend, RRC_BLEND_RUNNING_MEAN) << "--blend is pcf's and env's";
+    EXPECT_EQ(o.channels.soft.filter, RRC_HISTORY_FILTER_CATMULL_ROM) << "--history-filter is every channel's";
+    EXPECT_EQ(o.channels.soft.age_cap, 32u);
+    EXPECT_EQ(o.pcf_pattern, 1u);
+    EXPECT_EQ(o.seed, 3u);
+
     const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
+                                                       {"rrc-sample", "--lambda", "1"},
+                                                       {"rrc-sample", "--blend", "average"},
+                                                       {"rrc-sample", "--history-filter", "lanczos"},
+                                                       {"rrc-sample", "--pcf-pattern", "grid"},
                                                        {"rrc-sample", "--size", "64"},
                                                        {"rrc-sample", "--signals", "pcf,fog"},
                                                        {"rrc-sample", "--reproject", "warp"},

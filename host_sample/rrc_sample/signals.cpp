@@ -14,8 +14,8 @@ const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIP
                        IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
 
-struct SamplesPush {
-    uint32_t samples, reference;
+struct SamplesPush {  // signal_pcf.comp and signal_env.comp
+    uint32_t samples, reference, seed, pattern;
 };
 struct SoftPush {
     glm::mat4 light_vp;
@@ -23,6 +23,27 @@ struct SoftPush {
 };
 
 }  // namespace
+
+ShadowMaps create_shadow_maps(Gpu& gpu, const RenderSettings& s) {
+    ShadowMaps maps;
+    const VkImageUsageFlags map_use = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    maps.sun = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.sun_map, s.sun_map, map_use, "sun shadow map");
+    maps.lamp_point = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.lamp_map, s.lamp_map, map_use, "lamp point map");
+    maps.lamp_centre = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.lamp_map, s.lamp_map, map_use, "lamp centre map");
+    maps.reference = gpu.create_image(VK_FORMAT_D32_SFLOAT, s.lamp_map, s.lamp_map, map_use, "reference lamp map");
+    gpu.immediate([&](VkCommandBuffer cmd) {
+        std::vector<VkImageMemoryBarrier> bs;
+        for (Image* m : {&maps.sun, &maps.lamp_point, &maps.lamp_centre, &maps.reference})
+            bs.push_back(rrc_host::layout_change(*m, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0,
+                                                 VK_ACCESS_SHADER_READ_BIT));
+        rrc_host::image_barriers(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, bs);
+    });
+    return maps;
+}
+
+void destroy_shadow_maps(Gpu& gpu, ShadowMaps& maps) {
+    for (Image* m : {&maps.sun, &maps.lamp_point, &maps.lamp_centre, &maps.reference}) gpu.destroy(*m);
+}
 
 SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, uint32_t w, uint32_t h)
     : gpu_(gpu), maps_(maps), width_(w), height_(h) {
@@ -72,8 +93,8 @@ SignalPasses::~SignalPasses() {
         gpu_.destroy(*i);
 }
 
-void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state) {
-    const SamplesPush one{0, 0};
+void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling) {
+    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalSoft) {
@@ -82,17 +103,25 @@ void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameStat
     }
 }
 
-void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples,
+void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling,
+                          const std::vector<glm::vec3>& soft_points, const Scene& scene, ShadowPass& shadows) {
+    record(cmd, signals & ~kSignalSoft, state, sampling);
+    if (signals & kSignalSoft) record_many(cmd, kSignalSoft, 0, 0, sampling, soft_points, scene, shadows);
+}
+
+void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
                                const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows) {
-    const SamplesPush many{samples, set};  // the set (1 reference, 2 brute force) picks the random stream
+    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern};  // the set (1 reference, 2 brute force) picks the stream
     if (signals & kSignalPcf) pcf_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalSoft) {
         // One shadow map per light point, each pixel's test added in (the sum is read-modify-write).
+        // Set 0 (the per-frame signal) samples the frame's point map, the others the reference map.
+        const Image& map = set == 0 ? maps_.lamp_point : maps_.reference;
         const uint32_t count = (uint32_t)light_points.size();
         for (uint32_t j = 0; j < count; ++j) {
             const glm::mat4 vp = lamp_view_proj(scene.lamp, light_points[j]);
-            shadows.record(cmd, maps_.reference, vp);
+            shadows.record(cmd, map, vp);
             const SoftPush p{vp, j, count};
             soft_.dispatch(cmd, set, &p, width_, height_);
             compute_to_compute(cmd);
@@ -100,18 +129,20 @@ void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t s
     }
 }
 
-void SignalPasses::record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows) {
+void SignalPasses::record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows,
+                                    uint32_t seed) {
     const uint32_t m = std::max(1u, (uint32_t)std::lround(std::sqrt((double)samples)));
     std::vector<glm::vec3> points;
     for (uint32_t j = 0; j < m * m; ++j) points.push_back(lamp_grid_point(scene.lamp, (int)j, (int)(m * m)));
-    record_many(cmd, signals, 1, samples, points, scene, shadows);
+    record_many(cmd, signals, 1, samples, Sampling{seed, 0}, points, scene, shadows);
 }
 
-void SignalPasses::record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Scene& scene,
-                                      ShadowPass& shadows) {
+void SignalPasses::record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Sampling& sampling,
+                                      const Scene& scene, ShadowPass& shadows) {
+    // Points of the light sequence no per-frame signal uses (offset 1000003), shifted by the seed.
     std::vector<glm::vec3> points;
-    for (int j = 0; j < 4; ++j) points.push_back(lamp_sequence_point(scene.lamp, 1000003 + 4 * frame + j));
-    record_many(cmd, signals, 2, 4 * taps, points, scene, shadows);
+    for (uint32_t j = 0; j < taps; ++j) points.push_back(lamp_sequence_point(scene.lamp, 1000003 + (int)taps * frame + (int)j, sampling.seed));
+    record_many(cmd, signals, 2, taps, sampling, points, scene, shadows);
 }
 
 }  // namespace rrc_sample

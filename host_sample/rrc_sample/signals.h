@@ -17,11 +17,22 @@ struct ShadowMaps {
     Image reference;    // one grid point after another (soft reference)
 };
 
+/** The four maps, D32 at the settings' sizes, each already in SHADER_READ_ONLY_OPTIMAL
+ *  (every map is sampled by some descriptor set, even if its pass never runs). */
+ShadowMaps create_shadow_maps(Gpu& gpu, const RenderSettings& settings);
+void destroy_shadow_maps(Gpu& gpu, ShadowMaps& maps);
+
 /** One image per signal; unused ones stay allocated (tiny) so descriptors are always valid. */
 struct SignalImages {
     Image pcf;   // R32F: lit fraction of the sun
     Image env;   // RGBA32F: sphere colour, alpha 1 on sphere pixels
     Image soft;  // R32F: visibility of the area light
+};
+
+/** The estimators' randomness: the ensemble member and the PCF pattern (RenderSettings). */
+struct Sampling {
+    uint32_t seed = 0;
+    uint32_t pcf_pattern = 0;  // 0 uniform disk, 1 the paper's rotated Poisson disk
 };
 
 class SignalPasses {
@@ -31,16 +42,25 @@ public:
     SignalPasses(const SignalPasses&) = delete;
     SignalPasses& operator=(const SignalPasses&) = delete;
 
-    /** The frame's noisy signals (bits: Signal), one sample set each. */
-    void record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state);
-    /** The converged reference of the same frame: `samples` per pixel (soft:
+    /** The frame's noisy signals (bits: Signal): pcf and env with the frame's k
+     *  (state.uniforms.frame.y) taps, soft from the frame's light point whose map
+     *  the shadow pass rendered (lamp_point). */
+    void record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling);
+    /** The same with soft from several light points (one shadow map each, rendered here). */
+    void record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling,
+                const std::vector<glm::vec3>& soft_points, const Scene& scene, ShadowPass& shadows);
+    /** The target of the same frame, one per signal and independent of k, the
+     *  pattern and the seed: pcf the exact disk mean (no samples); env `samples`
+     *  sub-pixel rays (random stream of `seed`: two seeds give two independent
+     *  estimates, whose difference measures the reference's own noise); soft the
      *  shadow maps from the points of an m x m grid on the light, m*m = samples
-     *  rounded to a square). */
-    void record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows);
-    /** Brute force at 4x the per-frame budget, for the paper's comparison
-     *  ("4 taps cached ~ 16 taps"): 4k PCF taps, 4k env samples, soft shadows
-     *  from 4 random points of the light (4 shadow maps). */
-    void record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Scene& scene, ShadowPass& shadows);
+     *  rounded to a square. */
+    void record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows,
+                          uint32_t seed = 0);
+    /** Brute force, the per-frame estimator with `taps` samples: pcf and env
+     *  taps, soft from `taps` points of the light sequence (one map each). */
+    void record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Sampling& sampling, const Scene& scene,
+                            ShadowPass& shadows);
 
     const SignalImages& raw() const { return raw_; }
     const SignalImages& reference() const { return ref_; }
@@ -50,8 +70,8 @@ private:
     Gpu& gpu_;
     const ShadowMaps& maps_;
     uint32_t width_, height_;
-    void record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const std::vector<glm::vec3>& light_points,
-                     const Scene& scene, ShadowPass& shadows);
+    void record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
+                     const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows);
     SignalImages raw_, ref_, brute_;
     ComputeKernel pcf_, env_, soft_;
 };

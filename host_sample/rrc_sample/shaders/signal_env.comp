@@ -12,7 +12,7 @@ layout(local_size_x = 128, local_size_y = 1) in;
 
 layout(set = 0, binding = 1) uniform sampler2D g_normal_material;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D o_signal;
-layout(push_constant) uniform Push { uint samples; uint reference; } pc;
+layout(push_constant) uniform Push { uint samples; uint reference; uint seed; uint pattern; } pc;  // pattern: unused here
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -22,7 +22,8 @@ void main() {
         return;
     }
     uint n = pc.reference != 0u ? pc.samples : u.frame.y;
-    uint stream = pc.reference != 0u ? 0x5eedu + 2u * pc.reference : 2u;  // reference: 1, brute force: 2
+    // Streams: 2 per frame, 0x5eed + 2 reference, 0x5eed + 4 brute force; the seed moves them all.
+    uint stream = (pc.reference != 0u ? 0x5eedu + 2u * pc.reference : 2u) + 0x10000u * pc.seed;
     vec2 shift = vec2(rnd(uint(px.x), uint(px.y), u.frame.x, stream), rnd(uint(px.x), uint(px.y), u.frame.x, stream + 1u));
     vec2 size = vec2(u.frame.zw);
     vec3 sum = vec3(0.0);
