@@ -1,0 +1,61 @@
+#include "sweep_configs.h"
+
+#include "scene.h"
+
+namespace rrc_sweep {
+
+std::vector<App> apps_of(uint32_t signals) {
+    std::vector<App> a;
+    if (signals & rrc_sample::kSignalPcf) a.push_back({rrc_sample::kSignalPcf, "pcf"});
+    if (signals & rrc_sample::kSignalEnv) a.push_back({rrc_sample::kSignalEnv, "env"});
+    if (signals & rrc_sample::kSignalSoft) a.push_back({rrc_sample::kSignalSoft, "soft"});
+    return a;
+}
+
+std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
+    std::vector<rrc_history_filter> filters = {RRC_HISTORY_FILTER_BILINEAR};
+    if (o.catmull_rom) filters.push_back(RRC_HISTORY_FILTER_CATMULL_ROM);
+    std::vector<RrcRun> runs;
+    for (int k : o.rrc_taps) {
+        RrcRun run;
+        run.k = k;
+        for (const App& app : apps_of(signals)) {
+            for (rrc_history_filter f : filters) {
+                for (rrc_blend b : {RRC_BLEND_FIXED, RRC_BLEND_AGE_AWARE})
+                    for (float lambda : o.lambdas) run.configs.push_back({app, {lambda, b, f, 0}});
+                // Soft shadows: the running mean of all samples since the last miss, up to the cap.
+                if (app.signal == rrc_sample::kSignalSoft)
+                    for (uint32_t cap : o.soft_caps) run.configs.push_back({app, {0.0f, RRC_BLEND_RUNNING_MEAN, f, cap}});
+            }
+        }
+        runs.push_back(run);
+    }
+    if (o.rotated && (signals & rrc_sample::kSignalPcf)) {
+        RrcRun run;
+        run.k = kRotatedBaseTaps;
+        run.pattern = 1;
+        for (rrc_blend b : {RRC_BLEND_FIXED, RRC_BLEND_AGE_AWARE})
+            for (float lambda : o.lambdas)
+                run.configs.push_back({{rrc_sample::kSignalPcf, "pcf"}, {lambda, b, RRC_HISTORY_FILTER_BILINEAR, 0}});
+        runs.push_back(run);
+    }
+    return runs;
+}
+
+std::vector<BruteConfig> brute_configs(const SweepOptions& o, uint32_t signals) {
+    std::vector<BruteConfig> c;
+    for (const App& app : apps_of(signals))
+        for (int k : o.brute_taps) c.push_back({app, k, 0});
+    if (o.rotated && (signals & rrc_sample::kSignalPcf))
+        for (int k : {kRotatedBaseTaps, 4 * kRotatedBaseTaps, 16 * kRotatedBaseTaps}) c.push_back({{rrc_sample::kSignalPcf, "pcf"}, k, 1});
+    return c;
+}
+
+const char* blend_label(rrc_blend b) {
+    return b == RRC_BLEND_FIXED ? "fixed" : b == RRC_BLEND_AGE_AWARE ? "age-aware" : "running-mean";
+}
+const char* filter_label(rrc_history_filter f) {
+    return f == RRC_HISTORY_FILTER_BILINEAR ? "bilinear" : f == RRC_HISTORY_FILTER_CATMULL_ROM ? "catmull-rom" : "nearest";
+}
+
+}  // namespace rrc_sweep

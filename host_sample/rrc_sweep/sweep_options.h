@@ -1,0 +1,44 @@
+// rrc-sweep's command line: which configurations, how many seeds and frames.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rrc_sweep {
+
+struct SweepOptions {
+    std::string scene = "temple";
+    uint32_t width = 256, height = 160;
+    int frames = 48;                      // frames per seed run, from a reset
+    int first_checkpoint = 23;            // checkpoints: first, first + every, ... < frames (each with its previous frame)
+    int checkpoint_every = 8;
+    int seeds = 8;                        // ensemble members (>= 2; the issue asks >= 8)
+    int reference_samples = 256;          // env rays per pixel and soft light points of the target (pcf's is exact)
+    std::vector<int> rrc_taps = {1, 2, 4, 8};
+    std::vector<int> brute_taps = {1, 2, 4, 8, 9, 16, 32, 64};
+    std::vector<float> lambdas = {0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 0.95f};
+    std::vector<uint32_t> soft_caps = {8, 16, 32, 64, 128, 255};  // soft's running-mean rows
+    bool catmull_rom = true;              // also the Catmull-Rom history filter (else bilinear only)
+    bool rotated = true;                  // pcf: the paper's rotated pattern as extra rows
+    uint32_t signals = 0;                 // rrc_sample Signal bits; 0 = every signal the scene uses
+    std::string out = "out/sweep";
+    bool plots = true;                    // run fronts.py at the end
+    bool validation = false;
+    std::string device;
+    bool quiet = false;
+    bool help = false;
+
+    std::vector<int> checkpoints() const;
+};
+
+class OptionError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+SweepOptions parse_sweep_options(int argc, const char* const* argv);
+std::string sweep_usage();
+
+}  // namespace rrc_sweep

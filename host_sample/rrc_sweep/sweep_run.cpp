@@ -1,0 +1,420 @@
+#include "sweep_run.h"
+
+#include "frame_state.h"
+#include "gpu.h"
+#include "metrics.h"
+#include "raster.h"
+#include "readback.h"
+#include "rrc_stage.h"
+#include "scene.h"
+#include "signals.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+namespace rrc_sweep {
+namespace {
+
+using rrc_sample::FrameState;
+using rrc_sample::Gpu;
+using rrc_sample::Image;
+using rrc_sample::kSignalEnv;
+using rrc_sample::kSignalPcf;
+using rrc_sample::kSignalSoft;
+using rrc_sample::Sampling;
+
+constexpr uint32_t kQueries = 512;
+// The brute force's and the rrc runs' seeds are 1..S; seeds 0 and 1 of the
+// reference streams give env's target and its independent twin.
+constexpr uint32_t kFirstSeed = 1;
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/** One signal image as floats (R32F: 1 per pixel, RGBA32F: 4). */
+std::vector<float> floats_of(const rrc_sample::Readback& r, int slot) {
+    std::vector<float> v(r.bytes(slot) / sizeof(float));
+    std::memcpy(v.data(), r.data(slot), r.bytes(slot));
+    return v;
+}
+
+const Image& signal_image(const rrc_sample::SignalImages& images, uint32_t signal) {
+    return signal == kSignalPcf ? images.pcf : signal == kSignalEnv ? images.env : images.soft;
+}
+int stride_of(uint32_t signal) { return signal == kSignalEnv ? 4 : 1; }
+
+/** The GPU objects of the sample's frame, without rrc-sample's Renderer: the sweep records its own frames. */
+struct Engine {
+    Engine(Gpu& g, const rrc_sample::Scene& s, const rrc_sample::RenderSettings& rs)
+        : gpu(g), scene(s), settings(rs), gpu_scene(g, s), maps(rrc_sample::create_shadow_maps(g, rs)), shadows(g, gpu_scene),
+          gbuffer(g, gpu_scene, rs.width, rs.height), signals(g, gpu_scene, gbuffer.images(), maps, rs.width, rs.height) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = gpu.pool;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        rrc_sample::vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd), "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        rrc_sample::vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence), "vkCreateFence");
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qci.queryCount = kQueries;
+        rrc_sample::vk_check(vkCreateQueryPool(gpu.device, &qci, nullptr, &queries), "vkCreateQueryPool");
+    }
+    ~Engine() {
+        vkDeviceWaitIdle(gpu.device);
+        vkDestroyQueryPool(gpu.device, queries, nullptr);
+        vkDestroyFence(gpu.device, fence, nullptr);
+        vkFreeCommandBuffers(gpu.device, gpu.pool, 1, &cmd);
+        rrc_sample::destroy_shadow_maps(gpu, maps);
+    }
+
+    /** Sets frame `index`'s uniforms (the GPU is idle) and returns its state. */
+    FrameState begin_frame(int index, int taps, uint32_t seed) {
+        rrc_sample::RenderSettings rs = settings;
+        rs.taps = taps;
+        rs.seed = seed;
+        FrameState state = rrc_sample::make_frame_state(scene, rs, index);
+        gpu_scene.update(state);
+        return state;
+    }
+
+    /** Records with `body` (after the previous frame's work and the query reset), submits, waits;
+     *  returns the `stamps` timestamps in milliseconds. */
+    template <typename Body>
+    std::vector<double> submit(uint32_t stamps, Body&& body) {
+        if (stamps > kQueries) throw std::runtime_error("rrc-sweep: more timestamps in a frame than the query pool holds");
+        rrc_sample::vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        rrc_sample::vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+        vkCmdResetQueryPool(cmd, queries, 0, kQueries);
+        rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        uint32_t next = 0;
+        auto stamp = [&] { vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, next++); };
+        body(cmd, stamp);
+        rrc_sample::vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cmd;
+        rrc_sample::vk_check(vkQueueSubmit(gpu.queue, 1, &si, fence), "vkQueueSubmit");
+        rrc_sample::vk_check(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        rrc_sample::vk_check(vkResetFences(gpu.device, 1, &fence), "vkResetFences");
+        if (next != stamps) throw std::runtime_error("rrc-sweep: a frame wrote another number of timestamps than it declared");
+        std::vector<double> ms;
+        if (stamps == 0) return ms;
+        std::vector<uint64_t> ts(stamps);
+        rrc_sample::vk_check(vkGetQueryPoolResults(gpu.device, queries, 0, stamps, stamps * sizeof(uint64_t), ts.data(), sizeof(uint64_t),
+                                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                             "vkGetQueryPoolResults");
+        const double period = gpu.properties.limits.timestampPeriod * 1e-6;
+        for (uint32_t i = 0; i < stamps; ++i) ms.push_back((double)ts[i] * period);
+        return ms;
+    }
+
+    /** The frame's geometry: the sun's map (pcf's) and the G-buffer. */
+    void record_geometry(VkCommandBuffer c, const FrameState& state, uint32_t sigs) {
+        if (sigs & kSignalPcf) shadows.record(c, maps.sun, state.uniforms.sun_vp);
+        gbuffer.record(c);
+    }
+
+    Gpu& gpu;
+    const rrc_sample::Scene& scene;
+    rrc_sample::RenderSettings settings;
+    rrc_sample::GpuScene gpu_scene;
+    rrc_sample::ShadowMaps maps;
+    rrc_sample::ShadowPass shadows;
+    rrc_sample::GBufferPass gbuffer;
+    rrc_sample::SignalPasses signals;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    VkQueryPool queries = VK_NULL_HANDLE;
+};
+
+/** Transfer reads (a readback) before the next compute write of the same image. */
+void transfer_to_compute(VkCommandBuffer cmd) {
+    rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                               0);
+}
+
+/** Per application, per checkpoint: the pixels scored, the target, its noise, the static pixels. */
+using Targets = std::map<uint32_t, std::vector<CheckpointTarget>>;
+
+struct FrameTarget {
+    std::vector<uint8_t> material;
+    std::vector<float> pcf, env, env_twin, soft;
+};
+
+Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress) {
+    std::map<int, FrameTarget> frames;
+    rrc_sample::Readback rb(e.gpu);
+    const rrc_sample::SignalImages& ref = e.signals.reference();
+    const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
+    const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    rb.allocate();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int t : o.checkpoints())
+        for (int f : {t - 1, t}) {
+            FrameTarget& ft = frames[f];
+            const FrameState state = e.begin_frame(f, 1, 0);
+            for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) ? 2u : 1u); ++twin) {
+                e.submit(0, [&](VkCommandBuffer c, auto&&) {
+                    e.record_geometry(c, state, sigs);
+                    // twin 1: env's second, independent estimate (its random stream of seed 1).
+                    e.signals.record_reference(c, twin ? kSignalEnv : sigs, (uint32_t)o.reference_samples, e.scene, e.shadows, twin);
+                    rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
+                });
+                if (twin) {
+                    ft.env_twin = floats_of(rb, s_env);
+                    continue;
+                }
+                ft.pcf = floats_of(rb, s_pcf);
+                ft.env = floats_of(rb, s_env);
+                ft.soft = floats_of(rb, s_soft);
+                std::vector<uint16_t> nm(rb.bytes(s_normal) / 2);
+                std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
+                ft.material.resize(nm.size() / 4);
+                for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
+            }
+        }
+    if (progress)
+        *progress << "targets: " << frames.size() << " frames (checkpoints and the frames before them), "
+                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s" << std::endl;
+
+    Targets targets;
+    for (const App& app : apps_of(sigs)) {
+        for (int t : o.checkpoints()) {
+            const FrameTarget& cur = frames.at(t);
+            const FrameTarget& prev = frames.at(t - 1);
+            const bool env = app.signal == kSignalEnv;
+            auto scored = [&](uint8_t m) { return env ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; };
+            const std::vector<float>& now = env ? cur.env : app.signal == kSignalPcf ? cur.pcf : cur.soft;
+            const std::vector<float>& before = env ? prev.env : app.signal == kSignalPcf ? prev.pcf : prev.soft;
+            CheckpointTarget ct;
+            ct.components = env ? 3 : 1;
+            const int stride = stride_of(app.signal);
+            double noise = 0.0;
+            for (uint32_t p = 0; p < cur.material.size(); ++p) {
+                if (!scored(cur.material[p])) continue;
+                ct.pixels.push_back(p);
+                for (int c = 0; c < ct.components; ++c) {
+                    ct.target.push_back(now[p * stride + c]);
+                    // env: two independent estimates x, y of variance s^2 each: E(x - y)^2 = 2 s^2.
+                    if (env) noise += 0.5 * std::pow((double)cur.env[p * 4 + c] - cur.env_twin[p * 4 + c], 2.0);
+                }
+            }
+            ct.noise = ct.target.empty() ? 0.0 : noise / (double)ct.target.size();
+            // Static: scored in both frames, and the target moved by less than tau (pcf's and soft's are
+            // noiseless, 1e-3; env's is noisy: 3 standard deviations of a difference of two estimates).
+            const double tau = env ? std::max(1e-3, 3.0 * std::sqrt(2.0 * ct.noise)) : 1e-3;
+            for (uint32_t p : ct.pixels) {
+                bool still = scored(prev.material[p]);
+                for (int c = 0; c < ct.components && still; ++c) still = std::abs(now[p * stride + c] - before[p * stride + c]) <= tau;
+                ct.is_static.push_back(still ? 1 : 0);
+            }
+            targets[app.signal].push_back(std::move(ct));
+        }
+    }
+    return targets;
+}
+
+std::string eta(double done, double total, double seconds) {
+    if (done <= 0.0) return "";
+    const double left = seconds * (total - done) / done;
+    return ", about " + std::to_string((int)std::lround(left)) + " s left";
+}
+
+}  // namespace
+
+SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
+    if (o.quiet) progress = nullptr;
+    const auto start = std::chrono::steady_clock::now();
+    rrc_sample::Scene scene = rrc_sample::Scene::make(o.scene);
+    SweepResult result;
+    result.signals = o.signals ? (o.signals & scene.signals) : scene.signals;
+    if (!result.signals) throw std::runtime_error("scene " + scene.name + " uses none of the signals asked for");
+    const uint32_t sigs = result.signals;
+
+    rrc_sample::RenderSettings rs;
+    rs.width = o.width;
+    rs.height = o.height;
+    Gpu gpu(rrc_sample::GpuOptions{o.validation, o.device});
+    result.device = gpu.device_name();
+    if (!gpu.timestamps) throw std::runtime_error("rrc-sweep times every pass with timestamps; this device's queue has none");
+    const std::vector<int> checkpoints = o.checkpoints();
+    std::set<int> evaluated;  // frames read back: each checkpoint and the frame before it (flicker)
+    for (int t : checkpoints) evaluated.insert(t - 1), evaluated.insert(t);
+    const int last = checkpoints.back();
+    if (progress)
+        *progress << "rrc-sweep: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.seeds << " seeds, frames 0.." << last
+                  << ", checkpoints " << checkpoints.front() << ".." << last << " every " << o.checkpoint_every << "\ndevice: " << result.device
+                  << (o.validation ? " (validation layer on)" : "") << std::endl;
+    {
+        Engine e(gpu, scene, rs);
+        const Targets targets = make_targets(e, o, sigs, progress);
+        auto checkpoint_of = [&](int f) { return (size_t)(std::find(checkpoints.begin(), checkpoints.end(), f) - checkpoints.begin()); };
+
+        // ---- rrc: one run per (k, pattern), every configuration fed from the same signals.
+        const std::vector<RrcRun> runs = rrc_runs(o, sigs);
+        double work_total = 0.0, work_done = 0.0;
+        for (const RrcRun& r : runs) work_total += (double)o.seeds * (last + 1) * (2.0 + 0.02 * r.configs.size() * 10.0);
+        for (size_t ri = 0; ri < runs.size(); ++ri) {
+            const RrcRun& run = runs[ri];
+            std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
+            for (const RrcConfig& c : run.configs) {
+                rrc_sample::RrcSettings s;
+                s.width = o.width;
+                s.height = o.height;
+                s.signals = c.app.signal;
+                s.near_plane = scene.near_plane;
+                s.far_plane = scene.far_plane;
+                if (c.app.signal == kSignalPcf) s.channels.pcf = c.channel;
+                if (c.app.signal == kSignalEnv) s.channels.env = c.channel;
+                if (c.app.signal == kSignalSoft) s.channels.soft = c.channel;
+                stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
+            }
+            rrc_sample::Readback rb(gpu);
+            std::vector<int> out_slots;
+            for (size_t i = 0; i < stages.size(); ++i)
+                out_slots.push_back(rb.add(signal_image(stages[i]->accumulated(), run.configs[i].app.signal)));
+            const int mask_slot = rb.add(stages.front()->mask());
+            rb.allocate();
+            std::vector<Ensemble> ensembles(stages.size(), Ensemble(checkpoints.size()));
+            std::map<uint32_t, std::vector<double>> signal_ms;  // per application
+            std::vector<std::vector<double>> rrc_ms(stages.size());
+            const std::vector<App> run_apps = run.pattern ? std::vector<App>{{kSignalPcf, "pcf"}} : apps_of(sigs);
+            uint32_t run_sigs = 0;
+            for (const App& a : run_apps) run_sigs |= a.signal;
+            for (int seed = 0; seed < o.seeds; ++seed) {
+                const Sampling sampling{kFirstSeed + (uint32_t)seed, run.pattern};
+                std::vector<std::vector<float>> previous(stages.size());
+                for (int f = 0; f <= last; ++f) {
+                    const FrameState state = e.begin_frame(f, run.k, sampling.seed);
+                    const bool read = evaluated.count(f) != 0;
+                    const bool hits = ri == 0 && seed == 0;  // the hit ratio per frame, once
+                    const uint32_t stamps = 1 + (uint32_t)run_apps.size() + (uint32_t)stages.size();
+                    const std::vector<double> ms = e.submit(stamps, [&](VkCommandBuffer c, auto&& stamp) {
+                        e.record_geometry(c, state, run_sigs);
+                        stamp();
+                        for (const App& a : run_apps) {
+                            if (a.signal == kSignalSoft)  // k light points, one shadow map each (in the signal's time)
+                                e.signals.record(c, a.signal, state, sampling, rrc_sample::lamp_frame_points(scene.lamp, f, run.k, sampling.seed),
+                                                 scene, e.shadows);
+                            else
+                                e.signals.record(c, a.signal, state, sampling);
+                            stamp();
+                        }
+                        for (auto& st : stages) {
+                            st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
+                            stamp();
+                        }
+                        if (read || hits) {
+                            std::vector<int> slots = {mask_slot};
+                            if (read) slots.insert(slots.end(), out_slots.begin(), out_slots.end());
+                            rb.record(c, slots);
+                        }
+                    });
+                    if (f >= 2) {  // frame 0 resets, frame 1 warms caches
+                        for (size_t a = 0; a < run_apps.size(); ++a) signal_ms[run_apps[a].signal].push_back(ms[a + 1] - ms[a]);
+                        for (size_t i = 0; i < stages.size(); ++i) rrc_ms[i].push_back(ms[run_apps.size() + 1 + i] - ms[run_apps.size() + i]);
+                    }
+                    if (hits) {
+                        std::vector<uint8_t> mask(rb.bytes(mask_slot));
+                        std::memcpy(mask.data(), rb.data(mask_slot), mask.size());
+                        result.hit_ratio.push_back(rrc_sample::hit_stats(mask).ratio());
+                    }
+                    if (!read) continue;
+                    const size_t cp = checkpoint_of(f);
+                    for (size_t i = 0; i < stages.size(); ++i) {
+                        std::vector<float> img = floats_of(rb, out_slots[i]);
+                        const uint32_t sig = run.configs[i].app.signal;
+                        if (cp < checkpoints.size())
+                            ensembles[i].add(cp, targets.at(sig)[cp], img.data(), stride_of(sig), previous[i].empty() ? nullptr : previous[i].data());
+                        previous[i] = std::move(img);
+                    }
+                }
+                work_done += (last + 1) * (2.0 + 0.02 * run.configs.size() * 10.0);
+                if (progress)
+                    *progress << "rrc k = " << run.k << (run.pattern ? " (rotated pattern)" : "") << ", " << run.configs.size()
+                              << " configurations: seed " << seed + 1 << "/" << o.seeds << " done"
+                              << eta(work_done, work_total, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+                              << std::endl;
+            }
+            for (size_t i = 0; i < stages.size(); ++i) {
+                RrcRow row;
+                row.config = run.configs[i];
+                row.k = run.k;
+                row.pattern = run.pattern;
+                row.signal_ms = median(signal_ms[run.configs[i].app.signal]);
+                row.rrc_ms = median(rrc_ms[i]);
+                row.metrics = ensembles[i].metrics(targets.at(run.configs[i].app.signal));
+                result.rrc.push_back(row);
+            }
+        }
+
+        // ---- Brute force: the per-frame estimator with k samples, on the frames that are scored.
+        const std::vector<BruteConfig> brute = brute_configs(o, sigs);
+        rrc_sample::Readback rb(gpu);
+        std::vector<int> slots;
+        for (const BruteConfig& b : brute) slots.push_back(rb.add(signal_image(e.signals.brute_force(), b.app.signal)));
+        rb.allocate();
+        std::vector<Ensemble> ensembles(brute.size(), Ensemble(checkpoints.size()));
+        std::vector<std::vector<double>> brute_ms(brute.size());
+        const auto brute_start = std::chrono::steady_clock::now();
+        for (int seed = 0; seed < o.seeds; ++seed) {
+            std::vector<std::vector<float>> previous(brute.size());
+            for (int f : evaluated) {
+                // Taps = the rotated pattern's base set (its brute force rotates it); the disk pattern ignores it.
+                const FrameState state = e.begin_frame(f, kRotatedBaseTaps, kFirstSeed + (uint32_t)seed);
+                const std::vector<double> ms = e.submit(2 * (uint32_t)brute.size(), [&](VkCommandBuffer c, auto&& stamp) {
+                    e.record_geometry(c, state, sigs);
+                    for (size_t j = 0; j < brute.size(); ++j) {
+                        const Sampling sampling{kFirstSeed + (uint32_t)seed, brute[j].pattern};
+                        stamp();  // the pass alone: its readback falls outside the two stamps
+                        e.signals.record_brute_force(c, brute[j].app.signal, (uint32_t)brute[j].k, f, sampling, scene, e.shadows);
+                        stamp();
+                        rb.record(c, {slots[j]});
+                        transfer_to_compute(c);
+                    }
+                });
+                const size_t cp = checkpoint_of(f);
+                for (size_t j = 0; j < brute.size(); ++j) {
+                    brute_ms[j].push_back(ms[2 * j + 1] - ms[2 * j]);
+                    std::vector<float> img = floats_of(rb, slots[j]);
+                    const uint32_t sig = brute[j].app.signal;
+                    if (cp < checkpoints.size())
+                        ensembles[j].add(cp, targets.at(sig)[cp], img.data(), stride_of(sig), previous[j].empty() ? nullptr : previous[j].data());
+                    previous[j] = std::move(img);
+                }
+            }
+            if (progress)
+                *progress << "brute force, " << brute.size() << " configurations: seed " << seed + 1 << "/" << o.seeds << " done ("
+                          << (int)std::chrono::duration<double>(std::chrono::steady_clock::now() - brute_start).count() << " s)" << std::endl;
+        }
+        for (size_t j = 0; j < brute.size(); ++j) {
+            BruteRow row;
+            row.config = brute[j];
+            row.signal_ms = median(brute_ms[j]);
+            row.metrics = ensembles[j].metrics(targets.at(brute[j].app.signal));
+            result.brute.push_back(row);
+        }
+    }
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    vkDeviceWaitIdle(gpu.device);
+    result.validation_messages = gpu.message_count();
+    return result;
+}
+
+}  // namespace rrc_sweep

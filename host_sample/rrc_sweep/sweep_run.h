@@ -1,0 +1,44 @@
+// The sweep on the GPU: the targets of the checkpoint frames once, then every
+// rrc run and the brute force, seed by seed, each row's error statistics
+// (ensemble.h) and its GPU time by timestamps.
+#pragma once
+
+#include "ensemble.h"
+#include "sweep_configs.h"
+#include "sweep_options.h"
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace rrc_sweep {
+
+struct RrcRow {
+    RrcConfig config;
+    int k = 1;
+    uint32_t pattern = 0;
+    double signal_ms = 0.0;  // the application's signal pass at k samples (median over frames and seeds)
+    double rrc_ms = 0.0;     // this channel's rrc dispatch alone (its own context; median)
+    Metrics metrics;
+};
+
+struct BruteRow {
+    BruteConfig config;
+    double signal_ms = 0.0;
+    Metrics metrics;
+};
+
+struct SweepResult {
+    uint32_t signals = 0;
+    std::string device;
+    std::vector<RrcRow> rrc;
+    std::vector<BruteRow> brute;
+    std::vector<double> hit_ratio;  // per frame of the first run's first seed
+    double seconds = 0.0;
+    uint64_t validation_messages = 0;
+};
+
+/** Runs the whole sweep.  progress: a line per run and seed (nullptr: none).  Throws std::runtime_error. */
+SweepResult run_sweep(const SweepOptions& options, std::ostream* progress);
+
+}  // namespace rrc_sweep

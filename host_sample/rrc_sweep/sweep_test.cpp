@@ -1,0 +1,165 @@
+// rrc-sweep: the ensemble statistics on data whose bias and variance are
+// known, the PCF target's disk-rectangle areas against direct integration,
+// and a small sweep under the validation layer: every estimator's variance
+// falls with k, the unbiased ones have no bias against their target, the
+// paper's rotated pattern has, and accumulation beats one frame.
+#include "ensemble.h"
+#include "sweep_run.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <random>
+
+// shaders/disk_area.glsl is written in the subset GLSL shares with C++: compiled here in double.
+namespace disk_area_in_double {
+using glm::abs;
+using glm::asin;
+using glm::clamp;
+using glm::max;
+using glm::min;
+using glm::sqrt;
+#define float double
+#include "../rrc_sample/shaders/disk_area.glsl"
+#undef float
+}  // namespace disk_area_in_double
+
+namespace {
+
+using namespace rrc_sweep;
+
+TEST(Ensemble, RecoversKnownBiasVarianceAndNoise) {
+    // 2000 pixels, 64 seeds: x = target + bias + N(0, sigma); the target itself carries noise of variance 1e-4.
+    const int P = 2000, S = 64;
+    const double bias = 0.03, sigma = 0.1, noise_sd = 0.01;
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n01(0.0, 1.0);
+    CheckpointTarget t;
+    std::vector<double> truth(P);
+    for (int p = 0; p < P; ++p) {
+        t.pixels.push_back((uint32_t)p);
+        truth[p] = 0.5 + 0.3 * std::sin(p * 0.01);
+        t.target.push_back(truth[p] + noise_sd * n01(rng));
+        t.is_static.push_back(p % 2);
+    }
+    t.noise = noise_sd * noise_sd;
+    Ensemble e(1);
+    std::vector<float> img(P), prev(P);
+    for (int s = 0; s < S; ++s) {
+        for (int p = 0; p < P; ++p) img[p] = (float)(truth[p] + bias + sigma * n01(rng)), prev[p] = img[p] + (p % 2 ? 0.25f : 9.0f);
+        e.add(0, t, img.data(), 1, prev.data());
+    }
+    const Metrics m = e.metrics({t});
+    EXPECT_NEAR(m.bias2, bias * bias, 2e-4);
+    EXPECT_NEAR(m.variance, sigma * sigma, 4e-4);
+    EXPECT_NEAR(m.rmse * m.rmse, bias * bias + sigma * sigma, 6e-4) << "the target's noise must be subtracted";
+    EXPECT_NEAR(m.mse_measured, bias * bias + sigma * sigma + t.noise, 6e-4);
+    EXPECT_NEAR(m.flicker, 0.25, 1e-6) << "only static pixels count";
+    EXPECT_EQ(m.seeds, S);
+    EXPECT_EQ(m.checkpoints, 1);
+}
+
+TEST(Ensemble, RefusesASingleSeed) {
+    CheckpointTarget t;
+    t.pixels = {0};
+    t.target = {0.5};
+    t.is_static = {0};
+    Ensemble e(1);
+    const float x = 0.5f;
+    e.add(0, t, &x, 1);
+    EXPECT_THROW(e.metrics({t}), std::runtime_error);
+}
+
+TEST(DiskArea, MatchesDirectIntegrationAndSumsToTheDisk) {
+    using disk_area_in_double::disk_rect_area;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-4.0, 4.0);
+    for (int i = 0; i < 200; ++i) {
+        const double r = 0.5 + std::abs(u(rng)) * 0.6;
+        double x0 = u(rng), x1 = u(rng), y0 = u(rng), y1 = u(rng);
+        if (x0 > x1) std::swap(x0, x1);
+        if (y0 > y1) std::swap(y0, y1);
+        // Direct integration: in x = r sin(theta) the half chord is smooth (no square-root end points);
+        // the midpoint rule over theta, the chord's part inside [y0, y1] exact in y.
+        const double a = std::max(x0, -r), b = std::min(x1, r);
+        double direct = 0.0;
+        if (a < b) {
+            const int n = 20000;
+            const double t0 = std::asin(a / r), t1 = std::asin(b / r), dt = (t1 - t0) / n;
+            for (int j = 0; j < n; ++j) {
+                const double t = t0 + (j + 0.5) * dt, h = r * std::cos(t);
+                direct += std::max(0.0, std::min(y1, h) - std::max(y0, -h)) * r * std::cos(t) * dt;
+            }
+        }
+        EXPECT_NEAR(disk_rect_area(r, x0, x1, y0, y1), direct, 2e-6 * (1.0 + direct)) << r << " " << x0 << " " << x1 << " " << y0 << " " << y1;
+    }
+    // The texels around a disk off the grid add up to its area.
+    const double r = 3.0, cx = 0.37, cy = -0.81;
+    double sum = 0.0;
+    for (int y = -5; y <= 5; ++y)
+        for (int x = -5; x <= 5; ++x) sum += disk_rect_area(r, x - cx, x + 1 - cx, y - cy, y + 1 - cy);
+    EXPECT_NEAR(sum, M_PI * r * r, 1e-9);
+}
+
+const RrcRow* rrc_row(const SweepResult& r, uint32_t signal, int k, float lambda, rrc_blend blend) {
+    for (const RrcRow& row : r.rrc)
+        if (row.config.app.signal == signal && row.k == k && row.pattern == 0 && row.config.channel.blend == blend &&
+            std::abs(row.config.channel.lambda - lambda) < 1e-6f && row.config.channel.filter == RRC_HISTORY_FILTER_BILINEAR)
+            return &row;
+    return nullptr;
+}
+const BruteRow* brute_row(const SweepResult& r, uint32_t signal, int k, uint32_t pattern = 0) {
+    for (const BruteRow& row : r.brute)
+        if (row.config.app.signal == signal && row.config.k == k && row.config.pattern == pattern) return &row;
+    return nullptr;
+}
+
+TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
+    SweepOptions o;
+    o.width = 96;
+    o.height = 64;
+    o.frames = 14;
+    o.first_checkpoint = 9;
+    o.checkpoint_every = 4;  // checkpoints 9 and 13
+    o.seeds = 4;
+    o.reference_samples = 256;
+    o.rrc_taps = {4};
+    o.brute_taps = {1, 4, 16};
+    o.lambdas = {0.6f};
+    o.soft_caps = {16};
+    o.catmull_rom = false;
+    o.validation = true;
+    o.quiet = true;
+    const SweepResult r = run_sweep(o, nullptr);
+    EXPECT_EQ(r.validation_messages, 0u);
+    ASSERT_EQ(r.hit_ratio.size(), 14u);
+    EXPECT_EQ(r.hit_ratio[0], 0.0) << "frame 0 resets";
+    EXPECT_GT(r.hit_ratio[5], 0.5);
+    for (uint32_t signal : {1u, 2u, 4u}) {
+        SCOPED_TRACE(signal);
+        const BruteRow *b1 = brute_row(r, signal, 1), *b4 = brute_row(r, signal, 4), *b16 = brute_row(r, signal, 16);
+        ASSERT_TRUE(b1 && b4 && b16);
+        EXPECT_GT(b1->metrics.variance, 0.0);
+        // An unbiased estimator of k independent (or stratified) taps: variance at most ~1/k.
+        EXPECT_LT(b4->metrics.variance, 0.5 * b1->metrics.variance);
+        EXPECT_LT(b16->metrics.variance, 0.5 * b4->metrics.variance);
+        EXPECT_GT(b1->signal_ms, 0.0);
+        if (signal != 4u) {  // soft: one light point for every pixel, too correlated for 4 seeds to pin the bias down
+            for (const BruteRow* b : {b1, b4, b16})
+                EXPECT_LT(std::abs(b->metrics.bias2), 0.02 * b->metrics.variance) << "k = " << b->config.k << ": biased for its target";
+        }
+        const RrcRow* acc = rrc_row(r, signal, 4, 0.6f, RRC_BLEND_FIXED);
+        ASSERT_NE(acc, nullptr);
+        EXPECT_LT(acc->metrics.rmse, b4->metrics.rmse) << "accumulating 4 taps a frame must beat one frame of 4";
+        EXPECT_LT(acc->metrics.variance, 0.5 * b4->metrics.variance);
+        EXPECT_GT(acc->rrc_ms, 0.0);
+    }
+    // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
+    const BruteRow* rot = brute_row(r, 1u, 4, 1);
+    ASSERT_NE(rot, nullptr);
+    EXPECT_GT(rot->metrics.bias2, 0.05 * rot->metrics.variance);
+}
+
+}  // namespace
