@@ -65,6 +65,8 @@ std::string sweep_usage() {
            "  --bilinear-only          no Catmull-Rom rows\n"
            "  --no-rotated             no rows for the paper's rotated PCF pattern\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
+           "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
+           "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
            "  --out DIR                output directory (default out/sweep)\n"
            "  --no-plots               do not run fronts.py\n"
            "  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
@@ -124,6 +126,10 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
                 else if (s == "soft") o.signals |= rrc_sample::kSignalSoft;
                 else throw OptionError("--signals: unknown signal \"" + s + "\" (pcf, env, soft)");
             }
+        } else if (a == "--motion") {
+            o.motion = value();
+            if (o.motion != "all" && o.motion != "camera-still" && o.motion != "still")
+                throw OptionError("--motion: expected all, camera-still or still, got \"" + o.motion + "\"");
         } else if (a == "--out")
             o.out = value();
         else if (a == "--no-plots")

@@ -25,12 +25,12 @@ std::string num(double v, const char* format = "%.6g") {
 
 const char* kHeader =
     "method,pattern,k,lambda,blend,filter,age_cap,signal_ms,rrc_ms,time_ms,rmse,psnr,bias2,variance,flicker,mse_measured,reference_noise,"
-    "seeds,checkpoints\n";
+    "seeds,checkpoints,rrc_alone_ms\n";
 
-void metrics_columns(std::ofstream& f, double signal_ms, double rrc_ms, const Metrics& m) {
+void metrics_columns(std::ofstream& f, double signal_ms, double rrc_ms, const Metrics& m, double rrc_alone_ms) {
     f << num(signal_ms) << "," << num(rrc_ms) << "," << num(signal_ms + rrc_ms) << "," << num(m.rmse) << "," << num(m.psnr) << ","
       << num(m.bias2) << "," << num(m.variance) << "," << num(m.flicker) << "," << num(m.mse_measured) << "," << num(m.reference_noise)
-      << "," << m.seeds << "," << m.checkpoints << "\n";
+      << "," << m.seeds << "," << m.checkpoints << "," << num(rrc_alone_ms) << "\n";
 }
 
 }  // namespace
@@ -44,7 +44,7 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
         for (const BruteRow& b : r.brute) {
             if (b.config.app.signal != app.signal) continue;
             f << "brute," << (app.signal == 1u ? (b.config.pattern ? "rotated" : "disk") : "-") << "," << b.config.k << ",-,-,-,-,";
-            metrics_columns(f, b.signal_ms, 0.0, b.metrics);
+            metrics_columns(f, b.signal_ms, 0.0, b.metrics, 0.0);
         }
         for (const RrcRow& row : r.rrc) {
             if (row.config.app.signal != app.signal) continue;
@@ -53,7 +53,7 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
             f << "rrc," << (app.signal == 1u ? (row.pattern ? "rotated" : "disk") : "-") << "," << row.k << ","
               << (mean ? std::string("-") : num(c.lambda, "%.4g")) << "," << blend_label(c.blend) << "," << filter_label(c.filter) << ","
               << (c.age_cap ? std::to_string(c.age_cap) : std::string("-")) << ",";
-            metrics_columns(f, row.signal_ms, row.rrc_ms, row.metrics);
+            metrics_columns(f, row.signal_ms, row.rrc_ms, row.metrics, row.rrc_alone_ms);
         }
     }
     {
@@ -74,7 +74,12 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
     f << " (each scored with its previous frame for the flicker)\n"
       << "- targets: pcf the exact disk mean; env " << o.reference_samples << " rays a pixel (its noise measured by a second, independent "
       << "estimate and subtracted); soft the " << o.reference_samples << "-point grid on the light\n"
-      << "- rows: " << r.brute.size() << " brute force, " << r.rrc.size() << " rrc\n";
+      << "- motion: " << o.motion << "\n"
+      << "- rows: " << r.brute.size() << " brute force, " << r.rrc.size() << " rrc\n"
+      << "- time of a row: the application's signal pass at k samples plus its share of rrc (GPU timestamps, medians over "
+      << "frames 2.. of every seed; brute force timed one configuration a frame inside the same frames)\n"
+      << "- rrc's sharing probe: the default channels alone " << num(r.rrc_alone_sum_ms, "%.3f") << " ms together, in one context "
+      << num(r.rrc_together_ms, "%.3f") << " ms; a row's share = its channel alone less a third of the difference\n";
     if (o.validation) f << "- validation messages: " << r.validation_messages << "\n";
     f << "\nfronts.py writes fronts.md (the fronts, the fit t = F + k c + R, the targets' verdicts) and the plots.\n";
 }

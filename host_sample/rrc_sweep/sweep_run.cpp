@@ -242,6 +242,9 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
     if (o.quiet) progress = nullptr;
     const auto start = std::chrono::steady_clock::now();
     rrc_sample::Scene scene = rrc_sample::Scene::make(o.scene);
+    if (o.motion != "all") scene.camera_speed = 0.0f;
+    if (o.motion == "still")
+        for (auto& obj : scene.objects) obj.moves = false;
     SweepResult result;
     result.signals = o.signals ? (o.signals & scene.signals) : scene.signals;
     if (!result.signals) throw std::runtime_error("scene " + scene.name + " uses none of the signals asked for");
@@ -266,6 +269,14 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         const Targets targets = make_targets(e, o, sigs, progress);
         auto checkpoint_of = [&](int f) { return (size_t)(std::find(checkpoints.begin(), checkpoints.end(), f) - checkpoints.begin()); };
 
+        // Brute force is timed inside the rrc runs' frames, one configuration a frame in turn, so that
+        // both are timed under the same load (the machine may be shared); its errors come after.
+        const std::vector<BruteConfig> brute = brute_configs(o, sigs);
+        std::vector<std::vector<double>> brute_ms(brute.size());
+        size_t brute_turn = 0;
+        // The default channels of the applications alone and in one context together: what sharing saves.
+        std::vector<double> together_ms, alone_sum_ms;
+
         // ---- rrc: one run per (k, pattern), every configuration fed from the same signals.
         const std::vector<RrcRun> runs = rrc_runs(o, sigs);
         double work_total = 0.0, work_done = 0.0;
@@ -284,6 +295,21 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                 if (c.app.signal == kSignalEnv) s.channels.env = c.channel;
                 if (c.app.signal == kSignalSoft) s.channels.soft = c.channel;
                 stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
+            }
+            // The sharing probe: each application's default channel alone, then all of them in one context.
+            std::vector<std::unique_ptr<rrc_sample::RrcStage>> probe;
+            const bool probing = run.pattern == 0 && apps_of(sigs).size() > 1;
+            if (probing) {
+                for (uint32_t bits : {(uint32_t)kSignalPcf, (uint32_t)kSignalEnv, (uint32_t)kSignalSoft, sigs}) {
+                    if (!(bits & sigs)) continue;
+                    rrc_sample::RrcSettings s;
+                    s.width = o.width;
+                    s.height = o.height;
+                    s.signals = bits & sigs;
+                    s.near_plane = scene.near_plane;
+                    s.far_plane = scene.far_plane;
+                    probe.emplace_back(new rrc_sample::RrcStage(gpu, s));
+                }
             }
             rrc_sample::Readback rb(gpu);
             std::vector<int> out_slots;
@@ -304,7 +330,10 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     const FrameState state = e.begin_frame(f, run.k, sampling.seed);
                     const bool read = evaluated.count(f) != 0;
                     const bool hits = ri == 0 && seed == 0;  // the hit ratio per frame, once
-                    const uint32_t stamps = 1 + (uint32_t)run_apps.size() + (uint32_t)stages.size();
+                    const bool timed = f >= 2;  // frame 0 resets, frame 1 warms caches
+                    const size_t bj = brute_turn % brute.size();
+                    if (timed) ++brute_turn;
+                    const uint32_t stamps = 1 + (uint32_t)run_apps.size() + (uint32_t)stages.size() + (uint32_t)probe.size() + (timed ? 2u : 0u);
                     const std::vector<double> ms = e.submit(stamps, [&](VkCommandBuffer c, auto&& stamp) {
                         e.record_geometry(c, state, run_sigs);
                         stamp();
@@ -320,15 +349,33 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                             st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
                             stamp();
                         }
+                        for (auto& st : probe) {
+                            st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
+                            stamp();
+                        }
+                        if (timed) {  // its output is not read here
+                            stamp();
+                            e.signals.record_brute_force(c, brute[bj].app.signal, (uint32_t)brute[bj].k, f, Sampling{sampling.seed, brute[bj].pattern},
+                                                         scene, e.shadows);
+                            stamp();
+                        }
                         if (read || hits) {
                             std::vector<int> slots = {mask_slot};
                             if (read) slots.insert(slots.end(), out_slots.begin(), out_slots.end());
                             rb.record(c, slots);
                         }
                     });
-                    if (f >= 2) {  // frame 0 resets, frame 1 warms caches
-                        for (size_t a = 0; a < run_apps.size(); ++a) signal_ms[run_apps[a].signal].push_back(ms[a + 1] - ms[a]);
-                        for (size_t i = 0; i < stages.size(); ++i) rrc_ms[i].push_back(ms[run_apps.size() + 1 + i] - ms[run_apps.size() + i]);
+                    if (timed) {
+                        const size_t a0 = run_apps.size(), s0 = a0 + stages.size(), p0 = s0 + probe.size();
+                        for (size_t a = 0; a < a0; ++a) signal_ms[run_apps[a].signal].push_back(ms[a + 1] - ms[a]);
+                        for (size_t i = 0; i < stages.size(); ++i) rrc_ms[i].push_back(ms[a0 + 1 + i] - ms[a0 + i]);
+                        if (probing) {
+                            double alone = 0.0;
+                            for (size_t i = 0; i + 1 < probe.size(); ++i) alone += ms[s0 + 1 + i] - ms[s0 + i];
+                            alone_sum_ms.push_back(alone);
+                            together_ms.push_back(ms[p0] - ms[p0 - 1]);
+                        }
+                        brute_ms[bj].push_back(ms[p0 + 2] - ms[p0 + 1]);
                     }
                     if (hits) {
                         std::vector<uint8_t> mask(rb.bytes(mask_slot));
@@ -358,40 +405,42 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                 row.k = run.k;
                 row.pattern = run.pattern;
                 row.signal_ms = median(signal_ms[run.configs[i].app.signal]);
-                row.rrc_ms = median(rrc_ms[i]);
+                row.rrc_alone_ms = median(rrc_ms[i]);
                 row.metrics = ensembles[i].metrics(targets.at(run.configs[i].app.signal));
                 result.rrc.push_back(row);
             }
         }
 
+        // Each application's share of rrc: its channel alone, less a third of what one context for all
+        // three saves (docs/PERFORMANCE.md, "Error against run time").
+        result.rrc_together_ms = median(together_ms);
+        result.rrc_alone_sum_ms = median(alone_sum_ms);
+        const double saving = together_ms.empty() ? 0.0 : (result.rrc_alone_sum_ms - result.rrc_together_ms) / (double)apps_of(sigs).size();
+        for (RrcRow& row : result.rrc) row.rrc_ms = std::max(row.rrc_alone_ms - saving, 0.0);
+
         // ---- Brute force: the per-frame estimator with k samples, on the frames that are scored.
-        const std::vector<BruteConfig> brute = brute_configs(o, sigs);
         rrc_sample::Readback rb(gpu);
         std::vector<int> slots;
         for (const BruteConfig& b : brute) slots.push_back(rb.add(signal_image(e.signals.brute_force(), b.app.signal)));
         rb.allocate();
         std::vector<Ensemble> ensembles(brute.size(), Ensemble(checkpoints.size()));
-        std::vector<std::vector<double>> brute_ms(brute.size());
         const auto brute_start = std::chrono::steady_clock::now();
         for (int seed = 0; seed < o.seeds; ++seed) {
             std::vector<std::vector<float>> previous(brute.size());
             for (int f : evaluated) {
                 // Taps = the rotated pattern's base set (its brute force rotates it); the disk pattern ignores it.
                 const FrameState state = e.begin_frame(f, kRotatedBaseTaps, kFirstSeed + (uint32_t)seed);
-                const std::vector<double> ms = e.submit(2 * (uint32_t)brute.size(), [&](VkCommandBuffer c, auto&& stamp) {
+                e.submit(0, [&](VkCommandBuffer c, auto&&) {
                     e.record_geometry(c, state, sigs);
                     for (size_t j = 0; j < brute.size(); ++j) {
                         const Sampling sampling{kFirstSeed + (uint32_t)seed, brute[j].pattern};
-                        stamp();  // the pass alone: its readback falls outside the two stamps
                         e.signals.record_brute_force(c, brute[j].app.signal, (uint32_t)brute[j].k, f, sampling, scene, e.shadows);
-                        stamp();
                         rb.record(c, {slots[j]});
                         transfer_to_compute(c);
                     }
                 });
                 const size_t cp = checkpoint_of(f);
                 for (size_t j = 0; j < brute.size(); ++j) {
-                    brute_ms[j].push_back(ms[2 * j + 1] - ms[2 * j]);
                     std::vector<float> img = floats_of(rb, slots[j]);
                     const uint32_t sig = brute[j].app.signal;
                     if (cp < checkpoints.size())
