@@ -67,6 +67,9 @@ std::string sweep_usage() {
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
+           "  --clock C                auto (default: the wall clock of each pass's own submission on a CPU device\n"
+           "                           such as lavapipe, whose timestamps are wrong after graphics work; GPU\n"
+           "                           timestamps otherwise), wall or timestamps\n"
            "  --out DIR                output directory (default out/sweep)\n"
            "  --no-plots               do not run fronts.py\n"
            "  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
@@ -130,6 +133,10 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.motion = value();
             if (o.motion != "all" && o.motion != "camera-still" && o.motion != "still")
                 throw OptionError("--motion: expected all, camera-still or still, got \"" + o.motion + "\"");
+        } else if (a == "--clock") {
+            o.clock = value();
+            if (o.clock != "auto" && o.clock != "wall" && o.clock != "timestamps")
+                throw OptionError("--clock: expected auto, wall or timestamps, got \"" + o.clock + "\"");
         } else if (a == "--out")
             o.out = value();
         else if (a == "--no-plots")

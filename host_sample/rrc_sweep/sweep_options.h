@@ -24,6 +24,7 @@ struct SweepOptions {
     bool rotated = true;                  // pcf: the paper's rotated pattern as extra rows
     uint32_t signals = 0;                 // rrc_sample Signal bits; 0 = every signal the scene uses
     std::string motion = "all";           // all (the sample's), camera-still (the torus moves), still (nothing moves)
+    std::string clock = "auto";           // auto (wall on a CPU device, timestamps otherwise), wall or timestamps
     std::string out = "out/sweep";
     bool plots = true;                    // run fronts.py at the end
     bool validation = false;

@@ -76,8 +76,10 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
       << "estimate and subtracted); soft the " << o.reference_samples << "-point grid on the light\n"
       << "- motion: " << o.motion << "\n"
       << "- rows: " << r.brute.size() << " brute force, " << r.rrc.size() << " rrc\n"
-      << "- time of a row: the application's signal pass at k samples plus its share of rrc (GPU timestamps, medians over "
-      << "frames 2.. of every seed; brute force timed one configuration a frame inside the same frames)\n"
+      << "- time of a row: the application's signal pass at k samples plus its share of rrc, each pass in a submission of its own "
+      << "(medians over frames 2.. of every seed; brute force timed one configuration a frame inside the same frames)\n"
+      << "- clock: " << r.clock << "; timestamps / wall clock (signal passes and rrc, median per frame): " << num(r.stamps_over_wall, "%.3f")
+      << "\n"
       << "- rrc's sharing probe: the default channels alone " << num(r.rrc_alone_sum_ms, "%.3f") << " ms together, in one context "
       << num(r.rrc_together_ms, "%.3f") << " ms; a row's share = its channel alone less a third of the difference\n";
     if (o.validation) f << "- validation messages: " << r.validation_messages << "\n";

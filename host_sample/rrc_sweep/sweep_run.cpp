@@ -17,6 +17,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <stdexcept>
 
@@ -103,14 +104,23 @@ struct Engine {
         rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                                    VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
         uint32_t next = 0;
-        auto stamp = [&] { vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, next++); };
+        // A full barrier before each timestamp: lavapipe may write a BOTTOM_OF_PIPE timestamp before a
+        // dispatch recorded ahead of it has finished (a lone dispatch then timed at 0.07 ms instead of
+        // milliseconds); after the barrier each interval holds exactly the work recorded in it.
+        auto stamp = [&] {
+            rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                                       VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, next++);
+        };
         body(cmd, stamp);
         rrc_sample::vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
         VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
         si.commandBufferCount = 1;
         si.pCommandBuffers = &cmd;
+        const auto t0 = std::chrono::steady_clock::now();
         rrc_sample::vk_check(vkQueueSubmit(gpu.queue, 1, &si, fence), "vkQueueSubmit");
         rrc_sample::vk_check(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        last_wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         rrc_sample::vk_check(vkResetFences(gpu.device, 1, &fence), "vkResetFences");
         if (next != stamps) throw std::runtime_error("rrc-sweep: a frame wrote another number of timestamps than it declared");
         std::vector<double> ms;
@@ -141,6 +151,27 @@ struct Engine {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
     VkQueryPool queries = VK_NULL_HANDLE;
+    double last_wall_ms = 0.0;  // the last submission, vkQueueSubmit to its fence
+};
+
+/** One isolated submission: its timestamps' interval and its wall clock. */
+struct Timing {
+    double stamps_ms = 0.0, wall_ms = 0.0;
+};
+
+/** Which clock a pass's time is read from: timestamps on a GPU, the wall clock (less an empty
+ *  submission's) on a CPU device, whose timestamps are wrong after graphics work (above). Also
+ *  keeps how far the two disagree, for sweep.md. */
+struct Clock {
+    bool wall = false;
+    std::vector<double> ratio;  // timestamps / (wall - empty) of signal passes and rrc, per frame
+    double ms(const Timing& t, const Timing& empty) const { return wall ? std::max(t.wall_ms - empty.wall_ms, 0.0) : t.stamps_ms; }
+    void compare(const std::vector<Timing>& a, const std::vector<Timing>& b, const Timing& empty) {
+        double stamps = 0.0, wall = 0.0;
+        for (const auto* v : {&a, &b})
+            for (const Timing& t : *v) stamps += t.stamps_ms, wall += std::max(t.wall_ms - empty.wall_ms, 0.0);
+        if (wall > 0.0) ratio.push_back(stamps / wall);
+    }
 };
 
 /** Transfer reads (a readback) before the next compute write of the same image. */
@@ -256,6 +287,9 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
     Gpu gpu(rrc_sample::GpuOptions{o.validation, o.device});
     result.device = gpu.device_name();
     if (!gpu.timestamps) throw std::runtime_error("rrc-sweep times every pass with timestamps; this device's queue has none");
+    Clock clock;
+    clock.wall = o.clock == "wall" || (o.clock == "auto" && gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    result.clock = clock.wall ? "wall clock of each pass's own submission, less an empty submission's" : "GPU timestamps";
     const std::vector<int> checkpoints = o.checkpoints();
     std::set<int> evaluated;  // frames read back: each checkpoint and the frame before it (flicker)
     for (int t : checkpoints) evaluated.insert(t - 1), evaluated.insert(t);
@@ -333,50 +367,56 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     const bool timed = f >= 2;  // frame 0 resets, frame 1 warms caches
                     const size_t bj = brute_turn % brute.size();
                     if (timed) ++brute_turn;
-                    const uint32_t stamps = 1 + (uint32_t)run_apps.size() + (uint32_t)stages.size() + (uint32_t)probe.size() + (timed ? 2u : 0u);
-                    const std::vector<double> ms = e.submit(stamps, [&](VkCommandBuffer c, auto&& stamp) {
-                        e.record_geometry(c, state, run_sigs);
-                        stamp();
-                        for (const App& a : run_apps) {
+                    // Each pass in a submission of its own, timed both by two timestamps after full barriers
+                    // and by the wall clock from vkQueueSubmit to its fence (less an empty submission's):
+                    // lavapipe's timestamps around compute work are wrong once a frame has rendered the soft
+                    // signal's shadow map (a 2.3 ms env pass stamped at 0.08 ms; README.md, "Definitions"),
+                    // so on a CPU device the wall clock is what counts (Clock below).
+                    e.submit(0, [&](VkCommandBuffer c, auto&&) { e.record_geometry(c, state, run_sigs); });
+                    auto timed_pass = [&](auto&& record) {
+                        const std::vector<double> t = e.submit(2, [&](VkCommandBuffer c, auto&& stamp) {
+                            stamp();
+                            record(c);
+                            stamp();
+                        });
+                        return Timing{t[1] - t[0], e.last_wall_ms};
+                    };
+                    const Timing empty = timed_pass([](VkCommandBuffer) {});
+                    std::vector<Timing> app_t, stage_t, probe_t;
+                    for (const App& a : run_apps)
+                        app_t.push_back(timed_pass([&](VkCommandBuffer c) {
                             if (a.signal == kSignalSoft)  // k light points, one shadow map each (in the signal's time)
                                 e.signals.record(c, a.signal, state, sampling, rrc_sample::lamp_frame_points(scene.lamp, f, run.k, sampling.seed),
                                                  scene, e.shadows);
                             else
                                 e.signals.record(c, a.signal, state, sampling);
-                            stamp();
-                        }
-                        for (auto& st : stages) {
-                            st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
-                            stamp();
-                        }
-                        for (auto& st : probe) {
-                            st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
-                            stamp();
-                        }
-                        if (timed) {  // its output is not read here
-                            stamp();
+                        }));
+                    for (auto& st : stages)
+                        stage_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
+                    for (auto& st : probe)
+                        probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
+                    if (timed) {  // its output is not read here
+                        const Timing bt = timed_pass([&](VkCommandBuffer c) {
                             e.signals.record_brute_force(c, brute[bj].app.signal, (uint32_t)brute[bj].k, f, Sampling{sampling.seed, brute[bj].pattern},
                                                          scene, e.shadows);
-                            stamp();
+                        });
+                        brute_ms[bj].push_back(clock.ms(bt, empty));
+                        for (size_t a = 0; a < run_apps.size(); ++a) signal_ms[run_apps[a].signal].push_back(clock.ms(app_t[a], empty));
+                        for (size_t i = 0; i < stages.size(); ++i) rrc_ms[i].push_back(clock.ms(stage_t[i], empty));
+                        if (probing) {
+                            double alone = 0.0;
+                            for (size_t i = 0; i + 1 < probe_t.size(); ++i) alone += clock.ms(probe_t[i], empty);
+                            alone_sum_ms.push_back(alone);
+                            together_ms.push_back(clock.ms(probe_t.back(), empty));
                         }
-                        if (read || hits) {
+                        clock.compare(app_t, stage_t, empty);
+                    }
+                    if (read || hits)
+                        e.submit(0, [&](VkCommandBuffer c, auto&&) {
                             std::vector<int> slots = {mask_slot};
                             if (read) slots.insert(slots.end(), out_slots.begin(), out_slots.end());
                             rb.record(c, slots);
-                        }
-                    });
-                    if (timed) {
-                        const size_t a0 = run_apps.size(), s0 = a0 + stages.size(), p0 = s0 + probe.size();
-                        for (size_t a = 0; a < a0; ++a) signal_ms[run_apps[a].signal].push_back(ms[a + 1] - ms[a]);
-                        for (size_t i = 0; i < stages.size(); ++i) rrc_ms[i].push_back(ms[a0 + 1 + i] - ms[a0 + i]);
-                        if (probing) {
-                            double alone = 0.0;
-                            for (size_t i = 0; i + 1 < probe.size(); ++i) alone += ms[s0 + 1 + i] - ms[s0 + i];
-                            alone_sum_ms.push_back(alone);
-                            together_ms.push_back(ms[p0] - ms[p0 - 1]);
-                        }
-                        brute_ms[bj].push_back(ms[p0 + 2] - ms[p0 + 1]);
-                    }
+                        });
                     if (hits) {
                         std::vector<uint8_t> mask(rb.bytes(mask_slot));
                         std::memcpy(mask.data(), rb.data(mask_slot), mask.size());
@@ -460,6 +500,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             result.brute.push_back(row);
         }
     }
+    result.stamps_over_wall = median(clock.ratio);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     vkDeviceWaitIdle(gpu.device);
     result.validation_messages = gpu.message_count();

@@ -38,6 +38,8 @@ struct SweepResult {
     // The three applications' default channels alone and together in one context (median ms):
     // sharing saves alone_sum - together, a third of which each application's share drops.
     double rrc_together_ms = 0.0, rrc_alone_sum_ms = 0.0;
+    std::string clock;               // which clock the times are read from
+    double stamps_over_wall = 0.0;   // median per frame: timestamps' sum over the wall clock's, signal passes and rrc
     double seconds = 0.0;
     uint64_t validation_messages = 0;
 };
