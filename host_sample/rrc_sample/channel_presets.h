@@ -15,12 +15,15 @@ struct ChannelSettings {
     uint32_t age_cap = 0;  // 0: the library's default
 };
 
-/** The sample's presets, one per application (README.md, "The three signals": the
- *  values and the sweep that chose them). */
+/** The sample's presets, one per application, chosen from rrc-sweep's fronts at the
+ *  sample's own k (4 taps for pcf and env, one light point for soft) on its default
+ *  moving-camera scene: the lowest RMSE against the fixed target (docs/PERFORMANCE.md,
+ *  "Presets chosen from the fronts", where each value's figure is).  AGE_AWARE
+ *  everywhere: the same as FIXED on old pixels, the running mean on new ones. */
 struct ChannelPresets {
-    ChannelSettings pcf{0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0};
-    ChannelSettings env{0.6f, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0};
-    ChannelSettings soft{0.0f, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_BILINEAR, 64};
+    ChannelSettings pcf{0.6f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+    ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+    ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64};
 };
 
 }  // namespace rrc_sample

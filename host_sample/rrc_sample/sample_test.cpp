@@ -285,18 +285,24 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* adaptive[] = {"rrc-sample", "--depth-test", "adaptive"};
     EXPECT_EQ(parse_options(3, adaptive).depth_test, (uint32_t)RRC_DEPTH_TEST_ADAPTIVE);
 
-    const char* channels[] = {"rrc-sample", "--lambda", "0.9", "--blend", "age_aware", "--history-filter", "catmull_rom",
+    const char* channels[] = {"rrc-sample", "--lambda", "0.9", "--blend", "fixed", "--history-filter", "catmull_rom",
                               "--pcf-pattern", "rotated", "--seed", "3", "--soft-age-cap", "32"};
     o = parse_options((int)(sizeof channels / sizeof *channels), channels);
     EXPECT_EQ(o.channels.pcf.lambda, 0.9f);
     EXPECT_EQ(o.channels.env.lambda, 0.9f);
-    EXPECT_EQ(o.channels.pcf.blend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(o.channels.env.blend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(o.channels.soft.blend, RRC_BLEND_RUNNING_MEAN) << "--blend is pcf's and env's";
+    EXPECT_EQ(o.channels.pcf.blend, RRC_BLEND_FIXED);
+    EXPECT_EQ(o.channels.env.blend, RRC_BLEND_FIXED);
+    EXPECT_EQ(o.channels.soft.blend, ChannelPresets{}.soft.blend) << "--blend is pcf's and env's";
     EXPECT_EQ(o.channels.soft.filter, RRC_HISTORY_FILTER_CATMULL_ROM) << "--history-filter is every channel's";
     EXPECT_EQ(o.channels.soft.age_cap, 32u);
     EXPECT_EQ(o.pcf_pattern, 1u);
     EXPECT_EQ(o.seed, 3u);
+    // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
+    const ChannelPresets p;
+    EXPECT_EQ(p.pcf.lambda, 0.6f);
+    EXPECT_EQ(p.env.lambda, 0.8f);
+    EXPECT_EQ(p.soft.lambda, 0.8f);
+    for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
 
     const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
                                                        {"rrc-sample", "--lambda", "1"},

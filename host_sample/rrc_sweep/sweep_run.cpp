@@ -20,6 +20,7 @@
 #include <numeric>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 namespace rrc_sweep {
 namespace {
@@ -310,6 +311,13 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         size_t brute_turn = 0;
         // The default channels of the applications alone and in one context together: what sharing saves.
         std::vector<double> together_ms, alone_sum_ms;
+        // A channel's rrc time does not depend on k: its samples from every run are pooled, so that
+        // every row's time is drawn from the whole sweep's span, as the brute force's is.
+        std::map<std::string, std::vector<double>> pooled_rrc_ms;
+        auto channel_key = [](const RrcConfig& c) {
+            return std::string(c.app.name) + "/" + std::to_string(c.channel.lambda) + "/" + std::to_string((int)c.channel.blend) + "/" +
+                   std::to_string((int)c.channel.filter) + "/" + std::to_string(c.channel.age_cap);
+        };
 
         // ---- rrc: one run per (k, pattern), every configuration fed from the same signals.
         const std::vector<RrcRun> runs = rrc_runs(o, sigs);
@@ -444,8 +452,9 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                 row.config = run.configs[i];
                 row.k = run.k;
                 row.pattern = run.pattern;
-                row.signal_ms = median(signal_ms[run.configs[i].app.signal]);
-                row.rrc_alone_ms = median(rrc_ms[i]);
+                row.signal_ms = median(signal_ms[run.configs[i].app.signal]);  // replaced below by the brute force's at the same k
+                std::vector<double>& pool = pooled_rrc_ms[channel_key(run.configs[i])];
+                pool.insert(pool.end(), rrc_ms[i].begin(), rrc_ms[i].end());
                 row.metrics = ensembles[i].metrics(targets.at(run.configs[i].app.signal));
                 result.rrc.push_back(row);
             }
@@ -456,7 +465,10 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         result.rrc_together_ms = median(together_ms);
         result.rrc_alone_sum_ms = median(alone_sum_ms);
         const double saving = together_ms.empty() ? 0.0 : (result.rrc_alone_sum_ms - result.rrc_together_ms) / (double)apps_of(sigs).size();
-        for (RrcRow& row : result.rrc) row.rrc_ms = std::max(row.rrc_alone_ms - saving, 0.0);
+        for (RrcRow& row : result.rrc) {
+            row.rrc_alone_ms = median(pooled_rrc_ms[channel_key(row.config)]);
+            row.rrc_ms = std::max(row.rrc_alone_ms - saving, 0.0);
+        }
 
         // ---- Brute force: the per-frame estimator with k samples, on the frames that are scored.
         rrc_sample::Readback rb(gpu);
@@ -499,6 +511,12 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             row.metrics = ensembles[j].metrics(targets.at(brute[j].app.signal));
             result.brute.push_back(row);
         }
+        // The signal pass of an rrc row is the brute-force pass at the same k (the same estimator, the
+        // same work), timed one configuration a frame across every run: both sides on one clock.
+        for (RrcRow& row : result.rrc)
+            for (const BruteRow& b : result.brute)
+                if (b.config.app.signal == row.config.app.signal && b.config.k == row.k && b.config.pattern == row.pattern)
+                    row.signal_ms = b.signal_ms;
     }
     result.stamps_over_wall = median(clock.ratio);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
