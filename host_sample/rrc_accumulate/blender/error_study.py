@@ -5,32 +5,37 @@ Development script (no test runs it; CI has no Blender).  docs/OFFLINE.md,
 section 7, gives the results and how the preset's defaults follow from them.
 
     python3 host_sample/rrc_accumulate/blender/error_study.py WORK_DIR \\
-        [--tool build/.../rrc-accumulate] [--size 96x64] [--frames 24] [--ref-spp 1024] [--seeds 4]
+        [--tool build/.../rrc-accumulate] [--size 96x64] [--frames 24] [--ref-spp 1024] [--seeds 4] \\
+        [--decompose BLEND,VALUE,FILTER ...]
 
 Needs Debian's blender (3.4.1), python3-numpy, python3-openimageio and, for
 the figure, python3-matplotlib; rrc-accumulate runs on any Vulkan device
 (lavapipe: VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json).
 
-What it does, all under WORK_DIR (renders are kept and reused when complete):
+What it does, all under WORK_DIR (renders and rrc runs are kept and reused
+while their command, and for rrc the tool, are unchanged):
   1. Renders render_check_scene.py (moving camera, moving sphere, soft sun
      shadow, checkered ground) at 1, 2, 4, 8 and 16 spp with an animated seed
-     (base seed 0), a reference at --ref-spp with another base seed, and
+     (base seed 0), a reference at --ref-spp with another base seed, a
+     centre-sampled image (pixel filter 0.01 px, --centre-spp: what a frame's
+     first sample converges to, for Cycles puts it at the pixel centre), and
      --seeds more 1-spp sequences with base seeds 1.. for the bias/variance
-     split.  Blender's log gives each frame's render time and the time of its
-     first and last "Sample i/N" line: path tracing is the time between them,
-     the rest of the frame (scene sync, BVH, film, writing) is the fixed cost;
-     a least-squares fit time = F + c * spp over the spp values checks it.
+     check.  Times come from separate short renders (--timing-frames,
+     --timing-repeats; 1..64 spp): Blender's log gives each frame's render
+     time and the times of its first and last "Sample i/N" lines; path
+     tracing is the time between them, the rest of the frame (scene sync,
+     BVH, film, writing) the fixed cost, what the log's total adds Blender's
+     start-up; a least-squares fit time = F + c * spp checks them.
   2. Runs rrc-accumulate --preset blender on the 1- and 2-spp sequences with
      every candidate --signal setting (blend fixed / age_aware with lambda,
      running_mean with max_age; bilinear and catmull_rom history) and reads
      the RMSE against the reference from its --metrics CSV.  The error is
      over frames >= --from (8): every pixel, R, G and B, as the CSV counts it.
-  3. Splits the error of chosen settings into bias^2 and variance.  The
-     filter is linear in the samples for fixed geometry (weights depend on
-     depth, vectors, ids and ages only), so its bias is exactly
-     rrc(reference colours on the 1-spp geometry) - reference; the variance
-     is the rest.  The --seeds independent sequences check it: their
-     per-pixel spread is the variance, the error of their mean the bias.
+     Brute force is the same CSV's input RMSE.  rrc-accumulate's own cost is
+     timed without --reference.
+  3. Splits the MSE of chosen settings (--decompose; default the best of each
+     blend at 1 spp) into variance, blur and lag, and centre sampling; see
+     decompose().  The --seeds independent sequences check it.
   4. Writes WORK_DIR/results.json, WORK_DIR/results.md (the tables) and
      WORK_DIR/fronts.png (RMSE against time per frame).
 """
@@ -40,6 +45,7 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -52,6 +58,7 @@ SCENE = os.path.join(HERE, "render_check_scene.py")
 LAYER = "ViewLayer.Combined"
 RGB = [LAYER + ".R", LAYER + ".G", LAYER + ".B"]
 SPPS = [1, 2, 4, 8, 16]
+TIMING_SPPS = [1, 2, 4, 8, 16, 64]
 
 
 def log(*a):
@@ -96,17 +103,18 @@ def parse_blender_log(text):
     return frames
 
 
-def render(work, name, spp, seed, args, extra=()):
+def render(work, name, spp, seed, args, extra=(), frames=None):
+    frames = frames or args.frames
     out = os.path.join(work, name)
     info_path = os.path.join(out, "render.json")
     if os.path.exists(info_path):
         with open(info_path) as fp:
             info = json.load(fp)
-        if info.get("key") == [spp, seed, args.size, args.frames] + list(extra):
+        if info.get("key") == [spp, seed, args.size, frames] + list(extra):
             return info
     os.makedirs(out, exist_ok=True)
     cmd = ["blender", "-b", "--factory-startup", "--python", SCENE, "--", out, str(spp), "float", "seed",
-           str(args.frames), "seed=%d" % seed, "size=" + args.size] + list(extra)
+           str(frames), "seed=%d" % seed, "size=" + args.size] + list(extra)
     log("render", name, ":", " ".join(cmd))
     t0 = time.monotonic()
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -115,21 +123,21 @@ def render(work, name, spp, seed, args, extra=()):
         fp.write(p.stdout)
     if p.returncode != 0:
         sys.exit("blender failed, see " + os.path.join(out, "blender.log"))
-    frames = parse_blender_log(p.stdout)
-    if sorted(frames) != list(range(1, args.frames + 1)):
+    parsed = parse_blender_log(p.stdout)
+    if sorted(parsed) != list(range(1, frames + 1)):
         sys.exit("could not read every frame's time from " + os.path.join(out, "blender.log"))
-    info = {"key": [spp, seed, args.size, args.frames] + list(extra), "spp": spp, "seed": seed, "wall": wall,
-            "frames": {str(k): v for k, v in frames.items()}}
+    info = {"key": [spp, seed, args.size, frames] + list(extra), "spp": spp, "seed": seed, "wall": wall,
+            "frames": {str(k): v for k, v in parsed.items()}}
     with open(info_path, "w") as fp:
         json.dump(info, fp, indent=1)
     return info
 
 
 def frame_times(info):
-    """Mean per-frame times over frames 2.. (frame 1 also loads the kernels)."""
+    """Median per-frame times over frames 2.. (frame 1 also loads the kernels; the median, as the machine may be shared)."""
     fr = [v for k, v in info["frames"].items() if int(k) >= 2]
-    tot = np.mean([v["total"] for v in fr])
-    pt = np.mean([v["path_tracing"] for v in fr])
+    tot = np.median([v["total"] for v in fr])
+    pt = np.median([v["path_tracing"] for v in fr])
     first = info["frames"]["1"]["total"]
     startup = info["wall"] - sum(v["total"] + v["saving"] for v in info["frames"].values())
     return {"total": tot, "path_tracing": pt, "fixed": tot - pt, "first_frame": first, "startup": startup}
@@ -270,6 +278,7 @@ CANDIDATES = ([("fixed", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("age_aware", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("running_mean", c) for c in (4, 8, 16, 32, 64, 255)])
 FILTERS = ("bilinear", "catmull_rom")
+PRESET = ("age_aware", 0.8, "catmull_rom")  # --preset blender's signal (options.h), marked in the figure
 
 
 def mean_sq(a, b, frames):
@@ -352,6 +361,8 @@ def main():
     ap.add_argument("--ref-seed", type=int, default=1000)
     ap.add_argument("--centre-spp", type=int, default=256, help="samples of the centre-sampled image")
     ap.add_argument("--seeds", type=int, default=4, help="extra independent 1-spp sequences for the bias/variance check")
+    ap.add_argument("--timing-frames", type=int, default=12, help="frames of each timing render")
+    ap.add_argument("--timing-repeats", type=int, default=2, help="renders of each timing spp (the fastest counts)")
     ap.add_argument("--from", dest="first", type=int, default=8, help="first frame of the error")
     ap.add_argument("--decompose", action="append", default=[],
                     help="BLEND,VALUE,FILTER to decompose (repeatable); default: the best of each blend at 1 spp")
@@ -370,14 +381,40 @@ def main():
     for k in range(1, args.seeds + 1):
         render(work, "spp1_seed%d" % k, 1, k, args)
         seed_dirs.append(os.path.join(work, "spp1_seed%d" % k))
-    times = {spp: frame_times(renders[spp]) for spp in SPPS}
-    times[args.ref_spp] = frame_times(ref)
-    xs = np.array(SPPS + [args.ref_spp], dtype=float)
-    ys = np.array([times[int(s)]["total"] for s in xs])
-    A = np.stack([np.ones_like(xs), xs], axis=1)
-    (F, c), *_ = np.linalg.lstsq(A, ys, rcond=None)
+    # Times: separate, short renders one after the other (the long renders
+    # above may share the machine with other work), each repeated; per spp
+    # the repeat with the lowest median frame time.  64 spp fixes the slope.
+    times = {}
+    for spp in TIMING_SPPS:
+        reps = [frame_times(render(work, "timing/spp%d_run%d" % (spp, k), spp, 0, args, frames=args.timing_frames))
+                for k in range(args.timing_repeats)]
+        times[spp] = min(reps, key=lambda t: t["total"])
+    times["reference"] = frame_times(ref)
+    xs = np.array(TIMING_SPPS, dtype=float)
+    ys = np.array([times[s]["total"] for s in TIMING_SPPS])
+    (F, c), *_ = np.linalg.lstsq(np.stack([np.ones_like(xs), xs], axis=1), ys, rcond=None)
     fit = {"fixed_s": float(F), "per_spp_s": float(c)}
-    log("per-frame time fit: fixed %.4f s + %.6f s/spp" % (F, c))
+    log("per-frame time: %.4f s + %.3f ms x spp (least squares over %s spp)" % (F, 1e3 * c, TIMING_SPPS))
+
+    # Where a 1-spp frame's one sample lies: the mean of the independent
+    # 1-spp renders (base seeds 0..K) against the filtered reference and
+    # against the centre-sampled image; the noise floor is sqrt(spread / (K+1)).
+    centre_check = None
+    if seed_dirs:
+        frames = range(args.first, args.frames + 1)
+        to_ref, to_centre, floor = [], [], []
+        for f in frames:
+            fr = "frame_%04d.exr" % f
+            stack = np.stack([read_rgb(os.path.join(d, fr)) for d in [os.path.join(work, "spp1")] + seed_dirs])
+            m = stack.mean(axis=0)
+            to_ref.append(np.mean((m - read_rgb(os.path.join(work, "ref", fr))) ** 2))
+            to_centre.append(np.mean((m - read_rgb(os.path.join(work, "centre", fr))) ** 2))
+            floor.append(np.mean(np.var(stack, axis=0, ddof=1)) / len(stack))
+        centre_check = {"renders": len(seed_dirs) + 1, "mean_to_reference_rmse": math.sqrt(np.mean(to_ref)),
+                        "mean_to_centre_rmse": math.sqrt(np.mean(to_centre)), "noise_floor_rmse": math.sqrt(np.mean(floor))}
+        log("mean of %d 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image (noise floor %.4f)" %
+            (centre_check["renders"], centre_check["mean_to_reference_rmse"], centre_check["mean_to_centre_rmse"],
+             centre_check["noise_floor_rmse"]))
 
     # 2. Brute force and the candidate sweep.
     brute = {}
@@ -398,10 +435,17 @@ def main():
                 log("%d spp %-36s RMSE %.5f (%.3fx 4 spp)  rrc %.2f ms run, %.1f ms total" %
                     (spp, label(blend, value, filt), row["rmse"], row["ratio_to_4spp"], row["rrc_frame_run_ms"],
                      row["rrc_total_ms"]))
-    # The tool's own defaults for the preset (whatever this build has), for the record.
+    # The tool's own defaults for the preset (whatever this build has), for
+    # the record, and its cost without --reference (what a production run
+    # pays: read the frame, run, write the output), median of 3 runs.
     r = rrc_run(args, work, "preset_default_1spp", os.path.join(work, "spp1"), None)
+    timing = []
+    for k in range(3):
+        shutil.rmtree(os.path.join(work, "rrc", "timing"), ignore_errors=True)
+        timing.append(rrc_run(args, work, "timing", os.path.join(work, "spp1"), None, reference=False))
+    timing.sort(key=lambda t: t["rrc_total_ms"])
     preset_default = {"rmse": r["output_rmse"], "ratio_to_4spp": r["output_rmse"] / brute[4]["rmse"],
-                      "rrc_total_ms": r["rrc_total_ms"], "rrc_frame_run_ms": r["rrc_frame_run_ms"]}
+                      "rrc_total_ms": timing[1]["rrc_total_ms"], "rrc_frame_run_ms": timing[1]["rrc_frame_run_ms"]}
     log("preset defaults at 1 spp: RMSE %.5f (%.3fx 4 spp)" % (preset_default["rmse"], preset_default["ratio_to_4spp"]))
 
     # 3. Decomposition.
@@ -425,7 +469,7 @@ def main():
     results = {"size": args.size, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
                "time_fit": fit, "times": {str(k): {kk: float(vv) for kk, vv in v.items()} for k, v in times.items()},
                "brute": {str(k): v for k, v in brute.items()}, "sweep": sweep, "preset_default": preset_default,
-               "decomposition": decomp}
+               "decomposition": decomp, "centre_check": centre_check}
     with open(os.path.join(work, "results.json"), "w") as fp:
         json.dump(results, fp, indent=1)
     write_markdown(work, results)
@@ -434,16 +478,22 @@ def main():
 
 def write_markdown(work, R):
     L = []
-    L.append("Per-frame times (frames 2..%d; seconds): total = path tracing + fixed" % R["frames"])
+    L.append("Per-frame times (medians over frames 2.. of the timing renders, the reference's own; seconds): total = path tracing + fixed")
     L.append("")
     L.append("| spp | total | path tracing | fixed | first frame | Blender start-up (per run) |")
     L.append("|---|---|---|---|---|---|")
-    for k, t in sorted(R["times"].items(), key=lambda kv: int(kv[0])):
+    for k, t in sorted(R["times"].items(), key=lambda kv: int(kv[0]) if kv[0].isdigit() else 1 << 30):
         L.append("| %s | %.3f | %.3f | %.3f | %.3f | %.2f |" % (k, t["total"], t["path_tracing"], t["fixed"], t["first_frame"],
                                                                t["startup"]))
     L.append("")
-    L.append("Fit over all renders: time = %.4f s + %.3f ms x spp" % (R["time_fit"]["fixed_s"], 1e3 * R["time_fit"]["per_spp_s"]))
+    f = R["time_fit"]
+    L.append("Least-squares fit over the timing renders: time = %.4f s + %.3f ms x spp" % (f["fixed_s"], 1e3 * f["per_spp_s"]))
     L.append("")
+    c = R.get("centre_check")
+    if c:
+        L.append("Mean of %d independent 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image"
+                 " (noise floor %.4f)" % (c["renders"], c["mean_to_reference_rmse"], c["mean_to_centre_rmse"], c["noise_floor_rmse"]))
+        L.append("")
     L.append("Brute force (RMSE over frames %d..%d against %d spp):" % (R["from"], R["frames"], R["ref_spp"]))
     L.append("")
     L.append("| spp | RMSE | RMSE x sqrt(spp) | path tracing s/frame | total s/frame |")
@@ -460,7 +510,8 @@ def write_markdown(work, R):
                                                                    s["ratio_to_4spp"], s["rrc_frame_run_ms"], s["rrc_total_ms"]))
     L.append("")
     p = R["preset_default"]
-    L.append("This build's preset defaults at 1 spp: RMSE %.5f (%.3f x 4 spp)" % (p["rmse"], p["ratio_to_4spp"]))
+    L.append("This build's preset defaults at 1 spp: RMSE %.5f (%.3f x 4 spp); rrc-accumulate without --reference: %.1f ms a frame"
+             " (%.2f ms of it rrc_frame_run)" % (p["rmse"], p["ratio_to_4spp"], p["rrc_total_ms"], p["rrc_frame_run_ms"]))
     L.append("")
     L.append("Decomposition (MSE over frames %d..%d; shares of the MSE):" % (R["from"], R["frames"]))
     L.append("")
@@ -507,9 +558,13 @@ def plot(work, R):
         for spp, colour in ((1, "tab:blue"), (2, "tab:orange")):
             base = R["brute"][str(spp)][key]
             for blend in marks:
-                rows = [s for s in R["sweep"] if s["spp"] == spp and s["blend"] == blend and s["filter"] == "bilinear"]
-                ax.plot([base + s["rrc_total_ms"] / 1e3 for s in rows], [s["rmse"] for s in rows], marks[blend], color=colour,
+                rows = [s for s in R["sweep"] if s["spp"] == spp and s["blend"] == blend]
+                cost = R["preset_default"]["rrc_total_ms"] / 1e3  # per frame, without --reference
+                ax.plot([base + cost for s in rows], [s["rmse"] for s in rows], marks[blend], color=colour,
                         alpha=0.7, label="rrc %d spp %s" % (spp, blend) if ax is axes[0] else None)
+            preset = [s for s in R["sweep"] if s["spp"] == spp and (s["blend"], s["value"], s["filter"]) == PRESET]
+            ax.plot([base + R["preset_default"]["rrc_total_ms"] / 1e3 for s in preset], [s["rmse"] for s in preset], "*", ms=11,
+                    color=colour, mec="k", label="rrc %d spp, the preset" % spp if ax is axes[0] else None)
         ax.axhline(0.85 * R["brute"]["4"]["rmse"], color="grey", ls="--", lw=0.8)
         ax.set_xscale("log")
         ax.set_xlabel(title + " [s] (+ rrc's)")
