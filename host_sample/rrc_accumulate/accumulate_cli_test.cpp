@@ -1001,6 +1001,62 @@ TEST(AccumulateTool, ObjectIdChannel) {
 // End to end through the library (skipped when no Vulkan device exists)
 // ======================================================================
 
+// --preset blender without --signal accumulates <view layer>.Combined with
+// the preset's own lambda, blend and filter (docs/OFFLINE.md, section 7:
+// chosen from the error against render time on Cycles sequences), and they
+// reach the library's channel description; an explicit --signal keeps the
+// tool's defaults and its own keys.
+TEST(AccumulateTool, BlenderPresetSignalDefaults) {
+    // The values section 7 documents: a change here is a change there.
+    EXPECT_FLOAT_EQ(rrc_cli::kBlenderPresetLambda, 0.8f);
+    EXPECT_EQ(rrc_cli::kBlenderPresetBlend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_CATMULL_ROM);
+
+    TempDir dir;
+    rrc_exr::ExrImage img;
+    img.width = 4;
+    img.height = 3;
+    for (const char* c : {"ViewLayer.Depth.Z", "ViewLayer.Vector.X", "ViewLayer.Vector.Y", "ViewLayer.Combined.R", "ViewLayer.Combined.G",
+                          "ViewLayer.Combined.B", "ViewLayer.Combined.A", "ViewLayer.Shadow.X"})
+        img.channels[c] = std::vector<float>(12, 1.0f);
+    rrc_exr::write_exr(dir / "b_1.exr", img);
+    const std::string path = dir / "b_1.exr";
+    const rrc_exr::ExrInfo info = rrc_exr::read_exr_info(path);
+
+    Options o = parse_with({"--preset", "blender"}).options;
+    rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, path, o);
+    ASSERT_EQ(layout.signals.size(), 1u);
+    EXPECT_EQ(layout.signals[0].options.layer, "ViewLayer.Combined");
+    EXPECT_FLOAT_EQ(layout.signals[0].options.lambda, 0.8f);
+    EXPECT_EQ(layout.signals[0].options.blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(layout.signals[0].options.history, RRC_HISTORY_FP16);  // the tool's default
+    EXPECT_EQ(layout.signals[0].options.max_age, 255u);
+    std::vector<rrc_channel_desc> channels;
+    rrc_cli::make_context_desc(o, layout, channels);
+    ASSERT_EQ(channels.size(), 1u);
+    EXPECT_FLOAT_EQ(channels[0].lambda, 0.8f);
+    EXPECT_EQ(channels[0].blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(channels[0].filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.8,blend=age_aware,filter=catmull_rom"), std::string::npos);
+
+    // Explicit signals: the tool's defaults where no key is given, the keys where they are.
+    o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined", "--signal", "ViewLayer.Shadow:lambda=0.7,filter=nearest"}).options;
+    layout = rrc_cli::discover_layout(info, path, o);
+    ASSERT_EQ(layout.signals.size(), 2u);
+    EXPECT_FLOAT_EQ(layout.signals[0].options.lambda, 0.6f);
+    EXPECT_EQ(layout.signals[0].options.blend, RRC_BLEND_FIXED);
+    EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_BILINEAR);
+    EXPECT_FLOAT_EQ(layout.signals[1].options.lambda, 0.7f);
+    EXPECT_EQ(layout.signals[1].options.blend, RRC_BLEND_FIXED);
+    EXPECT_EQ(layout.signals[1].options.filter, RRC_HISTORY_FILTER_NEAREST);
+
+    // Without the preset the automatic signals keep the tool's defaults too.
+    const rrc_cli::SignalOptions plain;
+    EXPECT_FLOAT_EQ(plain.lambda, 0.6f);
+    EXPECT_EQ(plain.blend, RRC_BLEND_FIXED);
+}
+
 TEST(AccumulateTool, StaticSequenceEndToEnd) {
     TempDir dir;
     write_static_sequence(dir / "in/f_%03d.exr", 5, 7, SceneOptions::rgb());

@@ -17,6 +17,7 @@
 //     no hit takes a bilinear tap from another object, and without them the
 //     tool behaves as before (the table in docs/OFFLINE.md).
 #include "accumulate.h"
+#include "enum_names.h"
 #include "object_index_hits.h"
 #include "options.h"
 #include "sequence.h"
@@ -55,6 +56,15 @@ namespace {
 using namespace rrc_cli_test;
 
 const std::string kLayer = "ViewLayer.";
+
+// The signal --preset blender accumulates without --signal, spelt out as a
+// --signal (options.h: kBlenderPresetLambda, kBlenderPresetBlend, kBlenderPresetFilter).
+std::string preset_signal() {
+    char lambda[32];
+    std::snprintf(lambda, sizeof lambda, "%g", static_cast<double>(rrc_cli::kBlenderPresetLambda));
+    return kLayer + "Combined:lambda=" + lambda + ",blend=" + rrc_host::enum_name(rrc_host::kBlendNames, rrc_cli::kBlenderPresetBlend) +
+           ",filter=" + rrc_host::enum_name(rrc_host::kHistoryFilterNames, rrc_cli::kBlenderPresetFilter);
+}
 
 std::string frame_path(const std::string& pattern, int f) { return rrc_cli::format_frame_path(pattern, f); }
 
@@ -423,7 +433,7 @@ TEST(BlenderConvention, ChannelOptionsReproduceThePreset) {
                         "--object-id",
                         "ViewLayer.IndexOB.X",
                         "--signal",
-                        "ViewLayer.Combined",
+                        preset_signal(),
                         "--quiet"},
                        nullptr, &err),
               0)
@@ -977,7 +987,7 @@ TEST(BlenderRender, ObjectIdsRuleOutTapsOnOtherObjects) {
     run(in,
         {"--depth-mode", "linear", "--reproject", "motion", "--depth-channel", "ViewLayer.Depth.Z", "--motion-channels",
          "ViewLayer.Vector.X,ViewLayer.Vector.Y", "--motion-units", "pixels", "--motion-y", "up", "--tau",
-         std::to_string(rrc_cli::kBlenderPresetTau), "--signal", "ViewLayer.Combined", "--quiet"},
+         std::to_string(rrc_cli::kBlenderPresetTau), "--signal", preset_signal(), "--quiet"},
         dir / "plain/%d.exr", nullptr);
     for (int f = 1; f <= 3; ++f) {
         const auto none = rrc_exr::read_exr(frame_path(dir / "none/%d.exr", f)).channels;

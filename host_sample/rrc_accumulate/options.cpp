@@ -83,6 +83,15 @@ const char* depth_mode_name(rrc_depth_mode m) { return rrc_host::enum_name(rrc_h
 
 const char* depth_test_name(rrc_depth_test t) { return rrc_host::enum_name(kDepthTestNames, t); }
 
+SignalOptions blender_preset_signal(const std::string& layer) {
+    SignalOptions s;
+    s.layer = layer;
+    s.lambda = kBlenderPresetLambda;
+    s.blend = kBlenderPresetBlend;
+    s.filter = kBlenderPresetFilter;
+    return s;
+}
+
 bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error) {
     SignalOptions s;
     const std::size_t colon = text.find(':');
@@ -279,7 +288,13 @@ Presets:
                          <view layer>.IndexOB.X when the first frame has them
                          (the Object Index pass; without it the run goes
                          without ids, and says so), and the signal
-                         <view layer>.Combined when no --signal is given.
+                         <view layer>.Combined when no --signal is given,
+                         accumulated with
+                         @PRESET_SIGNAL@
+                         (chosen from the error against render time
+                         measured on Cycles sequences, docs/OFFLINE.md
+                         section 7; an explicit --signal has the defaults
+                         below).
                          Every option given explicitly overrides the preset.
   --view-layer NAME      the view layer to read (found when there is one)
 
@@ -407,6 +422,12 @@ missing channel, library error, validation message), 2 a bad command line.
     char tau[32];
     std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
     for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
+    char preset_signal[96];
+    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s", static_cast<double>(kBlenderPresetLambda),
+                  rrc_host::enum_name(rrc_host::kBlendNames, kBlenderPresetBlend),
+                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter));
+    const std::string marker = "@PRESET_SIGNAL@";
+    for (std::size_t p; (p = text.find(marker)) != std::string::npos;) text.replace(p, marker.size(), preset_signal);
     return text;
 }
 

@@ -21,6 +21,14 @@ enum class Progress { Auto, Bar, Lines }; /* --progress; auto: a bar on a termin
  *  in docs/OFFLINE.md. */
 constexpr float kBlenderPresetTau = 0.04f;
 
+/** --preset blender's accumulation of <view layer>.Combined when no --signal
+ *  is given, chosen from the error-against-render-time study of Cycles
+ *  sequences in docs/OFFLINE.md, section 7 (blender/error_study.py).  An
+ *  explicit --signal takes the tool's defaults and its own keys. */
+constexpr float kBlenderPresetLambda = 0.8f;
+constexpr rrc_blend kBlenderPresetBlend = RRC_BLEND_AGE_AWARE;
+constexpr rrc_history_filter kBlenderPresetFilter = RRC_HISTORY_FILTER_CATMULL_ROM;
+
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {
     std::string layer;                                       /* EXR layer name: "shadow", "color" */
@@ -62,7 +70,8 @@ struct Options {
      * kBlenderPresetTau; the channel names (<view layer>.Depth.Z,
      * <view layer>.Vector.X/Y, signal <view layer>.Combined, object ids
      * <view layer>.IndexOB.X if present) are resolved from the first frame
-     * by discover_layout. */
+     * by discover_layout, which gives the signal blender_preset_signal()'s
+     * settings when no --signal is given. */
     std::string preset;
     std::string view_layer; /* --view-layer: Blender's view layer name (the preset finds it otherwise) */
 
@@ -108,6 +117,11 @@ const std::vector<std::string>& value_options();
 
 /** The --help text: every option, the channel names, the exit codes. */
 std::string usage_text();
+
+/** The signal --preset blender accumulates when no --signal is given: `layer`
+ *  (<view layer>.Combined) with kBlenderPresetLambda, kBlenderPresetBlend and
+ *  kBlenderPresetFilter, the other keys the tool's defaults. */
+SignalOptions blender_preset_signal(const std::string& layer);
 
 /** "NAME[:key=value,...]"; on failure returns false and sets error. */
 bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string& error);

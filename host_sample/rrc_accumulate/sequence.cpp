@@ -200,8 +200,7 @@ SequenceLayout discover_layout(const rrc_exr::ExrInfo& first, const std::string&
     const auto layers = group_layers(first);
     std::vector<SignalOptions> requested = options.signals;
     if (requested.empty() && options.preset == "blender") {
-        SignalOptions s;
-        s.layer = (map.view_layer.empty() ? std::string() : map.view_layer + ".") + "Combined";
+        SignalOptions s = blender_preset_signal((map.view_layer.empty() ? std::string() : map.view_layer + ".") + "Combined");
         if (!layers.count(s.layer))
             throw CliError(first_path + ": --preset blender without --signal accumulates " + quoted(std::as_const(s.layer)) +
                            ", which the file lacks (name the layers with --signal); the file has: " + list_channels(first));

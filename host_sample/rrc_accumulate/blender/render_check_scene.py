@@ -2,7 +2,7 @@
 # so the Depth and Vector passes Blender writes can be checked against them
 # (docs/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
 #
-#   blender -b --factory-startup --python render_check_scene.py -- OUT_DIR [SAMPLES [float|half [fixed|seed [FRAMES]]]]
+#   blender -b --factory-startup --python render_check_scene.py -- OUT_DIR [SAMPLES [float|half [fixed|seed [FRAMES]]]] [KEY=VALUE...]
 #
 # Writes OUT_DIR/frame_0001.exr ... frame_NNNN.exr (FRAMES, default 3;
 # OpenEXR multilayer with Combined, Depth, Vector, IndexOB; Combined in half
@@ -11,6 +11,17 @@
 # camera's world matrix and OpenGL projection, every object's world matrix
 # and pass index, the render size.  Motion is linear in the frame number, so
 # frame 1 has a previous and the last frame a next frame.
+#
+# KEY=VALUE options (error_study.py uses them; the defaults are the check's):
+#   seed=N        Cycles' base seed (0)
+#   size=WxH      the render size (64x48)
+#   offset=frame  Cycles' sample offset (frame - 1) * SAMPLES, so that every
+#                 frame takes the next samples of the sequence.  Without it
+#                 (offset=0, the default) a 1-sample frame's one sample lies
+#                 at the pixel centre whatever the seed (docs/OFFLINE.md,
+#                 section 7): an animated seed does not jitter it.
+#   filter=W      the pixel filter width in pixels (Cycles' 1.5); 0.01 gives
+#                 a centre-sampled image
 import bpy
 import json
 import math
@@ -18,14 +29,23 @@ import os
 import sys
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+keys = dict(a.split("=", 1) for a in argv if "=" in a)
+argv = [a for a in argv if "=" not in a]
+unknown = set(keys) - {"seed", "size", "offset", "filter"}
+if unknown:
+    sys.exit("render_check_scene.py: unknown option(s) " + ", ".join(sorted(unknown)))
 out_dir = os.path.abspath(argv[0] if argv else "blender_check")
 samples = int(argv[1]) if len(argv) > 1 else 16
 half = len(argv) > 2 and argv[2] == "half"
 animated_seed = len(argv) > 3 and argv[3] == "seed"
 frames = int(argv[4]) if len(argv) > 4 else 3
+base_seed = int(keys.get("seed", "0"))
+size = keys.get("size", "64x48").split("x")
+offset_per_frame = keys.get("offset", "0") == "frame"
+filter_width = float(keys.get("filter", "1.5"))
 os.makedirs(out_dir, exist_ok=True)
 
-W, H = 64, 48
+W, H = int(size[0]), int(size[1])
 scene = bpy.context.scene
 for o in list(bpy.data.objects):
     bpy.data.objects.remove(o, do_unlink=True)
@@ -35,8 +55,14 @@ scene.cycles.device = 'CPU'
 scene.cycles.samples = samples
 scene.cycles.use_denoising = False
 scene.cycles.use_adaptive_sampling = False
-scene.cycles.seed = 0
+scene.cycles.seed = base_seed
 scene.cycles.use_animated_seed = animated_seed
+scene.cycles.filter_width = filter_width
+scene.cycles.sample_offset = 0
+if offset_per_frame:
+    def set_sample_offset(sc, *_):
+        sc.cycles.sample_offset = max(sc.frame_current - 1, 0) * samples
+    bpy.app.handlers.frame_change_pre.append(set_sample_offset)
 scene.render.use_motion_blur = False  # the Vector pass needs it off
 scene.render.resolution_x = W
 scene.render.resolution_y = H
