@@ -13,24 +13,6 @@
 namespace rrc_sample {
 namespace {
 
-long to_int(const std::string& opt, const std::string& v, long lo, long hi) {
-    char* end = nullptr;
-    errno = 0;
-    long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end || errno || x < lo || x > hi)
-        throw OptionError(opt + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
-}
-
-float to_float(const std::string& opt, const std::string& v, float lo, float hi) {
-    char* end = nullptr;
-    errno = 0;
-    float x = std::strtof(v.c_str(), &end);
-    if (v.empty() || *end || errno || !(x >= lo && x <= hi))
-        throw OptionError(opt + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
-}
-
 uint32_t parse_signals(const std::string& v) {
     uint32_t bits = 0;
     std::stringstream ss(v);
@@ -50,6 +32,24 @@ uint32_t parse_signals(const std::string& v) {
 }
 
 }  // namespace
+
+long to_int(const std::string& opt, const std::string& v, long lo, long hi) {
+    char* end = nullptr;
+    errno = 0;
+    long x = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end || errno || x < lo || x > hi)
+        throw OptionError(opt + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
+    return x;
+}
+
+float to_float(const std::string& opt, const std::string& v, float lo, float hi) {
+    char* end = nullptr;
+    errno = 0;
+    float x = std::strtof(v.c_str(), &end);
+    if (v.empty() || *end || errno || !(x >= lo && x <= hi))
+        throw OptionError(opt + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
+    return x;
+}
 
 std::string signal_list(uint32_t s) {
     std::string out;

@@ -43,6 +43,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/** `v` as an integer / a number in [lo, hi]; throws OptionError naming `opt` (shared with rrc-sweep). */
+long to_int(const std::string& opt, const std::string& v, long lo, long hi);
+float to_float(const std::string& opt, const std::string& v, float lo, float hi);
+
 /** Parses argv; throws OptionError with a readable message. */
 Options parse_options(int argc, const char* const* argv);
 std::string usage();

@@ -1,5 +1,6 @@
 #include "sweep_options.h"
 
+#include "options.h"
 #include "scene.h"
 
 #include <cerrno>
@@ -9,23 +10,8 @@
 namespace rrc_sweep {
 namespace {
 
-long to_int(const std::string& opt, const std::string& v, long lo, long hi) {
-    char* end = nullptr;
-    errno = 0;
-    const long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end || errno || x < lo || x > hi)
-        throw OptionError(opt + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
-}
-
-float to_float(const std::string& opt, const std::string& v, float lo, float hi) {
-    char* end = nullptr;
-    errno = 0;
-    const float x = std::strtof(v.c_str(), &end);
-    if (v.empty() || *end || errno || !(x >= lo && x <= hi))
-        throw OptionError(opt + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
-}
+using rrc_sample::to_float;
+using rrc_sample::to_int;
 
 std::vector<std::string> split(const std::string& opt, const std::string& v) {
     std::vector<std::string> items;

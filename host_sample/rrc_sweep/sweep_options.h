@@ -1,6 +1,8 @@
 // rrc-sweep's command line: which configurations, how many seeds and frames.
 #pragma once
 
+#include "options.h"
+
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -35,10 +37,8 @@ struct SweepOptions {
     std::vector<int> checkpoints() const;
 };
 
-class OptionError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
+/** rrc-sample's: the two programs parse numbers with the same functions (rrc_sample/options.h). */
+using rrc_sample::OptionError;
 
 SweepOptions parse_sweep_options(int argc, const char* const* argv);
 std::string sweep_usage();
