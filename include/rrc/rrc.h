@@ -20,6 +20,8 @@
  *   rrc_validate_context_desc()  check a descriptor; no Vulkan object made
  *   rrc_context_create()         make a context (and, standalone, a device)
  *   rrc_frame_run()              per frame: CPU arrays in, CPU arrays out
+ *   rrc_frame_classify() and     per frame, shading cache: which quads the
+ *   rrc_frame_resolve()          host must shade, then its values merged in
  *   rrc_context_destroy()        free everything
  *
  * Errors
@@ -109,7 +111,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 2, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 3, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -160,6 +162,8 @@ typedef uint32_t rrc_struct_type;
 #define RRC_STRUCT_TYPE_CHANNEL_INPUT 0x52524304u
 #define RRC_STRUCT_TYPE_FRAME_OUTPUT 0x52524305u
 #define RRC_STRUCT_TYPE_CHANNEL_OUTPUT 0x52524306u
+#define RRC_STRUCT_TYPE_CLASSIFY_OUTPUT 0x52524307u /* 0.3 */
+#define RRC_STRUCT_TYPE_RESOLVE_DESC 0x52524308u    /* 0.3 */
 
 /** The first members of every tagged struct, and of every extension struct
  *  on a `next` chain (Versioning, rules 1-5). */
@@ -189,6 +193,9 @@ RRC_DEFINE_ENUM(rrc_depth_test, RRC_DEPTH_TEST, uint32_t)
 /** The lambda recursive filter's blend (docs/CONVENTIONS.md §filter). */
 RRC_DEFINE_ENUM(rrc_blend, RRC_BLEND, uint32_t)
 
+/** Which hits a REUSE channel re-shades anyway (docs/CONVENTIONS.md §refresh). */
+RRC_DEFINE_ENUM(rrc_refresh_policy, RRC_REFRESH_POLICY, uint32_t)
+
 /** How history is resampled at the reprojected position. */
 RRC_DEFINE_ENUM(rrc_history_filter, RRC_HISTORY_FILTER, uint32_t)
 
@@ -199,7 +206,7 @@ RRC_DEFINE_ENUM(rrc_history_precision, RRC_HISTORY_PRECISION, uint32_t)
  *  Why: a history rounded to nearest fp16 stops moving once
  *  (1 - lambda)|s - H| < ulp(H)/2, i.e. it may stall up to 2^-11/(1 - lambda)
  *  of H away from the signal (bias 3.6e-2 at lambda 0.999 on a noisy signal;
- *  docs/STABILITY.md). */
+ *  docs/STABILITY.md).  REUSE never blends: it keeps fp16. */
 #define RRC_FP16_MAX_LAMBDA 0.95
 
 /** Bits of the per-pixel mask (rrc_frame_output.mask is uint8_t). */
@@ -232,7 +239,8 @@ typedef struct rrc_channel_desc {
     char name[RRC_MAX_NAME];         /* non-empty, unique in the context, NUL-terminated */
     uint32_t components;             /* 1 or 4 */
     rrc_history_precision precision; /* fp16 (default) or fp32; fp16 above RRC_FP16_MAX_LAMBDA is fp32 */
-    float lambda;                    /* in [0,1); the weight of history. 0 with blend FIXED is no accumulation */
+    float lambda;                    /* in [0,1); the weight of history. 0 with blend FIXED is no accumulation;
+                                        REUSE ignores it */
     rrc_blend blend;
     rrc_history_filter filter;
     uint32_t age_cap;    /* saturation of the age count; 0 = default 255, at most RRC_MAX_AGE_CAP */
@@ -291,6 +299,25 @@ typedef struct rrc_context_desc {
      * rrc_vulkan_frame_desc.object_id), and a hit also needs every previous
      * depth tap with non-zero bilinear weight to carry the pixel's id. */
     uint32_t use_object_id;
+
+    /* ---- 0.3: the shading cache (docs/CONVENTIONS.md §refresh) ---- */
+    /* Which hits of REUSE channels are re-shaded anyway (a REFRESHED pixel is
+     * not a HIT).  Needs at least one REUSE channel; accumulating channels
+     * ignore it (they take a sample every frame).  NONE (0): none. */
+    rrc_refresh_policy refresh_policy;
+    /* n, the policy's period in frames: 1..RRC_MAX_REFRESH_PERIOD; every
+     * pixel of a static scene is refreshed exactly once every n frames.
+     * Required (non-zero) with a policy, 0 without. */
+    uint32_t refresh_period;
+    /* TILED: the grid {gx, gy}, gx * gy = refresh_period, each at most
+     * RRC_MAX_REFRESH_TILES; {0, 0} = {refresh_period, 1} (vertical strips).
+     * {0, 0} for the other policies. */
+    uint32_t refresh_tiles[2];
+    /* Non-zero: L, a REUSE value is re-shaded when it would be used for an
+     * (L+1)-th frame, whatever the policy (bounds staleness under motion,
+     * which screen-space policies cannot).  At most the age cap of every
+     * REUSE channel.  Needs a REUSE channel. */
+    uint32_t max_lifetime;
 } rrc_context_desc;
 
 /** Check a context descriptor without touching Vulkan.  Returns RRC_SUCCESS or
@@ -360,10 +387,13 @@ typedef struct rrc_frame_desc {
 
 typedef struct rrc_frame_stats {
     uint64_t hits;
-    uint64_t misses; /* non-background pixels that are not hits */
+    uint64_t misses; /* non-background pixels that are neither hits nor refreshed */
     uint64_t background;
     uint64_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
     uint64_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
+    /* ---- 0.3 (written only if the caller's output struct holds it) ---- */
+    uint64_t refreshed; /* pixels with RRC_MASK_REFRESHED: passed the hit test but are re-shaded;
+                           hits + misses + background + refreshed = width * height */
 } rrc_frame_stats;
 
 /** Where one channel's results go; any pointer may be NULL (not read back). */
@@ -397,6 +427,59 @@ RRC_API rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* fra
  *  frame is validated before anything runs; on a validation error nothing
  *  changes.  Staging memory grows to the largest batch: count * (inputs + outputs). */
 RRC_API rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs);
+
+/* ---- The shading cache, split in two (0.3; docs/INTEGRATION.md) -------- *
+ * rrc_frame_run shades nothing for the host: it takes a sample at every
+ * pixel.  A host whose shading is expensive runs each frame in two calls
+ * instead, and shades only the quads classify lists:
+ *
+ *   rrc_frame_classify(ctx, &frame, &classified)   reproject, hit test, refresh
+ *   ... the host shades every pixel of each listed 2x2 quad ...
+ *   rrc_frame_resolve(ctx, &resolve, &output)      merge, update cache and age
+ *
+ * A quad is listed when one of its pixels is not a HIT (a miss, a refresh,
+ * background or invalid geometry): exactly the pixels where a REUSE channel
+ * takes the host's value.  Resolve gives the same results as rrc_frame_run
+ * given the same values at the listed quads' pixels; what REUSE channels hold
+ * elsewhere is never read.  Accumulating channels of the same context take a
+ * sample at every pixel, so their arrays must be complete. */
+
+/** Bytes of a quad list for a width x height context (rrc_values.h layout). */
+#define RRC_QUAD_LIST_BYTES(width, height) \
+    (4u * (RRC_QUAD_LIST_FIRST_QUAD + (((uint64_t)(width) + 1u) / 2u) * (((uint64_t)(height) + 1u) / 2u)))
+
+typedef struct rrc_classify_output {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_CLASSIFY_OUTPUT */
+    const void* next;
+    uint32_t size;
+    uint8_t* mask;          /* width*height RRC_MASK_* bits (INVALID_SAMPLE not yet known); may be NULL */
+    uint32_t* quads;        /* quad_capacity words: the listed quads, x | y << 16, unordered; may be NULL */
+    uint32_t quad_capacity; /* words at quads; fewer than quad_count is RRC_ERROR_SIZE_MISMATCH, nothing run */
+    uint32_t quad_count;    /* written: the number of listed quads */
+    rrc_frame_stats stats;  /* written: as rrc_frame_run's, invalid_samples 0 */
+} rrc_classify_output;
+
+typedef struct rrc_resolve_desc {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_RESOLVE_DESC */
+    const void* next;
+    uint32_t size;
+    uint32_t channel_count;            /* the context's */
+    const rrc_channel_input* channels; /* full-size arrays; a REUSE channel's are read at listed quads only */
+} rrc_resolve_desc;
+
+/** Classifies one frame: `frame` as for rrc_frame_run, except that its
+ *  channels are not read (channel_count may be 0 and channels NULL).
+ *  Writes the mask, the listed quads and the statistics, and keeps the
+ *  classification for rrc_frame_resolve.  History does not change.  A second
+ *  classify, or rrc_frame_run, drops a classification not yet resolved.
+ *  quad_capacity = RRC_QUAD_LIST_BYTES(w, h) / 4 - RRC_QUAD_LIST_FIRST_QUAD
+ *  always suffices. */
+RRC_API rrc_result rrc_frame_classify(rrc_context* context, const rrc_frame_desc* frame, rrc_classify_output* output);
+
+/** Completes the classified frame with the host's values: the frame becomes
+ *  the "previous frame" of the next, as after rrc_frame_run.  Without a
+ *  classification to complete: RRC_ERROR_INVALID_ARGUMENT. */
+RRC_API rrc_result rrc_frame_resolve(rrc_context* context, const rrc_resolve_desc* resolve, rrc_frame_output* output);
 
 #ifdef __cplusplus
 }

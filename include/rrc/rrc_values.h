@@ -58,7 +58,14 @@
 #define RRC_BLEND_VALUES(X)                                          \
     X(RRC_BLEND_FIXED, 0)        /* lambda_eff = lambda (the paper) */ \
     X(RRC_BLEND_AGE_AWARE, 1)    /* lambda_eff = min(lambda, n/(n+1)) */ \
-    X(RRC_BLEND_RUNNING_MEAN, 2) /* lambda_eff = n/(n+1): mean of all samples since the last miss */
+    X(RRC_BLEND_RUNNING_MEAN, 2) /* lambda_eff = n/(n+1): mean of all samples since the last miss */ \
+    X(RRC_BLEND_REUSE, 3)        /* shading cache: a hit keeps the resampled cached value, a miss or refresh takes s */
+
+/* ---- rrc_refresh_policy: which hits a REUSE channel re-shades anyway ----- */
+#define RRC_REFRESH_POLICY_VALUES(X)                                                                   \
+    X(RRC_REFRESH_NONE, 0)   /* only misses are re-shaded (and max_lifetime, if set) */                \
+    X(RRC_REFRESH_TILED, 1)  /* gx x gy screen tiles; tile i = tx + gx*ty when (t + i) mod n = 0 */     \
+    X(RRC_REFRESH_RANDOM, 2) /* each 2x2 quad at offset d (balanced hash) when (t + d) mod n = 0 */
 
 /* ---- rrc_history_filter: how history is resampled ------------------------ */
 #define RRC_HISTORY_FILTER_VALUES(X)                                    \
@@ -96,5 +103,19 @@
 #define RRC_MAX_AGE_CAP 65535u
 /** Largest width or height of a context. */
 #define RRC_MAX_EXTENT 16384u
+/** Largest refresh period n, and largest tile count along one axis (TILED). */
+#define RRC_MAX_REFRESH_PERIOD 65536u
+#define RRC_MAX_REFRESH_TILES 256u
+
+/* ---- The quad list of classify (docs/INTEGRATION.md, "Shading cache") ----
+ * uint32 words: [0] the number of listed quads, [1..3] a
+ * VkDispatchIndirectCommand {x, y, z} = {ceil(count / RRC_QUADS_PER_GROUP),
+ * 1, 1}, then from word RRC_QUAD_LIST_FIRST_QUAD one word per listed quad,
+ * x | y << 16, where (x, y) is the quad's index: it covers the pixels
+ * (2x..2x+1, 2y..2y+1).  The order of the quads is unspecified. */
+#define RRC_QUADS_PER_GROUP 64u
+#define RRC_QUAD_LIST_COUNT 0u
+#define RRC_QUAD_LIST_DISPATCH 1u
+#define RRC_QUAD_LIST_FIRST_QUAD 4u
 
 #endif /* RRC_RRC_VALUES_H */

@@ -40,6 +40,7 @@ extern "C" {
 #define RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC 0x52524310u
 #define RRC_STRUCT_TYPE_VULKAN_FRAME_DESC 0x52524311u
 #define RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES 0x52524312u
+#define RRC_STRUCT_TYPE_VULKAN_QUAD_LIST 0x52524313u /* 0.3 */
 
 /** The host's Vulkan objects.  The library uses them and destroys none. */
 typedef struct rrc_vulkan_device_desc {
@@ -89,7 +90,7 @@ typedef struct rrc_vulkan_frame_stats {
     uint32_t background;
     uint32_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
     uint32_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
-    uint32_t refreshed;        /* pixels with RRC_MASK_REFRESHED (0 until a refresh policy exists) */
+    uint32_t refreshed;        /* pixels with RRC_MASK_REFRESHED */
     uint32_t pixels;           /* width * height of the frame */
     uint32_t reserved;         /* 0 */
 } rrc_vulkan_frame_stats;
@@ -142,6 +143,48 @@ RRC_API rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const
  *  barriers.  The frame becomes the "previous frame" of the next call.  On
  *  error nothing is recorded.  Only for contexts made by rrc_vulkan_context_create. */
 RRC_API rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame);
+
+/* ---- The shading cache in the host's command buffer (0.3) --------------- *
+ * The split frame of rrc.h ("The shading cache"), recorded:
+ *
+ *   rrc_vulkan_record_classify(ctx, &frame, &list)
+ *   vkCmdDispatchIndirect(cmd, list.buffer, list.offset + 4 * RRC_QUAD_LIST_DISPATCH)
+ *       the host's miss shader: workgroup g shades quads g*RRC_QUADS_PER_GROUP..
+ *       of the list, every pixel of each, into the channels' `samples` images
+ *   rrc_vulkan_record_resolve(ctx, &frame)
+ *
+ * Both calls take the same frame descriptor (the same frame_index; resolve
+ * reads the channels, classify does not).  Each call moves every host image
+ * it uses from `layout` to `final_layout`: pass layout == final_layout, or
+ * give resolve the layouts classify left.  The quad list buffer is the
+ * host's: classify clears and fills it and ends with a barrier from its
+ * writes to DRAW_INDIRECT (INDIRECT_COMMAND_READ) and COMPUTE_SHADER
+ * (SHADER_READ), so a compute miss shader may read it at once; a graphics
+ * miss pass adds its own barrier from COMPUTE_SHADER / SHADER_WRITE to its
+ * stages.  Resolve's barriers make the host's writes to the samples images
+ * (any stage) visible to it, as rrc_vulkan_record_frame's do.  A list must
+ * not be overwritten (by the next frame's classify) before the host's
+ * dispatch that reads it has run: one list per frame in flight, or the
+ * same one, since recorded commands run in order on one queue. */
+
+typedef struct rrc_vulkan_quad_list {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_QUAD_LIST */
+    const void* next;
+    uint32_t size;
+    VkBuffer buffer;     /* STORAGE_BUFFER, INDIRECT_BUFFER and TRANSFER_DST usage */
+    VkDeviceSize offset; /* a multiple of minStorageBufferOffsetAlignment (256 always is);
+                            RRC_QUAD_LIST_BYTES(width, height) bytes from it are written */
+} rrc_vulkan_quad_list;
+
+/** Records classify: barriers, the list's clear, one dispatch, barriers.
+ *  The frame's statistics buffer (if any) is cleared and receives every
+ *  count but invalid_samples, which resolve adds.  History does not change. */
+RRC_API rrc_result rrc_vulkan_record_classify(rrc_context* context, const rrc_vulkan_frame_desc* frame, const rrc_vulkan_quad_list* list);
+
+/** Records resolve for the frame classify recorded last: the frame becomes
+ *  the "previous frame" of the next.  Without a classified frame of the same
+ *  frame_index: RRC_ERROR_INVALID_ARGUMENT, nothing recorded. */
+RRC_API rrc_result rrc_vulkan_record_resolve(rrc_context* context, const rrc_vulkan_frame_desc* frame);
 
 #ifdef __cplusplus
 }
