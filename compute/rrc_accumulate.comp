@@ -102,15 +102,38 @@ layout(constant_id = RRC_SPEC_HOST_AGE_MASK) const uint HOST_AGE_MASK = 0u;
 // rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch.
 layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 
-void main() {
+#include "rrc_cache.glsl"
+
+// The frame's statistics (interop, STATS): `geometry` counts what the hit
+// test decides, `samples` the invalid samples (classify and resolve split them).
+void rrc_count(uint mask, bool geometry, bool samples) {
+    if (!STATS || !rrc_store) return;
+    bool hit = (mask & RRC_MASK_HIT) != 0u, refreshed = (mask & RRC_MASK_REFRESHED) != 0u;
+    bool background = (mask & RRC_MASK_BACKGROUND) != 0u;
+    if (geometry) {
+        if (hit) atomicAdd(u_stats.counters[RRC_STAT_HITS], 1u);
+        if (!hit && !refreshed && !background) atomicAdd(u_stats.counters[RRC_STAT_MISSES], 1u);
+        if (background) atomicAdd(u_stats.counters[RRC_STAT_BACKGROUND], 1u);
+        if ((mask & RRC_MASK_INVALID_GEOMETRY) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_GEOMETRY], 1u);
+        if (refreshed) atomicAdd(u_stats.counters[RRC_STAT_REFRESHED], 1u);
+    }
+    if (samples && (mask & RRC_MASK_INVALID_SAMPLE) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_SAMPLES], 1u);
+}
+
+// FUSED and RESOLVE: one invocation a pixel, every channel.
+void rrc_pixel() {
     ivec2 size = rrc_size();
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
     rrc_store = all(lessThan(id, size));  // the dispatch rounds up: no early return (rrc_reproject.glsl says why)
     ivec2 px = min(id, size - 1);
 
     RrcGeometry g = rrc_reproject(px, size);
-    uint mask = (g.hit ? RRC_MASK_HIT : 0u) | (g.background ? RRC_MASK_BACKGROUND : 0u) |
-                (g.invalid ? RRC_MASK_INVALID_GEOMETRY : 0u);
+    const uint kGeometryBits = RRC_MASK_HIT | RRC_MASK_REFRESHED | RRC_MASK_BACKGROUND | RRC_MASK_INVALID_GEOMETRY;
+    uint mask = PHASE == RRC_PHASE_RESOLVE ? texelFetch(s_classified, px, 0).r & kGeometryBits : rrc_cache_mask(px, size, g);
+    // Accumulating channels take the hit test's answer (a refresh is a hit to
+    // them); REUSE channels reuse only on HIT.
+    bool hit_any = (mask & (RRC_MASK_HIT | RRC_MASK_REFRESHED)) != 0u;
+    bool hit_cached = (mask & RRC_MASK_HIT) != 0u;
 
 #define RRC_CH 0
 #include "rrc_channel.glsl"
@@ -126,13 +149,34 @@ void main() {
 #undef RRC_CH
 
     if (rrc_store) imageStore(u_mask, px, uvec4(mask));
-    if (STATS && rrc_store) {
-        bool hit = (mask & RRC_MASK_HIT) != 0u, background = (mask & RRC_MASK_BACKGROUND) != 0u;
-        if (hit) atomicAdd(u_stats.counters[RRC_STAT_HITS], 1u);
-        if (!hit && !background) atomicAdd(u_stats.counters[RRC_STAT_MISSES], 1u);
-        if (background) atomicAdd(u_stats.counters[RRC_STAT_BACKGROUND], 1u);
-        if ((mask & RRC_MASK_INVALID_SAMPLE) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_SAMPLES], 1u);
-        if ((mask & RRC_MASK_INVALID_GEOMETRY) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_GEOMETRY], 1u);
-        if ((mask & RRC_MASK_REFRESHED) != 0u) atomicAdd(u_stats.counters[RRC_STAT_REFRESHED], 1u);
+    rrc_count(mask, PHASE == RRC_PHASE_FUSED, true);
+}
+
+// CLASSIFY: one invocation a 2x2 quad; the mask of its pixels, and the quad
+// listed when one of them is not a HIT.
+void rrc_classify_quad() {
+    ivec2 size = rrc_size();
+    ivec2 quads = (size + 1) / 2;
+    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    bool quad_inside = all(lessThan(id, quads));
+    ivec2 q = min(id, quads - 1);
+    bool listed = false;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 px = 2 * q + ivec2(k & 1, k >> 1);
+        rrc_store = quad_inside && all(lessThan(px, size));
+        px = min(px, size - 1);
+        RrcGeometry g = rrc_reproject(px, size);
+        uint mask = rrc_cache_mask(px, size, g);
+        if (rrc_store) imageStore(u_mask, px, uvec4(mask));
+        rrc_count(mask, true, false);
+        listed = listed || (rrc_store && (mask & RRC_MASK_HIT) == 0u);
     }
+    if (listed) rrc_list_quad(q);
+}
+
+void main() {
+    if (PHASE == RRC_PHASE_CLASSIFY)
+        rrc_classify_quad();
+    else
+        rrc_pixel();
 }

@@ -3,7 +3,9 @@
 // be indexed by constants, and per-slot specialization constants compile out
 // every format, filter and blend the channel does not use.
 //
-// Inputs from the enclosing main(): px, g (RrcGeometry), mask (uint, in/out).
+// Inputs from the enclosing rrc_pixel(): px, g (RrcGeometry: where to
+// resample), mask (uint, in/out), hit_any (the hit test passed: HIT or
+// REFRESHED) and hit_cached (HIT: a REUSE channel keeps its value).
 
 #define CH_(name) ch##name(RRC_CH)
 // A 1-component fp16 channel keeps value and age in one R32_UINT word
@@ -11,6 +13,7 @@
 // and one store writes both.
 #define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
 #define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)
+#define REUSE_ (CH_(_BLEND) == RRC_BLEND_REUSE)
 
 if (RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
@@ -92,14 +95,21 @@ if (RRC_CH < CH_COUNT) {
     } else {
         blended = lambda * H + (1.0 - lambda) * s;
     }
-    bool fresh = !g.hit || n_prev == 0u;  // a miss, or a hit on an empty history
+    // REUSE: a refresh is a miss (docs/CONVENTIONS.md, "The shading cache").
+    bool hit = REUSE_ ? hit_cached : hit_any;
+    bool fresh = !hit || n_prev == 0u;  // a miss, or a hit on an empty history
     vec4 out_v;
     uint n_out;
     float W_out;
-    if (!s_valid) {
-        out_v = g.hit ? H : vec4(0.0);
-        n_out = g.hit ? n_prev : 0u;
-        W_out = g.hit ? Wh : 0.0;
+    if (REUSE_ && hit) {
+        // The cached value, unchanged (n_prev >= 1: an empty history refreshes).
+        out_v = H;
+        n_out = min(n_prev + 1u, CH_(_AGE_CAP));
+        W_out = 1.0;
+    } else if (!s_valid) {
+        out_v = hit ? H : vec4(0.0);
+        n_out = hit ? n_prev : 0u;
+        W_out = hit ? Wh : 0.0;
         mask |= RRC_MASK_INVALID_SAMPLE;
     } else if (fresh) {
         out_v = s;
@@ -132,5 +142,6 @@ if (RRC_CH < CH_COUNT) {
 }
 
 #undef UNPACK_H
+#undef REUSE_
 #undef PACKED_
 #undef CH_

@@ -20,7 +20,8 @@
 #define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
 #define RRC_SPEC_STORAGE_INPUTS 10  // bool: interop, the host's inputs read as storage images (rrc_vulkan_frame_desc.storage_inputs)
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_STORAGE_INPUTS
+#define RRC_SPEC_PHASE 11           // uint RRC_PHASE_* below: the fused frame, or one half of the shading cache's split
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_PHASE
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 
@@ -36,6 +37,18 @@
 #define RRC_CHANNEL_PROPERTY_COUNT 7
 #define RRC_SPEC_CHANNEL_SLOTS 4
 #define RRC_SPEC_CHANNEL(property, slot) (16 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+
+// The shading cache's constants (compute/rrc_cache.glsl), after the channel ids.
+#define RRC_SPEC_REFRESH_POLICY 48   // uint rrc_refresh_policy
+#define RRC_SPEC_REFRESH_PERIOD 49   // uint n
+#define RRC_SPEC_REFRESH_TILES_X 50  // uint gx (TILED)
+#define RRC_SPEC_REFRESH_TILES_Y 51  // uint gy (TILED)
+#define RRC_SPEC_MAX_LIFETIME 52     // uint L, 0 = none
+
+// ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
+#define RRC_PHASE_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
+#define RRC_PHASE_CLASSIFY 1u  // mask and quad list: a dispatch over 2x2 quads, channels untouched
+#define RRC_PHASE_RESOLVE 2u   // the channels with classify's mask: a dispatch over pixels, no hit test
 
 // ---- Descriptor bindings (set 0) -------------------------------------------
 // Geometry (rrc_reproject.glsl) and the mask: one image each.
@@ -71,10 +84,15 @@
 // Object ids (RRC_SPEC_OBJECT_ID): one image each.
 #define RRC_BINDING_OBJECT_ID 26       // interop: R32_UINT, the kernel's copy of this frame's ids for the next
 #define RRC_BINDING_HOST_OBJECT_ID 27  // sampler: this frame's ids (standalone: the upload; interop: the host's image)
-#define RRC_BINDING_LAST RRC_BINDING_HOST_OBJECT_ID
-// The one buffer binding, after every image binding: the host's statistics
-// buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]).
-#define RRC_BINDING_STATS 28
+// Resolve reads the mask classify wrote (R8_UINT, the library's own mask)
+// through a sampler: the storage images are at lavapipe's 64 a stage already.
+#define RRC_BINDING_CLASSIFIED 28
+#define RRC_BINDING_LAST RRC_BINDING_CLASSIFIED
+// The buffer bindings, after every image binding: the host's statistics
+// buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]) and classify's
+// quad list (include/rrc/rrc_values.h layout).
+#define RRC_BINDING_STATS 29
+#define RRC_BINDING_QUADS 30
 // Counter indices in it (the member order of rrc_vulkan_frame_stats).
 #define RRC_STAT_HITS 0
 #define RRC_STAT_MISSES 1
@@ -108,8 +126,8 @@
 
 // ---- Push constants: byte offsets of the members of `Frame` ----------------
 // (rrc_reproject.glsl declares each member at its offset; the C++ mirror
-// FramePushConstants static_asserts each one.)  124 bytes: fits the 128-byte
-// minimum of maxPushConstantsSize.
+// FramePushConstants static_asserts each one.)  128 bytes: fills the 128-byte
+// minimum of maxPushConstantsSize exactly.
 #define RRC_PC_OFFSET_M 0               // mat4
 #define RRC_PC_OFFSET_INV_ROW3 64       // vec4
 #define RRC_PC_OFFSET_JITTER 80         // vec4
@@ -119,6 +137,7 @@
 #define RRC_PC_OFFSET_FAR_PLANE 112     // float
 #define RRC_PC_OFFSET_BG_THRESHOLD 116  // float
 #define RRC_PC_OFFSET_PREV_VALID 120    // uint
-#define RRC_PC_SIZE 124
+#define RRC_PC_OFFSET_REFRESH_PHASE 124 // uint: frame_index mod refresh_period, formed in 64-bit on the CPU
+#define RRC_PC_SIZE 128
 
 #endif  // RRC_KERNEL_INTERFACE_H

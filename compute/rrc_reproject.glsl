@@ -46,7 +46,13 @@ const bool OBJECT_ID = false;  // the feature's code removed (tests/spirv)
 layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
 #endif
 
-// ---- Per-frame parameters (RRC_PC_SIZE = 124 bytes: fits the 128-byte minimum)
+// The frame's phase (RRC_PHASE_*): resolve takes hit and miss from the mask
+// classify wrote, so it skips the hit test (and the copies kept for the next
+// frame, which classify made) and computes only where to resample history.
+layout(constant_id = RRC_SPEC_PHASE) const uint PHASE = RRC_PHASE_FUSED;
+const bool RRC_TEST = PHASE != RRC_PHASE_RESOLVE;
+
+// ---- Per-frame parameters (RRC_PC_SIZE = 128 bytes: the guaranteed minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
 // offsets, asserted against plugin/accumulate_pipeline.h's FramePushConstants.
 layout(push_constant) uniform Frame {
@@ -59,6 +65,7 @@ layout(push_constant) uniform Frame {
     layout(offset = RRC_PC_OFFSET_FAR_PLANE) float far_plane;   //   (may be +inf for REVERSED)
     layout(offset = RRC_PC_OFFSET_BG_THRESHOLD) float bg_threshold;  // LINEAR: d >= this is background
     layout(offset = RRC_PC_OFFSET_PREV_VALID) uint prev_valid;  // 0 on the first frame, after reset or resize
+    layout(offset = RRC_PC_OFFSET_REFRESH_PHASE) uint refresh_phase;  // frame_index mod refresh_period (rrc_cache.glsl)
 } pc;
 
 layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
@@ -240,9 +247,9 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcGeometry g;
     vec2 fsize = vec2(size);
     RrcCross cr;  // ADAPTIVE: the depth's cross of neighbours, the centre among them
-    if (ADAPTIVE) cr = rrc_depth_cross(px, size);
-    float d = ADAPTIVE ? cr.c : rrc_load_depth(px);
-    if (INTEROP && rrc_store) imageStore(u_depth_out, px, vec4(d));
+    if (ADAPTIVE && RRC_TEST) cr = rrc_depth_cross(px, size);
+    float d = ADAPTIVE && RRC_TEST ? cr.c : rrc_load_depth(px);
+    if (INTEROP && RRC_TEST && rrc_store) imageStore(u_depth_out, px, vec4(d));
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -294,6 +301,8 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     bool inside = all(greaterThanEqual(uv_prev, vec2(0.0))) && all(lessThanEqual(uv_prev, vec2(1.0)));
     vec2 q = (inside ? uv_prev : vec2(0.5)) * fsize - pc.jitter.zw;
     g.taps = rrc_taps(q, size);
+    g.hit = false;
+    if (!RRC_TEST) return g;  // a constant: folded, not a divergent return
 
     vec4 z = vec4(imageLoad(u_prev_depth, g.taps.p00).r, imageLoad(u_prev_depth, g.taps.p10).r,
                   imageLoad(u_prev_depth, g.taps.p01).r, imageLoad(u_prev_depth, g.taps.p11).r);

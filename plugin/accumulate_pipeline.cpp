@@ -16,7 +16,10 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
 static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
-static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST, "the stats buffer follows every image binding");
+static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS > RRC_BINDING_LAST, "the buffers follow every image binding");
+static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) &&
+                  RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X,
+              "the shading cache's ids sit between the channel ids and the workgroup-size ids");
 static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "channel ids overlap the workgroup-size ids");
 
@@ -54,6 +57,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
                                 VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
         }
         bindings.push_back({RRC_BINDING_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        bindings.push_back({RRC_BINDING_QUADS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         lci.bindingCount = (uint32_t)bindings.size();
         lci.pBindings = bindings.data();
@@ -75,7 +79,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
                 (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
         VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
-                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets}};
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         dpi.maxSets = sets;
         dpi.poolSizeCount = 3;
@@ -111,6 +115,12 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
     spec.add(RRC_SPEC_STORAGE_INPUTS, variant.storage_inputs ? 1u : 0u);
+    spec.add(RRC_SPEC_PHASE, variant.phase);
+    spec.add(RRC_SPEC_REFRESH_POLICY, c.refresh_policy);
+    spec.add(RRC_SPEC_REFRESH_PERIOD, c.refresh_period);
+    spec.add(RRC_SPEC_REFRESH_TILES_X, c.refresh_tiles[0]);
+    spec.add(RRC_SPEC_REFRESH_TILES_Y, c.refresh_tiles[1]);
+    spec.add(RRC_SPEC_MAX_LIFETIME, c.max_lifetime);
     spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
     spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
     for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
@@ -192,6 +202,11 @@ void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v
     w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     w.pBufferInfo = &stats;
     writes.push_back(w);
+    if (!v.quads) fail(RRC_ERROR_UNSUPPORTED, "internal: the quad list binding has no buffer");
+    const VkDescriptorBufferInfo quads{v.quads, v.quads_offset, v.quads_range};
+    w.dstBinding = RRC_BINDING_QUADS;
+    w.pBufferInfo = &quads;
+    writes.push_back(w);
     dev_.vk.vkUpdateDescriptorSets(dev_.device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
 }
 
@@ -201,7 +216,8 @@ void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const 
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
     vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
     vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    // Round up; the kernel bounds-checks.
+    // Round up; the kernel bounds-checks.  Classify runs one invocation a 2x2 quad.
+    if (variant.phase == RRC_PHASE_CLASSIFY) width = (width + 1) / 2, height = (height + 1) / 2;
     vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
 }
 

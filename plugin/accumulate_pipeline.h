@@ -21,7 +21,7 @@ constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBindin
 // Sampled (combined image sampler) bindings; all others are storage images.
 inline bool is_sampled_binding(uint32_t b) {
     return b == RRC_BINDING_HOST_DEPTH || b == RRC_BINDING_HOST_REPROJ || b == RRC_BINDING_HOST_NOCACHE || b == RRC_BINDING_HOST_SAMPLES ||
-           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_HOST_OBJECT_ID;
+           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_HOST_OBJECT_ID || b == RRC_BINDING_CLASSIFIED;
 }
 inline uint32_t binding_count(uint32_t b) { return b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL ? RRC_MAX_CHANNELS : 1; }
 
@@ -32,6 +32,8 @@ struct DescriptorViews {
     VkImageLayout layout[kBindingCount][RRC_MAX_CHANNELS] = {};  // 0 = GENERAL
     VkBuffer stats = VK_NULL_HANDLE;                             // RRC_BINDING_STATS: the host's buffer or a placeholder
     VkDeviceSize stats_offset = 0;
+    VkBuffer quads = VK_NULL_HANDLE;  // RRC_BINDING_QUADS: classify's list (the host's, the library's, or a placeholder)
+    VkDeviceSize quads_offset = 0, quads_range = VK_WHOLE_SIZE;
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
@@ -42,7 +44,8 @@ struct KernelVariant {
     bool stats = false;
     bool storage_inputs = false;  // the host's inputs bound to the storage bindings (rrc_vulkan_frame_desc.storage_inputs)
     uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
-    uint32_t key() const { return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2; }
+    uint32_t phase = RRC_PHASE_FUSED;  // RRC_PHASE_*: the fused frame, classify or resolve
+    uint32_t key() const { return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6; }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the
@@ -56,6 +59,7 @@ struct FramePushConstants {
     float near_plane, far_plane;
     float bg_threshold;
     uint32_t prev_valid;
+    uint32_t refresh_phase;
 };
 static_assert(sizeof(FramePushConstants) == RRC_PC_SIZE, "must match the GLSL push-constant block");
 static_assert(offsetof(FramePushConstants, M) == RRC_PC_OFFSET_M, "Frame.M");
@@ -67,6 +71,7 @@ static_assert(offsetof(FramePushConstants, near_plane) == RRC_PC_OFFSET_NEAR_PLA
 static_assert(offsetof(FramePushConstants, far_plane) == RRC_PC_OFFSET_FAR_PLANE, "Frame.far_plane");
 static_assert(offsetof(FramePushConstants, bg_threshold) == RRC_PC_OFFSET_BG_THRESHOLD, "Frame.bg_threshold");
 static_assert(offsetof(FramePushConstants, prev_valid) == RRC_PC_OFFSET_PREV_VALID, "Frame.prev_valid");
+static_assert(offsetof(FramePushConstants, refresh_phase) == RRC_PC_OFFSET_REFRESH_PHASE, "Frame.refresh_phase");
 static_assert(RRC_PC_SIZE <= 128, "push constants must fit Vulkan's guaranteed 128 bytes");
 
 class AccumulatePipeline {

@@ -21,6 +21,7 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     }
     mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config_.width, config_.height);
     stats_placeholder_ = HostBuffer(*dev_, RRC_STAT_COUNT * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    quads_placeholder_ = HostBuffer(*dev_, (RRC_QUAD_LIST_FIRST_QUAD + 1) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 }
 
 AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
@@ -30,7 +31,9 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
     v.view[RRC_BINDING_PREV_DEPTH][0] = view.depth[1 - p].view;
     if (config_.use_object_id) v.view[RRC_BINDING_PREV_OBJECT_ID][0] = view.object_id[1 - p].view;
     v.view[RRC_BINDING_MASK][0] = mask_.view;
+    v.view[RRC_BINDING_CLASSIFIED][0] = mask_.view;  // resolve reads what classify wrote there
     v.stats = stats_placeholder_.buffer;
+    v.quads = quads_placeholder_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
     return v;
 }
@@ -64,6 +67,7 @@ void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_fra
     view.parity ^= count & 1u;
     view.have_previous = true;
     view.frame_index = last_frame_index;
+    view.classified = false;
 }
 
 size_t AccumulatorCore::memory_bytes() const {

@@ -27,6 +27,10 @@ struct ViewState {
     uint32_t parity = 0;         // the image set the next frame writes
     bool have_previous = false;  // false: first frame, or after a failed creation
     uint64_t frame_index = 0;    // the last submitted frame's index (refresh clocks)
+    // The shading cache: classify ran for this frame index (into `parity`)
+    // and resolve has not yet completed it.
+    bool classified = false;
+    uint64_t classified_index = 0;
 };
 
 class AccumulatorCore {
@@ -73,6 +77,7 @@ private:
     std::vector<ViewState> views_;
     GpuImage mask_;                 // standalone: always bound; interop: when the host gives no mask
     HostBuffer stats_placeholder_;  // bound when no frame statistics are asked for
+    HostBuffer quads_placeholder_;  // bound where no quad list is written
 };
 
 }  // namespace rrc

@@ -210,6 +210,67 @@ rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_
     });
 }
 
+rrc_result rrc_frame_classify(rrc_context* context, const rrc_frame_desc* frame, rrc_classify_output* output) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(context);
+        rrc::StandaloneContext& s = standalone(c);
+        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
+        const rrc::Frame f = rrc::read_frame(frame, 0);  // channels are not read
+        rrc::validate_geometry(c->config(), f, 0);
+        rrc::StandaloneContext::Classified out;
+        if (output) {
+            const rrc_classify_output o = rrc::read_struct<rrc_classify_output>(output, "output");
+            out = {output, o.mask, o.quads, o.quad_capacity};
+            if (o.quads && o.quad_capacity == 0) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "output.quads is set with quad_capacity 0");
+        }
+        s.classify(f, out);
+    });
+}
+
+rrc_result rrc_frame_resolve(rrc_context* context, const rrc_resolve_desc* resolve, rrc_frame_output* output) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(context);
+        rrc::StandaloneContext& s = standalone(c);
+        if (!resolve) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "resolve is NULL");
+        const rrc::Frame f = rrc::read_resolve(resolve, c->config().channels.size());
+        rrc::validate_channels(c->config(), f);
+        const rrc::FrameOutputs out = rrc::read_outputs(output, c->config().channels.size());
+        rrc::validate_outputs(c->config(), &out);
+        s.resolve(f, out);
+    });
+}
+
+rrc_result rrc_vulkan_record_classify(rrc_context* context, const rrc_vulkan_frame_desc* frame, const rrc_vulkan_quad_list* list) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(context);
+        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
+        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_classify");
+        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
+        rrc::validate_geometry(c->config(), f, c->interop->stats_alignment());
+        const rrc_vulkan_quad_list l = rrc::read_struct<rrc_vulkan_quad_list>(list, "list");
+        if (!l.buffer) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "list.buffer is VK_NULL_HANDLE");
+        if (c->interop->stats_alignment() && l.offset % c->interop->stats_alignment() != 0)
+            rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "list.offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
+                      (unsigned long long)l.offset, (unsigned long long)c->interop->stats_alignment());
+        c->interop->record_classify(f, l.buffer, l.offset);
+    });
+}
+
+rrc_result rrc_vulkan_record_resolve(rrc_context* context, const rrc_vulkan_frame_desc* frame) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(context);
+        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
+        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_resolve");
+        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
+        rrc::validate_frame(c->config(), f, nullptr, c->interop->stats_alignment());
+        c->interop->record_resolve(f);
+    });
+}
+
 rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t* out_bytes) {
     rrc_context* c = live_or_null(context);
     return guarded(c, log_of(c), log_user_of(c), [&] {

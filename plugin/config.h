@@ -20,6 +20,7 @@ struct ChannelConfig {
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
     uint32_t age_cap = RRC_DEFAULT_AGE_CAP;
     bool confidence = false;
+    bool reuse() const { return blend == RRC_BLEND_REUSE; }
 };
 
 // How the kernel's epsilon is formed: the value of EPS_KIND in
@@ -42,6 +43,16 @@ struct ContextConfig {
     bool adaptive = false;
     bool use_object_id = false;
     bool use_nocache = false;
+    // The shading cache (docs/CONVENTIONS.md, "The shading cache").
+    rrc_refresh_policy refresh_policy = RRC_REFRESH_NONE;
+    uint32_t refresh_period = 1;              // n (1 without a policy)
+    uint32_t refresh_tiles[2] = {1, 1};       // TILED: {gx, gy}, gx * gy = n
+    uint32_t max_lifetime = 0;                // 0: none
+    uint32_t reuse_mask() const {             // bit c: channel c is REUSE
+        uint32_t m = 0;
+        for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].reuse() ? 1u << i : 0u;
+        return m;
+    }
     std::vector<ChannelConfig> channels;
     std::string device_name;  // empty: automatic choice
     bool validation = false;

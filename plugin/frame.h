@@ -70,5 +70,7 @@ struct FrameOutputs {
 Frame read_frame(const rrc_frame_desc* desc, size_t context_channels);
 Frame read_frame(const rrc_vulkan_frame_desc* desc, size_t context_channels);
 FrameOutputs read_outputs(rrc_frame_output* output, size_t context_channels);
+// rrc_resolve_desc: a Frame holding only its channels.
+Frame read_resolve(const rrc_resolve_desc* desc, size_t context_channels);
 
 }  // namespace rrc

@@ -28,6 +28,8 @@ FramePushConstants make_frame_constants(const ContextConfig& c, const Frame& f, 
     pc.far_plane = c.far_plane;
     pc.bg_threshold = c.background_threshold;
     pc.prev_valid = prev_valid && !f.reset ? 1u : 0u;
+    // The refresh clock in 64-bit: the kernel sees only t mod n (docs/CONVENTIONS.md, "Refresh policies").
+    pc.refresh_phase = (uint32_t)(f.frame_index % c.refresh_period);
     return pc;
 }
 

@@ -70,6 +70,18 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
     return f;
 }
 
+Frame read_resolve(const rrc_resolve_desc* caller, size_t context_channels) {
+    const rrc_resolve_desc d = read_struct<rrc_resolve_desc>(caller, "resolve");
+    Frame f;
+    f.channel_count = d.channel_count;
+    f.channels_given = d.channels != nullptr;
+    read_channels<rrc_channel_input>(f, d, context_channels, [](FrameChannel& to, const rrc_channel_input& from) {
+        to.samples = from.samples;
+        to.confidence = from.confidence;
+    });
+    return f;
+}
+
 FrameOutputs read_outputs(rrc_frame_output* caller, size_t context_channels) {
     FrameOutputs out;
     if (!caller) return out;

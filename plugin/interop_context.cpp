@@ -52,8 +52,10 @@ HostDevice host_device(const rrc_vulkan_device_desc& d) {
 InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_device_desc& d) {
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(host_device(d), Log{config.log, config.log_user}));
     const uint32_t in_flight = d.max_frames_in_flight ? d.max_frames_in_flight : 2;
-    core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, in_flight + 1, d.pipeline_cache));
-    for (uint32_t i = 0; i < in_flight + 1; ++i) ring_.push_back(core_->pipeline().allocate_set());
+    // A frame records one pass (fused) or two (classify, resolve), each with its own set.
+    const uint32_t sets = 2 * (in_flight + 1);
+    core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, sets, d.pipeline_cache));
+    for (uint32_t i = 0; i < sets; ++i) ring_.push_back(core_->pipeline().allocate_set());
     stats_alignment_ = core_->device().limits.minStorageBufferOffsetAlignment;
 }
 
@@ -95,23 +97,69 @@ void InteropContext::record_initialisation(VkCommandBuffer cmd) {
     record_initialise(core_->device(), cmd, all);
 }
 
+// The list starts empty with a dispatch of {0, 1, 1}; the host's earlier
+// use of those bytes (its indirect dispatch of a frame before) finishes first.
+void InteropContext::record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDeviceSize offset) {
+    auto& vk = core_->device().vk;
+    const uint32_t start[RRC_QUAD_LIST_FIRST_QUAD] = {0, 0, 1, 1};
+    VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.buffer = list;
+    b.offset = offset;
+    b.size = RRC_QUAD_LIST_BYTES(config().width, config().height);
+    b.srcAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
+    vk.vkCmdUpdateBuffer(cmd, list, offset, sizeof start, start);
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
+}
+
 void InteropContext::record_frame(const Frame& f) {
+    record_pass(f, RRC_PHASE_FUSED);
+    core_->advance(core_->view(), 1, f.frame_index);
+}
+
+void InteropContext::record_classify(const Frame& f, VkBuffer list, VkDeviceSize list_offset) {
+    ViewState& view = core_->view();
+    view.classified = false;  // a classification not resolved is dropped
+    record_pass(f, RRC_PHASE_CLASSIFY, list, list_offset);
+    view.classified = true;
+    view.classified_index = f.frame_index;
+}
+
+void InteropContext::record_resolve(const Frame& f) {
+    ViewState& view = core_->view();
+    if (!view.classified) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: record rrc_vulkan_record_classify first");
+    if (view.classified_index != f.frame_index)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.frame_index is %llu but the classified frame's is %llu: resolve takes classify's frame",
+             (unsigned long long)f.frame_index, (unsigned long long)view.classified_index);
+    record_pass(f, RRC_PHASE_RESOLVE);
+    core_->advance(view, 1, f.frame_index);
+}
+
+void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, VkDeviceSize list_offset) {
     VulkanDevice& dev = core_->device();
     auto& vk = dev.vk;
     VkCommandBuffer cmd = f.command_buffer;
     ViewState& view = core_->view();
     const uint32_t p = view.parity;
+    const bool classify = phase == RRC_PHASE_CLASSIFY;
     KernelVariant variant;
+    variant.phase = phase;
     variant.stats = f.stats_buffer != VK_NULL_HANDLE;
     variant.storage_inputs = f.storage_inputs;
-    for (uint32_t s = 0; s < f.channel_count; ++s)
+    for (uint32_t s = 0; s < f.channel_count && !classify; ++s)
         if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
     core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
 
     // Descriptors: the host's images of this frame over the library's own.
+    // Classify reads the geometry only and writes the library's mask.
     DescriptorViews v = core_->library_views(view, p);
     HostBarriers hb;
     for (const LiveInput& in : core_->inputs()) {
+        if (classify && (in.role == InputRole::Samples || in.role == InputRole::Confidence)) continue;
         const rrc_vulkan_image& img = host_image(f, in);
         // storage_inputs: where the standalone path binds its own copy (ids are sampled either way)
         const bool storage = f.storage_inputs && in.role != InputRole::ObjectId;
@@ -122,11 +170,11 @@ void InteropContext::record_frame(const Frame& f) {
     }
     v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
     if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
-    if (f.mask_image.image) {
+    if (f.mask_image.image && !classify) {
         v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
         hb.add(f.mask_image, true);
     }
-    for (uint32_t s = 0; s < f.channel_count; ++s) {
+    for (uint32_t s = 0; s < f.channel_count && !classify; ++s) {
         v.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
         hb.add(f.channels[s].output_image, true);
         if (f.channels[s].age_image.image) {
@@ -138,12 +186,17 @@ void InteropContext::record_frame(const Frame& f) {
         v.stats = f.stats_buffer;
         v.stats_offset = f.stats_offset;
     }
+    if (classify) {
+        v.quads = list;
+        v.quads_offset = list_offset;
+        v.quads_range = RRC_QUAD_LIST_BYTES(config().width, config().height);
+    }
     VkDescriptorSet set = ring_[next_set_];
     core_->pipeline().write_set(set, v);
 
     if (dev.fi.CmdBeginDebugUtilsLabelEXT) {
         VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-        label.pLabelName = "rrc: reproject + accumulate";
+        label.pLabelName = classify ? "rrc: classify" : phase == RRC_PHASE_RESOLVE ? "rrc: resolve" : "rrc: reproject + accumulate";
         dev.fi.CmdBeginDebugUtilsLabelEXT(cmd, &label);
     }
     if (!initialised_) record_initialisation(cmd);
@@ -153,8 +206,22 @@ void InteropContext::record_frame(const Frame& f) {
     core_->record_history_barrier(cmd, 0, 0);
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.before.size(), hb.before.data());
-    if (variant.stats) record_stats_clear(cmd, f);
+    // Resolve adds its counts (invalid samples) to classify's.
+    if (variant.stats && phase != RRC_PHASE_RESOLVE) record_stats_clear(cmd, f);
+    if (classify) record_list_clear(cmd, list, list_offset);
     core_->record_dispatch(cmd, set, f, view.have_previous, variant);
+    if (classify) {
+        // The list to the host's indirect dispatch and its miss shader (rrc_vulkan.h).
+        VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.buffer = list;
+        b.offset = list_offset;
+        b.size = v.quads_range;
+        b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        b.dstAccessMask = VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+        vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                0, 0, nullptr, 1, &b, 0, nullptr);
+    }
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.after.size(), hb.after.data());
     if (variant.stats) {
@@ -168,7 +235,6 @@ void InteropContext::record_frame(const Frame& f) {
 
     initialised_ = true;
     next_set_ = (next_set_ + 1) % (uint32_t)ring_.size();
-    core_->advance(view, 1, f.frame_index);
 }
 
 }  // namespace rrc

@@ -23,6 +23,10 @@ public:
 
     // Records an already validated frame.
     void record_frame(const Frame& frame);
+    // The shading cache's split frame: classify into the host's list, then
+    // resolve (refused without a classify of the same frame index).
+    void record_classify(const Frame& frame, VkBuffer list, VkDeviceSize list_offset);
+    void record_resolve(const Frame& frame);
 
     const ContextConfig& config() const { return core_->config(); }
     const VulkanDevice& device() const { return core_->device(); }
@@ -31,12 +35,15 @@ public:
     uint64_t stats_alignment() const { return stats_alignment_; }
 
 private:
+    // One pass of `phase` (RRC_PHASE_*); list: classify's quad list.
+    void record_pass(const Frame& frame, uint32_t phase, VkBuffer list = VK_NULL_HANDLE, VkDeviceSize list_offset = 0);
+    void record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDeviceSize offset);
     void record_initialisation(VkCommandBuffer cmd);
     void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
     VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;
 
     std::unique_ptr<AccumulatorCore> core_;
-    std::vector<VkDescriptorSet> ring_;  // one set per frame in flight
+    std::vector<VkDescriptorSet> ring_;  // two sets (classify, resolve) per frame in flight, plus two
     uint32_t next_set_ = 0;
     uint64_t stats_alignment_ = 0;
     bool initialised_ = false;  // images cleared and in GENERAL (recorded with the first frame)

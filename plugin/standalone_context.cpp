@@ -30,6 +30,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         }
         readback_bytes_ = readback_bytes(0);
         reserve_batch(1);
+        quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pci.queueFamilyIndex = d.queue_family;
@@ -52,6 +53,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         inputs_.clear();
         upload_ = HostBuffer();
         readback_ = HostBuffer();
+        quads_ = HostBuffer();
         throw;
     }
 }
@@ -67,6 +69,7 @@ StandaloneContext::~StandaloneContext() {
     inputs_.clear();
     upload_ = HostBuffer();
     readback_ = HostBuffer();
+    quads_ = HostBuffer();
     core_.reset();
 }
 
@@ -119,6 +122,7 @@ void StandaloneContext::write_descriptor_sets() {
     const ViewState& view = core_->view();
     for (uint32_t p = 0; p < 2; ++p) {
         DescriptorViews v = core_->library_views(view, p);
+        v.quads = quads_.buffer;
         for (size_t i = 0; i < core_->inputs().size(); ++i) {
             const LiveInput& in = core_->inputs()[i];
             v.view[in.own_binding][in.slot] = own_input(view, i, p).view;
@@ -144,10 +148,19 @@ void StandaloneContext::initialise_images() {
 // The host's arrays into the slot's staging region, in the table's order;
 // arrays with fewer components than their image (MOTION_DEPTH's 3 floats)
 // are padded with zeros.
-void StandaloneContext::upload(const Frame& f, uint32_t slot) {
+bool StandaloneContext::uploads(const LiveInput& in, uint32_t phase) const {
+    const bool channel = in.role == InputRole::Samples || in.role == InputRole::Confidence;
+    return phase == RRC_PHASE_FUSED || (phase == RRC_PHASE_RESOLVE) == channel;
+}
+
+void StandaloneContext::upload(const Frame& f, uint32_t slot, uint32_t phase) {
     const size_t n = (size_t)config().width * config().height;
     unsigned char* dst = upload_.data + slot * upload_bytes_;
     for (const LiveInput& in : core_->inputs()) {
+        if (!uploads(in, phase)) {
+            dst += align16(n * texel_bytes(in.own_format));
+            continue;
+        }
         const size_t texel = texel_bytes(in.own_format), element = (size_t)in.host_components * in.host_element_bytes;
         const unsigned char* src = static_cast<const unsigned char*>(host_array(f, in));
         if (element == texel) {
@@ -162,11 +175,16 @@ void StandaloneContext::upload(const Frame& f, uint32_t slot) {
     }
 }
 
-void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid) {
+void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid,
+                               uint32_t phase) {
     auto& vk = core_->device().vk;
     ViewState& view = core_->view();
-    std::vector<const GpuImage*> inputs;
-    for (size_t i = 0; i < core_->inputs().size(); ++i) inputs.push_back(&own_input(view, i, parity));
+    std::vector<const GpuImage*> inputs;  // uploaded by this pass (null entries keep the staging offsets)
+    for (size_t i = 0; i < core_->inputs().size(); ++i)
+        inputs.push_back(uploads(core_->inputs()[i], phase) ? &own_input(view, i, parity) : nullptr);
+    std::vector<const GpuImage*> uploaded;
+    for (const GpuImage* img : inputs)
+        if (img) uploaded.push_back(img);
     std::vector<const GpuImage*> outputs;
     for (const Readback& r : readbacks(out, parity))
         if (r.destination || r.image == &core_->own_mask()) outputs.push_back(r.image);
@@ -176,11 +194,16 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     //    inputs.  Inputs are fully overwritten: their old contents are
     //    discarded (UNDEFINED).
     core_->record_history_barrier(cmd_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    transition(inputs, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    transition(uploaded, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_WRITE_BIT);
     size_t offset = slot * upload_bytes_;
-    for (const GpuImage* img : inputs) {
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const GpuImage* img = inputs[i];
+        if (!img) {
+            offset += align16((size_t)config().width * config().height * texel_bytes(core_->inputs()[i].own_format));
+            continue;
+        }
         VkBufferImageCopy r{};
         r.bufferOffset = offset;
         r.imageSubresource = color_layers();
@@ -189,9 +212,11 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
         offset += align16(img->bytes());
     }
     // 2. Uploaded inputs to the kernel.
-    transition(inputs, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    transition(uploaded, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    core_->record_dispatch(cmd_, sets_[parity], f, prev_valid);
+    KernelVariant variant;
+    variant.phase = phase;
+    core_->record_dispatch(cmd_, sets_[parity], f, prev_valid, variant);
     // 3. Requested outputs (and the mask, for the statistics) to the copy,
     //    then back to GENERAL: next frame's kernel reads them as history.
     transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -249,19 +274,27 @@ void StandaloneContext::submit_and_wait() {
     VulkanDevice::check(d.vk.vkResetFences(d.device, 1, &fence_), "vkResetFences");
 }
 
-void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, uint32_t parity) {
-    if (!out.caller) return;
+// docs/CONVENTIONS.md: misses are the pixels neither HIT, REFRESHED nor BACKGROUND.
+StandaloneContext::Stats StandaloneContext::count_stats(const uint8_t* mask) const {
     const size_t n = (size_t)config().width * config().height;
-    const uint8_t* mask = readback_.data + slot * readback_bytes_;
     rrc_frame_stats stats{};
+    uint64_t refreshed = 0;
     for (size_t i = 0; i < n; ++i) {
         const uint8_t m = mask[i];
         stats.hits += (m & RRC_MASK_HIT) ? 1 : 0;
+        refreshed += (m & RRC_MASK_REFRESHED) ? 1 : 0;
         stats.background += (m & RRC_MASK_BACKGROUND) ? 1 : 0;
         stats.invalid_samples += (m & RRC_MASK_INVALID_SAMPLE) ? 1 : 0;
         stats.invalid_geometry += (m & RRC_MASK_INVALID_GEOMETRY) ? 1 : 0;
     }
-    stats.misses = n - stats.background - stats.hits;
+    stats.misses = n - stats.background - stats.hits - refreshed;
+    return {stats, refreshed};
+}
+
+void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, uint32_t parity) {
+    if (!out.caller) return;
+    const size_t n = (size_t)config().width * config().height;
+    const Stats stats = count_stats(readback_.data + slot * readback_bytes_);
     size_t offset = slot * readback_bytes_;
     for (const Readback& r : readbacks(out, parity)) {
         const GpuImage& img = *r.image;
@@ -284,7 +317,8 @@ void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, uint32
             std::memcpy(r.destination, src, img.bytes());
         }
     }
-    write_member(out.caller, offsetof(rrc_frame_output, stats), stats);
+    write_member(out.caller, offsetof(rrc_frame_output, stats), stats.counts);
+    write_member(out.caller, offsetof(rrc_frame_output, refreshed), stats.refreshed);
 }
 
 size_t StandaloneContext::memory_bytes() const {
@@ -293,15 +327,73 @@ size_t StandaloneContext::memory_bytes() const {
     return bytes;
 }
 
+void StandaloneContext::begin() {
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VulkanDevice::check(core_->device().vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+}
+
+void StandaloneContext::classify(const Frame& f, const Classified& out) {
+    auto& vk = core_->device().vk;
+    ViewState& view = core_->view();
+    view.classified = false;  // a classification not resolved is dropped
+    upload(f, 0, RRC_PHASE_CLASSIFY);
+    // The list starts empty, dispatch {0, 1, 1}: host-coherent memory written
+    // before the submission is visible to it.
+    uint32_t* words = reinterpret_cast<uint32_t*>(quads_.data);
+    const uint32_t start[RRC_QUAD_LIST_FIRST_QUAD] = {0, 0, 1, 1};
+    std::memcpy(words, start, sizeof start);
+    begin();
+    record(f, FrameOutputs{}, 0, view.parity, view.have_previous, RRC_PHASE_CLASSIFY);  // copies the mask back, as always
+    // The list to the CPU.
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vk.vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+    VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    submit_and_wait();
+
+    const uint32_t count = words[RRC_QUAD_LIST_COUNT];
+    const uint8_t* mask = readback_.data;  // slot 0 starts with the mask
+    if (out.caller) {
+        if (out.quads && count > out.quad_capacity)
+            fail(RRC_ERROR_SIZE_MISMATCH, "output.quad_capacity is %u but %u quads are listed (RRC_QUAD_LIST_BYTES sizes a full list)",
+                 out.quad_capacity, count);
+        if (out.mask) std::memcpy(out.mask, mask, (size_t)config().width * config().height);
+        if (out.quads) std::memcpy(out.quads, words + RRC_QUAD_LIST_FIRST_QUAD, (size_t)count * sizeof(uint32_t));
+        write_member(out.caller, offsetof(rrc_classify_output, quad_count), count);
+        const Stats stats = count_stats(mask);
+        write_member(out.caller, offsetof(rrc_classify_output, stats), stats.counts);
+        write_member(out.caller, offsetof(rrc_classify_output, refreshed), stats.refreshed);
+    }
+    classified_ = f;
+    view.classified = true;
+    view.classified_index = f.frame_index;
+}
+
+void StandaloneContext::resolve(const Frame& channels, const FrameOutputs& out) {
+    ViewState& view = core_->view();
+    if (!view.classified) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: call rrc_frame_classify first");
+    Frame f = classified_;
+    f.channel_count = channels.channel_count;
+    f.channels = channels.channels;
+    f.channels_given = channels.channels_given;
+    upload(f, 0, RRC_PHASE_RESOLVE);
+    begin();
+    record(f, out, 0, view.parity, view.have_previous, RRC_PHASE_RESOLVE);
+    VulkanDevice::check(core_->device().vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    submit_and_wait();
+    read_back(out, 0, view.parity);
+    core_->advance(view, 1, f.frame_index);
+}
+
 void StandaloneContext::run_frames(const std::vector<Frame>& frames, const std::vector<FrameOutputs>& outputs) {
     const uint32_t count = (uint32_t)frames.size();
     reserve_batch(count);
     for (uint32_t i = 0; i < count; ++i) upload(frames[i], i);
     auto& vk = core_->device().vk;
     ViewState& view = core_->view();
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    begin();
     // Frame i writes the image set of parity view.parity ^ (i & 1) and reads the other.
     for (uint32_t i = 0; i < count; ++i)
         record(frames[i], outputs[i], i, view.parity ^ (i & 1u), (view.have_previous || i > 0) && !frames[i].reset);

@@ -24,6 +24,20 @@ public:
     // parity untouched.
     void run_frames(const std::vector<Frame>& frames, const std::vector<FrameOutputs>& outputs);
 
+    // The shading cache's split frame (rrc_frame_classify, rrc_frame_resolve).
+    // classify: geometry inputs in, mask and quad list out; history unchanged.
+    // resolve: `channels` holds the host's samples (its geometry is the
+    // classified frame's); completes the frame.  Throws rrc::Error.
+    struct Classified {
+        rrc_classify_output* caller = nullptr;
+        uint8_t* mask = nullptr;
+        uint32_t* quads = nullptr;
+        uint32_t quad_capacity = 0;
+    };
+    void classify(const Frame& frame, const Classified& out);
+    bool classified() const { return core_->view().classified; }
+    void resolve(const Frame& channels, const FrameOutputs& out);
+
     const ContextConfig& config() const { return core_->config(); }
     const VulkanDevice& device() const { return core_->device(); }
     size_t memory_bytes() const;
@@ -42,8 +56,17 @@ private:
     void write_descriptor_sets();
     void initialise_images();
     void reserve_batch(uint32_t frames);
-    void upload(const Frame& frame, uint32_t slot);
-    void record(const Frame& frame, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid);
+    // Which inputs a pass uploads: all (FUSED), the geometry (CLASSIFY) or the channels' (RESOLVE).
+    bool uploads(const LiveInput& in, uint32_t phase) const;
+    void upload(const Frame& frame, uint32_t slot, uint32_t phase = RRC_PHASE_FUSED);
+    void record(const Frame& frame, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid,
+                uint32_t phase = RRC_PHASE_FUSED);
+    void begin();
+    struct Stats {
+        rrc_frame_stats counts;
+        uint64_t refreshed;
+    };
+    Stats count_stats(const uint8_t* mask) const;
     void submit_and_wait();
     void transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
                     VkAccessFlags src_access, VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
@@ -52,6 +75,8 @@ private:
     std::unique_ptr<AccumulatorCore> core_;
     std::vector<GpuImage> inputs_;  // one per core_->inputs() entry, except Depth (the view's depth[parity])
     HostBuffer upload_, readback_;  // batch_capacity_ regions of *_bytes_ each
+    HostBuffer quads_;              // classify's quad list (rrc_values.h layout), read on the CPU
+    Frame classified_;              // the classified frame's parameters, for resolve's push constants
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;
     VkDescriptorSet sets_[2] = {};

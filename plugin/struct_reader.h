@@ -33,17 +33,21 @@ RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, offsetof(rrc_con
 RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc));
 RRC_STRUCT_INFO(rrc_frame_desc, RRC_STRUCT_TYPE_FRAME_DESC, offsetof(rrc_frame_desc, object_id));
 RRC_STRUCT_INFO(rrc_channel_input, RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input));
-RRC_STRUCT_INFO(rrc_frame_output, RRC_STRUCT_TYPE_FRAME_OUTPUT, sizeof(rrc_frame_output));
+RRC_STRUCT_INFO(rrc_frame_output, RRC_STRUCT_TYPE_FRAME_OUTPUT, offsetof(rrc_frame_output, refreshed));
 RRC_STRUCT_INFO(rrc_channel_output, RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output));
 RRC_STRUCT_INFO(rrc_vulkan_device_desc, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, sizeof(rrc_vulkan_device_desc));
 RRC_STRUCT_INFO(rrc_vulkan_frame_desc, RRC_STRUCT_TYPE_VULKAN_FRAME_DESC, offsetof(rrc_vulkan_frame_desc, stats_buffer));
 RRC_STRUCT_INFO(rrc_vulkan_channel_images, RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES, offsetof(rrc_vulkan_channel_images, age));
+// 0.3: first published with the shading cache.
+RRC_STRUCT_INFO(rrc_classify_output, RRC_STRUCT_TYPE_CLASSIFY_OUTPUT, sizeof(rrc_classify_output));
+RRC_STRUCT_INFO(rrc_resolve_desc, RRC_STRUCT_TYPE_RESOLVE_DESC, sizeof(rrc_resolve_desc));
+RRC_STRUCT_INFO(rrc_vulkan_quad_list, RRC_STRUCT_TYPE_VULKAN_QUAD_LIST, sizeof(rrc_vulkan_quad_list));
 #undef RRC_STRUCT_INFO
 
 // Tags of base structs: never valid inside a `next` chain.
 inline bool is_base_struct_type(rrc_struct_type t) {
-    return (t >= RRC_STRUCT_TYPE_CONTEXT_DESC && t <= RRC_STRUCT_TYPE_CHANNEL_OUTPUT) ||
-           (t >= RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC && t <= RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+    return (t >= RRC_STRUCT_TYPE_CONTEXT_DESC && t <= RRC_STRUCT_TYPE_RESOLVE_DESC) ||
+           (t >= RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC && t <= RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
 }
 
 inline rrc_struct_header read_header(const void* p) {

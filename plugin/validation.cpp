@@ -32,6 +32,7 @@ double max_lambda_eff(const ChannelConfig& c) {
     const double capped_mean = c.age_cap / (c.age_cap + 1.0);
     if (c.blend == RRC_BLEND_RUNNING_MEAN) return capped_mean;
     if (c.blend == RRC_BLEND_AGE_AWARE) return std::min<double>(c.lambda, capped_mean);
+    if (c.blend == RRC_BLEND_REUSE) return 0.0;  // never blends: fp16 cannot stall
     return c.lambda;
 }
 
@@ -52,7 +53,7 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (!(c.lambda >= 0.0f && c.lambda < 1.0f))
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.lambda is %g, must be in [0, 1)", what, (double)c.lambda);
     out.lambda = c.lambda;
-    if (c.blend > uint32_t{RRC_BLEND_RUNNING_MEAN}) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
+    if (c.blend > uint32_t{RRC_BLEND_REUSE}) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
     out.blend = c.blend;
     if (c.filter > uint32_t{RRC_HISTORY_FILTER_CATMULL_ROM})
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
@@ -60,12 +61,52 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
     out.age_cap = c.age_cap == 0 ? RRC_DEFAULT_AGE_CAP : c.age_cap;
     out.confidence = c.confidence != 0;
+    if (out.confidence && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and confidence: a shading cache keeps values, it does not weigh them", what);
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the
     // channel can reach is at most RRC_FP16_MAX_LAMBDA (docs/CONVENTIONS.md).
     if (out.fp16 && max_lambda_eff(out) > RRC_FP16_MAX_LAMBDA) out.fp16 = false;
     return out;
+}
+
+// The shading cache's members (0.3; docs/CONVENTIONS.md, "Refresh policies").
+void resolve_refresh(const rrc_context_desc& d, ContextConfig& c) {
+    const bool reuse = c.reuse_mask() != 0;
+    if (d.refresh_policy > uint32_t{RRC_REFRESH_RANDOM})
+        fail(RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_policy is %u, not an rrc_refresh_policy", d.refresh_policy);
+    c.refresh_policy = d.refresh_policy;
+    if (c.refresh_policy == RRC_REFRESH_NONE) {
+        if (d.refresh_period != 0 || d.refresh_tiles[0] != 0 || d.refresh_tiles[1] != 0)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_period/refresh_tiles are set but refresh_policy is NONE");
+    } else {
+        if (!reuse) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_policy is set but no channel has blend REUSE: only REUSE channels refresh");
+        if (d.refresh_period == 0 || d.refresh_period > RRC_MAX_REFRESH_PERIOD)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_period is %u, must be 1..%u with a refresh policy", d.refresh_period,
+                 RRC_MAX_REFRESH_PERIOD);
+        c.refresh_period = d.refresh_period;
+        if (c.refresh_policy == RRC_REFRESH_TILED) {
+            uint32_t gx = d.refresh_tiles[0], gy = d.refresh_tiles[1];
+            if (gx == 0 && gy == 0) gx = c.refresh_period, gy = 1;
+            if (gx == 0 || gy == 0 || gx > RRC_MAX_REFRESH_TILES || gy > RRC_MAX_REFRESH_TILES || (uint64_t)gx * gy != c.refresh_period)
+                fail(RRC_ERROR_INVALID_ARGUMENT,
+                     "desc.refresh_tiles is {%u, %u}: TILED needs gx * gy = refresh_period (%u), each 1..%u ({0, 0} = {n, 1})",
+                     d.refresh_tiles[0], d.refresh_tiles[1], c.refresh_period, RRC_MAX_REFRESH_TILES);
+            c.refresh_tiles[0] = gx;
+            c.refresh_tiles[1] = gy;
+        } else if (d.refresh_tiles[0] != 0 || d.refresh_tiles[1] != 0) {
+            fail(RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_tiles is set but refresh_policy is not TILED");
+        }
+    }
+    if (d.max_lifetime != 0) {
+        if (!reuse) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.max_lifetime is set but no channel has blend REUSE");
+        for (size_t i = 0; i < c.channels.size(); ++i)
+            if (c.channels[i].reuse() && d.max_lifetime > c.channels[i].age_cap)
+                fail(RRC_ERROR_INVALID_ARGUMENT, "desc.max_lifetime is %u, above channels[%zu].age_cap %u: the age saturates there",
+                     d.max_lifetime, i, c.channels[i].age_cap);
+        c.max_lifetime = d.max_lifetime;
+    }
 }
 
 }  // namespace
@@ -170,6 +211,7 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
     c.use_object_id = d->use_object_id != 0;
     c.adaptive =
         c.depth_test == RRC_DEPTH_TEST_ADAPTIVE && c.reprojection != RRC_REPROJECTION_MOTION;  // plain MOTION: no exact expected depth
+    resolve_refresh(*d, c);
     if (d->device_name) c.device_name = d->device_name;
     c.validation = d->enable_validation != 0;
     c.log = d->log;
@@ -236,7 +278,7 @@ void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_res
 
 }  // namespace
 
-void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* out, uint64_t stats_alignment) {
+void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_alignment) {
     const bool vulkan = f.path == FramePath::Vulkan;
     if (vulkan && !f.command_buffer) fail(RRC_ERROR_INVALID_ARGUMENT, "frame.command_buffer is VK_NULL_HANDLE");
     need(f, f.depth, f.depth_image, RRC_ERROR_MISSING_INPUT, "depth", "");
@@ -266,6 +308,15 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %d, must be VK_FORMAT_R16_UINT or VK_FORMAT_R32_UINT", (int)idf);
     }
     if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
+    if (vulkan && f.mask_image.image && !f.mask_image.view)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.view is VK_NULL_HANDLE with an image");
+    if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
+             (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);
+}
+
+void validate_channels(const ContextConfig& c, const Frame& f) {
+    const bool vulkan = f.path == FramePath::Vulkan;
     if (f.channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "frame.channel_count is %u, the context has %zu channels", f.channel_count, c.channels.size());
     if (!f.channels_given) fail(RRC_ERROR_MISSING_INPUT, "frame.channels is NULL");
@@ -284,11 +335,10 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
         if (vulkan && ch.age_image.image && !ch.age_image.view)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.view is VK_NULL_HANDLE with an image", what.c_str());
     }
-    if (vulkan && f.mask_image.image && !f.mask_image.view)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.view is VK_NULL_HANDLE with an image");
-    if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
-             (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);
+    if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
+}
+
+void validate_outputs(const ContextConfig& c, const FrameOutputs* out) {
     if (!out || !out->caller) return;
     if (out->channel_count != 0 && out->channel_count != c.channels.size())
         fail(RRC_ERROR_SIZE_MISMATCH, "output.channel_count is %u, must be 0 or the context's %zu", out->channel_count, c.channels.size());
@@ -296,6 +346,12 @@ void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* 
         if (out->channels[i].weight && !c.channels[i].confidence)
             fail(RRC_ERROR_INVALID_ARGUMENT, "output.channels[%u].weight is set but channel \"%s\" has no confidence", i,
                  c.channels[i].name.c_str());
+}
+
+void validate_frame(const ContextConfig& c, const Frame& f, const FrameOutputs* out, uint64_t stats_alignment) {
+    validate_geometry(c, f, stats_alignment);
+    validate_channels(c, f);
+    validate_outputs(c, out);
 }
 
 void validate_frame(const ContextConfig& c, const rrc_frame_desc* frame, rrc_frame_output* output) {

@@ -13,6 +13,11 @@ namespace rrc {
 // configuration; throws rrc::Error naming the field.  stats_alignment: the
 // device's minStorageBufferOffsetAlignment (Vulkan path), 0 to skip.
 void validate_frame(const ContextConfig& config, const Frame& frame, const FrameOutputs* outputs, uint64_t stats_alignment);
+// Its three parts: what classify reads (depth, reprojection, masks, ids, the
+// statistics buffer), what resolve adds (the channels), and the outputs.
+void validate_geometry(const ContextConfig& config, const Frame& frame, uint64_t stats_alignment);
+void validate_channels(const ContextConfig& config, const Frame& frame);
+void validate_outputs(const ContextConfig& config, const FrameOutputs* outputs);
 
 // Reads and checks a standalone frame in one call (rrc_frame_run's order).
 void validate_frame(const ContextConfig& config, const rrc_frame_desc* frame, rrc_frame_output* output);

@@ -78,7 +78,7 @@ std::vector<DescCase> desc_cases() {
         {"lambda_one", [](D&, C& c) { c[0].lambda = 1.0f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].lambda"},
         {"lambda_negative", [](D&, C& c) { c[0].lambda = -0.1f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].lambda"},
         {"lambda_nan", [](D&, C& c) { c[1].lambda = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].lambda"},
-        {"blend", [](D&, C& c) { c[0].blend = 3; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
+        {"blend", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
         {"filter", [](D&, C& c) { c[0].filter = 9; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].filter"},
         {"age_cap", [](D&, C& c) { c[0].age_cap = RRC_MAX_AGE_CAP + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].age_cap"},
         // A base struct in a chain (0.2 rule 5): INVALID_STRUCT.

@@ -391,9 +391,6 @@ typedef struct rrc_frame_stats {
     uint64_t background;
     uint64_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
     uint64_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
-    /* ---- 0.3 (written only if the caller's output struct holds it) ---- */
-    uint64_t refreshed; /* pixels with RRC_MASK_REFRESHED: passed the hit test but are re-shaded;
-                           hits + misses + background + refreshed = width * height */
 } rrc_frame_stats;
 
 /** Where one channel's results go; any pointer may be NULL (not read back). */
@@ -414,6 +411,9 @@ typedef struct rrc_frame_output {
     uint32_t channel_count; /* 0 (no channel read back) or the context's */
     rrc_channel_output* channels;
     rrc_frame_stats stats; /* always written on success */
+    /* ---- 0.3 (a 0.2 caller's size ends before this: not written) ---- */
+    uint64_t refreshed; /* pixels with RRC_MASK_REFRESHED: passed the hit test but are re-shaded;
+                           stats.hits + stats.misses + stats.background + refreshed = width * height */
 } rrc_frame_output;
 
 /** Runs one frame: uploads the inputs, dispatches the fused kernel, reads the
@@ -457,6 +457,7 @@ typedef struct rrc_classify_output {
     uint32_t quad_capacity; /* words at quads; fewer than quad_count is RRC_ERROR_SIZE_MISMATCH, nothing run */
     uint32_t quad_count;    /* written: the number of listed quads */
     rrc_frame_stats stats;  /* written: as rrc_frame_run's, invalid_samples 0 */
+    uint64_t refreshed;     /* written: pixels with RRC_MASK_REFRESHED */
 } rrc_classify_output;
 
 typedef struct rrc_resolve_desc {

@@ -1,0 +1,88 @@
+// The shading cache (docs/CONVENTIONS.md, "The shading cache"): which hits
+// of REUSE channels are refreshed, the mask bits of a pixel, and classify's
+// quad list.  Included by rrc_accumulate.comp after the channel constants
+// and history images it reads the ages from.
+#ifndef RRC_CACHE_GLSL
+#define RRC_CACHE_GLSL
+
+layout(constant_id = RRC_SPEC_REFRESH_POLICY) const uint REFRESH_POLICY = RRC_REFRESH_NONE;
+layout(constant_id = RRC_SPEC_REFRESH_PERIOD) const uint REFRESH_PERIOD = 1u;
+layout(constant_id = RRC_SPEC_REFRESH_TILES_X) const uint REFRESH_TILES_X = 1u;
+layout(constant_id = RRC_SPEC_REFRESH_TILES_Y) const uint REFRESH_TILES_Y = 1u;
+layout(constant_id = RRC_SPEC_MAX_LIFETIME) const uint MAX_LIFETIME = 0u;
+
+// Slot c holds a REUSE channel.  Without one, refresh never happens and
+// every line below folds away.
+const bool REUSE0 = CH_COUNT > 0u && CH0_BLEND == RRC_BLEND_REUSE;
+const bool REUSE1 = CH_COUNT > 1u && CH1_BLEND == RRC_BLEND_REUSE;
+const bool REUSE2 = CH_COUNT > 2u && CH2_BLEND == RRC_BLEND_REUSE;
+const bool REUSE3 = CH_COUNT > 3u && CH3_BLEND == RRC_BLEND_REUSE;
+const bool HAS_REUSE = REUSE0 || REUSE1 || REUSE2 || REUSE3;
+
+// classify's list (include/rrc/rrc_values.h): count, VkDispatchIndirectCommand, quads.
+layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
+// resolve: the mask classify wrote (sampled: the storage images are at lavapipe's 64 a stage).
+layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
+
+// The 32-bit integer hash of CONVENTIONS.md (RANDOM's per-block offset).
+uint rrc_hash(uint x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+// The policy picks this pixel this frame; pc.refresh_phase = t mod n.
+bool rrc_refresh_due(ivec2 px, ivec2 size) {
+    const uint n = REFRESH_PERIOD;
+    if (REFRESH_POLICY == RRC_REFRESH_TILED) {
+        uint tx = uint(px.x) * REFRESH_TILES_X / uint(size.x);
+        uint ty = uint(px.y) * REFRESH_TILES_Y / uint(size.y);
+        return (pc.refresh_phase + tx + REFRESH_TILES_X * ty) % n == 0u;
+    }
+    if (REFRESH_POLICY == RRC_REFRESH_RANDOM) {
+        uint q = uint(px.x >> 1) + ((uint(size.x) + 1u) >> 1) * uint(px.y >> 1);
+        uint d = (q % n + rrc_hash(q / n) % n) % n;
+        return (pc.refresh_phase + d) % n == 0u;
+    }
+    return false;
+}
+
+// Slot C's age at texel t (C a literal): packed channels keep it in the history word.
+#define RRC_AGE_AT(C, t) \
+    ((CH##C##_FP16 && CH##C##_COMPONENTS == 1u) ? (imageLoad(u_hist_packed[C], t).r >> 16) : imageLoad(u_age[C], t).r)
+#define RRC_AGE_RANGE(C)                                 \
+    if (REUSE##C) {                                      \
+        uint a = RRC_AGE_AT(C, g.taps.nearest);          \
+        amin = min(amin, a);                             \
+        amax = max(amax, a);                             \
+    }
+
+// HIT, REFRESHED, BACKGROUND and INVALID_GEOMETRY of a pixel whose
+// geometry (and hit test) is g.
+uint rrc_cache_mask(ivec2 px, ivec2 size, RrcGeometry g) {
+    uint mask = (g.background ? RRC_MASK_BACKGROUND : 0u) | (g.invalid ? RRC_MASK_INVALID_GEOMETRY : 0u);
+    bool refresh = false;
+    if (HAS_REUSE && g.hit) {
+        uint amin = 0xFFFFFFFFu, amax = 0u;
+        RRC_AGE_RANGE(0)
+        RRC_AGE_RANGE(1)
+        RRC_AGE_RANGE(2)
+        RRC_AGE_RANGE(3)
+        refresh = rrc_refresh_due(px, size) || amin == 0u || (MAX_LIFETIME > 0u && amax >= MAX_LIFETIME);
+    }
+    return mask | (g.hit ? (refresh ? RRC_MASK_REFRESHED : RRC_MASK_HIT) : 0u);
+}
+#undef RRC_AGE_RANGE
+
+// Appends quad q to classify's list and keeps the indirect dispatch's x
+// covering it: the largest slot / RRC_QUADS_PER_GROUP + 1 = ceil(count / per group).
+void rrc_list_quad(ivec2 q) {
+    uint slot = atomicAdd(u_quads.words[RRC_QUAD_LIST_COUNT], 1u);
+    u_quads.words[RRC_QUAD_LIST_FIRST_QUAD + slot] = uint(q.x) | (uint(q.y) << 16);
+    atomicMax(u_quads.words[RRC_QUAD_LIST_DISPATCH], slot / RRC_QUADS_PER_GROUP + 1u);
+}
+
+#endif
