@@ -69,6 +69,14 @@ std::vector<Config> full_sweep() {
         {"depth_fixed", "depth_test", [](Config& c) { c.depth_test = RRC_DEPTH_TEST_FIXED; }},
         {"sampled_inputs", "inputs", [](Config& c) { c.sampled_inputs = true; }},
         {"standalone", "path", [](Config& c) { c.standalone = true; }},
+        {"cache_1x4", "shading_cache", [](Config& c) {
+             c.shading_cache = Config::Cache::Split;
+             c.channels[0].components = 4;
+         }},
+        {"cache_1x4_fused", "shading_cache", [](Config& c) {
+             c.shading_cache = Config::Cache::Fused;
+             c.channels[0].components = 4;
+         }},
     };
     for (const auto& sw : switches) {
         Config c = vary(sw.name, sw.factor);
@@ -79,7 +87,7 @@ std::vector<Config> full_sweep() {
 }
 
 std::vector<std::string> short_sweep_names() {
-    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone"};
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone", "cache_1x4"};
 }
 
 std::string channels_text(const Config& c) {

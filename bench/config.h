@@ -35,6 +35,12 @@ struct Config {
     // kernel only samples; sampled_inputs times the sampler path that any
     // host's images allow.
     bool sampled_inputs = false;
+    // The shading cache: the channels are REUSE with TILED refresh (n = 4,
+    // 2x2 tiles); Fused runs them through rrc_vulkan_record_frame, Split runs
+    // classify + resolve (no host shader in between: the samples image holds
+    // values already).  The roof is the same copy: the split moves no byte the
+    // API implies beyond the fused frame's but the quad list (not counted).
+    enum class Cache { Off, Fused, Split } shading_cache = Cache::Off;
 };
 
 /** Every configuration of --full, base first. */

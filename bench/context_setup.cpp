@@ -19,7 +19,8 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
         const ChannelConfig& ch = c.channels[i];
         // lambda 0.6, the paper's 3/5, with the default (fixed) blend: a typical channel.
         channels_.push_back(rrc_host::channel(("signal" + std::to_string(i)).c_str(), ch.components, 0.6f, ch.precision,
-                                              RRC_BLEND_FIXED, ch.filter, 0, ch.confidence ? 1u : 0u));
+                                              c.shading_cache != Config::Cache::Off ? RRC_BLEND_REUSE : RRC_BLEND_FIXED, ch.filter, 0,
+                                              ch.confidence ? 1u : 0u));
     }
     desc_ = rrc_host::context_desc(c.width, c.height, channels_);
     desc_.depth_mode = RRC_DEPTH_MODE_REVERSED;
@@ -30,6 +31,11 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
     desc_.use_nocache_mask = c.nocache ? 1u : 0u;
     desc_.use_object_id = c.object_id ? 1u : 0u;
     desc_.depth_test = c.depth_test;
+    if (c.shading_cache != Config::Cache::Off) {
+        desc_.refresh_policy = RRC_REFRESH_TILED;
+        desc_.refresh_period = 4;
+        desc_.refresh_tiles[0] = desc_.refresh_tiles[1] = 2;
+    }
     desc_.log = &LogCounter::callback;
     desc_.log_user = &log;
 }

@@ -102,6 +102,10 @@ InteropBench::InteropBench(VulkanBootstrap& vk, const Config& c, const SceneInpu
     rrc_context_memory_usage(ctx_, &res_.memory_bytes);
     try {
         stats_ = vk.create_buffer(256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "bench stats");
+        if (c.shading_cache == Config::Cache::Split)
+            quads_ = vk.create_buffer(RRC_QUAD_LIST_BYTES(c.width, c.height),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      true, "bench quad list");
         roof_ = std::make_unique<Roof>(vk, c, img);
         res_.roof_bytes_bound = roof_->bound_bytes();
         timer_ = std::make_unique<Timer>(vk);
@@ -129,6 +133,7 @@ void InteropBench::release() {
     timer_.reset();
     roof_.reset();
     vk_.destroy(stats_);
+    vk_.destroy(quads_);
     rrc_context_destroy(ctx_);
     ctx_ = nullptr;
 }
@@ -161,8 +166,14 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     full_barrier(f.command_buffer);
     timer_->reset(f.command_buffer, 0);
     timer_->stamp(f.command_buffer, 0, false);
-    if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS)
+    if (config_.shading_cache == Config::Cache::Split) {
+        auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
+        list.buffer = quads_.buffer;
+        if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS || rrc_vulkan_record_resolve(ctx_, &f) != RRC_SUCCESS)
+            throw std::runtime_error(std::string("rrc_vulkan_record_classify/resolve: ") + rrc_context_last_error(ctx_));
+    } else if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS) {
         throw std::runtime_error(std::string("rrc_vulkan_record_frame: ") + rrc_context_last_error(ctx_));
+    }
     timer_->stamp(f.command_buffer, 1, true);
     sub_->submit_and_wait();
     const double wall = now_ms() - t0;
@@ -205,6 +216,7 @@ void InteropBench::step(bool record) {
 InteropResult InteropBench::finish(bool check_roof) {
     kernel(true);
     std::memcpy(&res_.stats, stats_.mapped, sizeof res_.stats);
+    if (quads_.mapped) std::memcpy(&res_.listed_quads, quads_.mapped, sizeof res_.listed_quads);
     if (check_roof) {
         roof_pass(0);  // the roof is the last writer of the outputs it checks
         res_.roof_check = roof_->check(0);

@@ -24,6 +24,7 @@ struct InteropResult {
     bool timestamps = false;                        // false: the device has none, *_ms are wall clock of the submission
     uint64_t memory_bytes = 0;                      // rrc_context_memory_usage
     rrc_vulkan_frame_stats stats{};                 // of one untimed frame after the timed ones
+    uint32_t listed_quads = 0;                      // Config::Cache::Split: the quads that frame listed
     std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
@@ -59,6 +60,7 @@ private:
     const BenchImages& img_;
     rrc_context* ctx_ = nullptr;
     rrc_host::Buffer stats_;
+    rrc_host::Buffer quads_;  // Config::Cache::Split: classify's list
     std::unique_ptr<Roof> roof_;
     std::unique_ptr<Timer> timer_;
     std::unique_ptr<Submitter> sub_;

@@ -86,7 +86,7 @@ typedef struct rrc_vulkan_channel_images {
  *  later barrier) says the recorded frame has finished. */
 typedef struct rrc_vulkan_frame_stats {
     uint32_t hits;
-    uint32_t misses; /* non-background pixels that are not hits */
+    uint32_t misses; /* non-background pixels that are neither hits nor refreshed */
     uint32_t background;
     uint32_t invalid_samples;  /* pixels with RRC_MASK_INVALID_SAMPLE */
     uint32_t invalid_geometry; /* pixels with RRC_MASK_INVALID_GEOMETRY */
