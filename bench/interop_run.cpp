@@ -169,7 +169,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     if (config_.shading_cache == Config::Cache::Split) {
         auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
         list.buffer = quads_.buffer;
-        if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS || rrc_vulkan_record_resolve(ctx_, &f) != RRC_SUCCESS)
+        if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS || (getenv("NORESOLVE") ? rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS : rrc_vulkan_record_resolve(ctx_, &f) != RRC_SUCCESS))
             throw std::runtime_error(std::string("rrc_vulkan_record_classify/resolve: ") + rrc_context_last_error(ctx_));
     } else if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS) {
         throw std::runtime_error(std::string("rrc_vulkan_record_frame: ") + rrc_context_last_error(ctx_));

@@ -130,6 +130,7 @@ void rrc_pixel() {
     RrcGeometry g = rrc_reproject(px, size);
     const uint kGeometryBits = RRC_MASK_HIT | RRC_MASK_REFRESHED | RRC_MASK_BACKGROUND | RRC_MASK_INVALID_GEOMETRY;
     uint mask = PHASE == RRC_PHASE_RESOLVE ? texelFetch(s_classified, px, 0).r & kGeometryBits : rrc_cache_mask(px, size, g);
+    const bool CHANNELS = PHASE != RRC_PHASE_CLASSIFY;  // classify writes the mask only
     // Accumulating channels take the hit test's answer (a refresh is a hit to
     // them); REUSE channels reuse only on HIT.
     bool hit_any = (mask & (RRC_MASK_HIT | RRC_MASK_REFRESHED)) != 0u;
@@ -149,34 +150,31 @@ void rrc_pixel() {
 #undef RRC_CH
 
     if (rrc_store) imageStore(u_mask, px, uvec4(mask));
-    rrc_count(mask, PHASE == RRC_PHASE_FUSED, true);
+    rrc_count(mask, PHASE != RRC_PHASE_RESOLVE, PHASE != RRC_PHASE_CLASSIFY);
 }
 
-// CLASSIFY: one invocation a 2x2 quad; the mask of its pixels, and the quad
-// listed when one of them is not a HIT.
-void rrc_classify_quad() {
-    ivec2 size = rrc_size();
+// LIST: one invocation a 2x2 quad, after CLASSIFY wrote the mask (a pass of
+// its own: one invocation a quad would run the reprojection of four pixels
+// in a row, about twice the time of one a pixel on lavapipe).  The quad is
+// listed when one of its pixels inside the frame is not a HIT.
+void rrc_list_quads() {
+    ivec2 size = textureSize(s_classified, 0);
     ivec2 quads = (size + 1) / 2;
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-    bool quad_inside = all(lessThan(id, quads));
     ivec2 q = min(id, quads - 1);
     bool listed = false;
     for (int k = 0; k < 4; ++k) {
         ivec2 px = 2 * q + ivec2(k & 1, k >> 1);
-        rrc_store = quad_inside && all(lessThan(px, size));
-        px = min(px, size - 1);
-        RrcGeometry g = rrc_reproject(px, size);
-        uint mask = rrc_cache_mask(px, size, g);
-        if (rrc_store) imageStore(u_mask, px, uvec4(mask));
-        rrc_count(mask, true, false);
-        listed = listed || (rrc_store && (mask & RRC_MASK_HIT) == 0u);
+        bool inside = all(lessThan(px, size));
+        uint mask = texelFetch(s_classified, min(px, size - 1), 0).r;
+        listed = listed || (inside && (mask & RRC_MASK_HIT) == 0u);
     }
-    if (listed) rrc_list_quad(q);
+    if (listed && all(lessThan(id, quads))) rrc_list_quad(q);
 }
 
 void main() {
-    if (PHASE == RRC_PHASE_CLASSIFY)
-        rrc_classify_quad();
+    if (PHASE == RRC_PHASE_LIST)
+        rrc_list_quads();
     else
         rrc_pixel();
 }

@@ -3,7 +3,7 @@
 // be indexed by constants, and per-slot specialization constants compile out
 // every format, filter and blend the channel does not use.
 //
-// Inputs from the enclosing rrc_pixel(): px, g (RrcGeometry: where to
+// Inputs from the enclosing rrc_pixel(): CHANNELS (false: classify), px, g (RrcGeometry: where to
 // resample), mask (uint, in/out), hit_any (the hit test passed: HIT or
 // REFRESHED) and hit_cached (HIT: a REUSE channel keeps its value).
 
@@ -15,7 +15,7 @@
 #define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)
 #define REUSE_ (CH_(_BLEND) == RRC_BLEND_REUSE)
 
-if (RRC_CH < CH_COUNT) {
+if (CHANNELS && RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
     vec4 s = SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], px, 0)
              : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)

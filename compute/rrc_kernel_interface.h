@@ -47,8 +47,9 @@
 
 // ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
 #define RRC_PHASE_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
-#define RRC_PHASE_CLASSIFY 1u  // mask and quad list: a dispatch over 2x2 quads, channels untouched
-#define RRC_PHASE_RESOLVE 2u   // the channels with classify's mask: a dispatch over pixels, no hit test
+#define RRC_PHASE_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels, channels untouched
+#define RRC_PHASE_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
+#define RRC_PHASE_RESOLVE 3u   // the channels with classify's mask: a dispatch over pixels, no hit test
 
 // ---- Descriptor bindings (set 0) -------------------------------------------
 // Geometry (rrc_reproject.glsl) and the mask: one image each.

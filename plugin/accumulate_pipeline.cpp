@@ -216,8 +216,8 @@ void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const 
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
     vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
     vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    // Round up; the kernel bounds-checks.  Classify runs one invocation a 2x2 quad.
-    if (variant.phase == RRC_PHASE_CLASSIFY) width = (width + 1) / 2, height = (height + 1) / 2;
+    // Round up; the kernel bounds-checks.  The list runs one invocation a 2x2 quad.
+    if (variant.phase == RRC_PHASE_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
     vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
 }
 

@@ -60,7 +60,18 @@ void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStag
 
 void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid,
                                       const KernelVariant& variant) {
-    pipeline_.record(cmd, set, make_frame_constants(config_, frame, prev_valid), config_.width, config_.height, variant);
+    const FramePushConstants pc = make_frame_constants(config_, frame, prev_valid);
+    pipeline_.record(cmd, set, pc, config_.width, config_.height, variant);
+    if (variant.phase != RRC_PHASE_CLASSIFY) return;
+    // Classify's second dispatch lists the quads from the mask the first wrote.
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0,
+                                  nullptr);
+    KernelVariant list = variant;
+    list.phase = RRC_PHASE_LIST;
+    pipeline_.record(cmd, set, pc, config_.width, config_.height, list);
 }
 
 void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_frame_index) {

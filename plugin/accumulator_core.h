@@ -60,7 +60,8 @@ public:
     // The previous frame's kernel wrote what this one reads and read what
     // this one overwrites: one global barrier, compute -> compute.
     void record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const;
-    // Push constants from the frame record and the dispatch.
+    // Push constants from the frame record and the dispatch (classify: its
+    // two dispatches, mask then list, with the barrier between them).
     void record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid, const KernelVariant& variant = {});
     // After `count` frames were recorded (standalone: and submitted).
     void advance(ViewState& view, uint32_t count, uint64_t last_frame_index);

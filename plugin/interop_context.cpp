@@ -153,6 +153,11 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     for (uint32_t s = 0; s < f.channel_count && !classify; ++s)
         if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
     core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
+    if (classify) {
+        KernelVariant list = variant;
+        list.phase = RRC_PHASE_LIST;
+        core_->pipeline().pipeline(list);
+    }
 
     // Descriptors: the host's images of this frame over the library's own.
     // Classify reads the geometry only and writes the library's mask.
