@@ -11,7 +11,7 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
       inputs_(live_inputs(config)),
       pipeline_(*dev_, config_, interop, sets, cache),
       placeholders_(*dev_),
-      views_(1) {
+      views_(config.view_count) {
     for (ViewState& v : views_) {
         for (auto& img : v.depth) img = GpuImage(*dev_, VK_FORMAT_R32_SFLOAT, config_.width, config_.height);
         if (config_.use_object_id)
@@ -26,15 +26,15 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
 
 AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
 
-DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p) const {
+DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p, const ViewState& source, uint32_t sp) const {
     DescriptorViews v = placeholders_.views();
-    v.view[RRC_BINDING_PREV_DEPTH][0] = view.depth[1 - p].view;
-    if (config_.use_object_id) v.view[RRC_BINDING_PREV_OBJECT_ID][0] = view.object_id[1 - p].view;
+    v.view[RRC_BINDING_PREV_DEPTH][0] = source.depth[sp].view;
+    if (config_.use_object_id) v.view[RRC_BINDING_PREV_OBJECT_ID][0] = source.object_id[sp].view;
     v.view[RRC_BINDING_MASK][0] = mask_.view;
     v.view[RRC_BINDING_CLASSIFIED][0] = mask_.view;  // resolve reads what classify wrote there
     v.stats = stats_placeholder_.buffer;
     v.quads = quads_placeholder_.buffer;
-    for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *view.channels[s], p);
+    for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *source.channels[s], sp, *view.channels[s], p);
     return v;
 }
 

@@ -18,8 +18,10 @@
 
 namespace rrc {
 
-// What one view (today the only one; a stereo eye or a sub-frame later)
-// carries from frame to frame.
+// What one view (the camera, a stereo eye, a motion-blur sub-frame, a lens
+// sample) carries from frame to frame.  A frame writes its view's `parity`
+// set and reads its source's latest (rrc_frame_desc.reproject_from): its own
+// other parity, or another view's last written set.
 struct ViewState {
     GpuImage depth[2];      // [parity]: this frame's depth; the other parity is the previous frame's
     GpuImage object_id[2];  // the same for object ids (R32_UINT), when the context uses them
@@ -31,6 +33,7 @@ struct ViewState {
     // and resolve has not yet completed it.
     bool classified = false;
     uint64_t classified_index = 0;
+    uint32_t classified_from = 0;  // its reproject_from
 };
 
 class AccumulatorCore {
@@ -47,14 +50,19 @@ public:
     const VulkanDevice& device() const { return *dev_; }
     AccumulatePipeline& pipeline() { return pipeline_; }
     const std::vector<LiveInput>& inputs() const { return inputs_; }
-    ViewState& view() { return views_[0]; }
-    const ViewState& view() const { return views_[0]; }
+    ViewState& view(uint32_t v = 0) { return views_[v]; }
+    const ViewState& view(uint32_t v = 0) const { return views_[v]; }
+    uint32_t view_count() const { return (uint32_t)views_.size(); }
+    // The parity holding a view's latest frame.
+    static uint32_t latest(const ViewState& v) { return 1 - v.parity; }
     const GpuImage& own_mask() const { return mask_; }
 
     // Every binding of the frame that writes `parity` of `view`: the
     // library's own images (previous depth, histories, mask) over
     // placeholders.  The caller adds its inputs (and, interop, outputs).
-    DescriptorViews library_views(const ViewState& view, uint32_t parity) const;
+    DescriptorViews library_views(const ViewState& view, uint32_t parity) const { return library_views(view, parity, view, 1 - parity); }
+    // The same for a frame that reprojects from `source`'s set `source_parity`.
+    DescriptorViews library_views(const ViewState& view, uint32_t parity, const ViewState& source, uint32_t source_parity) const;
     // Images to clear to zero and move to GENERAL once, before first use.
     void collect_images(std::vector<GpuImage*>& out);
     // The previous frame's kernel wrote what this one reads and read what

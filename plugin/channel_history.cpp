@@ -26,22 +26,21 @@ void ChannelHistory::collect(std::vector<GpuImage*>& out) {
 
 size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].bytes() + weight[0].bytes()); }
 
-void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& h, uint32_t p) {
-    const uint32_t prev = 1 - p;
+void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& r, uint32_t prev, const ChannelHistory& h, uint32_t p) {
     if (h.packed()) {  // one R32_UINT word: value and age in, value and age out (AGE_OUT takes any uint format)
-        v.view[RRC_BINDING_HIST_PACKED][s] = h.history[prev].view;
+        v.view[RRC_BINDING_HIST_PACKED][s] = r.history[prev].view;
         v.view[RRC_BINDING_AGE_OUT][s] = h.history[p].view;
     } else {
-        const VkFormat f = h.history[prev].format;
+        const VkFormat f = r.history[prev].format;
         Binding read = f == VK_FORMAT_R16G16B16A16_SFLOAT ? RRC_BINDING_HIST_RGBA16F
                        : f == VK_FORMAT_R32_SFLOAT        ? RRC_BINDING_HIST_R32F
                                                           : RRC_BINDING_HIST_RGBA32F;
-        v.view[read][s] = h.history[prev].view;
-        v.view[RRC_BINDING_AGE][s] = h.age[prev].view;
+        v.view[read][s] = r.history[prev].view;
+        v.view[RRC_BINDING_AGE][s] = r.age[prev].view;
         v.view[RRC_BINDING_HIST_OUT][s] = h.history[p].view;
         v.view[RRC_BINDING_AGE_OUT][s] = h.age[p].view;
     }
-    if (h.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = h.weight[prev].view;
+    if (r.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = r.weight[prev].view;
     if (h.weight[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.weight[p].view;
 }
 

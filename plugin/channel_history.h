@@ -25,8 +25,11 @@ struct ChannelHistory {
     size_t bytes() const;
 };
 
-// Binds a channel's history for the frame that writes `parity`.
-void bind_history(DescriptorViews& views, uint32_t slot, const ChannelHistory& h, uint32_t parity);
+// Binds a channel's history for the frame that writes `parity`: it reads
+// `read` at read_parity (its own history's other parity, or another view's
+// latest) and writes `write` at `parity`.
+void bind_history(DescriptorViews& views, uint32_t slot, const ChannelHistory& read, uint32_t read_parity, const ChannelHistory& write,
+                  uint32_t parity);
 
 class Placeholders {
 public:

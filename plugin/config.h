@@ -48,6 +48,7 @@ struct ContextConfig {
     uint32_t refresh_period = 1;              // n (1 without a policy)
     uint32_t refresh_tiles[2] = {1, 1};       // TILED: {gx, gy}, gx * gy = n
     uint32_t max_lifetime = 0;                // 0: none
+    uint32_t view_count = 1;
     uint32_t reuse_mask() const {             // bit c: channel c is REUSE
         uint32_t m = 0;
         for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].reuse() ? 1u << i : 0u;

@@ -30,6 +30,9 @@ struct Frame {
     FramePath path = FramePath::Standalone;
     uint64_t frame_index = 0;
     bool reset = false;
+    uint32_t view = 0;            // the view this frame writes
+    uint32_t reproject_from = 0;  // 0: its own; v + 1: view v (validated against the context's view count)
+    uint32_t source() const { return reproject_from ? reproject_from - 1 : view; }
     double view_proj[16] = {}, prev_view_proj[16] = {};
     float jitter[2] = {}, prev_jitter[2] = {};
     uint32_t channel_count = 0;

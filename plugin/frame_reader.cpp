@@ -24,6 +24,8 @@ Frame read_common(const D* caller, FramePath path, D& d) {
     std::memcpy(f.prev_jitter, d.prev_jitter, sizeof f.prev_jitter);
     f.channel_count = d.channel_count;
     f.channels_given = d.channels != nullptr;
+    f.view = d.view;
+    f.reproject_from = d.reproject_from;
     return f;
 }
 

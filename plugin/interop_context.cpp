@@ -118,23 +118,26 @@ void InteropContext::record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDev
 
 void InteropContext::record_frame(const Frame& f) {
     record_pass(f, RRC_PHASE_FUSED);
-    core_->advance(core_->view(), 1, f.frame_index);
+    core_->advance(core_->view(f.view), 1, f.frame_index);
 }
 
 void InteropContext::record_classify(const Frame& f, VkBuffer list, VkDeviceSize list_offset) {
-    ViewState& view = core_->view();
+    ViewState& view = core_->view(f.view);
     view.classified = false;  // a classification not resolved is dropped
     record_pass(f, RRC_PHASE_CLASSIFY, list, list_offset);
     view.classified = true;
     view.classified_index = f.frame_index;
+    view.classified_from = f.reproject_from;
 }
 
 void InteropContext::record_resolve(const Frame& f) {
-    ViewState& view = core_->view();
+    ViewState& view = core_->view(f.view);
     if (!view.classified) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: record rrc_vulkan_record_classify first");
     if (view.classified_index != f.frame_index)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.frame_index is %llu but the classified frame's is %llu: resolve takes classify's frame",
              (unsigned long long)f.frame_index, (unsigned long long)view.classified_index);
+    if (view.classified_from != f.reproject_from)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.reproject_from is %u but the classified frame's is %u", f.reproject_from, view.classified_from);
     record_pass(f, RRC_PHASE_RESOLVE);
     core_->advance(view, 1, f.frame_index);
 }
@@ -143,7 +146,8 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     VulkanDevice& dev = core_->device();
     auto& vk = dev.vk;
     VkCommandBuffer cmd = f.command_buffer;
-    ViewState& view = core_->view();
+    ViewState& view = core_->view(f.view);
+    const ViewState& source = core_->view(f.source());  // the frame reprojects into its latest
     const uint32_t p = view.parity;
     const bool classify = phase == RRC_PHASE_CLASSIFY;
     KernelVariant variant;
@@ -161,7 +165,7 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
 
     // Descriptors: the host's images of this frame over the library's own.
     // Classify reads the geometry only and writes the library's mask.
-    DescriptorViews v = core_->library_views(view, p);
+    DescriptorViews v = core_->library_views(view, p, source, AccumulatorCore::latest(source));
     HostBarriers hb;
     for (const LiveInput& in : core_->inputs()) {
         if (classify && (in.role == InputRole::Samples || in.role == InputRole::Confidence)) continue;
@@ -214,7 +218,7 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     // Resolve adds its counts (invalid samples) to classify's.
     if (variant.stats && phase != RRC_PHASE_RESOLVE) record_stats_clear(cmd, f);
     if (classify) record_list_clear(cmd, list, list_offset);
-    core_->record_dispatch(cmd, set, f, view.have_previous, variant);
+    core_->record_dispatch(cmd, set, f, source.have_previous, variant);
     if (classify) {
         // The list to the host's indirect dispatch and its miss shader (rrc_vulkan.h).
         VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};

@@ -19,7 +19,9 @@ VkImageSubresourceLayers color_layers() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 
 StandaloneContext::StandaloneContext(const ContextConfig& config) {
     Log log{config.log, config.log_user};
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(config.device_name, config.validation, log));
-    core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/false, /*sets=*/2));
+    // Sets by (view, parity, source, source parity): 2 with one view.
+    const uint32_t views = config.view_count, sets = views == 1 ? 2 : 4 * views * views;
+    core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/false, sets));
     VulkanDevice& d = core_->device();
     auto& vk = d.vk;
     try {
@@ -28,7 +30,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
             inputs_.emplace_back(kept_as_history(in.role) ? GpuImage() : GpuImage(d, in.own_format, w, h));
             upload_bytes_ += align16((size_t)w * h * texel_bytes(in.own_format));
         }
-        readback_bytes_ = readback_bytes(0);
+        readback_bytes_ = readback_bytes();
         reserve_batch(1);
         quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -42,9 +44,6 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         VulkanDevice::check(vk.vkAllocateCommandBuffers(d.device, &cai, &cmd_), "vkAllocateCommandBuffers");
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         VulkanDevice::check(vk.vkCreateFence(d.device, &fci, nullptr, &fence_), "vkCreateFence");
-        sets_[0] = core_->pipeline().allocate_set();
-        sets_[1] = core_->pipeline().allocate_set();
-        write_descriptor_sets();
         initialise_images();
         log(RRC_LOG_INFO, "rrc: context " + std::to_string(w) + "x" + std::to_string(h) + " on " + d.name);
     } catch (...) {
@@ -75,8 +74,7 @@ StandaloneContext::~StandaloneContext() {
 
 // Fixed offsets in a slot's region of the readback buffer: the mask, then
 // per channel history, age and weight; only requested images are copied.
-std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const FrameOutputs& out, uint32_t parity) const {
-    const ViewState& v = core_->view();
+std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const FrameOutputs& out, const ViewState& v, uint32_t parity) const {
     std::vector<Readback> r;
     r.push_back({&core_->own_mask(), out.caller ? (void*)out.mask : nullptr});
     for (size_t i = 0; i < v.channels.size(); ++i) {
@@ -96,9 +94,9 @@ std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const Fram
     return r;
 }
 
-size_t StandaloneContext::readback_bytes(uint32_t parity) const {
+size_t StandaloneContext::readback_bytes() const {
     size_t bytes = 0;
-    for (const Readback& r : readbacks(FrameOutputs{}, parity)) bytes += align16(r.image->bytes());
+    for (const Readback& r : readbacks(FrameOutputs{}, core_->view(), 0)) bytes += align16(r.image->bytes());
     return bytes;
 }
 
@@ -118,17 +116,21 @@ const GpuImage& StandaloneContext::own_input(const ViewState& view, size_t input
     }
 }
 
-void StandaloneContext::write_descriptor_sets() {
-    const ViewState& view = core_->view();
-    for (uint32_t p = 0; p < 2; ++p) {
-        DescriptorViews v = core_->library_views(view, p);
-        v.quads = quads_.buffer;
-        for (size_t i = 0; i < core_->inputs().size(); ++i) {
-            const LiveInput& in = core_->inputs()[i];
-            v.view[in.own_binding][in.slot] = own_input(view, i, p).view;
-        }
-        core_->pipeline().write_set(sets_[p], v);
+VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp) {
+    const uint32_t key = ((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp;
+    auto found = sets_.find(key);
+    if (found != sets_.end()) return found->second;
+    const ViewState& v = core_->view(view);
+    DescriptorViews d = core_->library_views(v, p, core_->view(source), sp);
+    d.quads = quads_.buffer;
+    for (size_t i = 0; i < core_->inputs().size(); ++i) {
+        const LiveInput& in = core_->inputs()[i];
+        d.view[in.own_binding][in.slot] = own_input(v, i, p).view;
     }
+    VkDescriptorSet set = core_->pipeline().allocate_set();
+    core_->pipeline().write_set(set, d);
+    sets_[key] = set;
+    return set;
 }
 
 // One submission at creation: every image to GENERAL, cleared.
@@ -175,10 +177,11 @@ void StandaloneContext::upload(const Frame& f, uint32_t slot, uint32_t phase) {
     }
 }
 
-void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid,
-                               uint32_t phase) {
+void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t slot, uint32_t parity, uint32_t source_parity,
+                               bool prev_valid, uint32_t phase) {
     auto& vk = core_->device().vk;
-    ViewState& view = core_->view();
+    const ViewState& view = core_->view(f.view);
+    const VkDescriptorSet set = set_for(f.view, parity, f.source(), source_parity);
     std::vector<const GpuImage*> inputs;  // uploaded by this pass (null entries keep the staging offsets)
     for (size_t i = 0; i < core_->inputs().size(); ++i)
         inputs.push_back(uploads(core_->inputs()[i], phase) ? &own_input(view, i, parity) : nullptr);
@@ -186,7 +189,7 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     for (const GpuImage* img : inputs)
         if (img) uploaded.push_back(img);
     std::vector<const GpuImage*> outputs;
-    for (const Readback& r : readbacks(out, parity))
+    for (const Readback& r : readbacks(out, view, parity))
         if (r.destination || r.image == &core_->own_mask()) outputs.push_back(r.image);
 
     // 1. The previous frame's writes (kernel and copies) become visible to
@@ -216,13 +219,13 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     KernelVariant variant;
     variant.phase = phase;
-    core_->record_dispatch(cmd_, sets_[parity], f, prev_valid, variant);
+    core_->record_dispatch(cmd_, set, f, prev_valid, variant);
     // 3. Requested outputs (and the mask, for the statistics) to the copy,
     //    then back to GENERAL: next frame's kernel reads them as history.
     transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     offset = slot * readback_bytes_;
-    for (const Readback& r : readbacks(out, parity)) {
+    for (const Readback& r : readbacks(out, view, parity)) {
         const bool wanted = r.destination || r.image == &core_->own_mask();
         if (r.image->image && wanted) {
             VkBufferImageCopy c{};
@@ -291,12 +294,12 @@ StandaloneContext::Stats StandaloneContext::count_stats(const uint8_t* mask) con
     return {stats, refreshed};
 }
 
-void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, uint32_t parity) {
+void StandaloneContext::read_back(const FrameOutputs& out, uint32_t slot, const ViewState& view, uint32_t parity) {
     if (!out.caller) return;
     const size_t n = (size_t)config().width * config().height;
     const Stats stats = count_stats(readback_.data + slot * readback_bytes_);
     size_t offset = slot * readback_bytes_;
-    for (const Readback& r : readbacks(out, parity)) {
+    for (const Readback& r : readbacks(out, view, parity)) {
         const GpuImage& img = *r.image;
         const unsigned char* src = readback_.data + offset;
         offset += align16(img.bytes());
@@ -335,8 +338,9 @@ void StandaloneContext::begin() {
 
 void StandaloneContext::classify(const Frame& f, const Classified& out) {
     auto& vk = core_->device().vk;
-    ViewState& view = core_->view();
-    view.classified = false;  // a classification not resolved is dropped
+    ViewState& view = core_->view(f.view);
+    const ViewState& source = core_->view(f.source());
+    for (uint32_t v = 0; v < core_->view_count(); ++v) core_->view(v).classified = false;  // one not resolved is dropped
     upload(f, 0, RRC_PHASE_CLASSIFY);
     // The list starts empty, dispatch {0, 1, 1}: host-coherent memory written
     // before the submission is visible to it.
@@ -344,7 +348,8 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
     const uint32_t start[RRC_QUAD_LIST_FIRST_QUAD] = {0, 0, 1, 1};
     std::memcpy(words, start, sizeof start);
     begin();
-    record(f, FrameOutputs{}, 0, view.parity, view.have_previous, RRC_PHASE_CLASSIFY);  // copies the mask back, as always
+    record(f, FrameOutputs{}, 0, view.parity, AccumulatorCore::latest(source), source.have_previous,
+           RRC_PHASE_CLASSIFY);  // copies the mask back, as always
     // The list to the CPU.
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -371,19 +376,26 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
     view.classified_index = f.frame_index;
 }
 
+bool StandaloneContext::classified() const {
+    for (uint32_t v = 0; v < core_->view_count(); ++v)
+        if (core_->view(v).classified) return true;
+    return false;
+}
+
 void StandaloneContext::resolve(const Frame& channels, const FrameOutputs& out) {
-    ViewState& view = core_->view();
-    if (!view.classified) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: call rrc_frame_classify first");
+    if (!classified()) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: call rrc_frame_classify first");
     Frame f = classified_;
+    ViewState& view = core_->view(f.view);
+    const ViewState& source = core_->view(f.source());
     f.channel_count = channels.channel_count;
     f.channels = channels.channels;
     f.channels_given = channels.channels_given;
     upload(f, 0, RRC_PHASE_RESOLVE);
     begin();
-    record(f, out, 0, view.parity, view.have_previous, RRC_PHASE_RESOLVE);
+    record(f, out, 0, view.parity, AccumulatorCore::latest(source), source.have_previous, RRC_PHASE_RESOLVE);
     VulkanDevice::check(core_->device().vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
-    read_back(out, 0, view.parity);
+    read_back(out, 0, view, view.parity);
     core_->advance(view, 1, f.frame_index);
 }
 
@@ -392,16 +404,27 @@ void StandaloneContext::run_frames(const std::vector<Frame>& frames, const std::
     reserve_batch(count);
     for (uint32_t i = 0; i < count; ++i) upload(frames[i], i);
     auto& vk = core_->device().vk;
-    ViewState& view = core_->view();
+    // Each view's parity and history as the batch's frames will leave them:
+    // a frame writes its view's next set and reads its source's latest.
+    const uint32_t views = core_->view_count();
+    std::vector<uint32_t> parity(views), written(count);
+    std::vector<bool> have(views);
+    for (uint32_t v = 0; v < views; ++v) parity[v] = core_->view(v).parity, have[v] = core_->view(v).have_previous;
     begin();
-    // Frame i writes the image set of parity view.parity ^ (i & 1) and reads the other.
-    for (uint32_t i = 0; i < count; ++i)
-        record(frames[i], outputs[i], i, view.parity ^ (i & 1u), (view.have_previous || i > 0) && !frames[i].reset);
+    for (uint32_t i = 0; i < count; ++i) {
+        const Frame& f = frames[i];
+        const uint32_t v = f.view, s = f.source();
+        written[i] = parity[v];
+        record(f, outputs[i], i, parity[v], 1 - parity[s], have[s] && !f.reset);
+        parity[v] ^= 1u;
+        have[v] = true;
+    }
     VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
-    for (uint32_t i = 0; i < count; ++i) read_back(outputs[i], i, view.parity ^ (i & 1u));
+    for (uint32_t i = 0; i < count; ++i) read_back(outputs[i], i, core_->view(frames[i].view), written[i]);
     // Only now do the frames become history.
-    core_->advance(view, count, frames.back().frame_index);
+    for (uint32_t i = 0; i < count; ++i) core_->advance(core_->view(frames[i].view), 1, frames[i].frame_index);
+    for (uint32_t v = 0; v < views; ++v) core_->view(v).classified = false;
 }
 
 }  // namespace rrc

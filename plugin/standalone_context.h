@@ -8,6 +8,7 @@
 #include "frame.h"
 #include "gpu_resources.h"
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -35,7 +36,7 @@ public:
         uint32_t quad_capacity = 0;
     };
     void classify(const Frame& frame, const Classified& out);
-    bool classified() const { return core_->view().classified; }
+    bool classified() const;
     void resolve(const Frame& channels, const FrameOutputs& out);
 
     const ContextConfig& config() const { return core_->config(); }
@@ -49,17 +50,21 @@ private:
         void* destination;               // NULL: not requested
         uint16_t* age_destination = nullptr;  // a packed history's ages (its value|age words split on the CPU)
     };
-    std::vector<Readback> readbacks(const FrameOutputs& out, uint32_t parity) const;
-    size_t readback_bytes(uint32_t parity) const;
+    std::vector<Readback> readbacks(const FrameOutputs& out, const ViewState& view, uint32_t parity) const;
+    size_t readback_bytes() const;
     // The image live input `input` is uploaded into for the frame writing `parity`.
     const GpuImage& own_input(const ViewState& view, size_t input, uint32_t parity) const;
-    void write_descriptor_sets();
+    // The set of a frame that writes `parity` of `view` and reads `source`'s
+    // set `source_parity`: made and written the first time it is needed.
+    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity);
     void initialise_images();
     void reserve_batch(uint32_t frames);
     // Which inputs a pass uploads: all (FUSED), the geometry (CLASSIFY) or the channels' (RESOLVE).
     bool uploads(const LiveInput& in, uint32_t phase) const;
     void upload(const Frame& frame, uint32_t slot, uint32_t phase = RRC_PHASE_FUSED);
-    void record(const Frame& frame, const FrameOutputs& out, uint32_t slot, uint32_t parity, bool prev_valid,
+    // Frame `frame` into `slot` of the staging buffers, writing its view's
+    // `parity` and reading its source's `source_parity`.
+    void record(const Frame& frame, const FrameOutputs& out, uint32_t slot, uint32_t parity, uint32_t source_parity, bool prev_valid,
                 uint32_t phase = RRC_PHASE_FUSED);
     void begin();
     struct Stats {
@@ -70,7 +75,7 @@ private:
     void submit_and_wait();
     void transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
                     VkAccessFlags src_access, VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
-    void read_back(const FrameOutputs& out, uint32_t slot, uint32_t parity);
+    void read_back(const FrameOutputs& out, uint32_t slot, const ViewState& view, uint32_t parity);
 
     std::unique_ptr<AccumulatorCore> core_;
     std::vector<GpuImage> inputs_;  // one per core_->inputs() entry, except Depth (the view's depth[parity])
@@ -79,7 +84,7 @@ private:
     Frame classified_;              // the classified frame's parameters, for resolve's push constants
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;
-    VkDescriptorSet sets_[2] = {};
+    std::map<uint32_t, VkDescriptorSet> sets_;  // by (view, parity, source, source parity)
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

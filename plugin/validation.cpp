@@ -212,6 +212,8 @@ ContextConfig resolve_context_desc(const rrc_context_desc* caller) {
     c.adaptive =
         c.depth_test == RRC_DEPTH_TEST_ADAPTIVE && c.reprojection != RRC_REPROJECTION_MOTION;  // plain MOTION: no exact expected depth
     resolve_refresh(*d, c);
+    if (d->view_count > RRC_MAX_VIEWS) fail(RRC_ERROR_INVALID_ARGUMENT, "desc.view_count is %u, at most %u", d->view_count, RRC_MAX_VIEWS);
+    c.view_count = d->view_count == 0 ? 1 : d->view_count;
     if (d->device_name) c.device_name = d->device_name;
     c.validation = d->enable_validation != 0;
     c.log = d->log;
@@ -280,6 +282,9 @@ void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_res
 
 void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_alignment) {
     const bool vulkan = f.path == FramePath::Vulkan;
+    if (f.view >= c.view_count) fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view is %u, the context has %u view(s)", f.view, c.view_count);
+    if (f.reproject_from > c.view_count)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.reproject_from is %u: 0 (its own view) or 1..%u (view + 1)", f.reproject_from, c.view_count);
     if (vulkan && !f.command_buffer) fail(RRC_ERROR_INVALID_ARGUMENT, "frame.command_buffer is VK_NULL_HANDLE");
     need(f, f.depth, f.depth_image, RRC_ERROR_MISSING_INPUT, "depth", "");
     if (vulkan) check_depth_image_format(c, f.depth_image.format);

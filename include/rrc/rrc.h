@@ -318,6 +318,12 @@ typedef struct rrc_context_desc {
      * which screen-space policies cannot).  At most the age cap of every
      * REUSE channel.  Needs a REUSE channel. */
     uint32_t max_lifetime;
+    /* Views: 0 = 1, at most RRC_MAX_VIEWS.  Each view keeps its own previous
+     * depth, ids, histories and ages (memory grows with the count); a frame
+     * names the view it writes and the view it reprojects from
+     * (rrc_frame_desc.view, .reproject_from): a stereo eye from the other
+     * eye, a motion-blur sub-frame or a lens sample from the one before. */
+    uint32_t view_count;
 } rrc_context_desc;
 
 /** Check a context descriptor without touching Vulkan.  Returns RRC_SUCCESS or
@@ -383,6 +389,10 @@ typedef struct rrc_frame_desc {
     const rrc_channel_input* channels; /* in the context's channel order */
     /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
     const uint32_t* object_id; /* width*height object ids (any values); required iff use_object_id */
+    /* ---- 0.3 ---- */
+    uint32_t view;           /* the view this frame is: 0..view_count-1; its state becomes this frame */
+    uint32_t reproject_from; /* 0: the view's own previous frame; v + 1: view v's latest frame (another
+                                eye, the sub-frame before), which must have one (else every pixel misses) */
 } rrc_frame_desc;
 
 typedef struct rrc_frame_stats {

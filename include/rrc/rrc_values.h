@@ -103,6 +103,8 @@
 #define RRC_MAX_AGE_CAP 65535u
 /** Largest width or height of a context. */
 #define RRC_MAX_EXTENT 16384u
+/** Views a context may hold (stereo eyes, motion-blur sub-frames, lens samples). */
+#define RRC_MAX_VIEWS 4u
 /** Largest refresh period n, and largest tile count along one axis (TILED). */
 #define RRC_MAX_REFRESH_PERIOD 65536u
 #define RRC_MAX_REFRESH_TILES 256u

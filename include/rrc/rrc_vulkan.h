@@ -134,6 +134,9 @@ typedef struct rrc_vulkan_frame_desc {
      * storage loads (docs/PERFORMANCE.md, "Sampled or storage inputs").
      * Zero: any sampled format, as above.  Object ids are sampled either way. */
     uint32_t storage_inputs;
+    /* ---- 0.3 ---- */
+    uint32_t view;           /* as rrc_frame_desc.view */
+    uint32_t reproject_from; /* as rrc_frame_desc.reproject_from */
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */
