@@ -1,0 +1,222 @@
+// The shading cache recorded into the host's command buffer
+// (rrc_vulkan_record_classify / rrc_vulkan_record_resolve): several frames
+// pending in one submission, each with its own quad list and statistics,
+// give what the standalone classify + resolve gives (mask, listed quads as a
+// set, the indirect dispatch, values, ages, counts), under the validation
+// layer with synchronization validation.
+#include "interop/vulkan_host.h"
+#include "support/rrc_test_context.h"
+#include "support/scene_frames.h"
+
+#include <rrc/rrc_vulkan.h>
+
+#include "rrc_interop.h"
+
+#include <set>
+
+using namespace rrc_test;
+
+namespace {
+
+const int W = 48, H = 32, N = 5;
+const uint32_t kListWords = RRC_QUAD_LIST_BYTES(W, H) / 4;
+
+std::vector<rrc_channel_desc> cache_channels() {
+    return {channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR),
+            channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR)};
+}
+
+rrc_scene::SceneConfig cache_scene() { return scene_config(W, H, RRC_DEPTH_MODE_REVERSED); }
+
+rrc_context_desc cache_desc(std::vector<rrc_channel_desc>& channels) {
+    rrc_context_desc d = scene_context_desc(cache_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
+    d.refresh_policy = RRC_REFRESH_TILED;
+    d.refresh_period = 4;
+    d.refresh_tiles[0] = d.refresh_tiles[1] = 2;
+    d.max_lifetime = 3;
+    return d;
+}
+
+struct Split {
+    std::vector<uint8_t> mask;
+    std::set<uint32_t> quads;
+    rrc_frame_stats stats{};
+    uint64_t refreshed = 0;
+    std::vector<float> shade, pcf;
+    std::vector<uint16_t> shade_age, pcf_age;
+};
+
+// Standalone classify + resolve of one frame, every sample given.
+Split run_split(Context& ctx, SceneFrameInputs& in) {
+    Split s;
+    const size_t n = (size_t)W * H;
+    s.mask.resize(n);
+    std::vector<uint32_t> quads(kListWords);
+    rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+    co.mask = s.mask.data();
+    co.quads = quads.data();
+    co.quad_capacity = kListWords;
+    EXPECT_EQ(rrc_frame_classify(ctx.get(), &in.desc, &co), RRC_SUCCESS) << rrc_last_error();
+    s.quads.insert(quads.begin(), quads.begin() + co.quad_count);
+    EXPECT_EQ(s.quads.size(), co.quad_count) << "a quad listed twice";
+    rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+    rd.channel_count = in.desc.channel_count;
+    rd.channels = in.desc.channels;
+    s.shade.resize(4 * n);
+    s.pcf.resize(n);
+    s.shade_age.resize(n);
+    s.pcf_age.resize(n);
+    rrc_channel_output co2[2] = {rrc_host::channel_output(), rrc_host::channel_output()};
+    co2[0].values = s.shade.data();
+    co2[0].age = s.shade_age.data();
+    co2[1].values = s.pcf.data();
+    co2[1].age = s.pcf_age.data();
+    rrc_frame_output out = rrc_host::frame_output();
+    out.mask = s.mask.data();
+    out.channel_count = 2;
+    out.channels = co2;
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &rd, &out), RRC_SUCCESS) << rrc_last_error();
+    s.stats = out.stats;
+    s.refreshed = out.refreshed;
+    return s;
+}
+
+rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) { return rrc_host::vulkan_image(img, layout); }
+
+template <typename T>
+std::vector<T> as(const std::vector<unsigned char>& bytes) {
+    std::vector<T> v(bytes.size() / sizeof(T));
+    std::memcpy(v.data(), bytes.data(), bytes.size());
+    return v;
+}
+
+TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
+    std::vector<rrc_channel_desc> channels = cache_channels();
+    rrc_scene::Scene scene(cache_scene());
+    std::vector<SceneFrameInputs> inputs(N);
+    std::vector<Split> expected;
+    {
+        Context ctx(cache_desc(channels));
+        ASSERT_TRUE(ctx);
+        for (int t = 0; t < N; ++t) {
+            inputs[t].frame = scene.render(t);
+            make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {4, 1}, {false, false});
+            inputs[t].desc.frame_index = 100 + t;
+            expected.push_back(run_split(ctx, inputs[t]));
+        }
+    }
+    uint64_t refreshed = 0, hits = 0;
+    for (const Split& e : expected) refreshed += e.refreshed, hits += e.stats.hits;
+    ASSERT_GT(refreshed, 0u) << "the comparison must cover refreshes";
+    ASSERT_GT(hits, 0u) << "the comparison must cover hits";
+
+    VulkanHost host;
+    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, N);  // N frames pending at once
+    rrc_context_desc cd = cache_desc(channels);
+    rrc_context* ctx = nullptr;
+    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+
+    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
+    const VkDeviceSize stats_stride = 256, list_stride = (RRC_QUAD_LIST_BYTES(W, H) + 255) / 256 * 256;
+    rrc_host::Buffer stats = host.create_buffer(stats_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    rrc_host::Buffer lists = host.create_buffer(
+        list_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    std::memset(stats.mapped, 0xAB, stats_stride * N);
+    std::memset(lists.mapped, 0xCD, list_stride * N);
+    struct PerFrame {
+        HostImage depth, clip, shade_in, pcf_in, shade_out, pcf_out, mask, shade_age, pcf_age;
+    };
+    std::vector<PerFrame> fr(N);
+    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    for (int t = 0; t < N; ++t) {
+        PerFrame& p = fr[t];
+        p.depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+        p.clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+        p.shade_in = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+        p.pcf_in = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+        p.shade_out = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
+        p.pcf_out = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
+        p.mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
+        p.shade_age = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
+        p.pcf_age = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
+        host.upload(p.depth, inputs[t].frame.depth.data(), W * H * 4, ro);
+        host.upload(p.clip, inputs[t].reprojection.data(), W * H * 16, ro);
+        host.upload(p.shade_in, inputs[t].frame.signal4.data(), W * H * 16, ro);
+        host.upload(p.pcf_in, inputs[t].frame.signal1.data(), W * H * 4, ro);
+        for (HostImage* img : {&p.shade_out, &p.pcf_out, &p.mask, &p.shade_age, &p.pcf_age})
+            host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, gen);
+    }
+
+    VkCommandBuffer cmd = host.begin();
+    for (int t = 0; t < N; ++t) {
+        PerFrame& p = fr[t];
+        rrc_vulkan_channel_images ch[2];
+        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+        ch[0].samples = view_of(p.shade_in, ro);
+        ch[0].output = view_of(p.shade_out, gen);
+        ch[0].age = view_of(p.shade_age, gen);
+        ch[1].samples = view_of(p.pcf_in, ro);
+        ch[1].output = view_of(p.pcf_out, gen);
+        ch[1].age = view_of(p.pcf_age, gen);
+        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+        f.frame_index = 100 + t;
+        f.depth = view_of(p.depth, ro);
+        f.reprojection = view_of(p.clip, ro);
+        f.mask = view_of(p.mask, gen);
+        std::memcpy(f.jitter, inputs[t].desc.jitter, sizeof f.jitter);
+        std::memcpy(f.prev_jitter, inputs[t].desc.prev_jitter, sizeof f.prev_jitter);
+        f.channel_count = 2;
+        f.channels = ch;
+        f.stats_buffer = stats.buffer;
+        f.stats_offset = stats_stride * t;
+        f.command_buffer = cmd;
+        auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
+        list.buffer = lists.buffer;
+        list.offset = list_stride * t;
+        if (t == 0) EXPECT_EQ(rrc_vulkan_record_resolve(ctx, &f), RRC_ERROR_INVALID_ARGUMENT) << "resolve before any classify";
+        ASSERT_EQ(rrc_vulkan_record_classify(ctx, &f, &list), RRC_SUCCESS) << rrc_last_error();
+        auto wrong = f;
+        wrong.frame_index += 1;
+        EXPECT_EQ(rrc_vulkan_record_resolve(ctx, &wrong), RRC_ERROR_INVALID_ARGUMENT) << "resolve of another frame index";
+        ASSERT_EQ(rrc_vulkan_record_resolve(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+    }
+    host.submit_and_wait(cmd);  // the one wait
+
+    for (int t = 0; t < N; ++t) {
+        SCOPED_TRACE("frame " + std::to_string(t));
+        PerFrame& p = fr[t];
+        const Split& e = expected[t];
+        const uint32_t* words = reinterpret_cast<const uint32_t*>(static_cast<const unsigned char*>(lists.mapped) + list_stride * t);
+        const uint32_t count = words[RRC_QUAD_LIST_COUNT];
+        EXPECT_EQ(count, e.quads.size());
+        EXPECT_EQ(words[RRC_QUAD_LIST_DISPATCH], (count + RRC_QUADS_PER_GROUP - 1) / RRC_QUADS_PER_GROUP);
+        EXPECT_EQ(words[RRC_QUAD_LIST_DISPATCH + 1], 1u);
+        EXPECT_EQ(words[RRC_QUAD_LIST_DISPATCH + 2], 1u);
+        EXPECT_EQ(std::set<uint32_t>(words + RRC_QUAD_LIST_FIRST_QUAD, words + RRC_QUAD_LIST_FIRST_QUAD + count), e.quads);
+        rrc_vulkan_frame_stats s;
+        std::memcpy(&s, static_cast<const unsigned char*>(stats.mapped) + stats_stride * t, sizeof s);
+        EXPECT_EQ(s.hits, e.stats.hits);
+        EXPECT_EQ(s.misses, e.stats.misses);
+        EXPECT_EQ(s.background, e.stats.background);
+        EXPECT_EQ(s.refreshed, e.refreshed);
+        EXPECT_EQ(s.invalid_samples, e.stats.invalid_samples);
+        EXPECT_EQ(s.invalid_geometry, e.stats.invalid_geometry);
+        EXPECT_EQ(s.pixels, (uint32_t)(W * H));
+        EXPECT_EQ(as<uint8_t>(host.download(p.mask, gen)), e.mask);
+        EXPECT_EQ(as<float>(host.download(p.shade_out, gen)), e.shade);
+        EXPECT_EQ(as<float>(host.download(p.pcf_out, gen)), e.pcf);
+        EXPECT_EQ(as<uint16_t>(host.download(p.shade_age, gen)), e.shade_age);
+        EXPECT_EQ(as<uint16_t>(host.download(p.pcf_age, gen)), e.pcf_age);
+    }
+    rrc_context_destroy(ctx);
+    for (PerFrame& p : fr)
+        for (HostImage* img : {&p.depth, &p.clip, &p.shade_in, &p.pcf_in, &p.shade_out, &p.pcf_out, &p.mask, &p.shade_age, &p.pcf_age})
+            host.destroy(*img);
+    static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
+    static_cast<rrc_host::VulkanBootstrap&>(host).destroy(lists);
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
+}
+
+}  // namespace
