@@ -81,6 +81,29 @@ std::vector<DescCase> desc_cases() {
         {"blend", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
         {"filter", [](D&, C& c) { c[0].filter = 9; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].filter"},
         {"age_cap", [](D&, C& c) { c[0].age_cap = RRC_MAX_AGE_CAP + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].age_cap"},
+        // The shading cache (0.3): channel 0 made REUSE where a case needs one.
+        {"reuse_with_confidence", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].confidence = 1; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0]"},
+        {"refresh_policy", [](D& d, C& c) { c[0].blend = RRC_BLEND_REUSE, d.refresh_policy = 3, d.refresh_period = 4; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_policy"},
+        {"refresh_without_reuse", [](D& d, C&) { d.refresh_policy = RRC_REFRESH_RANDOM, d.refresh_period = 4; }, RRC_ERROR_INVALID_ARGUMENT,
+         "desc.refresh_policy"},
+        {"refresh_period_zero", [](D& d, C& c) { c[0].blend = RRC_BLEND_REUSE, d.refresh_policy = RRC_REFRESH_RANDOM; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_period"},
+        {"refresh_period_large", [](D& d, C& c) { c[0].blend = RRC_BLEND_REUSE, d.refresh_policy = RRC_REFRESH_RANDOM, d.refresh_period = RRC_MAX_REFRESH_PERIOD + 1; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_period"},
+        {"refresh_period_without_policy", [](D& d, C& c) { c[0].blend = RRC_BLEND_REUSE, d.refresh_period = 4; }, RRC_ERROR_INVALID_ARGUMENT,
+         "desc.refresh_period"},
+        {"refresh_tiles_product", [](D& d, C& c) {
+             c[0].blend = RRC_BLEND_REUSE, d.refresh_policy = RRC_REFRESH_TILED, d.refresh_period = 8, d.refresh_tiles[0] = 3, d.refresh_tiles[1] = 2;
+         }, RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_tiles"},
+        {"refresh_tiles_random", [](D& d, C& c) {
+             c[0].blend = RRC_BLEND_REUSE, d.refresh_policy = RRC_REFRESH_RANDOM, d.refresh_period = 4, d.refresh_tiles[0] = 2, d.refresh_tiles[1] = 2;
+         }, RRC_ERROR_INVALID_ARGUMENT, "desc.refresh_tiles"},
+        {"lifetime_without_reuse", [](D& d, C&) { d.max_lifetime = 4; }, RRC_ERROR_INVALID_ARGUMENT, "desc.max_lifetime"},
+        {"lifetime_above_age_cap", [](D& d, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].age_cap = 8, d.max_lifetime = 9; },
+         RRC_ERROR_INVALID_ARGUMENT, "desc.max_lifetime"},
+        {"view_count", [](D& d, C&) { d.view_count = RRC_MAX_VIEWS + 1; }, RRC_ERROR_INVALID_ARGUMENT, "desc.view_count"},
         // A base struct in a chain (0.2 rule 5): INVALID_STRUCT.
         {"channel_next", [](D&, C& c) { c[1].next = &c[0]; }, RRC_ERROR_INVALID_STRUCT, "channels[1].next"},
     };
