@@ -158,6 +158,23 @@ std::vector<Target> evaluate_targets(const std::vector<Row>& rows, const Lineari
                                     fmt(" + %.1f ms memcpy)", summarize(sa->standalone.memcpy_ms).median)));
     else
         t.push_back(absent("standalone", sa_goal, "the standalone configuration at 1920x1080"));
+
+    // The shading cache (docs/PERFORMANCE.md, "The shading cache's cost").
+    const Row* cache = find(rows, "cache_1x4");
+    const std::string cache_goal = "classify + resolve / roof <= 1.6 (1080p, one REUSE rgba16f channel)";
+    if (cache && cache->config.width == 1920 && cache->config.height == 1080) {
+        std::string measured = fmt("%.3f", cache->ratio().median);
+        const Row* fused = find(rows, "cache_1x4_fused");
+        const Row* cf = find(rows, "cache_1x4_classify_fused");
+        if (fused && cf) {
+            const double classify = cf->kernel().median - fused->kernel().median;
+            measured += fmt(" (classify ~%.1f ms, resolve ~%.1f ms, ", classify, cache->kernel().median - classify) +
+                        fmt("the same channel fused %.1f ms)", fused->kernel().median);
+        }
+        t.push_back(upper_bound("shading cache", cache_goal, cache->ratio().median, 1.6, measured));
+    } else {
+        t.push_back(absent("shading cache", cache_goal, "cache_1x4 at 1920x1080"));
+    }
     return t;
 }
 

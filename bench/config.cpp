@@ -77,6 +77,10 @@ std::vector<Config> full_sweep() {
              c.shading_cache = Config::Cache::Fused;
              c.channels[0].components = 4;
          }},
+        {"cache_1x4_classify_fused", "shading_cache", [](Config& c) {
+             c.shading_cache = Config::Cache::ClassifyFused;
+             c.channels[0].components = 4;
+         }},
     };
     for (const auto& sw : switches) {
         Config c = vary(sw.name, sw.factor);
@@ -87,7 +91,7 @@ std::vector<Config> full_sweep() {
 }
 
 std::vector<std::string> short_sweep_names() {
-    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone", "cache_1x4"};
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused"};
 }
 
 std::string channels_text(const Config& c) {

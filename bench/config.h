@@ -40,7 +40,9 @@ struct Config {
     // classify + resolve (no host shader in between: the samples image holds
     // values already).  The roof is the same copy: the split moves no byte the
     // API implies beyond the fused frame's but the quad list (not counted).
-    enum class Cache { Off, Fused, Split } shading_cache = Cache::Off;
+    // ClassifyFused: classify, then the fused frame (a diagnostic: classify's
+    // cost is this row's time less Fused's; classify alone never advances history).
+    enum class Cache { Off, Fused, Split, ClassifyFused } shading_cache = Cache::Off;
 };
 
 /** Every configuration of --full, base first. */

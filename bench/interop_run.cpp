@@ -102,7 +102,7 @@ InteropBench::InteropBench(VulkanBootstrap& vk, const Config& c, const SceneInpu
     rrc_context_memory_usage(ctx_, &res_.memory_bytes);
     try {
         stats_ = vk.create_buffer(256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "bench stats");
-        if (c.shading_cache == Config::Cache::Split)
+        if (c.shading_cache == Config::Cache::Split || c.shading_cache == Config::Cache::ClassifyFused)
             quads_ = vk.create_buffer(RRC_QUAD_LIST_BYTES(c.width, c.height),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       true, "bench quad list");
@@ -166,10 +166,12 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     full_barrier(f.command_buffer);
     timer_->reset(f.command_buffer, 0);
     timer_->stamp(f.command_buffer, 0, false);
-    if (config_.shading_cache == Config::Cache::Split) {
+    if (config_.shading_cache == Config::Cache::Split || config_.shading_cache == Config::Cache::ClassifyFused) {
         auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
         list.buffer = quads_.buffer;
-        if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS || (getenv("NORESOLVE") ? rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS : rrc_vulkan_record_resolve(ctx_, &f) != RRC_SUCCESS))
+        const bool split = config_.shading_cache == Config::Cache::Split;
+        if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS ||
+            (split ? rrc_vulkan_record_resolve(ctx_, &f) : rrc_vulkan_record_frame(ctx_, &f)) != RRC_SUCCESS)
             throw std::runtime_error(std::string("rrc_vulkan_record_classify/resolve: ") + rrc_context_last_error(ctx_));
     } else if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS) {
         throw std::runtime_error(std::string("rrc_vulkan_record_frame: ") + rrc_context_last_error(ctx_));
