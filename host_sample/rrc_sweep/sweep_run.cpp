@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -290,7 +291,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
     if (!gpu.timestamps) throw std::runtime_error("rrc-sweep times every pass with timestamps; this device's queue has none");
     Clock clock;
     clock.wall = o.clock == "wall" || (o.clock == "auto" && gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
-    result.clock = clock.wall ? "wall clock of each pass's own submission, less an empty submission's" : "GPU timestamps";
+    result.clock = clock.wall ? "wall clock of each pass's own submission, less the fastest empty submission's" : "GPU timestamps";
     const std::vector<int> checkpoints = o.checkpoints();
     std::set<int> evaluated;  // frames read back: each checkpoint and the frame before it (flicker)
     for (int t : checkpoints) evaluated.insert(t - 1), evaluated.insert(t);
@@ -368,6 +369,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (int seed = 0; seed < o.seeds; ++seed) {
                 const Sampling sampling{kFirstSeed + (uint32_t)seed, run.pattern};
                 std::vector<std::vector<float>> previous(stages.size());
+                Timing empty_floor{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
                 for (int f = 0; f <= last; ++f) {
                     const FrameState state = e.begin_frame(f, run.k, sampling.seed);
                     const bool read = evaluated.count(f) != 0;
@@ -389,7 +391,12 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                         });
                         return Timing{t[1] - t[0], e.last_wall_ms};
                     };
-                    const Timing empty = timed_pass([](VkCommandBuffer) {});
+                    // The submission overhead is the fastest empty submission so far: one
+                    // slow empty submission (a load spike) must not eat a pass's time.
+                    Timing empty = timed_pass([](VkCommandBuffer) {});
+                    empty_floor.wall_ms = std::min(empty_floor.wall_ms, empty.wall_ms);
+                    empty_floor.stamps_ms = std::min(empty_floor.stamps_ms, empty.stamps_ms);
+                    empty = empty_floor;
                     std::vector<Timing> app_t, stage_t, probe_t;
                     for (const App& a : run_apps)
                         app_t.push_back(timed_pass([&](VkCommandBuffer c) {
