@@ -13,7 +13,9 @@ namespace {
 // decreases with the age n and the age saturates at the cap, so its largest
 // value is the one at n = cap: n/(n+1) for the running mean, that or lambda,
 // whichever is smaller, for the age-aware blend, lambda for the fixed one.
+// REUSE never blends: nothing to stall.
 bool stalls_in_fp16(double lambda, rrc_blend blend, unsigned cap) {
+    if (blend == RRC_BLEND_REUSE) return false;
     const double at_cap = static_cast<double>(cap) / (static_cast<double>(cap) + 1.0);
     double largest = lambda;
     if (blend == RRC_BLEND_RUNNING_MEAN) largest = at_cap;
@@ -41,6 +43,12 @@ Params resolve(const rrc_context_desc& ctx) {
     p.motion_scale[1] = no_scale ? 1.0 : ctx.motion_scale[1];
     p.nocache = ctx.use_nocache_mask != 0;
     p.object_id = ctx.use_object_id != 0;
+    p.refresh_policy = ctx.refresh_policy;
+    p.refresh_period = ctx.refresh_policy != RRC_REFRESH_NONE ? ctx.refresh_period : 1u;
+    p.refresh_tiles[0] = ctx.refresh_tiles[0];
+    p.refresh_tiles[1] = ctx.refresh_tiles[1];
+    if (p.refresh_tiles[0] == 0 && p.refresh_tiles[1] == 0) p.refresh_tiles[0] = p.refresh_period, p.refresh_tiles[1] = 1;
+    p.max_lifetime = ctx.max_lifetime;
     const bool tolerance = ctx.epsilon_scale != 0.0f || ctx.epsilon != 0.0f || ctx.tau != 0.0f;
     const bool asked = ctx.depth_test == RRC_DEPTH_TEST_ADAPTIVE ||
                        (ctx.depth_test == RRC_DEPTH_TEST_DEFAULT && !tolerance && ctx.api_version >= RRC_MAKE_VERSION(0, 2, 0));

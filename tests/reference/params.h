@@ -37,7 +37,17 @@ struct Params {
     // asked for, or the 0.2 default with no tolerance set; not plain MOTION).
     bool adaptive;
     bool object_id;  // frames carry object ids: every weighted tap must match
+    // The shading cache (docs/CONVENTIONS.md, "The shading cache").
+    rrc_refresh_policy refresh_policy;
+    unsigned refresh_period;     // n (1 without a policy)
+    unsigned refresh_tiles[2];   // TILED {gx, gy}, {0, 0} resolved to {n, 1}
+    unsigned max_lifetime;       // 0: none
     std::vector<ChannelParams> channels;
+    bool has_reuse() const {
+        for (const ChannelParams& c : channels)
+            if (c.blend == RRC_BLEND_REUSE) return true;
+        return false;
+    }
 
     // Plain MOTION on NDC depth compares linearised depths relatively.
     bool relative_test() const { return mode == RRC_DEPTH_MODE_LINEAR || source == RRC_REPROJECTION_MOTION; }

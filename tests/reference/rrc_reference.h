@@ -23,8 +23,11 @@
 //    non-finite reprojection data -> INVALID_GEOMETRY.
 //  * INVALID_SAMPLE is set whenever some channel's sample is invalid, on any
 //    pixel (background and invalid-geometry pixels included).
-//  * A "do not cache" pixel is a plain miss: no mask bit.  REFRESHED is never
-//    set (this API version has no refresh policy).
+//  * A "do not cache" pixel is a plain miss: no mask bit.
+//  * The shading cache (reference/cache.h): REFRESHED replaces HIT where a
+//    REUSE channel refreshes; accumulating channels still take the pixel as a
+//    hit.  The ages the refresh reads are the nearest texel's (flagged by
+//    near_nearest_edge where that texel may differ).
 //  * Plain MOTION with STANDARD depth and far = +inf linearises as n/(1 - z).
 #ifndef RRC_REFERENCE_H
 #define RRC_REFERENCE_H
@@ -60,7 +63,8 @@ struct ChannelResult {
 struct FrameResult {
     std::vector<uint8_t> mask;  // RRC_MASK_* bits
     std::vector<ChannelResult> channels;
-    rrc_frame_stats stats{};  // counted from mask as the library counts them
+    rrc_frame_stats stats{};  // counted from mask as the library counts them (misses exclude refreshed)
+    uint64_t refreshed = 0;   // pixels with RRC_MASK_REFRESHED
 
     // Per-pixel diagnostics (see the header comment).
     std::vector<uint8_t> near_threshold;

@@ -1,10 +1,12 @@
 // One frame of the reference: classify each pixel, run the hit test, update
 // every channel, and collect the diagnostics tests need.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "cache.h"
 #include "fetch.h"
 #include "filter.h"
 #include "hit_test.h"
@@ -98,11 +100,29 @@ void count(FrameResult& r) {
             ++r.stats.background;
         else if (m & RRC_MASK_HIT)
             ++r.stats.hits;
+        else if (m & RRC_MASK_REFRESHED)
+            ++r.refreshed;
         else
             ++r.stats.misses;
         if (m & RRC_MASK_INVALID_SAMPLE) ++r.stats.invalid_samples;
         if (m & RRC_MASK_INVALID_GEOMETRY) ++r.stats.invalid_geometry;
     }
+}
+
+// docs/CONVENTIONS.md "The shading cache": a pixel that passed the hit test
+// is refreshed when the policy picks it, when a REUSE value reached the
+// maximum lifetime, or when a REUSE history is empty there.
+bool refreshed(const Params& p, const PreviousFrame& prev, const rrc_frame_desc& frame, int i, int j, const HitTest& t) {
+    if (!p.has_reuse()) return false;
+    const int x = nearest_index(t.qx.v, p.width), y = nearest_index(t.qy.v, p.height);
+    unsigned amin = ~0u, amax = 0;
+    for (size_t c = 0; c < p.channels.size(); ++c) {
+        if (p.channels[c].blend != RRC_BLEND_REUSE) continue;
+        const unsigned a = prev.channels[c].age[(size_t)y * p.width + x];
+        amin = std::min(amin, a);
+        amax = std::max(amax, a);
+    }
+    return refresh_due(p, i, j, frame.frame_index) || amin == 0 || (p.max_lifetime > 0 && amax >= p.max_lifetime);
 }
 
 }  // namespace
@@ -146,8 +166,8 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                     bool may_hit = t.hit.value || !t.hit.sure;
                     res.near_nearest_edge[px] = may_hit && (near_edge(t.qx, p.width, scale) || near_edge(t.qy, p.height, scale));
                     if (t.hit.value) {
-                        mask |= RRC_MASK_HIT;
-                        pc = PixelCase::hit;
+                        pc = PixelCase::hit;  // the hit test passed: accumulating channels take it as a hit
+                        mask |= refreshed(p, prev, frame, i, j, t) ? RRC_MASK_REFRESHED : RRC_MASK_HIT;
                     }
                 }
             }
@@ -155,10 +175,19 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
             for (size_t c = 0; c < p.channels.size(); ++c) {
                 const ChannelParams& ch = p.channels[c];
                 Sample s = read_sample(ch, frame.channels[c], px);
-                if (!s.valid) mask |= RRC_MASK_INVALID_SAMPLE;
                 Resampled r;
                 if (pc == PixelCase::hit) r = read_previous(ch, prev.channels[c], p.width, p.height, t);
-                Update u = filter_update(ch, pc, s, r);
+                Update u;
+                if (ch.blend == RRC_BLEND_REUSE && (mask & RRC_MASK_HIT)) {
+                    // A REUSE hit keeps the resampled cached value; its sample is not read.
+                    for (unsigned k = 0; k < ch.components; ++k) u.out[k] = r.h[k];
+                    u.age = std::min(r.age + 1u, ch.age_cap);
+                } else {
+                    if (!s.valid) mask |= RRC_MASK_INVALID_SAMPLE;
+                    // REUSE: a refresh is a miss.
+                    const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;
+                    u = filter_update(ch, ch.blend == RRC_BLEND_REUSE ? reuse_case : pc, s, r);
+                }
                 ChannelResult& out = res.channels[c];
                 for (unsigned k = 0; k < ch.components; ++k) {
                     out.exact[px * ch.components + k] = u.out[k];
