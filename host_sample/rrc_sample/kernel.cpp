@@ -123,4 +123,11 @@ void ComputeKernel::dispatch(VkCommandBuffer cmd, uint32_t set, const void* push
     vkCmdDispatch(cmd, (width + 127) / 128, height, 1);
 }
 
+void ComputeKernel::dispatch_indirect(VkCommandBuffer cmd, uint32_t set, const void* push, VkBuffer buffer, VkDeviceSize offset) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &sets_.at(set), 0, nullptr);
+    if (push_bytes_) vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push);
+    vkCmdDispatchIndirect(cmd, buffer, offset);
+}
+
 }  // namespace rrc_sample

@@ -26,6 +26,8 @@ public:
     void bind_image(uint32_t set, uint32_t binding, VkImageView view, VkImageLayout layout);
     /** Binds set `set`, pushes constants, dispatches over width x height. */
     void dispatch(VkCommandBuffer cmd, uint32_t set, const void* push, uint32_t width, uint32_t height) const;
+    /** The same with the group counts read from `buffer` at `offset` (a VkDispatchIndirectCommand). */
+    void dispatch_indirect(VkCommandBuffer cmd, uint32_t set, const void* push, VkBuffer buffer, VkDeviceSize offset) const;
 
 private:
     // One descriptor of `set`: a buffer or an image.

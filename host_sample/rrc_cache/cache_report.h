@@ -1,0 +1,30 @@
+// rrc-cache's figures from the runs: medians of the per-frame times (frames
+// after the first two: the first misses everywhere, the second warms up), the
+// Amdahl bound 1/((1 - p) + p*f + c) from the baseline's shading share p, the
+// run's shaded fraction f and its classify + resolve cost c, and the
+// measured speed-up against it; written as report.md and runs.csv.
+#pragma once
+
+#include "cache_run.h"
+
+#include <string>
+#include <vector>
+
+namespace rrc_cache {
+
+struct Figures {
+    std::string name;
+    double raster_ms = 0, shade_ms = 0, rrc_ms = 0, total_ms = 0;  // medians
+    double shaded_fraction = 0, rmse = 0, hit_fraction = 0, refreshed_fraction = 0;  // means
+    double p = 0, c = 0, bound = 0, speedup = 0, of_bound = 0;  // against the baseline of the same eye count
+    bool list_matched = true;
+};
+
+/** Per run; `baseline` / `stereo_baseline`: the runs that shade every pixel (mono, two eyes). */
+std::vector<Figures> figures(const std::vector<RunResult>& runs);
+
+void write_csv(const std::string& path, const std::vector<Figures>& f);
+void write_report(const std::string& path, const std::vector<Figures>& f, const std::string& command, const std::string& device,
+                  const Settings& settings);
+
+}  // namespace rrc_cache

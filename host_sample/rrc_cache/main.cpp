@@ -1,0 +1,222 @@
+// rrc-cache: the shading cache (docs/INTEGRATION.md, "The shading cache") on
+// rrc-sample's temple scene with an 8-octave Perlin shader: frame time and
+// error against shading every pixel every frame, for each refresh policy and
+// period, with and without a maximum lifetime, and a stereo pair whose second
+// eye reuses the first eye's shading.  host_sample/rrc_cache/README.md.
+#include "cache_report.h"
+#include "cache_run.h"
+#include "png_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace rrc_cache;
+
+namespace {
+
+const char* kUsage =
+    "usage: rrc-cache [--size WxH] [--frames N] [--periods N,N,...] [--policies tiled,random] [--no-stereo]\n"
+    "                 [--validation] [--out DIR] [--no-plot]\n"
+    "Runs the temple scene with an 8-octave Perlin shader: every pixel shaded each frame (the baseline), rrc's\n"
+    "shading cache without refresh, with each policy at each period n, with and without a maximum lifetime of\n"
+    "2n frames, and a stereo pair (second eye reusing the first's shading) against shading both eyes.\n"
+    "Defaults: --size 320x180 --frames 24 --periods 1,2,4,8 --policies tiled,random --out out/cache.\n"
+    "Writes DIR/report.md, runs.csv, speedup.png (matplotlib), and cached/full/coherence/anaglyph PNGs.\n";
+
+struct Options {
+    Settings settings;
+    std::vector<uint32_t> periods{1, 2, 4, 8};
+    std::vector<rrc_refresh_policy> policies{RRC_REFRESH_TILED, RRC_REFRESH_RANDOM};
+    bool stereo = true, plot = true;
+    std::string out = "out/cache";
+};
+
+uint32_t positive(const std::string& text, const std::string& what) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(text.c_str(), &end, 10);
+    if (text.empty() || *end || v == 0 || v > 16384) throw std::invalid_argument(what + " must be a whole number in 1..16384, not \"" + text + "\"");
+    return (uint32_t)v;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "--size") {
+            const std::string v = value();
+            const size_t x = v.find('x');
+            if (x == std::string::npos) throw std::invalid_argument("--size takes WxH, not \"" + v + "\"");
+            o.settings.width = positive(v.substr(0, x), "--size width");
+            o.settings.height = positive(v.substr(x + 1), "--size height");
+        } else if (a == "--frames") {
+            o.settings.frames = (int)positive(value(), "--frames");
+            if (o.settings.frames < 4) throw std::invalid_argument("--frames must be at least 4 (two warm-up frames are not counted)");
+        } else if (a == "--periods") {
+            o.periods.clear();
+            std::stringstream ss(value());
+            for (std::string p; std::getline(ss, p, ',');) o.periods.push_back(positive(p, "--periods"));
+        } else if (a == "--policies") {
+            o.policies.clear();
+            std::stringstream ss(value());
+            for (std::string p; std::getline(ss, p, ',');) {
+                if (p == "tiled") o.policies.push_back(RRC_REFRESH_TILED);
+                else if (p == "random") o.policies.push_back(RRC_REFRESH_RANDOM);
+                else throw std::invalid_argument("--policies takes tiled and/or random, not \"" + p + "\"");
+            }
+        } else if (a == "--no-stereo") {
+            o.stereo = false;
+        } else if (a == "--no-plot") {
+            o.plot = false;
+        } else if (a == "--validation") {
+            o.settings.validation = true;
+        } else if (a == "--out") {
+            o.out = value();
+        } else {
+            throw std::invalid_argument("unknown option " + a + " (rrc-cache --help)");
+        }
+    }
+    return o;
+}
+
+std::vector<CacheConfig> configs(const Options& o) {
+    std::vector<CacheConfig> c;
+    c.push_back({"full", false});
+    c.push_back({"cache_no_refresh", true});
+    for (rrc_refresh_policy p : o.policies)
+        for (uint32_t n : o.periods)
+            for (bool lifetime : {false, true}) {
+                CacheConfig k;
+                k.name = std::string(p == RRC_REFRESH_TILED ? "tiled" : "random") + "_" + std::to_string(n) + (lifetime ? "_L" + std::to_string(2 * n) : "");
+                k.policy = p;
+                k.period = n;
+                k.lifetime = lifetime ? 2 * n : 0;
+                c.push_back(k);
+            }
+    if (o.stereo) {
+        CacheConfig full{"stereo_full", false};
+        full.stereo = true;
+        CacheConfig cache{"stereo_cache", true};
+        cache.stereo = true;
+        c.push_back(full);
+        c.push_back(cache);
+    }
+    return c;
+}
+
+uint8_t to8(float v) { return (uint8_t)std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f); }
+
+rrc_png::RgbImage picture(const std::vector<float>& rgba, const Settings& s) {
+    rrc_png::RgbImage img{(int)s.width, (int)s.height, std::vector<uint8_t>(3 * (size_t)s.width * s.height)};
+    for (size_t i = 0; i < img.rgb.size() / 3; ++i)
+        for (int k = 0; k < 3; ++k) img.rgb[3 * i + k] = to8(rgba[4 * i + k]);
+    return img;
+}
+
+// Green: reused (HIT), blue: refreshed, red: shaded (miss), black: background.
+rrc_png::RgbImage coherence(const std::vector<uint8_t>& mask, const Settings& s) {
+    rrc_png::RgbImage img{(int)s.width, (int)s.height, std::vector<uint8_t>(3 * mask.size(), 0)};
+    for (size_t i = 0; i < mask.size(); ++i) {
+        uint8_t* p = &img.rgb[3 * i];
+        if (mask[i] & RRC_MASK_BACKGROUND) continue;
+        if (mask[i] & RRC_MASK_REFRESHED) p[2] = 230;
+        else if (mask[i] & RRC_MASK_HIT) p[1] = 200;
+        else p[0] = 230;
+    }
+    return img;
+}
+
+// Red from the second (left) eye, green and blue from the first (right) eye.
+rrc_png::RgbImage anaglyph(const std::vector<float>& left, const std::vector<float>& right, const Settings& s) {
+    rrc_png::RgbImage img{(int)s.width, (int)s.height, std::vector<uint8_t>(3 * (size_t)s.width * s.height)};
+    for (size_t i = 0; i < img.rgb.size() / 3; ++i) {
+        const float l = 0.3f * left[4 * i] + 0.59f * left[4 * i + 1] + 0.11f * left[4 * i + 2];
+        img.rgb[3 * i] = to8(l);
+        img.rgb[3 * i + 1] = to8(right[4 * i + 1]);
+        img.rgb[3 * i + 2] = to8(right[4 * i + 2]);
+    }
+    return img;
+}
+
+void progress(int frame, int frames) {
+    if (frame == frames || frame % 8 == 0) std::fprintf(stderr, "  frame %d/%d\n", frame, frames);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    try {
+        o = parse(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rrc-cache: %s\n", e.what());
+        return 2;
+    }
+    try {
+        fs::create_directories(o.out);
+        std::string command = "rrc-cache";
+        for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+        Bench bench(o.settings);
+        const std::vector<CacheConfig> cs = configs(o);
+        std::vector<RunResult> runs;
+        uint64_t messages = 0;
+        for (size_t i = 0; i < cs.size(); ++i) {
+            std::fprintf(stderr, "rrc-cache: [%zu/%zu] %s\n", i + 1, cs.size(), cs[i].name.c_str());
+            runs.push_back(bench.run(cs[i], progress));
+            messages += runs.back().validation_messages;
+            if (!runs.back().list_matched) std::fprintf(stderr, "rrc-cache: %s: the miss shader did not shade exactly the listed quads\n", cs[i].name.c_str());
+        }
+        const std::vector<Figures> f = figures(runs);
+        write_csv((fs::path(o.out) / "runs.csv").string(), f);
+        write_report((fs::path(o.out) / "report.md").string(), f, command, bench.device_name(), o.settings);
+        for (const RunResult& r : runs) {
+            if (r.config.name == "full") rrc_png::write_png((fs::path(o.out) / "full.png").string(), picture(r.image, o.settings));
+            if (r.config.name == "tiled_4" || (r.config.cache && r.config.policy == RRC_REFRESH_TILED && !r.config.lifetime &&
+                                               !fs::exists(fs::path(o.out) / "cached.png"))) {
+                rrc_png::write_png((fs::path(o.out) / "cached.png").string(), picture(r.image, o.settings));
+                rrc_png::write_png((fs::path(o.out) / "coherence.png").string(), coherence(r.mask, o.settings));
+            }
+            if (r.config.name == "stereo_cache") {
+                rrc_png::write_png((fs::path(o.out) / "anaglyph.png").string(), anaglyph(r.image_left, r.image, o.settings));
+                rrc_png::write_png((fs::path(o.out) / "coherence_second_eye.png").string(), coherence(r.mask_left, o.settings));
+            }
+        }
+        if (o.plot) {
+            const std::string cmd = std::string(RRC_CACHE_PYTHON) + " " + RRC_CACHE_PLOT_PY + " " + (fs::path(o.out) / "runs.csv").string() + " " +
+                                    (fs::path(o.out) / "speedup.png").string();
+            if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rrc-cache: the plot was not drawn (%s)\n", cmd.c_str());
+        }
+        std::FILE* rep = std::fopen((fs::path(o.out) / "report.md").string().c_str(), "r");
+        if (rep) {
+            char buf[4096];
+            size_t k;
+            while ((k = std::fread(buf, 1, sizeof buf, rep)) > 0) std::fwrite(buf, 1, k, stdout);
+            std::fclose(rep);
+        }
+        bool matched = true;
+        for (const RunResult& r : runs) matched = matched && r.list_matched;
+        if (messages) {
+            std::fprintf(stderr, "rrc-cache: %llu validation messages; the first:\n", (unsigned long long)messages);
+            const std::vector<std::string> m = bench.validation_messages();
+            for (size_t i = 0; i < m.size() && i < 3; ++i) std::fprintf(stderr, "  %s\n", m[i].c_str());
+        }
+        return matched && messages == 0 ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rrc-cache: %s\n", e.what());
+        return 1;
+    }
+}
