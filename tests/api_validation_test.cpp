@@ -305,3 +305,74 @@ TEST(Api, UnknownDeviceNameFailsClearly) {
 }
 
 }  // namespace
+
+// The shading cache's calls (0.3): bad input is refused with its code and
+// field, writes nothing, and leaves the cache as it was.
+TEST(Api, ShadingCacheCallsRefuseBadInputAndKeepTheCache) {
+    const uint32_t W = 8, H = 6, N = W * H;
+    std::vector<rrc_channel_desc> channels = {channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
+    rrc_context_desc d = context_desc(W, H, channels);
+    d.reprojection = RRC_REPROJECTION_CAMERA;
+    Context ctx(d);
+    ASSERT_TRUE(ctx);
+    std::vector<float> depth(N, 0.5f), s(N);
+    for (uint32_t i = 0; i < N; ++i) s[i] = (float)i;
+    rrc_channel_input in = channel_input(s.data());
+    rrc_frame_desc f = frame_desc();
+    f.depth = depth.data();
+    for (int i = 0; i < 16; ++i) f.view_proj[i] = f.prev_view_proj[i] = (i % 5 == 0) ? 1.0 : 0.0;
+    rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+    rd.channel_count = 1;
+    rd.channels = &in;
+
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &rd, nullptr), RRC_ERROR_INVALID_ARGUMENT) << "nothing classified yet";
+    EXPECT_NE(std::string(rrc_last_error()).find("classify"), std::string::npos) << rrc_last_error();
+
+    // First frame: every pixel misses, every quad (4 x 3) is listed.
+    std::vector<uint8_t> mask(N, 0xEE);
+    std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(W, H) / 4, 0xEEEEEEEEu);
+    rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+    co.mask = mask.data();
+    co.quads = quads.data();
+    co.quad_capacity = 11;  // one short
+    co.quad_count = 77;
+    EXPECT_EQ(rrc_frame_classify(ctx.get(), &f, &co), RRC_ERROR_SIZE_MISMATCH);
+    EXPECT_NE(std::string(rrc_last_error()).find("quad_capacity"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(co.quad_count, 77u) << "nothing written";
+    EXPECT_EQ(mask[0], 0xEE);
+    EXPECT_EQ(quads[0], 0xEEEEEEEEu);
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &rd, nullptr), RRC_ERROR_INVALID_ARGUMENT) << "a refused classify classifies nothing";
+
+    co.quad_capacity = 12;
+    rrc_classify_output bad = co;
+    bad.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
+    EXPECT_EQ(rrc_frame_classify(ctx.get(), &f, &bad), RRC_ERROR_INVALID_STRUCT);
+    rrc_frame_desc no_depth = f;
+    no_depth.depth = nullptr;
+    EXPECT_EQ(rrc_frame_classify(ctx.get(), &no_depth, &co), RRC_ERROR_MISSING_INPUT);
+    ASSERT_EQ(rrc_frame_classify(ctx.get(), &f, &co), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(co.quad_count, 12u);
+
+    rrc_resolve_desc wrong = rd;
+    wrong.channel_count = 2;
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &wrong, nullptr), RRC_ERROR_SIZE_MISMATCH);
+    rrc_channel_input no_samples = in;
+    no_samples.samples = nullptr;
+    wrong = rd;
+    wrong.channels = &no_samples;
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &wrong, nullptr), RRC_ERROR_MISSING_INPUT);
+    ASSERT_EQ(rrc_frame_resolve(ctx.get(), &rd, nullptr), RRC_SUCCESS) << "the classification survives refused resolves: " << rrc_last_error();
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &rd, nullptr), RRC_ERROR_INVALID_ARGUMENT) << "one resolve a classification";
+
+    // The next frame hits everywhere and keeps the first frame's values.
+    std::vector<float> other(N, -5.0f);
+    rrc_channel_input in2 = channel_input(other.data());
+    f.frame_index = 1;
+    f.channel_count = 1;
+    f.channels = &in2;
+    const FrameResult r = ctx.run(f);
+    for (uint32_t i = 0; i < N; ++i) {
+        EXPECT_EQ(r.mask[i], (uint8_t)RRC_MASK_HIT);
+        EXPECT_EQ(r.values[0][i], s[i]) << "a REUSE hit keeps the cached value";
+    }
+}
