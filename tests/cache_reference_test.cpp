@@ -252,14 +252,15 @@ TEST(CacheRefresh, EveryPixelOnceEveryNFramesOnAStaticScene) {
         for (uint32_t n : {1u, 2u, 4u, 8u})
             for (uint64_t stride : {uint64_t(1), uint64_t(3)}) {
                 SCOPED_TRACE("policy " + std::to_string(policy) + " n " + std::to_string(n) + " stride " + std::to_string(stride));
-                std::vector<rrc_channel_desc> channels{channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
+                std::vector<rrc_channel_desc> channels{
+                    channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
                 rrc_context_desc d = flat_desc(channels);
                 d.refresh_policy = policy;
                 d.refresh_period = n;
                 Context ctx(d);
                 ASSERT_TRUE(ctx);
                 Flat flat;
-                const uint64_t t0 = (1ull << 32) - 2;  // indices cross 2^32
+                const uint64_t t0 = (1ull << 32) - 2;    // indices cross 2^32
                 ctx.run(flat.frame(t0 - stride, 0, 0));  // fills the cache
                 const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
                 std::vector<int> count(kN, 0);
@@ -324,7 +325,7 @@ TEST(CacheRefresh, MaxLifetimeRefreshesAtTheStatedAgeUnderACameraPan) {
             ASSERT_EQ(r.age[0][i], ref.channels[0].age[i]);
             ASSERT_LE(r.age[0][i], L) << "no value is used in more than L frames";
             if (t == 0 || x >= kW - 3) continue;  // the first frame, and what the pan brings in, miss
-            const int src = i + 3;                  // where the pan brings this pixel's surface from
+            const int src = i + 3;                // where the pan brings this pixel's surface from
             const bool due = rrc_ref::refresh_due(p, x, y, (uint64_t)t);
             if (r.mask[i] & RRC_MASK_HIT) {
                 EXPECT_LT(previous_age[src], L);

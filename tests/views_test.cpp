@@ -15,8 +15,9 @@ constexpr uint32_t W = 16, H = 8, N = W * H;
 constexpr int kShift = 2;  // pixels between the two views
 
 struct Pair {
-    std::vector<rrc_channel_desc> channels{rrc_test::channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST),
-                                           rrc_test::channel("avg", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED)};
+    std::vector<rrc_channel_desc> channels{
+        rrc_test::channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST),
+        rrc_test::channel("avg", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED)};
     rrc_context_desc desc() const {
         rrc_context_desc d = rrc_test::context_desc(W, H, channels);
         d.reprojection = RRC_REPROJECTION_CAMERA;
@@ -122,7 +123,8 @@ TEST(Views, AViewWithoutAFrameGivesNothingAndBadViewsAreRefused) {
         f.view = bad.first;
         f.reproject_from = bad.second;
         EXPECT_EQ(rrc_frame_run(ctx.get(), &f, nullptr), RRC_ERROR_INVALID_ARGUMENT);
-        EXPECT_NE(std::string(rrc_last_error()).find(bad.first ? "frame.view" : "frame.reproject_from"), std::string::npos) << rrc_last_error();
+        EXPECT_NE(std::string(rrc_last_error()).find(bad.first ? "frame.view" : "frame.reproject_from"), std::string::npos)
+            << rrc_last_error();
     }
     rrc_context_desc d = pair.desc();
     d.view_count = RRC_MAX_VIEWS + 1;

@@ -44,12 +44,15 @@ Figures measure(const RunResult& r) {
 
 std::vector<Figures> figures(const std::vector<RunResult>& runs) {
     std::vector<Figures> out;
-    const Figures* base[2] = {nullptr, nullptr};
     for (const RunResult& r : runs) out.push_back(measure(r));
-    for (size_t i = 0; i < runs.size(); ++i)
-        if (!runs[i].config.cache) base[runs[i].config.stereo ? 1 : 0] = &out[i];
+    // The baseline of a run: the one shading every pixel with the same eyes and sub-frames.
+    auto baseline = [&](const CacheConfig& c) -> const Figures* {
+        for (size_t j = 0; j < runs.size(); ++j)
+            if (!runs[j].config.cache && runs[j].config.stereo == c.stereo && runs[j].config.subframes == c.subframes) return &out[j];
+        return nullptr;
+    };
     for (size_t i = 0; i < runs.size(); ++i) {
-        const Figures* b = base[runs[i].config.stereo ? 1 : 0];
+        const Figures* b = baseline(runs[i].config);
         if (!b || b->total_ms <= 0) continue;
         Figures& f = out[i];
         f.p = b->shade_ms / b->total_ms;
@@ -64,12 +67,13 @@ std::vector<Figures> figures(const std::vector<RunResult>& runs) {
 void write_csv(const std::string& path, const std::vector<Figures>& fs) {
     std::ofstream o(path);
     if (!o) throw std::runtime_error("rrc-cache: cannot write " + path);
-    o << "name,raster_ms,shade_ms,rrc_ms,total_ms,shaded_fraction,rmse,hit_fraction,refreshed_fraction,p,c,amdahl_bound,speedup,of_bound,list_matched\n";
+    o << "name,raster_ms,shade_ms,rrc_ms,total_ms,shaded_fraction,rmse,hit_fraction,refreshed_fraction,p,c,amdahl_bound,speedup,of_bound,"
+         "list_matched\n";
     for (const Figures& f : fs) {
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.4f,%.5f,%.6f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%d\n", f.name.c_str(), f.raster_ms,
-                      f.shade_ms, f.rrc_ms, f.total_ms, f.shaded_fraction, f.rmse, f.hit_fraction, f.refreshed_fraction, f.p, f.c, f.bound,
-                      f.speedup, f.of_bound, f.list_matched ? 1 : 0);
+        std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.4f,%.5f,%.6f,%.5f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%d\n", f.name.c_str(),
+                      f.raster_ms, f.shade_ms, f.rrc_ms, f.total_ms, f.shaded_fraction, f.rmse, f.hit_fraction, f.refreshed_fraction, f.p,
+                      f.c, f.bound, f.speedup, f.of_bound, f.list_matched ? 1 : 0);
         o << line;
     }
 }
@@ -91,7 +95,8 @@ void write_report(const std::string& path, const std::vector<Figures>& fs, const
          "speed-up | of bound | miss shader = list |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Figures& f : fs) {
         char line[640];
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.1f%% | %.1f%% | %.4f | %.3f | %.3f | %.2f | %.2f | %.2f | %s |\n",
+        std::snprintf(line, sizeof line,
+                      "| %s | %.2f | %.2f | %.2f | %.2f | %.3f | %.1f%% | %.1f%% | %.4f | %.3f | %.3f | %.2f | %.2f | %.2f | %s |\n",
                       f.name.c_str(), f.raster_ms, f.shade_ms, f.rrc_ms, f.total_ms, f.shaded_fraction, 100 * f.hit_fraction,
                       100 * f.refreshed_fraction, f.rmse, f.p, f.c, f.bound, f.speedup, f.of_bound, f.list_matched ? "yes" : "NO");
         o << line;

@@ -14,9 +14,9 @@ namespace rrc_cache {
 
 struct Figures {
     std::string name;
-    double raster_ms = 0, shade_ms = 0, rrc_ms = 0, total_ms = 0;  // medians
+    double raster_ms = 0, shade_ms = 0, rrc_ms = 0, total_ms = 0;                    // medians
     double shaded_fraction = 0, rmse = 0, hit_fraction = 0, refreshed_fraction = 0;  // means
-    double p = 0, c = 0, bound = 0, speedup = 0, of_bound = 0;  // against the baseline of the same eye count
+    double p = 0, c = 0, bound = 0, speedup = 0, of_bound = 0;                       // against the baseline of the same eye count
     bool list_matched = true;
 };
 

@@ -40,7 +40,8 @@ void second_eye(const rrc_sample::Scene& scene, const rrc_sample::RenderSettings
     const glm::vec3 up(0, 1, 0), right = glm::normalize(glm::cross(c.target - c.eye, up));
     const glm::vec3 shift = -right * separation;
     const glm::mat4 view = glm::lookAt(c.eye + shift, c.target + shift, up);
-    const glm::mat4 vp = rrc_sample::reversed_perspective(c.fov_y, (float)rs.width / (float)rs.height, scene.near_plane, scene.far_plane) * view;
+    const glm::mat4 vp =
+        rrc_sample::reversed_perspective(c.fov_y, (float)rs.width / (float)rs.height, scene.near_plane, scene.far_plane) * view;
     state.uniforms.view_proj = vp;
     state.uniforms.inv_view_proj = glm::inverse(vp);
     // "Previous" is the first eye at the same instant: PREV_CLIP of the same surface point in its view.
@@ -59,15 +60,17 @@ struct Bench::Impl {
           render(make_render(s)),
           gpu_scene(gpu, scene),
           gbuffer(gpu, gpu_scene, s.width, s.height) {
-        const VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        const VkImageUsageFlags storage =
+            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         shaded = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, storage, "shaded (rrc samples)");
         truth = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, storage, "every pixel shaded");
         out = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, storage, "rrc output");
-        mask = gpu.create_image(VK_FORMAT_R8_UINT, s.width, s.height, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "rrc mask");
+        mask = gpu.create_image(VK_FORMAT_R8_UINT, s.width, s.height,
+                                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "rrc mask");
         gpu.init_storage_images({&shaded, &truth, &out, &mask});
-        list = gpu.create_buffer(RRC_QUAD_LIST_BYTES(s.width, s.height),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 true, "quad list");
+        list = gpu.create_buffer(
+            RRC_QUAD_LIST_BYTES(s.width, s.height),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "quad list");
         counter = gpu.create_buffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, "shaded quads");
         const VkDescriptorType TEX = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                                BUF = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -195,75 +198,96 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
     }
     const rrc_sample::GBuffer& g = m.gbuffer.images();
 
+    // Motion blur: sub-frame k of frame t is time (t + k / S) / fps, i.e. index t*S + k at S times the rate.
+    const uint32_t S = std::max(config.subframes, 1u);
+    rrc_sample::RenderSettings render = m.render;
+    render.fps *= (float)S;
     for (int t = 0; t < s.frames; ++t) {
         FrameRecord rec;
-        rrc_sample::FrameState state = rrc_sample::make_frame_state(m.scene, m.render, t);
-        const glm::mat4 first_eye_vp = state.uniforms.view_proj;
-        for (int eye = 0; eye < (config.stereo ? 2 : 1); ++eye) {
-            if (eye == 1) second_eye(m.scene, m.render, t, s.eye_separation, state, first_eye_vp);
-            m.gpu_scene.update(state);
-            rec.raster_ms += m.timed([&](VkCommandBuffer c) { m.gbuffer.record(c); });
-            if (!config.cache) {
-                rec.shade_ms += m.timed([&](VkCommandBuffer c) { m.full.dispatch(c, 0, push, s.width, s.height); });
-                rec.shaded_fraction += 1.0;
+        std::vector<double> blurred(S > 1 ? 4 * n : 0, 0.0), blurred_truth(S > 1 ? 4 * n : 0, 0.0);
+        for (uint32_t sub = 0; sub < S; ++sub) {
+            const int index = t * (int)S + (int)sub;
+            rrc_sample::FrameState state = rrc_sample::make_frame_state(m.scene, render, index);
+            const glm::mat4 first_eye_vp = state.uniforms.view_proj;
+            for (int eye = 0; eye < (config.stereo ? 2 : 1); ++eye) {
+                if (eye == 1) second_eye(m.scene, render, index, s.eye_separation, state, first_eye_vp);
+                m.gpu_scene.update(state);
+                rec.raster_ms += m.timed([&](VkCommandBuffer c) { m.gbuffer.record(c); });
+                if (!config.cache) {
+                    rec.shade_ms += m.timed([&](VkCommandBuffer c) { m.full.dispatch(c, 0, push, s.width, s.height); });
+                    rec.shaded_fraction += 1.0;
+                    rec.pixels += n;
+                    if (t + 1 == s.frames && sub + 1 == S) (eye == 0 ? result.image : result.image_left) = m.read_rgba(m.shaded);
+                    continue;
+                }
+                rrc_vulkan_channel_images ci = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+                ci.samples = rrc_host::vulkan_image(m.shaded, kGeneral);
+                ci.output = rrc_host::vulkan_image(m.out, kGeneral);
+                rrc_vulkan_frame_desc f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+                f.frame_index = (uint64_t)index;
+                f.depth = rrc_host::vulkan_image(g.depth, kRO);
+                f.reprojection = rrc_host::vulkan_image(g.prev_clip, kRO);
+                f.mask = rrc_host::vulkan_image(m.mask, kGeneral);
+                f.channel_count = 1;
+                f.channels = &ci;
+                f.view = (uint32_t)eye;
+                f.reproject_from = eye == 1 ? 1u : 0u;  // the second eye: the first eye's frame just made
+                rrc_vulkan_quad_list list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
+                list.buffer = m.list.buffer;
+                auto record = [&](VkCommandBuffer c, bool classify) {
+                    f.command_buffer = c;
+                    const rrc_result r = classify ? rrc_vulkan_record_classify(ctx, &f, &list) : rrc_vulkan_record_resolve(ctx, &f);
+                    if (r != RRC_SUCCESS) throw std::runtime_error(std::string("rrc-cache: ") + rrc_context_last_error(ctx));
+                };
+                rec.classify_ms += m.timed([&](VkCommandBuffer c) { record(c, true); });
+                std::memset(m.counter.mapped, 0, 16);  // host-coherent, written before the submission
+                rec.shade_ms +=
+                    m.timed([&](VkCommandBuffer c) { m.miss.dispatch_indirect(c, 0, push, m.list.buffer, 4 * RRC_QUAD_LIST_DISPATCH); });
+                rec.resolve_ms += m.timed([&](VkCommandBuffer c) { record(c, false); });
+                const uint32_t* words = static_cast<const uint32_t*>(m.list.mapped);
+                const uint32_t listed = words[RRC_QUAD_LIST_COUNT], shaded_quads = *static_cast<const uint32_t*>(m.counter.mapped);
+                result.list_matched = result.list_matched && listed == shaded_quads;
+                rec.listed += listed;
+                rec.shaded_quads += shaded_quads;
+                uint64_t shaded_pixels = 0;
+                for (uint32_t i = 0; i < listed; ++i) {
+                    const uint32_t q = words[RRC_QUAD_LIST_FIRST_QUAD + i], x = 2 * (q & 0xFFFF), y = 2 * (q >> 16);
+                    shaded_pixels += (uint64_t)std::min(2u, s.width - x) * std::min(2u, s.height - y);
+                }
+                rec.shaded_fraction += (double)shaded_pixels / (double)n;
+                // The target: this frame shaded everywhere (untimed).
+                m.submit([&](VkCommandBuffer c) { m.full.dispatch(c, 1, push, s.width, s.height); });
+                const std::vector<float> img = m.read_rgba(m.out), tru = m.read_rgba(m.truth);
+                const std::vector<unsigned char> mk = m.gpu.download(m.mask, n, kGeneral);
+                if (S > 1) {  // the blurred frame's error, after its last sub-frame
+                    for (size_t i = 0; i < 4 * n; ++i) blurred[i] += img[i] / (double)S, blurred_truth[i] += tru[i] / (double)S;
+                } else {
+                    double se = 0;
+                    for (size_t i = 0; i < n; ++i)
+                        for (int k = 0; k < 3; ++k) se += (img[4 * i + k] - tru[4 * i + k]) * (double)(img[4 * i + k] - tru[4 * i + k]);
+                    rec.rmse += std::sqrt(se / (3.0 * n));
+                }
+                for (unsigned char b : mk) {
+                    rec.hits += (b & RRC_MASK_HIT) ? 1 : 0;
+                    rec.refreshed += (b & RRC_MASK_REFRESHED) ? 1 : 0;
+                }
                 rec.pixels += n;
-                if (t + 1 == s.frames) (eye == 0 ? result.image : result.image_left) = m.read_rgba(m.shaded);
-                continue;
-            }
-            rrc_vulkan_channel_images ci = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-            ci.samples = rrc_host::vulkan_image(m.shaded, kGeneral);
-            ci.output = rrc_host::vulkan_image(m.out, kGeneral);
-            rrc_vulkan_frame_desc f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
-            f.frame_index = (uint64_t)t;
-            f.depth = rrc_host::vulkan_image(g.depth, kRO);
-            f.reprojection = rrc_host::vulkan_image(g.prev_clip, kRO);
-            f.mask = rrc_host::vulkan_image(m.mask, kGeneral);
-            f.channel_count = 1;
-            f.channels = &ci;
-            f.view = (uint32_t)eye;
-            f.reproject_from = eye == 1 ? 1u : 0u;  // the second eye: the first eye's frame just made
-            rrc_vulkan_quad_list list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
-            list.buffer = m.list.buffer;
-            auto record = [&](VkCommandBuffer c, bool classify) {
-                f.command_buffer = c;
-                const rrc_result r = classify ? rrc_vulkan_record_classify(ctx, &f, &list) : rrc_vulkan_record_resolve(ctx, &f);
-                if (r != RRC_SUCCESS) throw std::runtime_error(std::string("rrc-cache: ") + rrc_context_last_error(ctx));
-            };
-            rec.classify_ms += m.timed([&](VkCommandBuffer c) { record(c, true); });
-            std::memset(m.counter.mapped, 0, 16);  // host-coherent, written before the submission
-            rec.shade_ms += m.timed([&](VkCommandBuffer c) { m.miss.dispatch_indirect(c, 0, push, m.list.buffer, 4 * RRC_QUAD_LIST_DISPATCH); });
-            rec.resolve_ms += m.timed([&](VkCommandBuffer c) { record(c, false); });
-            const uint32_t* words = static_cast<const uint32_t*>(m.list.mapped);
-            const uint32_t listed = words[RRC_QUAD_LIST_COUNT], shaded_quads = *static_cast<const uint32_t*>(m.counter.mapped);
-            result.list_matched = result.list_matched && listed == shaded_quads;
-            rec.listed += listed;
-            rec.shaded_quads += shaded_quads;
-            uint64_t shaded_pixels = 0;
-            for (uint32_t i = 0; i < listed; ++i) {
-                const uint32_t q = words[RRC_QUAD_LIST_FIRST_QUAD + i], x = 2 * (q & 0xFFFF), y = 2 * (q >> 16);
-                shaded_pixels += (uint64_t)std::min(2u, s.width - x) * std::min(2u, s.height - y);
-            }
-            rec.shaded_fraction += (double)shaded_pixels / (double)n;
-            // The target: this frame shaded everywhere (untimed).
-            m.submit([&](VkCommandBuffer c) { m.full.dispatch(c, 1, push, s.width, s.height); });
-            const std::vector<float> img = m.read_rgba(m.out), tru = m.read_rgba(m.truth);
-            const std::vector<unsigned char> mk = m.gpu.download(m.mask, n, kGeneral);
-            double se = 0;
-            for (size_t i = 0; i < n; ++i)
-                for (int k = 0; k < 3; ++k) se += (img[4 * i + k] - tru[4 * i + k]) * (double)(img[4 * i + k] - tru[4 * i + k]);
-            rec.rmse += std::sqrt(se / (3.0 * n));
-            for (unsigned char b : mk) {
-                rec.hits += (b & RRC_MASK_HIT) ? 1 : 0;
-                rec.refreshed += (b & RRC_MASK_REFRESHED) ? 1 : 0;
-            }
-            rec.pixels += n;
-            if (t + 1 == s.frames) {
-                (eye == 0 ? result.image : result.image_left) = img;
-                (eye == 0 ? result.mask : result.mask_left) = std::vector<uint8_t>(mk.begin(), mk.end());
-                if (eye == 0) result.truth = tru;
+                if (t + 1 == s.frames && sub + 1 == S) {
+                    (eye == 0 ? result.image : result.image_left) = img;
+                    (eye == 0 ? result.mask : result.mask_left) = std::vector<uint8_t>(mk.begin(), mk.end());
+                    if (eye == 0) result.truth = tru;
+                }
             }
         }
-        if (config.stereo) rec.rmse *= 0.5, rec.shaded_fraction *= 0.5;
+        if (S > 1 && config.cache) {
+            double se = 0;
+            for (size_t i = 0; i < n; ++i)
+                for (int k = 0; k < 3; ++k)
+                    se += (blurred[4 * i + k] - blurred_truth[4 * i + k]) * (blurred[4 * i + k] - blurred_truth[4 * i + k]);
+            rec.rmse = std::sqrt(se / (3.0 * n));
+        }
+        if (config.stereo) rec.rmse *= 0.5;
+        rec.shaded_fraction /= (double)(S * (config.stereo ? 2 : 1));
         result.frames.push_back(rec);
         if (progress) progress(t + 1, s.frames);
     }

@@ -18,20 +18,22 @@ namespace rrc_cache {
 
 struct CacheConfig {
     std::string name;
-    bool cache = true;                      // false: shade every pixel (the baseline)
+    bool cache = true;  // false: shade every pixel (the baseline)
     rrc_refresh_policy policy = RRC_REFRESH_NONE;
-    uint32_t period = 0;                    // n
-    uint32_t lifetime = 0;                  // max_lifetime L, 0 = none
-    bool stereo = false;                    // a second eye (view 1) reusing the first eye's shading
+    uint32_t period = 0;     // n
+    uint32_t lifetime = 0;   // max_lifetime L, 0 = none
+    bool stereo = false;     // a second eye (view 1) reusing the first eye's shading
+    uint32_t subframes = 1;  // > 1: motion blur, the mean of this many sub-frames within the
+                             // frame's time, each reusing the one before (the cache at that rate)
 };
 
 struct FrameRecord {
     double raster_ms = 0, shade_ms = 0, classify_ms = 0, resolve_ms = 0;  // summed over the eyes
-    uint32_t listed = 0, shaded_quads = 0;  // rrc's count and the miss shader's own count
-    double shaded_fraction = 0;             // shaded pixels / pixels (every eye)
-    double rmse = 0;                        // of the shown frame against shading every pixel of it
+    uint32_t listed = 0, shaded_quads = 0;                                // rrc's count and the miss shader's own count
+    double shaded_fraction = 0;                                           // shaded pixels / pixels (every eye)
+    double rmse = 0;                                                      // of the shown frame against shading every pixel of it
     uint64_t hits = 0, refreshed = 0, pixels = 0;
-    double total_ms() const { return raster_ms + shade_ms + classify_ms + resolve_ms; }
+    double total_ms() const { return raster_ms + shade_ms + classify_ms + resolve_ms; }  // every eye and sub-frame
 };
 
 struct RunResult {

@@ -27,7 +27,8 @@ const char* kUsage =
     "                 [--validation] [--out DIR] [--no-plot]\n"
     "Runs the temple scene with an 8-octave Perlin shader: every pixel shaded each frame (the baseline), rrc's\n"
     "shading cache without refresh, with each policy at each period n, with and without a maximum lifetime of\n"
-    "2n frames, and a stereo pair (second eye reusing the first's shading) against shading both eyes.\n"
+    "2n frames, a stereo pair (second eye reusing the first's shading) against shading both eyes, and motion blur\n"
+    "(4 sub-frames a frame, each reusing the one before) against shading every sub-frame.\n"
     "Defaults: --size 320x180 --frames 24 --periods 1,2,4,8 --policies tiled,random --out out/cache.\n"
     "Writes DIR/report.md, runs.csv, speedup.png (matplotlib), and cached/full/coherence/anaglyph PNGs.\n";
 
@@ -42,7 +43,8 @@ struct Options {
 uint32_t positive(const std::string& text, const std::string& what) {
     char* end = nullptr;
     const unsigned long v = std::strtoul(text.c_str(), &end, 10);
-    if (text.empty() || *end || v == 0 || v > 16384) throw std::invalid_argument(what + " must be a whole number in 1..16384, not \"" + text + "\"");
+    if (text.empty() || *end || v == 0 || v > 16384)
+        throw std::invalid_argument(what + " must be a whole number in 1..16384, not \"" + text + "\"");
     return (uint32_t)v;
 }
 
@@ -74,9 +76,12 @@ Options parse(int argc, char** argv) {
             o.policies.clear();
             std::stringstream ss(value());
             for (std::string p; std::getline(ss, p, ',');) {
-                if (p == "tiled") o.policies.push_back(RRC_REFRESH_TILED);
-                else if (p == "random") o.policies.push_back(RRC_REFRESH_RANDOM);
-                else throw std::invalid_argument("--policies takes tiled and/or random, not \"" + p + "\"");
+                if (p == "tiled")
+                    o.policies.push_back(RRC_REFRESH_TILED);
+                else if (p == "random")
+                    o.policies.push_back(RRC_REFRESH_RANDOM);
+                else
+                    throw std::invalid_argument("--policies takes tiled and/or random, not \"" + p + "\"");
             }
         } else if (a == "--no-stereo") {
             o.stereo = false;
@@ -101,12 +106,18 @@ std::vector<CacheConfig> configs(const Options& o) {
         for (uint32_t n : o.periods)
             for (bool lifetime : {false, true}) {
                 CacheConfig k;
-                k.name = std::string(p == RRC_REFRESH_TILED ? "tiled" : "random") + "_" + std::to_string(n) + (lifetime ? "_L" + std::to_string(2 * n) : "");
+                k.name = std::string(p == RRC_REFRESH_TILED ? "tiled" : "random") + "_" + std::to_string(n) +
+                         (lifetime ? "_L" + std::to_string(2 * n) : "");
                 k.policy = p;
                 k.period = n;
                 k.lifetime = lifetime ? 2 * n : 0;
                 c.push_back(k);
             }
+    for (bool cache : {false, true}) {  // motion blur: 4 sub-frames a frame, each reusing the one before
+        CacheConfig b{cache ? "blur4_cache" : "blur4_full", cache};
+        b.subframes = 4;
+        c.push_back(b);
+    }
     if (o.stereo) {
         CacheConfig full{"stereo_full", false};
         full.stereo = true;
@@ -133,9 +144,12 @@ rrc_png::RgbImage coherence(const std::vector<uint8_t>& mask, const Settings& s)
     for (size_t i = 0; i < mask.size(); ++i) {
         uint8_t* p = &img.rgb[3 * i];
         if (mask[i] & RRC_MASK_BACKGROUND) continue;
-        if (mask[i] & RRC_MASK_REFRESHED) p[2] = 230;
-        else if (mask[i] & RRC_MASK_HIT) p[1] = 200;
-        else p[0] = 230;
+        if (mask[i] & RRC_MASK_REFRESHED)
+            p[2] = 230;
+        else if (mask[i] & RRC_MASK_HIT)
+            p[1] = 200;
+        else
+            p[0] = 230;
     }
     return img;
 }
@@ -178,7 +192,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "rrc-cache: [%zu/%zu] %s\n", i + 1, cs.size(), cs[i].name.c_str());
             runs.push_back(bench.run(cs[i], progress));
             messages += runs.back().validation_messages;
-            if (!runs.back().list_matched) std::fprintf(stderr, "rrc-cache: %s: the miss shader did not shade exactly the listed quads\n", cs[i].name.c_str());
+            if (!runs.back().list_matched)
+                std::fprintf(stderr, "rrc-cache: %s: the miss shader did not shade exactly the listed quads\n", cs[i].name.c_str());
         }
         const std::vector<Figures> f = figures(runs);
         write_csv((fs::path(o.out) / "runs.csv").string(), f);
@@ -196,8 +211,8 @@ int main(int argc, char** argv) {
             }
         }
         if (o.plot) {
-            const std::string cmd = std::string(RRC_CACHE_PYTHON) + " " + RRC_CACHE_PLOT_PY + " " + (fs::path(o.out) / "runs.csv").string() + " " +
-                                    (fs::path(o.out) / "speedup.png").string();
+            const std::string cmd = std::string(RRC_CACHE_PYTHON) + " " + RRC_CACHE_PLOT_PY + " " +
+                                    (fs::path(o.out) / "runs.csv").string() + " " + (fs::path(o.out) / "speedup.png").string();
             if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rrc-cache: the plot was not drawn (%s)\n", cmd.c_str());
         }
         std::FILE* rep = std::fopen((fs::path(o.out) / "report.md").string().c_str(), "r");

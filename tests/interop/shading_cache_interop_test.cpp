@@ -119,7 +119,8 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
     const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
     const VkDeviceSize stats_stride = 256, list_stride = (RRC_QUAD_LIST_BYTES(W, H) + 255) / 256 * 256;
-    rrc_host::Buffer stats = host.create_buffer(stats_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    rrc_host::Buffer stats =
+        host.create_buffer(stats_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     rrc_host::Buffer lists = host.create_buffer(
         list_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     std::memset(stats.mapped, 0xAB, stats_stride * N);

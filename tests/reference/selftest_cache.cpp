@@ -35,7 +35,7 @@ TEST(ReferenceCache, TiledPicksTheStatedTile) {
     for (uint64_t t = 0; t < 64; ++t) EXPECT_EQ(rrc_ref::refresh_due(p, 9, 9, t), (t + 9) % 32 == 0) << t;
     // The clock is 64-bit: t = 2^40 + 23 is 23 mod 32.
     EXPECT_TRUE(rrc_ref::refresh_due(p, 9, 9, (1ull << 40) + 23));
-    EXPECT_TRUE(rrc_ref::refresh_due(p, 63, 31, 32 * 1000 + 1));  // tile 31
+    EXPECT_TRUE(rrc_ref::refresh_due(p, 63, 31, 32 * 1000 + 1));         // tile 31
     const rrc_ref::Params strips = params(10, 4, RRC_REFRESH_TILED, 4);  // {0, 0}: {n, 1}, vertical strips
     EXPECT_EQ(strips.refresh_tiles[0], 4u);
     EXPECT_TRUE(rrc_ref::refresh_due(strips, 9, 3, 1));  // floor(9 * 4 / 10) = 3: due when (t + 3) mod 4 = 0
