@@ -2,7 +2,8 @@
 // from ctest; the host's own layer too): the miss shader runs on exactly the
 // listed quads every frame; refreshing every hit every frame (n = 1) gives
 // the full shading to fp16 precision; longer periods shade less and err more;
-// the second eye of a stereo pair reuses the first eye's shading.
+// the second eye of a stereo pair reuses the first eye's shading, and the
+// sub-frames of a motion-blurred frame each other's.
 #include "cache_report.h"
 #include "cache_run.h"
 
@@ -32,6 +33,9 @@ TEST(RrcCache, MissShaderCoversTheListAndRefreshTradesErrorForWork) {
     CacheConfig stereo{"stereo_cache", true};
     stereo.stereo = true;
     cs.push_back(stereo);
+    CacheConfig blur{"blur4_cache", true};
+    blur.subframes = 4;
+    cs.push_back(blur);
     std::vector<RunResult> runs;
     for (const CacheConfig& c : cs) {
         runs.push_back(bench.run(c, nullptr));
@@ -69,6 +73,11 @@ TEST(RrcCache, MissShaderCoversTheListAndRefreshTradesErrorForWork) {
     for (uint8_t m : runs[4].mask_left) hits += (m & RRC_MASK_HIT) ? 1 : 0;
     EXPECT_GT(hits, runs[4].mask_left.size() / 3) << "the second eye reprojects into the first eye's cache";
     EXPECT_LT(st.shaded_fraction, 0.9);
+
+    // Motion blur: each sub-frame reuses the one before, so most of a frame's four sub-frames are not shaded.
+    EXPECT_EQ(runs[5].frames.size(), 6u);
+    EXPECT_LT(f[5].shaded_fraction, 0.9);
+    EXPECT_GT(f[5].hit_fraction, 0.3);
 }
 
 }  // namespace
