@@ -1,0 +1,388 @@
+// The shading cache (docs/CONVENTIONS.md, "The shading cache"), what
+// tests/cache_reference_test.cpp leaves open:
+//   - the REUSE variants it does not run (1 component fp16 bilinear, 4
+//     components fp32 nearest) next to an accumulating channel, against the
+//     independent reference fed the kernel's previous outputs;
+//   - classify + resolve is BIT-IDENTICAL to rrc_frame_run on a twin context
+//     given the same samples at the listed quads and NaN at every unlisted
+//     REUSE pixel: mask, values, ages, stats, refreshed;
+//   - classify's quad array: no quad twice, nothing written past quad_count,
+//     the set is the quads of the mask without HIT; classify's counts;
+//   - on a static scene, frame indices from just under 2^40 (stride 1 and 3):
+//     every pixel refreshed exactly once every n frames, RANDOM refreshing
+//     floor(Q/n) or ceil(Q/n) whole quads a frame, and the frame output's
+//     refreshed / stats adding up to W * H;
+//   - with no policy, the maximum lifetime alone: under a camera pan a pixel
+//     whose source hit L frames in a row (age L) is REFRESHED, no age exceeds L.
+// Every context runs under the validation layer (support/rrc_test_context.h).
+#include "reference/cache.h"
+#include "reference/params.h"
+#include "reference/rrc_reference.h"
+#include "support/rrc_test_context.h"
+#include "support/scene_frames.h"
+#include "support/tolerance.h"
+
+#include <cmath>
+#include <cstring>
+#include <set>
+
+using namespace rrc_test;
+
+namespace {
+
+// rrc_frame_run with every output read back, refreshed included.
+struct FusedRun {
+    FrameResult r;
+    uint64_t refreshed = 0;
+};
+
+FusedRun run_fused(Context& ctx, const std::vector<rrc_channel_desc>& channels, const rrc_frame_desc& f) {
+    const size_t n = (size_t)ctx.desc().width * ctx.desc().height;
+    FusedRun out;
+    FrameResult& r = out.r;
+    r.mask.assign(n, 0xAA);
+    r.values.resize(channels.size());
+    r.age.resize(channels.size());
+    std::vector<rrc_channel_output> outs(channels.size());
+    for (size_t c = 0; c < channels.size(); ++c) {
+        r.values[c].assign(n * channels[c].components, -1.0f);
+        r.age[c].assign(n, 0xBEEF);
+        outs[c] = rrc_host::channel_output();
+        outs[c].values = r.values[c].data();
+        outs[c].age = r.age[c].data();
+    }
+    rrc_frame_output o = rrc_host::frame_output();
+    o.mask = r.mask.data();
+    o.channel_count = (uint32_t)outs.size();
+    o.channels = outs.data();
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    r.stats = o.stats;
+    out.refreshed = o.refreshed;
+    return out;
+}
+
+uint64_t count_bit(const std::vector<uint8_t>& mask, uint8_t bit) {
+    uint64_t c = 0;
+    for (uint8_t m : mask) c += (m & bit) ? 1 : 0;
+    return c;
+}
+
+// Stats add up as CONVENTIONS.md states: misses = not HIT, not REFRESHED, not BACKGROUND.
+void expect_stats(const std::vector<uint8_t>& mask, const rrc_frame_stats& s, uint64_t refreshed, const char* what) {
+    uint64_t hits = 0, bg = 0, ref = 0, miss = 0;
+    for (uint8_t m : mask) {
+        if (m & RRC_MASK_BACKGROUND)
+            ++bg;
+        else if (m & RRC_MASK_HIT)
+            ++hits;
+        else if (m & RRC_MASK_REFRESHED)
+            ++ref;
+        else
+            ++miss;
+        EXPECT_FALSE((m & RRC_MASK_HIT) && (m & RRC_MASK_REFRESHED)) << what << ": a refreshed pixel is not a hit";
+    }
+    EXPECT_EQ(s.hits, hits) << what;
+    EXPECT_EQ(s.background, bg) << what;
+    EXPECT_EQ(refreshed, ref) << what;
+    EXPECT_EQ(s.misses, miss) << what;
+    EXPECT_EQ(s.hits + s.misses + s.background + refreshed, (uint64_t)mask.size()) << what;
+}
+
+struct Policy {
+    const char* name;
+    rrc_refresh_policy policy;
+    uint32_t period, tiles_x, tiles_y, lifetime;
+};
+
+const Policy kPolicies[] = {
+    {"tiled_8x1", RRC_REFRESH_TILED, 8, 0, 0, 0},
+    {"tiled_2x4_lifetime_5", RRC_REFRESH_TILED, 8, 2, 4, 5},
+    {"random_3_lifetime_2", RRC_REFRESH_RANDOM, 3, 0, 0, 2},
+};
+
+std::vector<rrc_channel_desc> variant_channels() {
+    return {channel("reuse1_fp16_bilinear", 1, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR),
+            channel("reuse4_fp32_nearest", 4, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST),
+            channel("accum4_fp16_age_aware", 4, 0.8f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR)};
+}
+
+class SplitVsFused : public ::testing::TestWithParam<Policy> {};
+
+TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
+    const Policy& pol = GetParam();
+    const int W = 64, H = 48, frames = 8;
+    const size_t n = (size_t)W * H;
+    std::vector<rrc_channel_desc> channels = variant_channels();
+    rrc_scene::SceneConfig sc = scene_config(W, H, RRC_DEPTH_MODE_REVERSED);
+    sc.jitter = true;
+    rrc_scene::Scene scene(sc);
+    rrc_context_desc desc = scene_context_desc(scene.config(), RRC_REPROJECTION_PREV_CLIP, channels);
+    desc.refresh_policy = pol.policy;
+    desc.refresh_period = pol.period;
+    desc.refresh_tiles[0] = pol.tiles_x;
+    desc.refresh_tiles[1] = pol.tiles_y;
+    desc.max_lifetime = pol.lifetime;
+    Context fused(desc), split(desc);
+    ASSERT_TRUE(fused);
+    ASSERT_TRUE(split);
+
+    rrc_ref::PreviousFrame prev;
+    int64_t compared = 0, refreshed = 0, reused = 0;
+    for (int t = 0; t < frames; ++t) {
+        SCOPED_TRACE(std::string(pol.name) + " frame " + std::to_string(t));
+        SceneFrameInputs in;
+        in.frame = scene.render(t);
+        make_frame_inputs(in, RRC_REPROJECTION_PREV_CLIP, channels);
+        in.desc.frame_index = (1ull << 40) - 4 + (uint64_t)t;  // crosses 2^40
+
+        const FusedRun k = run_fused(fused, channels, in.desc);
+        expect_stats(k.r.mask, k.r.stats, k.refreshed, "fused");
+
+        // ---- classify
+        std::vector<uint8_t> classified(n, 0xAA);
+        // The C API's array holds the quads only (the GPU list's header is the interop test's).
+        std::vector<uint32_t> list(RRC_QUAD_LIST_BYTES(W, H) / 4 - RRC_QUAD_LIST_FIRST_QUAD + 1, 0xDEADBEEFu);
+        rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+        co.mask = classified.data();
+        co.quads = list.data();
+        co.quad_capacity = (uint32_t)list.size() - 1;  // the last word is a guard
+        rrc_frame_desc geometry = in.desc;
+        geometry.channel_count = 0;
+        geometry.channels = nullptr;
+        ASSERT_EQ(rrc_frame_classify(split.get(), &geometry, &co), RRC_SUCCESS) << rrc_last_error();
+        for (size_t i = 0; i < n; ++i)
+            ASSERT_EQ(classified[i], k.r.mask[i] & ~RRC_MASK_INVALID_SAMPLE) << "classify's mask is the fused one, pixel " << i;
+        const uint32_t c = co.quad_count;
+        ASSERT_LE(c, co.quad_capacity);
+        for (size_t w = c; w < list.size(); ++w) ASSERT_EQ(list[w], 0xDEADBEEFu) << "classify wrote past quad_count, word " << w;
+        const std::set<uint32_t> quads(list.begin(), list.begin() + c);
+        EXPECT_EQ(quads.size(), c) << "a quad listed twice";
+        EXPECT_EQ(quads, rrc_ref::listed_quads(k.r.mask, W, H));
+        EXPECT_EQ(co.stats.hits, k.r.stats.hits);
+        EXPECT_EQ(co.stats.misses, k.r.stats.misses);
+        EXPECT_EQ(co.stats.background, k.r.stats.background);
+        EXPECT_EQ(co.refreshed, k.refreshed);
+
+        // ---- resolve: REUSE samples only at the listed quads, NaN elsewhere
+        std::vector<std::vector<float>> samples(channels.size());
+        std::vector<rrc_channel_input> inputs(channels.size());
+        for (size_t ch = 0; ch < channels.size(); ++ch) {
+            const uint32_t m = channels[ch].components;
+            const float* full = in.desc.channels[ch].samples;
+            samples[ch].assign(full, full + n * m);
+            if (channels[ch].blend == RRC_BLEND_REUSE) {
+                std::vector<float> host(n * m, NAN);
+                for (uint32_t q : quads)
+                    for (int s = 0; s < 4; ++s) {
+                        const int x = 2 * (int)(q & 0xFFFF) + (s & 1), y = 2 * (int)(q >> 16) + (s >> 1);
+                        if (x >= W || y >= H) continue;
+                        const size_t px = (size_t)y * W + x;
+                        for (uint32_t j = 0; j < m; ++j) host[m * px + j] = full[m * px + j];
+                    }
+                samples[ch] = host;
+            }
+            inputs[ch] = channel_input(samples[ch].data());
+        }
+        rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+        rd.channel_count = (uint32_t)inputs.size();
+        rd.channels = inputs.data();
+        std::vector<uint8_t> smask(n, 0xAA);
+        std::vector<std::vector<float>> svalues(channels.size());
+        std::vector<std::vector<uint16_t>> sage(channels.size());
+        std::vector<rrc_channel_output> outs(channels.size());
+        for (size_t ch = 0; ch < channels.size(); ++ch) {
+            svalues[ch].assign(n * channels[ch].components, -1.0f);
+            sage[ch].assign(n, 0xBEEF);
+            outs[ch] = rrc_host::channel_output();
+            outs[ch].values = svalues[ch].data();
+            outs[ch].age = sage[ch].data();
+        }
+        rrc_frame_output o = rrc_host::frame_output();
+        o.mask = smask.data();
+        o.channel_count = (uint32_t)outs.size();
+        o.channels = outs.data();
+        ASSERT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
+        EXPECT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_ERROR_INVALID_ARGUMENT) << "one resolve a classification";
+        EXPECT_EQ(smask, k.r.mask) << "split mask == fused mask, bit for bit";
+        for (size_t ch = 0; ch < channels.size(); ++ch) {
+            EXPECT_EQ(sage[ch], k.r.age[ch]) << "ages, channel " << ch;
+            ASSERT_EQ(svalues[ch].size(), k.r.values[ch].size());
+            EXPECT_EQ(std::memcmp(svalues[ch].data(), k.r.values[ch].data(), svalues[ch].size() * sizeof(float)), 0)
+                << "values bit-identical, channel " << ch;
+        }
+        EXPECT_EQ(o.stats.hits, k.r.stats.hits);
+        EXPECT_EQ(o.stats.misses, k.r.stats.misses);
+        EXPECT_EQ(o.stats.background, k.r.stats.background);
+        EXPECT_EQ(o.stats.invalid_samples, k.r.stats.invalid_samples);
+        EXPECT_EQ(o.refreshed, k.refreshed);
+
+        // ---- the fused kernel against the reference
+        const rrc_ref::FrameResult r = rrc_ref::run_frame(fused.desc(), prev, in.desc);
+        for (size_t i = 0; i < n; ++i) {
+            if (r.near_threshold[i] || r.near_nearest_edge[i]) continue;
+            ++compared;
+            refreshed += (r.mask[i] & RRC_MASK_REFRESHED) ? 1 : 0;
+            ASSERT_EQ(k.r.mask[i], r.mask[i]) << "pixel (" << i % W << "," << i / W << ")";
+            for (size_t ch = 0; ch < channels.size(); ++ch) {
+                ASSERT_EQ(k.r.age[ch][i], r.channels[ch].age[i]) << "pixel " << i << " channel " << ch;
+                const uint32_t m = channels[ch].components;
+                const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
+                for (uint32_t q = 0; q < m; ++q) {
+                    const double kv = k.r.values[ch][m * i + q], rv = r.channels[ch].out[m * i + q];
+                    const double spread =
+                        prev.valid ? history_spread(prev.channels[ch].history, m, q, W, H, r.uv_prev_x[i], r.uv_prev_y[i], in.desc.prev_jitter)
+                                   : 0.0;
+                    const double tol = arithmetic_tolerance(rv, r.channels[ch].exact[m * i + q], fp16) + position_tolerance(spread, W, H);
+                    EXPECT_LE(std::fabs(kv - rv), tol) << "pixel " << i << " channel " << ch << " component " << q;
+                }
+                if (channels[ch].blend == RRC_BLEND_REUSE && pol.lifetime) EXPECT_LE(k.r.age[ch][i], pol.lifetime);
+            }
+            if ((r.mask[i] & RRC_MASK_HIT) && r.channels[1].age[i] > 1) ++reused;
+        }
+        prev.valid = true;
+        prev.depth = in.frame.depth;
+        prev.channels.resize(channels.size());
+        for (size_t ch = 0; ch < channels.size(); ++ch) {
+            prev.channels[ch].history = k.r.values[ch];
+            prev.channels[ch].age = k.r.age[ch];
+        }
+    }
+    EXPECT_GT(refreshed, 0) << "the comparison must cover refreshes";
+    EXPECT_GT(reused, 0) << "the comparison must cover reused values";
+    EXPECT_GT(compared, (int64_t)n * frames * 8 / 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Policies, SplitVsFused, ::testing::ValuesIn(kPolicies),
+                         [](const ::testing::TestParamInfo<Policy>& i) { return std::string(i.param.name); });
+
+// ---- A flat plane under CAMERA reprojection (depth 0.5, identity-like matrices).
+
+constexpr int kW = 23, kH = 15, kN = kW * kH;  // odd: half quads at the right and bottom
+constexpr int kQW = (kW + 1) / 2, kQH = (kH + 1) / 2, kQ = kQW * kQH;
+
+void pan(double shift, double m[16]) {
+    for (int i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0 : 0.0;
+    m[12] = 2.0 * shift / kW;  // column-major translation: shift pixels in x
+}
+
+struct Flat {
+    std::vector<float> depth = std::vector<float>(kN, 0.5f), shade = std::vector<float>(kN);
+    rrc_channel_input in{};
+    rrc_frame_desc frame(uint64_t index, double shift, double prev_shift) {
+        in = channel_input(shade.data());
+        rrc_frame_desc f = frame_desc();
+        f.frame_index = index;
+        f.depth = depth.data();
+        f.channel_count = 1;
+        f.channels = &in;
+        pan(shift, f.view_proj);
+        pan(prev_shift, f.prev_view_proj);
+        return f;
+    }
+};
+
+std::vector<rrc_channel_desc> one_reuse() {
+    return {channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
+}
+
+TEST(ShadingCacheRefresh, OncePerPeriodFromNear2To40AndBalancedRandom) {
+    for (rrc_refresh_policy policy : {RRC_REFRESH_TILED, RRC_REFRESH_RANDOM})
+        for (uint32_t n : {1u, 2u, 4u, 8u})
+            for (uint64_t stride : {uint64_t(1), uint64_t(3)}) {
+                SCOPED_TRACE("policy " + std::to_string(policy) + " n " + std::to_string(n) + " stride " + std::to_string(stride));
+                std::vector<rrc_channel_desc> channels = one_reuse();
+                rrc_context_desc d = context_desc(kW, kH, channels);
+                d.reprojection = RRC_REPROJECTION_CAMERA;
+                d.refresh_policy = policy;
+                d.refresh_period = n;
+                if (policy == RRC_REFRESH_TILED && n == 8) d.refresh_tiles[0] = 4, d.refresh_tiles[1] = 2;
+                Context ctx(d);
+                ASSERT_TRUE(ctx);
+                Flat flat;
+                const uint64_t t0 = (1ull << 40) - 5;
+                std::vector<float> previous = run_fused(ctx, channels, flat.frame(t0 - stride, 0, 0)).r.values[0];
+                const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
+                std::vector<int> count(kN, 0);
+                for (uint32_t k = 0; k < 2 * n; ++k) {
+                    const uint64_t t = t0 + k * stride;
+                    for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * k + i);
+                    const FusedRun r = run_fused(ctx, channels, flat.frame(t, 0, 0));
+                    expect_stats(r.r.mask, r.r.stats, r.refreshed, "static");
+                    std::set<int> due_quads;
+                    for (int i = 0; i < kN; ++i) {
+                        const bool refreshed = (r.r.mask[i] & RRC_MASK_REFRESHED) != 0;
+                        ASSERT_EQ(refreshed, rrc_ref::refresh_due(ref, i % kW, i / kW, t)) << "pixel " << i << " t " << t;
+                        ASSERT_TRUE(refreshed || (r.r.mask[i] & RRC_MASK_HIT)) << "a static scene hits everywhere";
+                        if (refreshed) {
+                            ++count[i];
+                            due_quads.insert(i % kW / 2 + kQW * (i / kW / 2));
+                            EXPECT_EQ(r.r.values[0][i], flat.shade[i]);
+                            EXPECT_EQ(r.r.age[0][i], 1u);
+                        } else {
+                            EXPECT_EQ(r.r.values[0][i], previous[i]) << "a hit keeps the cached value";
+                        }
+                    }
+                    if (policy == RRC_REFRESH_RANDOM) {
+                        // Whole quads, floor(Q/n) or ceil(Q/n) of them.
+                        for (int q : due_quads)
+                            for (int s = 0; s < 4; ++s) {
+                                const int x = 2 * (q % kQW) + (s & 1), y = 2 * (q / kQW) + (s >> 1);
+                                if (x < kW && y < kH) EXPECT_TRUE(r.r.mask[y * kW + x] & RRC_MASK_REFRESHED) << "quad " << q;
+                            }
+                        EXPECT_GE((int)due_quads.size(), kQ / (int)n) << "t " << t;
+                        EXPECT_LE((int)due_quads.size(), (kQ + (int)n - 1) / (int)n) << "t " << t;
+                    }
+                    previous = r.r.values[0];
+                    if (k + 1 == n || k + 1 == 2 * n) {
+                        for (int i = 0; i < kN; ++i) ASSERT_EQ(count[i], 1) << "pixel " << i << " in the " << n << " frames to " << t;
+                        std::fill(count.begin(), count.end(), 0);
+                    }
+                }
+            }
+}
+
+TEST(ShadingCacheRefresh, LifetimeAloneRefreshesAtAgeLUnderAPan) {
+    for (uint32_t L : {1u, 2u, 4u}) {
+        SCOPED_TRACE("L " + std::to_string(L));
+        std::vector<rrc_channel_desc> channels = one_reuse();
+        rrc_context_desc d = context_desc(kW, kH, channels);
+        d.reprojection = RRC_REPROJECTION_CAMERA;
+        d.max_lifetime = L;  // no policy: only the lifetime (and empty histories) refresh
+        Context ctx(d);
+        ASSERT_TRUE(ctx);
+        Flat flat;
+        std::vector<float> pv;
+        std::vector<uint16_t> pa;
+        int at_age_l = 0;
+        for (int t = 0; t < 3 * (int)L + 4; ++t) {
+            for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * t + i);
+            // The surface moves 1 pixel left a frame: pixel x shows what x+1 showed.
+            const FusedRun r = run_fused(ctx, channels, flat.frame((uint64_t)t, -1.0 * t, t ? -1.0 * (t - 1) : 0.0));
+            expect_stats(r.r.mask, r.r.stats, r.refreshed, "pan");
+            for (int i = 0; i < kN; ++i) {
+                const int x = i % kW, y = i / kW;
+                ASSERT_LE(r.r.age[0][i], L) << "no value used in more than L frames";
+                if (t == 0 || x == kW - 1) {
+                    EXPECT_FALSE(r.r.mask[i] & (RRC_MASK_HIT | RRC_MASK_REFRESHED)) << "t " << t << " x " << x;
+                    continue;
+                }
+                const int src = i + 1;
+                if (pa[src] >= L) {
+                    ++at_age_l;
+                    ASSERT_TRUE(r.r.mask[i] & RRC_MASK_REFRESHED) << "t " << t << " pixel " << x << "," << y << " source age " << pa[src];
+                    EXPECT_EQ(r.r.values[0][i], flat.shade[i]);
+                    EXPECT_EQ(r.r.age[0][i], 1u);
+                } else {
+                    ASSERT_TRUE(r.r.mask[i] & RRC_MASK_HIT) << "t " << t << " pixel " << x << "," << y << " source age " << pa[src];
+                    EXPECT_EQ(r.r.values[0][i], pv[src]);
+                    EXPECT_EQ(r.r.age[0][i], pa[src] + 1);
+                }
+            }
+            pv = r.r.values[0];
+            pa = r.r.age[0];
+        }
+        EXPECT_GT(at_age_l, kN) << "the lifetime must have fired";
+    }
+}
+
+}  // namespace
