@@ -57,7 +57,7 @@ inline rrc_struct_header read_header(const void* p) {
 }
 
 // Rule 5: walks a `next` chain.  Its shape is checked first (length, base
-// tags), then the types of its elements.  Version 0.2 defines no extension,
+// tags), then the types of its elements.  Version 0.3 defines no extension,
 // so any element is refused; an extension added later is found here by its
 // tag (a table of the tags each parent takes) and read with read_struct.
 inline void check_chain(const void* next, const std::string& what) {

@@ -72,7 +72,7 @@
  *     know is RRC_ERROR_UNSUPPORTED; a base struct's tag in a chain, a type
  *     twice, an extension on a parent that does not take it, or a chain
  *     longer than RRC_MAX_CHAIN (a cycle) is RRC_ERROR_INVALID_STRUCT.
- *     Version 0.2 defines no extension yet.
+ *     Version 0.3 defines no extension yet.
  *  6. Existing exported functions keep their signatures; a better name is
  *     added beside an old one, which stays exported as an alias until 1.0.
  *
