@@ -104,11 +104,12 @@ void write_report(const std::string& path, const std::vector<Figures>& fs, const
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Figures& f : fs) {
         char line[768];
-        std::snprintf(line, sizeof line,
-                      "| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.3f | %.1f%% | %.1f%% | %.4f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f | %s |\n",
-                      f.name.c_str(), f.raster_ms, f.shade_ms, f.rrc_ms, f.total_ms, f.full_ms, f.shaded_fraction, 100 * f.hit_fraction,
-                      100 * f.refreshed_fraction, f.rmse, f.p, f.c, f.bound, f.speedup, f.of_bound, f.speedup_separate,
-                      f.list_matched ? "yes" : "NO");
+        std::snprintf(
+            line, sizeof line,
+            "| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.3f | %.1f%% | %.1f%% | %.4f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f | %s |\n",
+            f.name.c_str(), f.raster_ms, f.shade_ms, f.rrc_ms, f.total_ms, f.full_ms, f.shaded_fraction, 100 * f.hit_fraction,
+            100 * f.refreshed_fraction, f.rmse, f.p, f.c, f.bound, f.speedup, f.of_bound, f.speedup_separate,
+            f.list_matched ? "yes" : "NO");
         o << line;
     }
     o << "\nTarget: speed-up >= 0.85 x the Amdahl bound. The paper: refresh every 4 frames 1.7-1.9x, stereo +57%.\n";
