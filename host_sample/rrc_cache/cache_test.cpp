@@ -46,6 +46,12 @@ TEST(RrcCache, MissShaderCoversTheListAndRefreshTradesErrorForWork) {
     }
     const std::vector<Figures> f = figures(runs);
     const Figures &none = f[1], &n1 = f[2], &n4 = f[3], &st = f[4];
+    // Every cached run carries its paired baseline (the same frames shaded everywhere, timed beside them).
+    for (size_t i = 1; i < f.size(); ++i) {
+        EXPECT_GE(f[i].full_ms, f[i].raster_ms) << f[i].name;
+        EXPECT_TRUE(f[i].bound > 0 && std::isfinite(f[i].bound)) << f[i].name;
+        EXPECT_GT(f[i].speedup, 0.0) << f[i].name;
+    }
 
     // n = 1 refreshes every hit every frame: the output is the frame's own shading (fp16 history).
     const RunResult& every = runs[2];
