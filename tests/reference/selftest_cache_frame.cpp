@@ -70,7 +70,7 @@ TEST(CacheFrame, AnEmptyReuseHistoryRefreshes) {
     Cache c;
     PreviousFrame p = c.prev(3);
     const size_t k0 = c.s.at(5, 2);
-    p.channels[0].age[k0] = 0;  // its last sample was invalid
+    p.channels[0].age[k0] = 0;            // its last sample was invalid
     p.channels[1].age[c.s.at(1, 1)] = 0;  // an accumulating channel's empty history refreshes nothing
     const FrameResult r = c.s.run(p);
     for (size_t k = 0; k < c.s.size(); ++k) {
@@ -144,7 +144,7 @@ TEST(CacheFrame, MissAndBackgroundFollowTheTable) {
 TEST(CacheFrame, TiledReadsTheFrameIndexIn64Bit) {
     Cache c;
     c.s.ctx.refresh_policy = RRC_REFRESH_TILED;
-    c.s.ctx.refresh_period = 4;  // {0, 0}: 4 vertical strips of 2 columns
+    c.s.ctx.refresh_period = 4;                // {0, 0}: 4 vertical strips of 2 columns
     c.s.frame.frame_index = (1ull << 40) + 1;  // phase 1: tile 3 (x = 6, 7) is due
     const FrameResult r = c.s.run(c.prev(3));
     for (int j = 0; j < c.s.H; ++j)

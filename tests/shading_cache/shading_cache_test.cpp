@@ -229,9 +229,9 @@ TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
                 const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
                 for (uint32_t q = 0; q < m; ++q) {
                     const double kv = k.r.values[ch][m * i + q], rv = r.channels[ch].out[m * i + q];
-                    const double spread =
-                        prev.valid ? history_spread(prev.channels[ch].history, m, q, W, H, r.uv_prev_x[i], r.uv_prev_y[i], in.desc.prev_jitter)
-                                   : 0.0;
+                    const double spread = prev.valid ? history_spread(prev.channels[ch].history, m, q, W, H, r.uv_prev_x[i], r.uv_prev_y[i],
+                                                                      in.desc.prev_jitter)
+                                                     : 0.0;
                     const double tol = arithmetic_tolerance(rv, r.channels[ch].exact[m * i + q], fp16) + position_tolerance(spread, W, H);
                     EXPECT_LE(std::fabs(kv - rv), tol) << "pixel " << i << " channel " << ch << " component " << q;
                 }
