@@ -78,7 +78,6 @@ void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_fra
     view.parity ^= count & 1u;
     view.have_previous = true;
     view.frame_index = last_frame_index;
-    view.classified = false;
 }
 
 size_t AccumulatorCore::memory_bytes() const {

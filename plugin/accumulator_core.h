@@ -29,11 +29,6 @@ struct ViewState {
     uint32_t parity = 0;         // the image set the next frame writes
     bool have_previous = false;  // false: first frame, or after a failed creation
     uint64_t frame_index = 0;    // the last submitted frame's index (refresh clocks)
-    // The shading cache: classify ran for this frame index (into `parity`)
-    // and resolve has not yet completed it.
-    bool classified = false;
-    uint64_t classified_index = 0;
-    uint32_t classified_from = 0;  // its reproject_from
 };
 
 class AccumulatorCore {

@@ -117,29 +117,28 @@ void InteropContext::record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDev
 }
 
 void InteropContext::record_frame(const Frame& f) {
+    pending_.valid = false;  // a classification not resolved is dropped
     record_pass(f, RRC_PHASE_FUSED);
     core_->advance(core_->view(f.view), 1, f.frame_index);
 }
 
 void InteropContext::record_classify(const Frame& f, VkBuffer list, VkDeviceSize list_offset) {
-    ViewState& view = core_->view(f.view);
-    view.classified = false;  // a classification not resolved is dropped
+    pending_.valid = false;  // a classification not resolved is dropped
     record_pass(f, RRC_PHASE_CLASSIFY, list, list_offset);
-    view.classified = true;
-    view.classified_index = f.frame_index;
-    view.classified_from = f.reproject_from;
+    pending_ = {true, f.frame_index, f.view, f.reproject_from};
 }
 
 void InteropContext::record_resolve(const Frame& f) {
-    ViewState& view = core_->view(f.view);
-    if (!view.classified) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: record rrc_vulkan_record_classify first");
-    if (view.classified_index != f.frame_index)
+    if (!pending_.valid) fail(RRC_ERROR_INVALID_ARGUMENT, "no classified frame to resolve: record rrc_vulkan_record_classify first");
+    if (pending_.frame_index != f.frame_index)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.frame_index is %llu but the classified frame's is %llu: resolve takes classify's frame",
-             (unsigned long long)f.frame_index, (unsigned long long)view.classified_index);
-    if (view.classified_from != f.reproject_from)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.reproject_from is %u but the classified frame's is %u", f.reproject_from, view.classified_from);
+             (unsigned long long)f.frame_index, (unsigned long long)pending_.frame_index);
+    if (pending_.view != f.view || pending_.reproject_from != f.reproject_from)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view/reproject_from is %u/%u but the classified frame's is %u/%u", f.view, f.reproject_from,
+             pending_.view, pending_.reproject_from);
     record_pass(f, RRC_PHASE_RESOLVE);
-    core_->advance(view, 1, f.frame_index);
+    pending_.valid = false;
+    core_->advance(core_->view(f.view), 1, f.frame_index);
 }
 
 void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, VkDeviceSize list_offset) {

@@ -46,6 +46,12 @@ private:
     std::vector<VkDescriptorSet> ring_;  // two sets (classify, resolve) per frame in flight, plus two
     uint32_t next_set_ = 0;
     uint64_t stats_alignment_ = 0;
+    // The classify recorded last, until its resolve (any other frame drops it).
+    struct Pending {
+        bool valid = false;
+        uint64_t frame_index = 0;
+        uint32_t view = 0, reproject_from = 0;
+    } pending_;
     bool initialised_ = false;  // images cleared and in GENERAL (recorded with the first frame)
 };
 

@@ -340,7 +340,7 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
     auto& vk = core_->device().vk;
     ViewState& view = core_->view(f.view);
     const ViewState& source = core_->view(f.source());
-    for (uint32_t v = 0; v < core_->view_count(); ++v) core_->view(v).classified = false;  // one not resolved is dropped
+    pending_ = false;  // a classification not resolved is dropped
     upload(f, 0, RRC_PHASE_CLASSIFY);
     // The list starts empty, dispatch {0, 1, 1}: host-coherent memory written
     // before the submission is visible to it.
@@ -372,14 +372,7 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
         write_member(out.caller, offsetof(rrc_classify_output, refreshed), stats.refreshed);
     }
     classified_ = f;
-    view.classified = true;
-    view.classified_index = f.frame_index;
-}
-
-bool StandaloneContext::classified() const {
-    for (uint32_t v = 0; v < core_->view_count(); ++v)
-        if (core_->view(v).classified) return true;
-    return false;
+    pending_ = true;
 }
 
 void StandaloneContext::resolve(const Frame& channels, const FrameOutputs& out) {
@@ -396,6 +389,7 @@ void StandaloneContext::resolve(const Frame& channels, const FrameOutputs& out) 
     VulkanDevice::check(core_->device().vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
     read_back(out, 0, view, view.parity);
+    pending_ = false;
     core_->advance(view, 1, f.frame_index);
 }
 
@@ -424,7 +418,7 @@ void StandaloneContext::run_frames(const std::vector<Frame>& frames, const std::
     for (uint32_t i = 0; i < count; ++i) read_back(outputs[i], i, core_->view(frames[i].view), written[i]);
     // Only now do the frames become history.
     for (uint32_t i = 0; i < count; ++i) core_->advance(core_->view(frames[i].view), 1, frames[i].frame_index);
-    for (uint32_t v = 0; v < views; ++v) core_->view(v).classified = false;
+    pending_ = false;
 }
 
 }  // namespace rrc

@@ -36,7 +36,7 @@ public:
         uint32_t quad_capacity = 0;
     };
     void classify(const Frame& frame, const Classified& out);
-    bool classified() const;
+    bool classified() const { return pending_; }
     void resolve(const Frame& channels, const FrameOutputs& out);
 
     const ContextConfig& config() const { return core_->config(); }
@@ -82,6 +82,7 @@ private:
     HostBuffer upload_, readback_;  // batch_capacity_ regions of *_bytes_ each
     HostBuffer quads_;              // classify's quad list (rrc_values.h layout), read on the CPU
     Frame classified_;              // the classified frame's parameters, for resolve's push constants
+    bool pending_ = false;          // classified_ awaits its resolve (any other frame drops it)
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;
     std::map<uint32_t, VkDescriptorSet> sets_;  // by (view, parity, source, source parity)

@@ -312,6 +312,7 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
         if (vulkan && idf != VK_FORMAT_R16_UINT && idf != VK_FORMAT_R32_UINT)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %d, must be VK_FORMAT_R16_UINT or VK_FORMAT_R32_UINT", (int)idf);
     }
+    // The channels' storage formats too (classify takes resolve's descriptor), before their other checks.
     if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
     if (vulkan && f.mask_image.image && !f.mask_image.view)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.view is VK_NULL_HANDLE with an image");
@@ -340,7 +341,6 @@ void validate_channels(const ContextConfig& c, const Frame& f) {
         if (vulkan && ch.age_image.image && !ch.age_image.view)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.view is VK_NULL_HANDLE with an image", what.c_str());
     }
-    if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
 }
 
 void validate_outputs(const ContextConfig& c, const FrameOutputs* out) {

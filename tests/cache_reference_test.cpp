@@ -13,6 +13,7 @@
 // Every context runs under the validation layer (support/rrc_test_context.h).
 #include "reference/cache.h"
 #include "reference/rrc_reference.h"
+#include "support/cache_policy.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
 #include "support/tolerance.h"
@@ -24,12 +25,6 @@ using namespace rrc_test;
 
 namespace {
 
-struct Policy {
-    const char* name;
-    rrc_refresh_policy policy;
-    uint32_t period, tiles_x, tiles_y, lifetime;
-};
-
 const Policy kPolicies[] = {
     {"tiled_4", RRC_REFRESH_TILED, 4, 2, 2, 0},
     {"random_4_lifetime_3", RRC_REFRESH_RANDOM, 4, 0, 0, 3},
@@ -40,14 +35,6 @@ std::vector<rrc_channel_desc> cache_channels() {
     return {channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR),
             channel("ao", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST),
             channel("pcf", 1, 0.6f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR)};
-}
-
-void apply(const Policy& p, rrc_context_desc& d) {
-    d.refresh_policy = p.policy;
-    d.refresh_period = p.period;
-    d.refresh_tiles[0] = p.tiles_x;
-    d.refresh_tiles[1] = p.tiles_y;
-    d.max_lifetime = p.lifetime;
 }
 
 // One frame's outputs through the split path: classify, the host's samples

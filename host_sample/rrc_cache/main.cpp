@@ -5,6 +5,7 @@
 // eye reuses the first eye's shading.  host_sample/rrc_cache/README.md.
 #include "cache_report.h"
 #include "cache_run.h"
+#include "output.h"  // rrc_sample::coherence_map
 #include "png_io.h"
 
 #include <algorithm>
@@ -138,20 +139,9 @@ rrc_png::RgbImage picture(const std::vector<float>& rgba, const Settings& s) {
     return img;
 }
 
-// Green: reused (HIT), blue: refreshed, red: shaded (miss), black: background.
+// rrc-sample's coherence colours: green reused (HIT), blue refreshed, red shaded (miss), black background.
 rrc_png::RgbImage coherence(const std::vector<uint8_t>& mask, const Settings& s) {
-    rrc_png::RgbImage img{(int)s.width, (int)s.height, std::vector<uint8_t>(3 * mask.size(), 0)};
-    for (size_t i = 0; i < mask.size(); ++i) {
-        uint8_t* p = &img.rgb[3 * i];
-        if (mask[i] & RRC_MASK_BACKGROUND) continue;
-        if (mask[i] & RRC_MASK_REFRESHED)
-            p[2] = 230;
-        else if (mask[i] & RRC_MASK_HIT)
-            p[1] = 200;
-        else
-            p[0] = 230;
-    }
-    return img;
+    return rrc_png::RgbImage{(int)s.width, (int)s.height, rrc_sample::coherence_map(mask)};
 }
 
 // Red from the second (left) eye, green and blue from the first (right) eye.

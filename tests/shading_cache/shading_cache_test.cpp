@@ -18,6 +18,7 @@
 #include "reference/cache.h"
 #include "reference/params.h"
 #include "reference/rrc_reference.h"
+#include "support/cache_policy.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
 #include "support/tolerance.h"
@@ -88,12 +89,6 @@ void expect_stats(const std::vector<uint8_t>& mask, const rrc_frame_stats& s, ui
     EXPECT_EQ(s.hits + s.misses + s.background + refreshed, (uint64_t)mask.size()) << what;
 }
 
-struct Policy {
-    const char* name;
-    rrc_refresh_policy policy;
-    uint32_t period, tiles_x, tiles_y, lifetime;
-};
-
 const Policy kPolicies[] = {
     {"tiled_8x1", RRC_REFRESH_TILED, 8, 0, 0, 0},
     {"tiled_2x4_lifetime_5", RRC_REFRESH_TILED, 8, 2, 4, 5},
@@ -117,11 +112,7 @@ TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
     sc.jitter = true;
     rrc_scene::Scene scene(sc);
     rrc_context_desc desc = scene_context_desc(scene.config(), RRC_REPROJECTION_PREV_CLIP, channels);
-    desc.refresh_policy = pol.policy;
-    desc.refresh_period = pol.period;
-    desc.refresh_tiles[0] = pol.tiles_x;
-    desc.refresh_tiles[1] = pol.tiles_y;
-    desc.max_lifetime = pol.lifetime;
+    apply(pol, desc);
     Context fused(desc), split(desc);
     ASSERT_TRUE(fused);
     ASSERT_TRUE(split);
