@@ -13,6 +13,15 @@ struct ChannelSettings {
     rrc_blend blend = RRC_BLEND_FIXED;
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
     uint32_t age_cap = 0;  // 0: the library's default
+    // 0.4 finishing steps (docs/CONVENTIONS.md, "Finishing steps"); zero = off / the library's default.
+    uint32_t confidence = 0;          // the signal pass writes a per-sample confidence
+    uint32_t rectify = 0;             // history rectification
+    float rectify_gamma = 0.0f;
+    float blur_sigma = 0.0f;          // RRC_HISTORY_FILTER_GAUSSIAN
+    uint32_t fill_age = 0;            // the spatial fill for pixels younger than this
+    uint32_t fill_radius = 0;
+    float fill_depth_tolerance = 0.0f;
+    float fill_prior = 0.0f;          // the fallback's weight in samples (needs a fallback image)
 };
 
 /** The sample's presets, one per application, chosen from rrc-sweep's fronts at the

@@ -19,7 +19,15 @@ rrc_vulkan_image view_of(const Image& img, VkImageLayout layout) { return rrc_ho
 
 std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPresets& p) {
     auto make = [](const char* name, uint32_t components, const ChannelSettings& c, rrc_history_precision precision) {
-        return rrc_host::channel(name, components, c.lambda, precision, c.blend, c.filter, c.age_cap);
+        rrc_channel_desc d = rrc_host::channel(name, components, c.lambda, precision, c.blend, c.filter, c.age_cap, c.confidence);
+        d.rectify = c.rectify;
+        d.rectify_gamma = c.rectify_gamma;
+        d.blur_sigma = c.blur_sigma;
+        d.fill_age = c.fill_age;
+        d.fill_radius = c.fill_radius;
+        d.fill_depth_tolerance = c.fill_depth_tolerance;
+        d.fill_prior = c.fill_prior;
+        return d;
     };
     std::vector<rrc_channel_desc> c;
     // Amortized PCF and env-mapped bump mapping: fp16 history (rrc keeps fp32 above RRC_FP16_MAX_LAMBDA).

@@ -72,7 +72,7 @@
  *     know is RRC_ERROR_UNSUPPORTED; a base struct's tag in a chain, a type
  *     twice, an extension on a parent that does not take it, or a chain
  *     longer than RRC_MAX_CHAIN (a cycle) is RRC_ERROR_INVALID_STRUCT.
- *     Version 0.3 defines no extension yet.
+ *     Version 0.4 defines no extension yet.
  *  6. Existing exported functions keep their signatures; a better name is
  *     added beside an old one, which stays exported as an alias until 1.0.
  *
@@ -111,7 +111,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 3, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 4, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -221,6 +221,13 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_DEFAULT_EPSILON_SCALE_FLOAT32 4.0f /* rrc_context_desc.epsilon_scale, FLOAT32 */
 #define RRC_DEFAULT_EPSILON_SCALE_UNORM 1.0f   /* rrc_context_desc.epsilon_scale, UNORM16/24 */
 #define RRC_DEFAULT_TAU 0.01f                  /* rrc_context_desc.tau */
+#define RRC_DEFAULT_RECTIFY_GAMMA 1.0f         /* rrc_channel_desc.rectify_gamma (0.4) */
+#define RRC_MAX_RECTIFY_GAMMA 16.0f
+#define RRC_DEFAULT_BLUR_SIGMA 0.5f            /* rrc_channel_desc.blur_sigma (0.4) */
+#define RRC_MAX_BLUR_SIGMA 0.8164966f          /* sqrt(2/3): the blur's 3 taps stay decreasing */
+#define RRC_DEFAULT_FILL_RADIUS 2u             /* rrc_channel_desc.fill_radius (0.4) */
+#define RRC_MAX_FILL_RADIUS 4u
+#define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.05f /* rrc_channel_desc.fill_depth_tolerance (0.4) */
 
 /* ---- Logging ----------------------------------------------------------- */
 
@@ -245,6 +252,30 @@ typedef struct rrc_channel_desc {
     rrc_history_filter filter;
     uint32_t age_cap;    /* saturation of the age count; 0 = default 255, at most RRC_MAX_AGE_CAP */
     uint32_t confidence; /* non-zero: the host passes a per-sample weight w in [0,1] */
+    /* ---- 0.4: finishing steps (docs/CONVENTIONS.md, "Rectification",
+     *      "The Gaussian history filter", "The spatial fill") ---- */
+    /* Non-zero: history rectification.  On a blend (a hit with a valid
+     * sample and a non-empty history) the resampled history is first clamped,
+     * per component, to mu +- gamma * sigma of this frame's valid samples in
+     * the pixel's 3x3 neighbourhood.  Accumulating blends only (REUSE refuses it). */
+    uint32_t rectify;
+    float rectify_gamma; /* gamma, in (0, RRC_MAX_RECTIFY_GAMMA]; 0 = default RRC_DEFAULT_RECTIFY_GAMMA */
+    /* RRC_HISTORY_FILTER_GAUSSIAN: the standard deviation of the blur, in
+     * pixels, in (0, RRC_MAX_BLUR_SIGMA]; 0 = default RRC_DEFAULT_BLUR_SIGMA.
+     * Must be 0 with any other filter. */
+    float blur_sigma;
+    /* The spatial fill for young pixels (a second dispatch): non-zero = T,
+     * pixels whose age after the frame is below T are shown as a depth-aware
+     * mean over their cached neighbours (and the host's fallback); at most
+     * the age cap + 1.  The fill is display-only: history keeps the channel's
+     * own samples.  0 = off. */
+    uint32_t fill_age;
+    uint32_t fill_radius;       /* the window's half width r (a (2r+1)^2 window), 1..RRC_MAX_FILL_RADIUS; 0 = default */
+    float fill_depth_tolerance; /* a neighbour counts when its depth is within this relative distance; 0 = default */
+    /* The weight, in samples, of the host's fallback estimate
+     * (rrc_channel_input.fallback, rrc_vulkan_channel_images.fallback), which
+     * the frame must then carry; 0 = no fallback.  Needs fill_age. */
+    float fill_prior;
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {
@@ -367,6 +398,9 @@ typedef struct rrc_channel_input {
     uint32_t size;
     const float* samples;    /* width*height*components, interleaved; required */
     const float* confidence; /* width*height weights in [0,1]; required iff the channel has confidence */
+    /* ---- 0.4 ---- */
+    const float* fallback; /* width*height*components: the host's estimate for young pixels (soft shadows: PCSS);
+                              required iff the channel's fill_prior > 0, else ignored */
 } rrc_channel_input;
 
 typedef struct rrc_frame_desc {
@@ -408,7 +442,8 @@ typedef struct rrc_channel_output {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_CHANNEL_OUTPUT */
     const void* next;
     uint32_t size;
-    float* values; /* width*height*components: the accumulated signal (= next history) */
+    float* values; /* width*height*components: the accumulated signal (= next history); with a fill
+                      (fill_age), the displayed value: filled where young, the history elsewhere */
     uint16_t* age; /* width*height: valid samples in history, 0 = empty */
     float* weight; /* width*height: accumulated confidence W (confidence channels only) */
 } rrc_channel_output;

@@ -71,7 +71,8 @@
 #define RRC_HISTORY_FILTER_VALUES(X)                                    \
     X(RRC_HISTORY_FILTER_BILINEAR, 0) /* the paper's choice (default) */ \
     X(RRC_HISTORY_FILTER_NEAREST, 1)                                    \
-    X(RRC_HISTORY_FILTER_CATMULL_ROM, 2) /* clamped to the 4 bilinear taps' range: cannot ring */
+    X(RRC_HISTORY_FILTER_CATMULL_ROM, 2) /* clamped to the 4 bilinear taps' range: cannot ring */ \
+    X(RRC_HISTORY_FILTER_GAUSSIAN, 3)    /* bilinear after a 3-tap blur of variance blur_sigma^2 (PCF's post step) */
 
 /* ---- rrc_history_precision ----------------------------------------------- */
 #define RRC_HISTORY_PRECISION_VALUES(X)                                           \

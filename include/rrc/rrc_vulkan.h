@@ -75,9 +75,12 @@ typedef struct rrc_vulkan_channel_images {
     uint32_t size;
     rrc_vulkan_image samples;    /* required, SAMPLED usage, any float format: .r (1 component) or .rgba */
     rrc_vulkan_image confidence; /* required iff the channel has confidence: SAMPLED, weight in .r */
-    rrc_vulkan_image output;     /* required, STORAGE usage, a float format: receives the accumulated value */
+    rrc_vulkan_image output;     /* required, STORAGE usage, a float format: receives the accumulated value
+                                    (with a fill, the displayed value: rrc.h rrc_channel_output.values) */
     /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
     rrc_vulkan_image age; /* optional (image = NULL: none), STORAGE R16_UINT: the channel's age n after this frame */
+    /* ---- 0.4 ---- */
+    rrc_vulkan_image fallback; /* required iff the channel's fill_prior > 0: SAMPLED, any float format, .r or .rgba */
 } rrc_vulkan_channel_images;
 
 /** What the kernel writes at rrc_vulkan_frame_desc.stats_buffer + stats_offset
