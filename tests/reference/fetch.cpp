@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "finish.h"
+
 namespace rrc_ref {
 
 namespace {
@@ -45,13 +47,27 @@ double Image::at(int x, int y, unsigned c) const {
     return data[(static_cast<size_t>(y) * width + x) * components + c];
 }
 
-void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out) {
+void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out, double blur_g) {
     if (filter == RRC_HISTORY_FILTER_NEAREST) {
         int x = nearest_index(qx, img.width), y = nearest_index(qy, img.height);
         for (unsigned c = 0; c < img.components; ++c) out[c] = img.at(x, y, c);
         return;
     }
     Cell k = cell_at(qx, qy, img.width, img.height);
+    if (filter == RRC_HISTORY_FILTER_GAUSSIAN) {
+        // Bilinear after the separable blur [g, 1 - 2g, g]: the 4x4 taps of
+        // Catmull-Rom with non-negative weights summing to 1 (no clamp).
+        double wx[4], wy[4];
+        gaussian_weights(k.fx, blur_g, wx);
+        gaussian_weights(k.fy, blur_g, wy);
+        for (unsigned c = 0; c < img.components; ++c) {
+            double sum = 0.0;
+            for (int b = 0; b < 4; ++b)
+                for (int a = 0; a < 4; ++a) sum += wx[a] * wy[b] * img.at(k.x0 - 1 + a, k.y0 - 1 + b, c);
+            out[c] = sum;
+        }
+        return;
+    }
     for (unsigned c = 0; c < img.components; ++c) {
         double t00 = img.at(k.x0, k.y0, c), t10 = img.at(k.x0 + 1, k.y0, c);
         double t01 = img.at(k.x0, k.y0 + 1, c), t11 = img.at(k.x0 + 1, k.y0 + 1, c);

@@ -26,7 +26,8 @@ struct Image {
 };
 
 // Resamples every component at (qx, qy) with the filter; out[c] for c < components.
-void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out);
+// blur_g: GAUSSIAN's g = blur_sigma^2 / 2 (ignored by the other filters).
+void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out, double blur_g = 0.125);
 
 struct DepthFetch {
     Bounded value;           // fetched previous depth (NDC z, or linear d for LINEAR)

@@ -56,8 +56,19 @@ Params resolve(const rrc_context_desc& ctx) {
     for (uint32_t c = 0; c < ctx.channel_count; ++c) {
         const rrc_channel_desc& d = ctx.channels[c];
         const unsigned cap = d.age_cap != 0 ? d.age_cap : 255u;
-        p.channels.push_back({d.components, d.precision == RRC_HISTORY_FP16 && !stalls_in_fp16(d.lambda, d.blend, cap), d.lambda, d.blend,
-                              d.filter, cap, d.confidence != 0});
+        ChannelParams ch{
+            d.components,     d.precision == RRC_HISTORY_FP16 && !stalls_in_fp16(d.lambda, d.blend, cap), d.lambda, d.blend, d.filter, cap,
+            d.confidence != 0};
+        // 0.4: a zero member is the feature's default (or off).
+        ch.rectify = d.rectify != 0;
+        ch.rectify_gamma = d.rectify_gamma != 0.0f ? d.rectify_gamma : RRC_DEFAULT_RECTIFY_GAMMA;
+        const double sigma = d.blur_sigma != 0.0f ? d.blur_sigma : RRC_DEFAULT_BLUR_SIGMA;
+        ch.blur_g = sigma * sigma / 2.0;
+        ch.fill_age = d.fill_age;
+        ch.fill_radius = d.fill_radius != 0 ? static_cast<int>(d.fill_radius) : static_cast<int>(RRC_DEFAULT_FILL_RADIUS);
+        ch.fill_tau = d.fill_depth_tolerance != 0.0f ? d.fill_depth_tolerance : RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
+        ch.fill_prior = d.fill_prior;
+        p.channels.push_back(ch);
     }
     return p;
 }

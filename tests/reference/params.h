@@ -19,6 +19,14 @@ struct ChannelParams {
     rrc_history_filter filter;
     unsigned age_cap;
     bool confidence;
+    // 0.4 finishing steps (docs/CONVENTIONS.md "Finishing steps (0.4)"), defaults resolved.
+    bool rectify = false;
+    double rectify_gamma = 1.0;  // gamma
+    double blur_g = 0.125;       // GAUSSIAN: g = blur_sigma^2 / 2 (the default sigma 0.5)
+    unsigned fill_age = 0;       // T; 0 = no fill
+    int fill_radius = 2;         // r
+    double fill_tau = 0.05;      // fill_depth_tolerance
+    double fill_prior = 0.0;     // P; 0 = no fallback
 };
 
 struct Params {
@@ -39,9 +47,9 @@ struct Params {
     bool object_id;  // frames carry object ids: every weighted tap must match
     // The shading cache (docs/CONVENTIONS.md, "The shading cache").
     rrc_refresh_policy refresh_policy;
-    unsigned refresh_period;     // n (1 without a policy)
-    unsigned refresh_tiles[2];   // TILED {gx, gy}, {0, 0} resolved to {n, 1}
-    unsigned max_lifetime;       // 0: none
+    unsigned refresh_period;    // n (1 without a policy)
+    unsigned refresh_tiles[2];  // TILED {gx, gy}, {0, 0} resolved to {n, 1}
+    unsigned max_lifetime;      // 0: none
     std::vector<ChannelParams> channels;
     bool has_reuse() const {
         for (const ChannelParams& c : channels)

@@ -29,6 +29,8 @@
 //    hit.  The ages the refresh reads are the nearest texel's (flagged by
 //    near_nearest_edge where that texel may differ).
 //  * Plain MOTION with STANDARD depth and far = +inf linearises as n/(1 - z).
+//  * Rectification clamps H before the whole hit case is evaluated, so a
+//    confidence channel whose W' underflows keeps the clamped H.
 #ifndef RRC_REFERENCE_H
 #define RRC_REFERENCE_H
 
@@ -58,6 +60,14 @@ struct ChannelResult {
     std::vector<double> exact;   // the value before the fp16 rounding (== out for fp32 channels)
     std::vector<uint16_t> age;   // W*H
     std::vector<double> weight;  // W*H for confidence channels; empty otherwise
+    // Rectification (reference/finish.h): where it applied, the bound on the
+    // kernel's error that the fp32 box (mu +- gamma sigma) adds to `exact`,
+    // per component, 0 elsewhere; and the pixels whose H the clamp moved.
+    std::vector<double> rectify_err;  // W*H*components
+    std::vector<uint8_t> rectified;   // W*H
+    // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
+    // of `out` with this frame's depth and fallback; empty otherwise.
+    std::vector<double> shown;  // W*H*components
 };
 
 struct FrameResult {

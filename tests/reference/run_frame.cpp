@@ -9,6 +9,7 @@
 #include "cache.h"
 #include "fetch.h"
 #include "filter.h"
+#include "finish.h"
 #include "hit_test.h"
 #include "params.h"
 #include "reproject.h"
@@ -35,8 +36,8 @@ Sample read_sample(const ChannelParams& ch, const rrc_channel_input& in, size_t 
 
 Resampled read_previous(const ChannelParams& ch, const ChannelHistory& h, int width, int height, const HitTest& t) {
     Resampled r;
-    resample(Image{h.history.data(), width, height, ch.components}, ch.filter, t.qx.v, t.qy.v, r.h);
-    if (ch.confidence) resample(Image{h.weight.data(), width, height, 1}, ch.filter, t.qx.v, t.qy.v, &r.weight);
+    resample(Image{h.history.data(), width, height, ch.components}, ch.filter, t.qx.v, t.qy.v, r.h, ch.blur_g);
+    if (ch.confidence) resample(Image{h.weight.data(), width, height, 1}, ch.filter, t.qx.v, t.qy.v, &r.weight, ch.blur_g);
     int x = nearest_index(t.qx.v, width), y = nearest_index(t.qy.v, height);
     r.age = h.age[static_cast<size_t>(y) * width + x];
     return r;
@@ -62,6 +63,8 @@ FrameResult allocate(const Params& p) {
         c.exact.assign(n * ch.components, 0.0);
         c.age.assign(n, 0);
         if (ch.confidence) c.weight.assign(n, 0.0);
+        c.rectify_err.assign(n * ch.components, 0.0);
+        c.rectified.assign(n, 0);
         r.channels.push_back(std::move(c));
     }
     return r;
@@ -81,6 +84,7 @@ void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_de
     for (size_t c = 0; c < p.channels.size(); ++c) {
         require(frame.channels[c].samples != nullptr, "channel samples are NULL");
         require(!p.channels[c].confidence || frame.channels[c].confidence, "confidence is NULL");
+        require(!(p.channels[c].fill_age > 0 && p.channels[c].fill_prior > 0.0) || frame.channels[c].fallback, "fallback is NULL");
     }
     if (!prev.valid) return;
     require(prev.depth.size() == n, "previous depth size");
@@ -184,6 +188,16 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                     u.age = std::min(r.age + 1u, ch.age_cap);
                 } else {
                     if (!s.valid) mask |= RRC_MASK_INVALID_SAMPLE;
+                    // Rectification: only where the table blends (a hit, a valid
+                    // sample, a non-empty history); the clamped H is then used by
+                    // the whole case.
+                    if (ch.rectify && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
+                        const RectifyBox box = rectify_box(ch, frame.channels[c], p.width, p.height, i, j);
+                        double before[4];
+                        std::copy(r.h, r.h + 4, before);
+                        rectify_history(box, ch.components, r.h, &res.channels[c].rectify_err[px * ch.components]);
+                        res.channels[c].rectified[px] = !std::equal(r.h, r.h + ch.components, before);
+                    }
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;
                     u = filter_update(ch, ch.blend == RRC_BLEND_REUSE ? reuse_case : pc, s, r);
@@ -201,6 +215,16 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
         }
     }
     count(res);
+    // The spatial fill: a second pass over the frame's stored outputs.
+    for (size_t c = 0; c < p.channels.size(); ++c) {
+        if (p.channels[c].fill_age == 0) continue;
+        ChannelResult& out = res.channels[c];
+        const std::vector<float> stored(out.out.begin(), out.out.end());  // fp32 store (fp16 values are exact)
+        const FillInputs in{stored.data(), out.age.data(), frame.depth, frame.channels[c].fallback};
+        FillOptions fo;
+        fo.error_scale = scale;
+        out.shown = spatial_fill(p, c, in, fo).shown;
+    }
     return res;
 }
 

@@ -1,0 +1,174 @@
+#include "finish.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "rrc_reference.h"
+
+namespace rrc_ref {
+
+namespace {
+
+const double kU32 = 0x1p-24;  // unit roundoff of fp32
+
+size_t index(int width, int x, int y) { return static_cast<size_t>(y) * width + x; }
+
+}  // namespace
+
+bool sample_valid(const ChannelParams& ch, const rrc_channel_input& in, size_t pixel) {
+    for (unsigned c = 0; c < ch.components; ++c)
+        if (!std::isfinite(in.samples[pixel * ch.components + c])) return false;
+    return !ch.confidence || std::isfinite(in.confidence[pixel]);
+}
+
+RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int W, int H, int i, int j) {
+    RectifyBox b;
+    double sum[4] = {0, 0, 0, 0}, sum2[4] = {0, 0, 0, 0}, sum_abs[4] = {0, 0, 0, 0};
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            // Clamped taps: an edge pixel's repeated taps count each time.
+            const int x = std::min(std::max(i + dx, 0), W - 1), y = std::min(std::max(j + dy, 0), H - 1);
+            const size_t q = index(W, x, y);
+            if (!sample_valid(ch, in, q)) continue;
+            ++b.taps;
+            for (unsigned c = 0; c < ch.components; ++c) {
+                const double s = in.samples[q * ch.components + c];
+                sum[c] += s;
+                sum2[c] += s * s;
+                sum_abs[c] += std::fabs(s);
+            }
+        }
+    }
+    if (b.taps == 0) return b;  // cannot happen where rectification applies (the centre is valid)
+    const double m = b.taps, gamma = ch.rectify_gamma;
+    for (unsigned c = 0; c < ch.components; ++c) {
+        const double mu = sum[c] / m, mean2 = sum2[c] / m;
+        const double var = std::max(mean2 - mu * mu, 0.0);
+        const double sigma = std::sqrt(var);
+        b.mu[c] = mu;
+        b.sigma[c] = sigma;
+        b.lo[c] = mu - gamma * sigma;
+        b.hi[c] = mu + gamma * sigma;
+        // fp32 error, with a factor ~2 of slack over the first-order bound:
+        // the sums of up to 9 terms (8u each), the division, mu^2, the
+        // difference; |sqrt(v + d) - sqrt(v)| <= min(sqrt|d|, |d|/sqrt(v)).
+        const double mu_err = 16.0 * kU32 * (sum_abs[c] / m);
+        const double var_err = 64.0 * kU32 * mean2;
+        double sigma_err = std::sqrt(var_err);
+        if (sigma > 0.0) sigma_err = std::min(sigma_err, var_err / sigma);
+        b.err[c] = mu_err + gamma * (sigma_err + 2.0 * kU32 * sigma) + 2.0 * kU32 * std::fabs(mu);
+    }
+    return b;
+}
+
+void rectify_history(const RectifyBox& b, unsigned components, double* h, double* err) {
+    for (unsigned c = 0; c < components; ++c) {
+        const double e = b.err[c];
+        // Strictly inside the box by more than its error: the kernel's clamp is a no-op too.
+        err[c] = (h[c] > b.lo[c] + e && h[c] < b.hi[c] - e) ? 0.0 : e;
+        h[c] = std::min(std::max(h[c], b.lo[c]), b.hi[c]);
+    }
+}
+
+void gaussian_weights(double t, double g, double w[4]) {
+    w[0] = g * (1.0 - t);
+    w[1] = (1.0 - 2.0 * g) * (1.0 - t) + g * t;
+    w[2] = g * (1.0 - t) + (1.0 - 2.0 * g) * t;
+    w[3] = g * t;
+}
+
+double fill_depth_proxy(rrc_depth_mode mode, double z) {
+    switch (mode) {
+        case RRC_DEPTH_MODE_STANDARD: return 1.0 / (1.0 - z);
+        case RRC_DEPTH_MODE_REVERSED: return 1.0 / z;
+        default: return z;
+    }
+}
+
+FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const FillOptions& options) {
+    if (c >= p.channels.size()) throw std::invalid_argument("rrc_ref::spatial_fill: no such channel");
+    const ChannelParams& ch = p.channels[c];
+    if (ch.fill_age == 0) throw std::invalid_argument("rrc_ref::spatial_fill: the channel has no fill");
+    if (!in.values || !in.age || !in.depth || (ch.fill_prior > 0.0 && !in.fallback))
+        throw std::invalid_argument("rrc_ref::spatial_fill: NULL input");
+    const int W = p.width, H = p.height, r = ch.fill_radius;
+    const unsigned K = ch.components, T = ch.fill_age;
+    const size_t n = static_cast<size_t>(W) * H;
+    FillResult res;
+    res.shown.assign(n * K, 0.0);
+    res.exact.assign(n * K, 0.0);
+    res.err.assign(n * K, 0.0);
+    res.filled.assign(n, 0);
+    res.neighbours.assign(n, 0);
+    res.near_threshold.assign(n, 0);
+
+    auto finite_value = [&](const float* v, size_t px) {
+        for (unsigned k = 0; k < K; ++k)
+            if (!std::isfinite(v[px * K + k])) return false;
+        return true;
+    };
+    for (int j = 0; j < H; ++j) {
+        for (int i = 0; i < W; ++i) {
+            const size_t px = index(W, i, j);
+            const unsigned np = in.age[px];
+            for (unsigned k = 0; k < K; ++k) res.exact[px * K + k] = in.values[px * K + k];
+            if (is_background(p, in.depth[px]) || np >= T) continue;
+            res.filled[px] = 1;
+
+            const double dp = fill_depth_proxy(p.mode, in.depth[px]);
+            const double phi = options.fade ? static_cast<double>(T - np) / T : 1.0;
+            double num[4] = {0, 0, 0, 0}, num_abs[4] = {0, 0, 0, 0}, wsum = 0.0;
+            unsigned terms = 0;
+            for (int b = -r; b <= r; ++b) {
+                for (int a = -r; a <= r; ++a) {
+                    const int x = i + a, y = j + b;
+                    if ((a == 0 && b == 0) || x < 0 || y < 0 || x >= W || y >= H) continue;  // outside taps are skipped
+                    const size_t q = index(W, x, y);
+                    if (is_background(p, in.depth[q]) || in.age[q] < 1 || !finite_value(in.values, q)) continue;
+                    const double dq = fill_depth_proxy(p.mode, in.depth[q]);
+                    const double lhs = std::fabs(dq - dp), rhs = ch.fill_tau * dp;
+                    // 1/(1 - z) and 1/z in fp32: 2u each; the difference and tau*delta: 1u more.
+                    const double margin = options.error_scale * 8.0 * kU32 * (std::fabs(dq) + std::fabs(dp));
+                    if (std::fabs(lhs - rhs) <= margin) res.near_threshold[px] = 1;
+                    if (!(lhs <= rhs)) continue;
+                    const double w = std::min<unsigned>(in.age[q], T);  // w_q = min(n_q, T)
+                    wsum += w;
+                    ++terms;
+                    for (unsigned k = 0; k < K; ++k) {
+                        num[k] += w * in.values[q * K + k];
+                        num_abs[k] += w * std::fabs(in.values[q * K + k]);
+                    }
+                }
+            }
+            res.neighbours[px] = static_cast<uint8_t>(std::min(terms, 255u));
+            double prior = 0.0;
+            if (ch.fill_prior > 0.0 && finite_value(in.fallback, px)) {
+                prior = ch.fill_prior;
+                ++terms;
+                for (unsigned k = 0; k < K; ++k) {
+                    num[k] += prior * in.fallback[px * K + k];
+                    num_abs[k] += prior * std::fabs(in.fallback[px * K + k]);
+                }
+            }
+            const double den = np + phi * (wsum + prior);
+            if (den == 0.0) continue;  // no sample, no neighbour, no fallback: v_p
+            for (unsigned k = 0; k < K; ++k) {
+                const double v = in.values[px * K + k];
+                const double shown = (np * v + phi * num[k]) / den;
+                res.exact[px * K + k] = shown;
+                // fp32: the sums (one rounding per term), phi, the products, the division; x2 slack.
+                const double magnitude = (np * std::fabs(v) + phi * num_abs[k]) / den;
+                res.err[px * K + k] = options.error_scale * 2.0 * (terms + 6) * kU32 * (magnitude + std::fabs(shown));
+            }
+        }
+    }
+    for (size_t e = 0; e < n * K; ++e) res.shown[e] = ch.fp16 ? fp16_round(res.exact[e]) : res.exact[e];
+    return res;
+}
+
+FillResult spatial_fill(const rrc_context_desc& ctx, size_t c, const FillInputs& in, const FillOptions& options) {
+    return spatial_fill(resolve(ctx), c, in, options);
+}
+
+}  // namespace rrc_ref

@@ -1,0 +1,85 @@
+// The 0.4 finishing steps of docs/CONVENTIONS.md ("Finishing steps (0.4)"):
+// rectification of the resampled history, the Gaussian history filter's
+// weights, and the spatial fill of young pixels.  Re-derived from the
+// conventions in double; nothing here is shared with compute/ or plugin/.
+#ifndef RRC_REFERENCE_FINISH_H
+#define RRC_REFERENCE_FINISH_H
+
+#include <rrc/rrc.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "params.h"
+
+namespace rrc_ref {
+
+// ---- Rectification -------------------------------------------------------
+
+// The clamp box of pixel (i, j): per component mu +- gamma sigma over the
+// valid samples of the clamped 3x3 neighbourhood of this frame's input.
+struct RectifyBox {
+    unsigned taps = 0;  // m, the valid taps (clamped repeats count)
+    double mu[4] = {0, 0, 0, 0}, sigma[4] = {0, 0, 0, 0};
+    double lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+    // First-order bound on how far an fp32 evaluation of lo / hi (the one-pass
+    // sums of s and s^2, sqrt(max(E[s^2] - mu^2, 0))) can be from the exact
+    // ones: sigma's cancellation makes this sqrt(u) * |s| large where the 9
+    // samples (nearly) agree.
+    double err[4] = {0, 0, 0, 0};
+};
+
+// A sample of the channel's input counts when every component (and, with
+// confidence, the confidence) is finite.
+bool sample_valid(const ChannelParams& ch, const rrc_channel_input& in, size_t pixel);
+
+RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int width, int height, int i, int j);
+
+// H_k <- min(max(H_k, lo_k), hi_k) for k < components.  Returns, per
+// component, the bound on the kernel's clamped value's error from the box's
+// error (0 where H lies inside the box by more than that error).
+void rectify_history(const RectifyBox& box, unsigned components, double* h, double* err);
+
+// ---- The Gaussian history filter -------------------------------------------
+
+// Per-axis weights of taps i0 - 1 .. i0 + 2 for fraction t: the 3-tap blur
+// [g, 1 - 2g, g] convolved with the bilinear [1 - t, t].
+void gaussian_weights(double t, double g, double w[4]);
+
+// ---- The spatial fill ------------------------------------------------------
+
+// The depth proxy delta of the fill from this frame's depth (LINEAR d,
+// STANDARD 1/(1 - z), REVERSED 1/z).
+double fill_depth_proxy(rrc_depth_mode mode, double depth);
+
+// One channel's outputs after the frame, as the fill reads them.
+struct FillInputs {
+    const float* values;    // W*H*components: the channel's history as stored (fp16 values for fp16 channels)
+    const uint16_t* age;    // W*H: ages after the frame
+    const float* depth;     // W*H: this frame's depth, in the context's depth mode
+    const float* fallback;  // W*H*components, or NULL; read only with fill_prior > 0
+};
+
+struct FillOptions {
+    double error_scale = 1.0;  // multiplies the fp32 error margins (as Options::error_scale)
+    // Test support: false drops the fade (phi = 1), to check that a test of
+    // the kernel would notice a fill that does not fade out.
+    bool fade = true;
+};
+
+struct FillResult {
+    std::vector<double> shown;            // W*H*components: the displayed value as output (fp16 rounded for fp16 channels)
+    std::vector<double> exact;            // the same before the fp16 rounding
+    std::vector<double> err;              // bound on the fp32 evaluation's error of `exact`
+    std::vector<uint8_t> filled;          // W*H: not background and n_p < T (the formula applies)
+    std::vector<uint8_t> neighbours;      // W*H: neighbours counted (filled pixels)
+    std::vector<uint8_t> near_threshold;  // W*H: a neighbour's depth test is within fp32 error of tau
+};
+
+// The displayed values of channel `c` (its fill_age must be > 0).
+FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const FillOptions& options = {});
+FillResult spatial_fill(const rrc_context_desc& ctx, size_t c, const FillInputs& in, const FillOptions& options = {});
+
+}  // namespace rrc_ref
+
+#endif
