@@ -1,0 +1,458 @@
+// API 0.4's finishing steps (docs/CONVENTIONS.md, "Finishing steps (0.4)")
+// against the independent double-precision reference (tests/reference/finish.h),
+// standalone (rrc_frame_run) on a moving analytic scene (tests/scenes):
+//   - rectification: gamma 1 and 2.5, 1 and 4 components, fp16 and fp32, with
+//     confidence, on noisy samples whose signal changes (a brightening front
+//     sweeps the image), one frame at a time from the kernel's own previous
+//     state as tests/kernel_reference_test.cpp does;
+//   - the GAUSSIAN history filter: blur_sigma default and 0.8, the same mix;
+//   - the spatial fill: fill_age 4 and 8, radius 1 and 2, with and without a
+//     fallback, RUNNING_MEAN and REUSE channels, in each depth mode: the output
+//     values are the displayed value, the reference's fill of a twin context's
+//     (same channels without the fill) history; ages, masks and every value of
+//     a pixel that is not filled equal the twin's exactly, every frame, so the
+//     fill never entered history.
+// Each case also runs the reference with a deliberately wrong variant (gamma
+// ignored, rectification off, the blur missing or of the other sigma, the
+// fill's fade missing, the fallback ignored, the other radius) and requires
+// that the comparison would have caught it on enough pixels.
+// Every context runs under the validation layer (support/rrc_test_context.h).
+#include "reference/finish.h"
+#include "reference/rrc_reference.h"
+#include "support/rrc_test_context.h"
+#include "support/scene_frames.h"
+#include "support/tolerance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <sstream>
+#include <string>
+
+using namespace rrc_test;
+
+namespace {
+
+const int kW = 64, kH = 40, kFrames = 8;
+// A wrong variant must differ beyond the tolerance on at least this many
+// compared values over the case's frames.
+const int64_t kMinCaught = 20;
+
+rrc_scene::SceneConfig scene_of(rrc_depth_mode mode, double invalid_fraction = 0.0) {
+    rrc_scene::SceneConfig sc = scene_config(kW, kH, mode);
+    sc.jitter = true;
+    sc.object_motion = true;
+    sc.invalid_fraction = invalid_fraction;
+    return sc;
+}
+
+// A changing signal: a front sweeping right by 6 pixels a frame brightens
+// what it passes by 0.5 (the history behind it no longer matches).
+void change_signal(rrc_scene::Frame& f, int t) {
+    const int front = 6 * t;
+    for (int j = 0; j < f.height; ++j)
+        for (int i = 0; i < std::min(front, f.width); ++i) {
+            const size_t p = (size_t)j * f.width + i;
+            f.signal1[p] += 0.5f;
+            for (int k = 0; k < 4; ++k) f.signal4[4 * p + k] += 0.125f * (k + 1);
+        }
+}
+
+// Reports the first few mismatches of one kind in full and counts the rest,
+// so that a kernel ignoring an option fails readably.
+class Mismatches {
+public:
+    explicit Mismatches(std::string what) : what_(std::move(what)) {}
+    ~Mismatches() {
+        if (count_ > 0) ADD_FAILURE() << count_ << " " << what_ << " mismatches, the first:" << first_.str();
+    }
+    // The stream for the message of one mismatch.
+    std::ostream& add() {
+        sink_.str("");
+        return ++count_ <= 8 ? first_ << "\n  " : sink_;
+    }
+    int64_t count() const { return count_; }
+
+private:
+    std::string what_;
+    int64_t count_ = 0;
+    std::ostringstream first_, sink_;
+};
+
+// The value tolerance of tests/support/tolerance.h plus what the reference says
+// rectification's fp32 box adds.
+double value_tolerance(const rrc_ref::ChannelResult& r, const rrc_ref::PreviousFrame& prev, size_t ch, uint32_t m, size_t i, uint32_t q,
+                       bool fp16, const rrc_ref::FrameResult& fr, const float* prev_jitter) {
+    const double spread =
+        prev.valid ? history_spread(prev.channels[ch].history, m, q, kW, kH, fr.uv_prev_x[i], fr.uv_prev_y[i], prev_jitter) : 0.0;
+    return arithmetic_tolerance(r.out[m * i + q], r.exact[m * i + q], fp16) + position_tolerance(spread, kW, kH) + r.rectify_err[m * i + q];
+}
+
+// A wrong variant of the context's channels, for the reference only.
+struct Mutant {
+    std::string name;
+    size_t channel;
+    std::function<void(rrc_channel_desc&)> change;
+};
+
+struct CaseStats {
+    int64_t compared = 0, skipped = 0, hits = 0, rectified = 0;
+    double max_fp32_err = 0, max_fp16_steps = 0;
+    std::vector<int64_t> caught;  // per mutant
+};
+
+// Runs `channels` on the scene for kFrames frames, comparing every frame with
+// the reference from the kernel's previous state; returns the statistics.
+CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>& channels, const std::vector<Mutant>& mutants,
+                           bool changing_signal) {
+    CaseStats st;
+    st.caught.assign(mutants.size(), 0);
+    rrc_scene::Scene scene(scene_of(RRC_DEPTH_MODE_REVERSED));
+    const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
+    Context ctx(scene_context_desc(scene.config(), source, channels));
+    if (!ctx) {
+        ADD_FAILURE() << name << ": context refused";
+        return st;
+    }
+    // The mutants' contexts (reference only).
+    std::vector<std::vector<rrc_channel_desc>> mutant_channels(mutants.size(), channels);
+    std::vector<rrc_context_desc> mutant_desc(mutants.size(), ctx.desc());
+    for (size_t m = 0; m < mutants.size(); ++m) {
+        mutants[m].change(mutant_channels[m][mutants[m].channel]);
+        mutant_desc[m].channels = mutant_channels[m].data();
+    }
+
+    Mismatches masks(std::string(name) + " mask"), ages(std::string(name) + " age"), values(std::string(name) + " value"),
+        weights(std::string(name) + " weight");
+    rrc_ref::PreviousFrame prev;
+    const size_t n = (size_t)kW * kH;
+    for (int t = 0; t < kFrames; ++t) {
+        SceneFrameInputs in;
+        in.frame = scene.render(t);
+        if (changing_signal) change_signal(in.frame, t);
+        make_frame_inputs(in, source, channels);
+        FrameResult k = ctx.run(in.desc);
+        rrc_ref::FrameResult r = rrc_ref::run_frame(ctx.desc(), prev, in.desc);
+        std::vector<rrc_ref::FrameResult> mr;
+        for (size_t m = 0; m < mutants.size(); ++m) mr.push_back(rrc_ref::run_frame(mutant_desc[m], prev, in.desc));
+        for (size_t i = 0; i < n; ++i) {
+            // Pixels whose hit decision or nearest texel sits within fp32 error of a threshold.
+            if (r.near_threshold[i] || r.near_nearest_edge[i]) {
+                ++st.skipped;
+                continue;
+            }
+            if (k.mask[i] != r.mask[i])
+                masks.add() << "frame " << t << " pixel (" << i % kW << "," << i / kW << ") kernel " << int(k.mask[i]) << " reference "
+                            << int(r.mask[i]);
+            if (k.mask[i] != r.mask[i]) continue;
+            ++st.compared;
+            if (r.mask[i] & RRC_MASK_HIT) ++st.hits;
+            for (size_t ch = 0; ch < channels.size(); ++ch) {
+                const uint32_t m = channels[ch].components;
+                const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
+                const rrc_ref::ChannelResult& rc = r.channels[ch];
+                st.rectified += rc.rectified[i];
+                if (k.age[ch][i] != rc.age[i])
+                    ages.add() << "frame " << t << " pixel " << i << " channel " << ch << " kernel " << k.age[ch][i] << " reference "
+                               << rc.age[i];
+                for (uint32_t q = 0; q < m; ++q) {
+                    const double kv = k.values[ch][m * i + q], rv = rc.out[m * i + q];
+                    const double err = std::fabs(kv - rv);
+                    const double tol = value_tolerance(rc, prev, ch, m, i, q, fp16, r, in.desc.prev_jitter);
+                    if (!(err <= tol))
+                        values.add() << "frame " << t << " pixel (" << i % kW << "," << i / kW << ") channel " << ch << " component " << q
+                                     << " kernel " << kv << " reference " << rv << " rectified " << int(rc.rectified[i]);
+                    if (fp16)
+                        st.max_fp16_steps = std::max(st.max_fp16_steps, err / fp16_step(rc.exact[m * i + q]));
+                    else
+                        st.max_fp32_err = std::max(st.max_fp32_err, err);
+                }
+                if (channels[ch].confidence) {
+                    const double err = std::fabs(k.weight[ch][i] - rc.weight[i]);
+                    if (!(err <= 1e-6 + 1e-5 * std::fabs(rc.weight[i])))
+                        weights.add() << "frame " << t << " pixel " << i << " kernel " << k.weight[ch][i] << " reference " << rc.weight[i];
+                }
+            }
+            // Would the comparison have caught each wrong variant here?
+            for (size_t mu = 0; mu < mutants.size(); ++mu) {
+                const size_t ch = mutants[mu].channel;
+                const uint32_t m = channels[ch].components;
+                const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
+                bool caught = mr[mu].mask[i] != r.mask[i];
+                for (uint32_t q = 0; q < m && !caught; ++q) {
+                    const double tol = value_tolerance(r.channels[ch], prev, ch, m, i, q, fp16, r, in.desc.prev_jitter);
+                    caught = std::fabs(mr[mu].channels[ch].out[m * i + q] - r.channels[ch].out[m * i + q]) > 2 * tol;
+                }
+                st.caught[mu] += caught;
+            }
+        }
+        prev.valid = true;
+        prev.depth = in.frame.depth;
+        prev.channels.resize(channels.size());
+        for (size_t ch = 0; ch < channels.size(); ++ch) {
+            prev.channels[ch].history = k.values[ch];
+            prev.channels[ch].age = k.age[ch];
+            prev.channels[ch].weight = k.weight[ch];
+        }
+    }
+    std::printf("%-24s compared %lld skipped %lld hits %lld rectified %lld max fp32 err %.3g max fp16 steps %.3g\n", name,
+                (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.rectified, st.max_fp32_err,
+                st.max_fp16_steps);
+    EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
+    EXPECT_GT(st.hits, (int64_t)n * kFrames / 2) << name << ": too few hits";
+    for (size_t mu = 0; mu < mutants.size(); ++mu) {
+        std::printf("  wrong variant %-32s would fail on %lld values\n", mutants[mu].name.c_str(), (long long)st.caught[mu]);
+        EXPECT_GE(st.caught[mu], kMinCaught) << name << ": the comparison would not notice " << mutants[mu].name;
+    }
+    return st;
+}
+
+rrc_channel_desc rectified(rrc_channel_desc d, float gamma) {
+    d.rectify = 1;
+    d.rectify_gamma = gamma;
+    return d;
+}
+
+rrc_channel_desc gaussian(rrc_channel_desc d, float sigma) {
+    d.filter = RRC_HISTORY_FILTER_GAUSSIAN;
+    d.blur_sigma = sigma;
+    return d;
+}
+
+const auto kFp16 = RRC_HISTORY_FP16, kFp32 = RRC_HISTORY_FP32;
+const auto kBil = RRC_HISTORY_FILTER_BILINEAR;
+
+// ---- Rectification ----------------------------------------------------------------
+
+class Rectify : public ::testing::TestWithParam<float> {};
+
+TEST_P(Rectify, MatchesTheReference) {
+    const float gamma = GetParam();
+    const float other = gamma == 1.0f ? 2.5f : 1.0f;
+    const float asked = gamma == 1.0f ? 0.0f : gamma;  // gamma 1 as the default (0)
+    const std::vector<rrc_channel_desc> chs = {
+        rectified(channel("r1h", 1, 0.8f, kFp16, RRC_BLEND_FIXED, kBil), asked),
+        rectified(channel("r1f", 1, 0.8f, kFp32, RRC_BLEND_AGE_AWARE, kBil, 0, 1), asked),  // with confidence
+        rectified(channel("r4h", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_CATMULL_ROM, 16), asked),
+        rectified(channel("r4f", 4, 0.9f, kFp32, RRC_BLEND_FIXED, kBil), asked),
+    };
+    std::vector<Mutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c) {
+        mutants.push_back({std::string(chs[c].name) + " without rectify", c, [](rrc_channel_desc& d) { d.rectify = 0; }});
+        mutants.push_back(
+            {std::string(chs[c].name) + " gamma " + std::to_string(other), c, [other](rrc_channel_desc& d) { d.rectify_gamma = other; }});
+    }
+    const std::string name = "rectify_gamma_" + std::to_string(gamma);
+    CaseStats st = run_accumulating(name.c_str(), chs, mutants, true);
+    EXPECT_GT(st.rectified, 1000) << "rectification hardly moved any history";
+}
+
+INSTANTIATE_TEST_SUITE_P(Gamma, Rectify, ::testing::Values(1.0f, 2.5f),
+                         [](const ::testing::TestParamInfo<float>& i) { return i.param == 1.0f ? "gamma_1" : "gamma_2_5"; });
+
+// ---- The Gaussian history filter --------------------------------------------------
+
+class Gaussian : public ::testing::TestWithParam<float> {};
+
+TEST_P(Gaussian, MatchesTheReference) {
+    const float sigma = GetParam();  // 0: the default 0.5
+    const float other = sigma == 0.0f ? 0.8f : 0.5f;
+    const std::vector<rrc_channel_desc> chs = {
+        gaussian(channel("g1h", 1, 0.6f, kFp16, RRC_BLEND_FIXED, kBil), sigma),
+        gaussian(channel("g1f", 1, 0.8f, kFp32, RRC_BLEND_AGE_AWARE, kBil, 0, 1), sigma),  // with confidence
+        gaussian(channel("g4h", 4, 0.6f, kFp16, RRC_BLEND_FIXED, kBil, 0, 1), sigma),      // fp16 with confidence
+        gaussian(channel("g4f", 4, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil, 32), sigma),
+    };
+    std::vector<Mutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c) {
+        mutants.push_back({std::string(chs[c].name) + " bilinear (no blur)", c, [](rrc_channel_desc& d) {
+                               d.filter = RRC_HISTORY_FILTER_BILINEAR;
+                               d.blur_sigma = 0.0f;
+                           }});
+        mutants.push_back(
+            {std::string(chs[c].name) + " sigma " + std::to_string(other), c, [other](rrc_channel_desc& d) { d.blur_sigma = other; }});
+    }
+    const std::string name = "gaussian_sigma_" + std::to_string(sigma == 0.0f ? 0.5f : sigma);
+    run_accumulating(name.c_str(), chs, mutants, false);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sigma, Gaussian, ::testing::Values(0.0f, 0.8f),
+                         [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.0f ? "default" : "sigma_0_8"; });
+
+// Rectification and the blur together on one channel.
+TEST(RectifyGaussian, MatchesTheReference) {
+    const std::vector<rrc_channel_desc> chs = {rectified(gaussian(channel("rg", 4, 0.8f, kFp16, RRC_BLEND_FIXED, kBil), 0.7f), 2.5f)};
+    const std::vector<Mutant> mutants = {{"rg without rectify", 0, [](rrc_channel_desc& d) { d.rectify = 0; }},
+                                         {"rg bilinear", 0, [](rrc_channel_desc& d) {
+                                              d.filter = RRC_HISTORY_FILTER_BILINEAR;
+                                              d.blur_sigma = 0.0f;
+                                          }}};
+    run_accumulating("rectify_gaussian", chs, mutants, true);
+}
+
+// ---- The spatial fill -------------------------------------------------------------
+
+rrc_channel_desc filled(rrc_channel_desc d, uint32_t T, uint32_t r, float P) {
+    d.fill_age = T;
+    d.fill_radius = r;
+    d.fill_prior = P;
+    return d;
+}
+
+rrc_channel_desc without_fill(rrc_channel_desc d) {
+    d.fill_age = 0;
+    d.fill_radius = 0;
+    d.fill_depth_tolerance = 0.0f;
+    d.fill_prior = 0.0f;
+    return d;
+}
+
+struct FillMutant {
+    std::string name;
+    size_t channel;
+    std::function<void(rrc_channel_desc&)> change;
+    bool fade;
+};
+
+class Fill : public ::testing::TestWithParam<rrc_depth_mode> {};
+
+TEST_P(Fill, DisplaysTheFillOfTheUnfilledHistory) {
+    const rrc_depth_mode mode = GetParam();
+    const std::vector<rrc_channel_desc> chs = {
+        filled(channel("mean1", 1, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil), 4, 1, 0.0f),
+        filled(channel("mean4", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 8, 2, 4.0f),
+        filled(channel("reuse1", 1, 0.0f, kFp16, RRC_BLEND_REUSE, kBil), 8, 1, 4.0f),
+        filled(channel("reuse4", 4, 0.0f, kFp32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST), 4, 2, 0.0f),
+    };
+    std::vector<rrc_channel_desc> twin_chs;
+    for (const rrc_channel_desc& d : chs) twin_chs.push_back(without_fill(d));
+    std::vector<FillMutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c) {
+        const std::string n = chs[c].name;
+        mutants.push_back({n + " without the fade", c, [](rrc_channel_desc&) {}, false});
+        const uint32_t other_r = chs[c].fill_radius == 1 ? 2 : 1;
+        mutants.push_back({n + " radius " + std::to_string(other_r), c, [other_r](rrc_channel_desc& d) { d.fill_radius = other_r; }, true});
+        mutants.push_back({n + " depth test ignored", c, [](rrc_channel_desc& d) { d.fill_depth_tolerance = 1e30f; }, true});
+        if (chs[c].fill_prior > 0) mutants.push_back({n + " fallback ignored", c, [](rrc_channel_desc& d) { d.fill_prior = 0.0f; }, true});
+    }
+
+    // Invalid samples leave empty histories (age 0) to fill from the neighbours alone.
+    rrc_scene::Scene scene(scene_of(mode, 0.02));
+    const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
+    Context ctx(scene_context_desc(scene.config(), source, chs));
+    Context twin(scene_context_desc(scene.config(), source, twin_chs));
+    ASSERT_TRUE(ctx && twin);
+    const std::string name = std::string("fill_") + (mode == RRC_DEPTH_MODE_STANDARD   ? "standard"
+                                                     : mode == RRC_DEPTH_MODE_REVERSED ? "reversed"
+                                                                                       : "linear");
+
+    Mismatches masks(name + " mask (fill vs twin)"), ages(name + " age (fill vs twin)"),
+        unfilled(name + " value of a pixel not filled (fill vs twin)"), values(name + " displayed value");
+    const size_t n = (size_t)kW * kH;
+    int64_t compared = 0, skipped = 0, with_neighbours = 0, empty_filled = 0, with_fallback = 0;
+    double max_fp32_err = 0, max_fp16_steps = 0;
+    std::vector<int64_t> filled_count(chs.size(), 0), caught(mutants.size(), 0);
+    for (int t = 0; t < kFrames; ++t) {
+        SceneFrameInputs in;
+        in.frame = scene.render(t);
+        make_frame_inputs(in, source, chs);
+        // The fallback: the noise-free truth, with a few non-finite pixels (not used there).
+        std::vector<std::vector<float>> fallback(chs.size());
+        for (size_t c = 0; c < chs.size(); ++c) {
+            fallback[c] = chs[c].components == 1 ? in.frame.truth1 : in.frame.truth4;
+            for (size_t p = 0; p < n; p += 29) fallback[c][chs[c].components * p] = NAN;
+            in.inputs[c].fallback = fallback[c].data();
+        }
+        FrameResult k = ctx.run(in.desc);
+        FrameResult tw = twin.run(in.desc);  // ignores the fallback
+
+        std::vector<rrc_context_desc> mutant_desc(mutants.size(), ctx.desc());
+        std::vector<std::vector<rrc_channel_desc>> mutant_channels(mutants.size(), chs);
+        for (size_t c = 0; c < chs.size(); ++c) {
+            const rrc_ref::FillInputs fin{tw.values[c].data(), tw.age[c].data(), in.frame.depth.data(), fallback[c].data()};
+            const rrc_ref::FillResult ref = rrc_ref::spatial_fill(ctx.desc(), c, fin);
+            std::vector<rrc_ref::FillResult> mref(mutants.size());
+            for (size_t mu = 0; mu < mutants.size(); ++mu) {
+                if (mutants[mu].channel != c) continue;
+                mutants[mu].change(mutant_channels[mu][c]);
+                mutant_desc[mu].channels = mutant_channels[mu].data();
+                rrc_ref::FillOptions o;
+                o.fade = mutants[mu].fade;
+                mref[mu] = rrc_ref::spatial_fill(mutant_desc[mu], c, fin, o);
+            }
+            const uint32_t m = chs[c].components;
+            const bool fp16 = chs[c].precision == RRC_HISTORY_FP16;
+            for (size_t i = 0; i < n; ++i) {
+                // The fill is display-only: the history (ages, and the twin's values) is the twin's.
+                if (k.age[c][i] != tw.age[c][i])
+                    ages.add() << "frame " << t << " pixel " << i << " channel " << c << " fill " << k.age[c][i] << " twin "
+                               << tw.age[c][i];
+                if (c == 0 && k.mask[i] != tw.mask[i]) masks.add() << "frame " << t << " pixel " << i;
+                if (!ref.filled[i]) {
+                    for (uint32_t q = 0; q < m; ++q)
+                        if (k.values[c][m * i + q] != tw.values[c][m * i + q])
+                            unfilled.add() << "frame " << t << " pixel " << i << " channel " << c << " fill " << k.values[c][m * i + q]
+                                           << " twin " << tw.values[c][m * i + q] << " age " << tw.age[c][i];
+                    continue;
+                }
+                ++filled_count[c];
+                if (ref.near_threshold[i]) {
+                    ++skipped;
+                    continue;
+                }
+                ++compared;
+                with_neighbours += ref.neighbours[i] > 0;
+                empty_filled += tw.age[c][i] == 0 && ref.neighbours[i] > 0;
+                with_fallback += chs[c].fill_prior > 0 && std::isfinite(fallback[c][m * i]);
+                for (uint32_t q = 0; q < m; ++q) {
+                    const size_t e = m * i + q;
+                    const double kv = k.values[c][e], rv = ref.shown[e];
+                    const double tol = arithmetic_tolerance(rv, ref.exact[e], fp16) + ref.err[e];
+                    const double err = std::fabs(kv - rv);
+                    if (!(err <= tol))
+                        values.add() << "frame " << t << " pixel (" << i % kW << "," << i / kW << ") channel " << c << " component " << q
+                                     << " kernel " << kv << " reference " << rv << " history " << tw.values[c][e] << " age " << tw.age[c][i]
+                                     << " neighbours " << int(ref.neighbours[i]);
+                    if (fp16)
+                        max_fp16_steps = std::max(max_fp16_steps, err / fp16_step(ref.exact[e]));
+                    else
+                        max_fp32_err = std::max(max_fp32_err, err);
+                }
+                for (size_t mu = 0; mu < mutants.size(); ++mu) {
+                    if (mutants[mu].channel != c || mref[mu].near_threshold[i]) continue;
+                    bool differs = false;
+                    for (uint32_t q = 0; q < m && !differs; ++q) {
+                        const size_t e = m * i + q;
+                        const double tol = arithmetic_tolerance(ref.shown[e], ref.exact[e], fp16) + ref.err[e];
+                        differs = std::fabs(mref[mu].shown[e] - ref.shown[e]) > 2 * tol;
+                    }
+                    caught[mu] += differs;
+                }
+            }
+        }
+    }
+    std::printf(
+        "%-16s filled compared %lld skipped (depth test near tau) %lld with neighbours %lld empty %lld with fallback %lld max fp32 err "
+        "%.3g max fp16 steps %.3g\n",
+        name.c_str(), (long long)compared, (long long)skipped, (long long)with_neighbours, (long long)empty_filled,
+        (long long)with_fallback, max_fp32_err, max_fp16_steps);
+    for (size_t c = 0; c < chs.size(); ++c) EXPECT_GT(filled_count[c], 500) << name << " channel " << c << ": too few filled pixels";
+    EXPECT_GT(with_neighbours, 2000) << name;
+    EXPECT_GT(empty_filled, 20) << name << ": too few empty histories filled";
+    EXPECT_GT(with_fallback, 500) << name;
+    EXPECT_LT(skipped, compared / 50) << name << ": too many pixels near the depth threshold";
+    for (size_t mu = 0; mu < mutants.size(); ++mu) {
+        std::printf("  wrong variant %-28s would fail on %lld pixels\n", mutants[mu].name.c_str(), (long long)caught[mu]);
+        EXPECT_GE(caught[mu], kMinCaught) << name << ": the comparison would not notice " << mutants[mu].name;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(DepthModes, Fill, ::testing::Values(RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_MODE_LINEAR),
+                         [](const ::testing::TestParamInfo<rrc_depth_mode>& i) {
+                             return i.param == RRC_DEPTH_MODE_STANDARD   ? "standard"
+                                    : i.param == RRC_DEPTH_MODE_REVERSED ? "reversed"
+                                                                         : "linear";
+                         });
+
+}  // namespace
