@@ -24,7 +24,7 @@ bool sample_valid(const ChannelParams& ch, const rrc_channel_input& in, size_t p
 
 RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int W, int H, int i, int j) {
     RectifyBox b;
-    double sum[4] = {0, 0, 0, 0}, sum2[4] = {0, 0, 0, 0}, sum_abs[4] = {0, 0, 0, 0};
+    double sum[4] = {0, 0, 0, 0}, sum2[4] = {0, 0, 0, 0}, sum_abs[4] = {0, 0, 0, 0}, max2[4] = {0, 0, 0, 0};
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             // Clamped taps: an edge pixel's repeated taps count each time.
@@ -37,6 +37,7 @@ RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int
                 sum[c] += s;
                 sum2[c] += s * s;
                 sum_abs[c] += std::fabs(s);
+                max2[c] = std::max(max2[c], s * s);
             }
         }
     }
@@ -53,8 +54,10 @@ RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int
         // fp32 error, with a factor ~2 of slack over the first-order bound:
         // the sums of up to 9 terms (8u each), the division, mu^2, the
         // difference; |sqrt(v + d) - sqrt(v)| <= min(sqrt|d|, |d|/sqrt(v)).
+        // The largest square bounds the moments about any one tap too (an
+        // evaluation about the centre sample, which cancels less).
         const double mu_err = 16.0 * kU32 * (sum_abs[c] / m);
-        const double var_err = 64.0 * kU32 * mean2;
+        const double var_err = 64.0 * kU32 * (mean2 + max2[c]);
         double sigma_err = std::sqrt(var_err);
         if (sigma > 0.0) sigma_err = std::min(sigma_err, var_err / sigma);
         b.err[c] = mu_err + gamma * (sigma_err + 2.0 * kU32 * sigma) + 2.0 * kU32 * std::fabs(mu);
