@@ -166,7 +166,7 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
             }
         }
     }
-    for (size_t e = 0; e < n * K; ++e) res.shown[e] = ch.fp16 ? fp16_round(res.exact[e]) : res.exact[e];
+    for (size_t e = 0; e < n * K; ++e) res.shown[e] = options.fp16_output ? fp16_round(res.exact[e]) : res.exact[e];
     return res;
 }
 

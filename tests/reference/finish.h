@@ -65,6 +65,10 @@ struct FillOptions {
     // Test support: false drops the fade (phi = 1), to check that a test of
     // the kernel would notice a fill that does not fade out.
     bool fade = true;
+    // The output image is fp16 (an interop host's fp16 image): the displayed
+    // value is rounded to fp16.  Standalone, values are read back from an fp32
+    // display image (also for fp16 channels): no rounding.
+    bool fp16_output = false;
 };
 
 struct FillResult {

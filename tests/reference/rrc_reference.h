@@ -66,7 +66,8 @@ struct ChannelResult {
     std::vector<double> rectify_err;  // W*H*components
     std::vector<uint8_t> rectified;   // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
-    // of `out` with this frame's depth and fallback; empty otherwise.
+    // of `out` with this frame's depth and fallback (as read back standalone:
+    // not rounded to fp16); empty otherwise.
     std::vector<double> shown;  // W*H*components
 };
 

@@ -416,9 +416,18 @@ TEST(Fill, RunFrameShowsTheFillAndKeepsTheHistory) {
     const double v1 = fp16_round(0.1);
     EXPECT_EQ(r.channels[c].out[1], v1);  // history: the sample alone
     const double phi = 7.0 / 8;
-    EXPECT_EQ(r.channels[c].shown[0], fp16_round((1.0 + phi * (v1 + 2 * 0.5)) / (1 + phi * 3)));
-    EXPECT_EQ(r.channels[c].shown[1], fp16_round((v1 + phi * (1.0 + 2 * 0.5)) / (1 + phi * 3)));  // (2, 0) is empty
-    EXPECT_EQ(r.channels[c].shown[2], fp16_round((0.0 + 1.0 * (v1 + 2 * 0.25)) / (0 + 1.0 * 3)));
+    // Standalone reads the displayed values back in fp32: not rounded to fp16.
+    EXPECT_DOUBLE_EQ(r.channels[c].shown[0], (1.0 + phi * (v1 + 2 * 0.5)) / (1 + phi * 3));
+    EXPECT_DOUBLE_EQ(r.channels[c].shown[1], (v1 + phi * (1.0 + 2 * 0.5)) / (1 + phi * 3));  // (2, 0) is empty
+    EXPECT_DOUBLE_EQ(r.channels[c].shown[2], (0.0 + 1.0 * (v1 + 2 * 0.25)) / (0 + 1.0 * 3));
+    // An fp16 output image rounds them.
+    const std::vector<float> stored(r.channels[c].out.begin(), r.channels[c].out.end());
+    FillOptions fp16_image;
+    fp16_image.fp16_output = true;
+    FillResult f16 =
+        spatial_fill(s.ctx, c, FillInputs{stored.data(), r.channels[c].age.data(), s.depth.data(), fallback.data()}, fp16_image);
+    EXPECT_EQ(f16.shown[0], fp16_round(r.channels[c].shown[0]));
+    EXPECT_EQ(f16.exact[0], r.channels[c].shown[0]);
     s.inputs[c].fallback = nullptr;
     EXPECT_THROW(run_frame(s.ctx, PreviousFrame{}, s.frame), std::invalid_argument);
 }
