@@ -19,6 +19,7 @@
 // Every context runs under the validation layer (support/rrc_test_context.h).
 #include "reference/finish.h"
 #include "reference/rrc_reference.h"
+#include "reference/selftest_scene.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
 #include "support/tolerance.h"
@@ -454,3 +455,76 @@ INSTANTIATE_TEST_SUITE_P(DepthModes, Fill, ::testing::Values(RRC_DEPTH_MODE_REVE
                          });
 
 }  // namespace
+
+// ---- Edge cases the conventions decide, on a small static frame -------------------
+
+namespace edge {
+
+// An 8x8 static frame seen by an identity CAMERA (every pixel a hit from the
+// second frame on), STANDARD depth 0.5.
+rrc_ref_test::Scene static_frame() {
+    rrc_ref_test::Scene s(8, 8, RRC_DEPTH_MODE_STANDARD, RRC_REPROJECTION_CAMERA);
+    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
+    return s;
+}
+
+}  // namespace edge
+
+// "Rectification": the blend "then uses the clamped H, and so does everything
+// the table derives from it" -- also the confidence case whose W' underflows
+// and which keeps H.  Frame 0 leaves W = 0 (confidence 0) at age 1; frame 1's
+// hits with confidence 0 keep H, clamped to the 9 equal samples' mu = 1.
+TEST(FinishingEdge, RectifiedHistoryIsKeptWhenTheWeightUnderflows) {
+    rrc_ref_test::Scene s = edge::static_frame();
+    const int c = s.add_channel(1, 0.5f, RRC_BLEND_FIXED, kBil, kFp32, true);
+    s.channel_descs[c].rectify = 1;
+    for (float& v : s.samples[c]) v = 5.0f;
+    s.confidence[c].assign(s.size(), 0.0f);
+    s.desc();
+    Context ctx(s.ctx);
+    ASSERT_TRUE(ctx);
+    FrameResult k0 = ctx.run(s.desc());
+    rrc_ref::PreviousFrame prev = rrc_ref::as_previous(s.ctx, s.frame, rrc_ref::run_frame(s.ctx, {}, s.frame));
+    for (float& v : s.samples[c]) v = 1.0f;
+    FrameResult k1 = ctx.run(s.desc());
+    rrc_ref::FrameResult r1 = rrc_ref::run_frame(s.ctx, prev, s.frame);
+    EXPECT_EQ(k0.values[c], std::vector<float>(s.size(), 5.0f));
+    int64_t differ = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        ASSERT_EQ(r1.mask[i], RRC_MASK_HIT);
+        ASSERT_EQ(r1.channels[c].out[i], 1.0);  // the clamped H
+        EXPECT_EQ(k1.age[c][i], 1);
+        EXPECT_EQ(k1.weight[c][i], 0.0f);
+        differ += k1.values[c][i] != 1.0f;
+    }
+    EXPECT_EQ(differ, 0) << "pixels keeping the unclamped H (kernel " << k1.values[c][0] << ", the conventions 1)";
+}
+
+// "The spatial fill": p is filled when it is not background and n_p < T.  A
+// pixel of invalid geometry (non-finite depth) is not background: its proxy
+// is NaN, so no neighbour counts, but the fallback does.  Its neighbours skip it.
+TEST(FinishingEdge, InvalidGeometryPixelIsFilledFromTheFallback) {
+    rrc_ref_test::Scene s = edge::static_frame();
+    const int c = s.add_channel(1, 0.0f, RRC_BLEND_RUNNING_MEAN, kBil, kFp32);
+    s.channel_descs[c].fill_age = 4;
+    s.channel_descs[c].fill_radius = 1;
+    s.channel_descs[c].fill_prior = 4.0f;
+    for (float& v : s.samples[c]) v = 2.0f;
+    const size_t bad = s.at(3, 3);
+    s.depth[bad] = NAN;
+    std::vector<float> fallback(s.size(), 7.0f);
+    s.desc();
+    Context ctx(s.ctx);
+    ASSERT_TRUE(ctx);
+    s.inputs[c].fallback = fallback.data();
+    FrameResult k = ctx.run(s.frame);
+    rrc_ref::FrameResult r = rrc_ref::run_frame(s.ctx, {}, s.frame);
+    ASSERT_EQ(r.mask[bad], RRC_MASK_INVALID_GEOMETRY);
+    ASSERT_EQ(r.channels[c].age[bad], 1);
+    EXPECT_DOUBLE_EQ(r.channels[c].shown[bad], (1 * 2.0 + 0.75 * 4 * 7.0) / (1 + 0.75 * 4));  // 23/4
+    // A neighbour of it: 7 of its 8 neighbours (weight 1 each, value 2) and the fallback.
+    EXPECT_DOUBLE_EQ(r.channels[c].shown[s.at(4, 4)], (2.0 + 0.75 * (7 * 2.0 + 4 * 7.0)) / (1 + 0.75 * 11));
+    for (size_t i = 0; i < s.size(); ++i)
+        EXPECT_NEAR(k.values[c][i], r.channels[c].shown[i], 1e-6 + 1e-5 * std::fabs(r.channels[c].shown[i]))
+            << "pixel (" << i % s.W << "," << i / s.W << ") mask " << int(r.mask[i]);
+}
