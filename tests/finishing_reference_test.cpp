@@ -20,6 +20,7 @@
 #include "reference/finish.h"
 #include "reference/rrc_reference.h"
 #include "reference/selftest_scene.h"
+#include "support/cache_policy.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
 #include "support/tolerance.h"
@@ -98,7 +99,7 @@ struct Mutant {
 };
 
 struct CaseStats {
-    int64_t compared = 0, skipped = 0, hits = 0, rectified = 0;
+    int64_t compared = 0, skipped = 0, hits = 0, refreshed = 0, rectified = 0, rectified_refreshed = 0;
     double max_fp32_err = 0, max_fp16_steps = 0;
     std::vector<int64_t> caught;  // per mutant
 };
@@ -106,12 +107,14 @@ struct CaseStats {
 // Runs `channels` on the scene for kFrames frames, comparing every frame with
 // the reference from the kernel's previous state; returns the statistics.
 CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>& channels, const std::vector<Mutant>& mutants,
-                           bool changing_signal) {
+                           bool changing_signal, const Policy* policy = nullptr) {
     CaseStats st;
     st.caught.assign(mutants.size(), 0);
     rrc_scene::Scene scene(scene_of(RRC_DEPTH_MODE_REVERSED));
     const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
-    Context ctx(scene_context_desc(scene.config(), source, channels));
+    rrc_context_desc desc = scene_context_desc(scene.config(), source, channels);
+    if (policy) apply(*policy, desc);
+    Context ctx(desc);
     if (!ctx) {
         ADD_FAILURE() << name << ": context refused";
         return st;
@@ -149,11 +152,13 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
             if (k.mask[i] != r.mask[i]) continue;
             ++st.compared;
             if (r.mask[i] & RRC_MASK_HIT) ++st.hits;
+            if (r.mask[i] & RRC_MASK_REFRESHED) ++st.refreshed;
             for (size_t ch = 0; ch < channels.size(); ++ch) {
                 const uint32_t m = channels[ch].components;
                 const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
                 const rrc_ref::ChannelResult& rc = r.channels[ch];
                 st.rectified += rc.rectified[i];
+                if (r.mask[i] & RRC_MASK_REFRESHED) st.rectified_refreshed += rc.rectified[i];
                 if (k.age[ch][i] != rc.age[i])
                     ages.add() << "frame " << t << " pixel " << i << " channel " << ch << " kernel " << k.age[ch][i] << " reference "
                                << rc.age[i];
@@ -197,11 +202,12 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
             prev.channels[ch].weight = k.weight[ch];
         }
     }
-    std::printf("%-24s compared %lld skipped %lld hits %lld rectified %lld max fp32 err %.3g max fp16 steps %.3g\n", name,
-                (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.rectified, st.max_fp32_err,
-                st.max_fp16_steps);
+    std::printf(
+        "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n",
+        name, (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.refreshed, (long long)st.rectified,
+        (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps);
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
-    EXPECT_GT(st.hits, (int64_t)n * kFrames / 2) << name << ": too few hits";
+    EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 2) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
         std::printf("  wrong variant %-32s would fail on %lld values\n", mutants[mu].name.c_str(), (long long)st.caught[mu]);
         EXPECT_GE(st.caught[mu], kMinCaught) << name << ": the comparison would not notice " << mutants[mu].name;
@@ -290,6 +296,18 @@ TEST(RectifyGaussian, MatchesTheReference) {
                                               d.blur_sigma = 0.0f;
                                           }}};
     run_accumulating("rectify_gaussian", chs, mutants, true);
+}
+
+// Rectification applies on REFRESHED pixels too (a hit for accumulating
+// channels), next to a REUSE channel that refreshes under a TILED policy.
+TEST(RectifyRefreshed, MatchesTheReference) {
+    const std::vector<rrc_channel_desc> chs = {channel("shade", 4, 0.0f, kFp16, RRC_BLEND_REUSE, kBil),
+                                               rectified(channel("pcf", 1, 0.8f, kFp32, RRC_BLEND_FIXED, kBil), 1.5f)};
+    const std::vector<Mutant> mutants = {{"pcf without rectify", 1, [](rrc_channel_desc& d) { d.rectify = 0; }}};
+    const Policy tiled{"tiled_4", RRC_REFRESH_TILED, 4, 2, 2, 0};
+    CaseStats st = run_accumulating("rectify_refreshed", chs, mutants, true, &tiled);
+    EXPECT_GT(st.refreshed, 1000) << "too few refreshed pixels";
+    EXPECT_GT(st.rectified_refreshed, 100) << "too few refreshed pixels rectified";
 }
 
 // ---- The spatial fill -------------------------------------------------------------
