@@ -547,3 +547,76 @@ TEST(FinishingEdge, InvalidGeometryPixelIsFilledFromTheFallback) {
         EXPECT_NEAR(k.values[c][i], r.channels[c].shown[i], 1e-6 + 1e-5 * std::fabs(r.channels[c].shown[i]))
             << "pixel (" << i % s.W << "," << i / s.W << ") mask " << int(r.mask[i]);
 }
+
+// The fill after the split path: rrc_frame_classify + rrc_frame_resolve (the
+// REUSE samples NaN outside the listed quads) give the fused frame's bits,
+// displayed values included.
+TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
+    const std::vector<rrc_channel_desc> chs = {filled(channel("shade", 4, 0.0f, kFp16, RRC_BLEND_REUSE, kBil), 8, 2, 4.0f),
+                                               filled(channel("mean", 1, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil), 4, 1, 0.0f)};
+    rrc_scene::Scene scene(scene_of(RRC_DEPTH_MODE_REVERSED, 0.01));
+    const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
+    rrc_context_desc desc = scene_context_desc(scene.config(), source, chs);
+    apply(Policy{"tiled_4", RRC_REFRESH_TILED, 4, 2, 2, 0}, desc);
+    Context fused(desc), split(desc);
+    ASSERT_TRUE(fused && split);
+    const size_t n = (size_t)kW * kH;
+    int64_t listed = 0, young = 0;
+    for (int t = 0; t < kFrames; ++t) {
+        SceneFrameInputs in;
+        in.frame = scene.render(t);
+        make_frame_inputs(in, source, chs);
+        const std::vector<float>& fallback = in.frame.truth4;
+        in.inputs[0].fallback = fallback.data();
+        FrameResult a = fused.run(in.desc);
+
+        std::vector<uint8_t> classified(n);
+        std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(kW, kH) / 4);
+        rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+        co.mask = classified.data();
+        co.quads = quads.data();
+        co.quad_capacity = (uint32_t)quads.size();
+        rrc_frame_desc geometry = in.desc;
+        geometry.channel_count = 0;
+        geometry.channels = nullptr;
+        ASSERT_EQ(rrc_frame_classify(split.get(), &geometry, &co), RRC_SUCCESS) << rrc_last_error();
+        listed += co.quad_count;
+        std::vector<float> host(n * 4, NAN);  // the REUSE samples the host shaded: the listed quads only
+        for (uint32_t k = 0; k < co.quad_count; ++k) {
+            const uint32_t q = quads[k];
+            for (int p = 0; p < 4; ++p) {
+                const int x = 2 * (int)(q & 0xFFFF) + (p & 1), y = 2 * (int)(q >> 16) + (p >> 1);
+                if (x >= kW || y >= kH) continue;
+                for (int j = 0; j < 4; ++j) host[4 * ((size_t)y * kW + x) + j] = in.frame.signal4[4 * ((size_t)y * kW + x) + j];
+            }
+        }
+        std::vector<rrc_channel_input> inputs = {channel_input(host.data()), channel_input(in.frame.signal1.data())};
+        inputs[0].fallback = fallback.data();
+        rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+        rd.channel_count = (uint32_t)inputs.size();
+        rd.channels = inputs.data();
+        FrameResult b;
+        b.mask.resize(n);
+        b.values = {std::vector<float>(n * 4), std::vector<float>(n)};
+        b.age = {std::vector<uint16_t>(n), std::vector<uint16_t>(n)};
+        std::vector<rrc_channel_output> outs(2);
+        for (size_t c = 0; c < 2; ++c) {
+            outs[c] = rrc_host::channel_output();
+            outs[c].values = b.values[c].data();
+            outs[c].age = b.age[c].data();
+        }
+        rrc_frame_output o = rrc_host::frame_output();
+        o.mask = b.mask.data();
+        o.channel_count = 2;
+        o.channels = outs.data();
+        ASSERT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
+        EXPECT_EQ(b.mask, a.mask) << "frame " << t;
+        for (size_t c = 0; c < 2; ++c) {
+            EXPECT_EQ(b.age[c], a.age[c]) << "frame " << t << " channel " << c;
+            EXPECT_EQ(b.values[c], a.values[c]) << "frame " << t << " channel " << c;
+            for (size_t i = 0; i < n; ++i) young += a.age[c][i] < chs[c].fill_age && b.values[c][i * chs[c].components] != 0.0f;
+        }
+    }
+    EXPECT_GT(listed, 0);
+    EXPECT_GT(young, (int64_t)n) << "too few young pixels compared";
+}
