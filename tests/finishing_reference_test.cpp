@@ -620,3 +620,35 @@ TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
     EXPECT_GT(listed, 0);
     EXPECT_GT(young, (int64_t)n) << "too few young pixels compared";
 }
+
+// The fill of a view reads that view's own frame: two views interleaved in one
+// context give each view's bits of a one-view context that sees only its frames.
+TEST(FillViews, EachViewFillsFromItsOwnFrame) {
+    const std::vector<rrc_channel_desc> chs = {filled(channel("mean", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 8, 2, 4.0f),
+                                               filled(channel("pcf", 1, 0.6f, kFp32, RRC_BLEND_FIXED, kBil), 4, 1, 0.0f)};
+    rrc_scene::SceneConfig ca = scene_of(RRC_DEPTH_MODE_REVERSED, 0.01), cb = ca;
+    cb.seed = 7;
+    cb.camera_speed = 1.7;
+    const rrc_scene::Scene sa(ca), sb(cb);
+    const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
+    rrc_context_desc d2 = scene_context_desc(ca, source, chs);
+    d2.view_count = 2;
+    Context both(d2), only_a(scene_context_desc(ca, source, chs)), only_b(scene_context_desc(cb, source, chs));
+    ASSERT_TRUE(both && only_a && only_b);
+    for (int t = 0; t < 4; ++t) {
+        for (int v = 0; v < 2; ++v) {
+            SceneFrameInputs in;
+            in.frame = (v == 0 ? sa : sb).render(t);
+            make_frame_inputs(in, source, chs);
+            in.inputs[0].fallback = in.frame.truth4.data();
+            FrameResult one = (v == 0 ? only_a : only_b).run(in.desc);
+            in.desc.view = (uint32_t)v;
+            FrameResult two = both.run(in.desc);
+            EXPECT_EQ(two.mask, one.mask) << "frame " << t << " view " << v;
+            for (size_t c = 0; c < chs.size(); ++c) {
+                EXPECT_EQ(two.age[c], one.age[c]) << "frame " << t << " view " << v << " channel " << c;
+                EXPECT_EQ(two.values[c], one.values[c]) << "frame " << t << " view " << v << " channel " << c;
+            }
+        }
+    }
+}
