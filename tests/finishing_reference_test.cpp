@@ -36,7 +36,7 @@ using namespace rrc_test;
 
 namespace {
 
-const int kW = 64, kH = 40, kFrames = 8;
+const int kW = 64, kH = 40, kFrames = 6;
 // A wrong variant must differ beyond the tolerance on at least this many
 // compared values over the case's frames.
 const int64_t kMinCaught = 20;
@@ -208,7 +208,7 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
         name, (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.refreshed, (long long)st.rectified,
         (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps);
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
-    EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 2) << name << ": too few hits";
+    EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 3) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
         std::printf("  wrong variant %-32s would fail on %lld values\n", mutants[mu].name.c_str(), (long long)st.caught[mu]);
         EXPECT_GE(st.caught[mu], kMinCaught) << name << ": the comparison would not notice " << mutants[mu].name;
@@ -253,7 +253,7 @@ TEST_P(Rectify, MatchesTheReference) {
     }
     const std::string name = "rectify_gamma_" + std::to_string(gamma);
     CaseStats st = run_accumulating(name.c_str(), chs, mutants, true);
-    EXPECT_GT(st.rectified, 1000) << "rectification hardly moved any history";
+    EXPECT_GT(st.rectified, 300) << "rectification hardly moved any history";
 }
 
 INSTANTIATE_TEST_SUITE_P(Gamma, Rectify, ::testing::Values(1.0f, 2.5f),
@@ -308,7 +308,7 @@ TEST(RectifyRefreshed, MatchesTheReference) {
     const Policy tiled{"tiled_4", RRC_REFRESH_TILED, 4, 2, 2, 0};
     CaseStats st = run_accumulating("rectify_refreshed", chs, mutants, true, &tiled);
     EXPECT_GT(st.refreshed, 1000) << "too few refreshed pixels";
-    EXPECT_GT(st.rectified_refreshed, 100) << "too few refreshed pixels rectified";
+    EXPECT_GT(st.rectified_refreshed, 50) << "too few refreshed pixels rectified";
 }
 
 // ---- The spatial fill -------------------------------------------------------------
