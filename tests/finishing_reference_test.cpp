@@ -489,11 +489,11 @@ rrc_ref_test::Scene static_frame() {
 
 }  // namespace edge
 
-// "Rectification": the blend "then uses the clamped H, and so does everything
-// the table derives from it" -- also the confidence case whose W' underflows
-// and which keeps H.  Frame 0 leaves W = 0 (confidence 0) at age 1; frame 1's
-// hits with confidence 0 keep H, clamped to the 9 equal samples' mu = 1.
-TEST(FinishingEdge, RectifiedHistoryIsKeptWhenTheWeightUnderflows) {
+// "Rectification": only the blend formula uses the clamped H; W' below 2^-126
+// (confidence) keeps the resampled H.  Frame 0 leaves W = 0 (confidence 0) at
+// age 1; frame 1's hits with confidence 0 keep H = 5, though the 9 equal
+// samples' box is {1}.
+TEST(FinishingEdge, RectifiedPixelWhoseWeightUnderflowsKeepsTheResampledHistory) {
     rrc_ref_test::Scene s = edge::static_frame();
     const int c = s.add_channel(1, 0.5f, RRC_BLEND_FIXED, kBil, kFp32, true);
     s.channel_descs[c].rectify = 1;
@@ -508,15 +508,17 @@ TEST(FinishingEdge, RectifiedHistoryIsKeptWhenTheWeightUnderflows) {
     FrameResult k1 = ctx.run(s.desc());
     rrc_ref::FrameResult r1 = rrc_ref::run_frame(s.ctx, prev, s.frame);
     EXPECT_EQ(k0.values[c], std::vector<float>(s.size(), 5.0f));
-    int64_t differ = 0;
     for (size_t i = 0; i < s.size(); ++i) {
         ASSERT_EQ(r1.mask[i], RRC_MASK_HIT);
-        ASSERT_EQ(r1.channels[c].out[i], 1.0);  // the clamped H
-        EXPECT_EQ(k1.age[c][i], 1);
-        EXPECT_EQ(k1.weight[c][i], 0.0f);
-        differ += k1.values[c][i] != 1.0f;
+        ASSERT_EQ(r1.channels[c].out[i], 5.0);  // the resampled H
+        EXPECT_EQ(k1.values[c][i], 5.0f) << "pixel " << i;
+        EXPECT_EQ(k1.age[c][i], 1) << "pixel " << i;
+        EXPECT_EQ(k1.weight[c][i], 0.0f) << "pixel " << i;
     }
-    EXPECT_EQ(differ, 0) << "pixels keeping the unclamped H (kernel " << k1.values[c][0] << ", the conventions 1)";
+    // With a confidence the blend happens and uses the clamped H = 1.
+    s.confidence[c].assign(s.size(), 1.0f);
+    FrameResult k2 = ctx.run(s.desc());
+    for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(k2.values[c][i], 1.0f) << "pixel " << i;
 }
 
 // "The spatial fill": p is filled when it is not background and n_p < T.  A

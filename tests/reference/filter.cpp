@@ -44,18 +44,19 @@ Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, con
     if (prev.age == 0) return take_sample(ch, s, 1u);
 
     double lam = lambda_eff(ch, prev.age);
+    const double* h = prev.rectified ? prev.h_rect : prev.h;  // only the blend formula uses the clamped H
     unsigned age = std::min(prev.age + 1u, ch.age_cap);
     Update u;
     u.age = age;
     if (!ch.confidence) {
-        for (unsigned c = 0; c < ch.components; ++c) u.out[c] = lam * prev.h[c] + (1.0 - lam) * s.s[c];
+        for (unsigned c = 0; c < ch.components; ++c) u.out[c] = lam * h[c] + (1.0 - lam) * s.s[c];
         return u;
     }
     // Confidence-weighted mean; reduces to the line above when w == W == 1.
     // An accumulated weight under the fp32 normal range counts as none.
     double w_new = lam * prev.weight + (1.0 - lam) * s.w;
     if (w_new < FLT_MIN) return keep_history(ch, prev, 0.0);
-    for (unsigned c = 0; c < ch.components; ++c) u.out[c] = (lam * prev.weight * prev.h[c] + (1.0 - lam) * s.w * s.s[c]) / w_new;
+    for (unsigned c = 0; c < ch.components; ++c) u.out[c] = (lam * prev.weight * h[c] + (1.0 - lam) * s.w * s.s[c]) / w_new;
     u.weight = w_new;
     return u;
 }

@@ -20,6 +20,10 @@ struct Resampled {
     double h[4] = {0, 0, 0, 0};  // history, with the channel's filter
     double weight = 0.0;         // W, same filter (confidence channels)
     unsigned age = 0;            // n_prev, nearest
+    // Rectification (finish.h): the clamped H, which only the blend formula
+    // uses; every other case keeps h.
+    bool rectified = false;
+    double h_rect[4] = {0, 0, 0, 0};
 };
 
 struct Update {

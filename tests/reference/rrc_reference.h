@@ -29,8 +29,6 @@
 //    hit.  The ages the refresh reads are the nearest texel's (flagged by
 //    near_nearest_edge where that texel may differ).
 //  * Plain MOTION with STANDARD depth and far = +inf linearises as n/(1 - z).
-//  * Rectification clamps H before the whole hit case is evaluated, so a
-//    confidence channel whose W' underflows keeps the clamped H.
 #ifndef RRC_REFERENCE_H
 #define RRC_REFERENCE_H
 

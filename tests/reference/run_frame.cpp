@@ -189,14 +189,14 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                 } else {
                     if (!s.valid) mask |= RRC_MASK_INVALID_SAMPLE;
                     // Rectification: only where the table blends (a hit, a valid
-                    // sample, a non-empty history); the clamped H is then used by
-                    // the whole case.
+                    // sample, a non-empty history), and only the blend formula uses
+                    // the clamped H (W' underflowing keeps the resampled H).
                     if (ch.rectify && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
                         const RectifyBox box = rectify_box(ch, frame.channels[c], p.width, p.height, i, j);
-                        double before[4];
-                        std::copy(r.h, r.h + 4, before);
-                        rectify_history(box, ch.components, r.h, &res.channels[c].rectify_err[px * ch.components]);
-                        res.channels[c].rectified[px] = !std::equal(r.h, r.h + ch.components, before);
+                        std::copy(r.h, r.h + 4, r.h_rect);
+                        r.rectified = true;
+                        rectify_history(box, ch.components, r.h_rect, &res.channels[c].rectify_err[px * ch.components]);
+                        res.channels[c].rectified[px] = !std::equal(r.h, r.h + ch.components, r.h_rect);
                     }
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;

@@ -134,6 +134,20 @@ TEST(Rectify, OnlyTheBlendCaseIsRectified) {
     for (int k : {0, 2, 6, 8}) EXPECT_EQ(r.channels[c].rectified[k], 0) << k;
 }
 
+TEST(Rectify, AnUnderflowingWeightKeepsTheResampledHistory) {
+    // "Only the blend formula uses the clamped H": W' < 2^-126 keeps H as resampled.
+    Scene s = static_scene();
+    const int c = s.add_channel(1, 0.5f, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, RRC_HISTORY_FP32, true);
+    s.channel_descs[c].rectify = 1;
+    for (float& v : s.samples[c]) v = 1.0f;
+    s.confidence[c].assign(s.size(), 0.0f);
+    FrameResult r = s.run(s.previous({std::vector<float>(s.size(), 5.0f)}, 3, 0.0f));
+    EXPECT_EQ(r.channels[c].out[4], 5.0);
+    EXPECT_EQ(r.channels[c].age[4], 3);
+    EXPECT_EQ(r.channels[c].weight[4], 0.0);
+    EXPECT_EQ(r.channels[c].rectified[4], 1);  // the box was formed; the case did not use it
+}
+
 TEST(Rectify, ConfidenceKeepsItsWeightAndTheClampedHistoryBlends) {
     Scene s = static_scene();
     const int c = s.add_channel(1, 0.5f, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, RRC_HISTORY_FP32, true);
