@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""rrc-sweep --study rectify's plot: lag error (light moving) and static
-variance (light fixed) against lambda, rectification off and on, one column
-per application.  Reads DIR/rectify.csv, writes DIR/rectify.png."""
+"""rrc-sweep --study rectify's plot: lag error (light moving), static
+variance and static RMSE (light fixed) against lambda, rectification off and
+on, one column per application.  Reads DIR/rectify.csv, writes DIR/rectify.png."""
 import csv
 import math
 import os
@@ -25,7 +25,7 @@ def main(out):
         v = (int(r["rectify"]), r["gamma"])
         if v not in variants:
             variants.append(v)
-    fig, axes = plt.subplots(2, len(apps), figsize=(4.2 * len(apps), 6.4), squeeze=False)
+    fig, axes = plt.subplots(3, len(apps), figsize=(4.2 * len(apps), 9.0), squeeze=False)
     speed = rows[0]["light_speed"] if rows else "?"
     for c, app in enumerate(apps):
         for (on, gamma) in variants:
@@ -43,14 +43,21 @@ def main(out):
 
             axes[0][c].plot(lam, [val(r, "lag_rmse") for r in sel], style, label=label)
             axes[1][c].plot(lam, [val(r, "static_variance") for r in sel], style, label=label)
+            axes[2][c].plot(lam, [val(r, "static_rmse") for r in sel], style, label=label)
+        lag = [r["lag_rmse"] for r in rows if r["app"] == app]
+        if all(v in ("n/a", "nan", "") for v in lag):
+            axes[0][c].text(0.5, 0.5, "no pixel's target changed\n(the area lamp does not move)", ha="center", va="center",
+                            transform=axes[0][c].transAxes)
         axes[0][c].set_title("%s: lag error, light %s°/frame" % (app, speed))
         axes[1][c].set_title("%s: static variance, light fixed" % app)
+        axes[2][c].set_title("%s: static RMSE (bias² + variance)" % app)
         axes[1][c].set_yscale("log")
-        for r in range(2):
+        for r in range(3):
             axes[r][c].set_xlabel("λ")
             axes[r][c].grid(True, alpha=0.3)
         axes[0][c].set_ylabel("RMSE on changed pixels")
         axes[1][c].set_ylabel("variance across seeds")
+        axes[2][c].set_ylabel("RMSE, every scored pixel")
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "rectify.png"), dpi=110)

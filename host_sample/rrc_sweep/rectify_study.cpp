@@ -382,18 +382,20 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
         if (!off) continue;
         any = true;
         const double lr = row.lag.rmse / off->lag.rmse, vr = row.still.variance / off->still.variance;
-        const bool scored_app = row.app.signal != kSignalSoft;
+        const bool soft = row.app.signal == kSignalSoft;
         f << "- " << row.app.name << ", γ = " << num(row.gamma, "%g") << ": lag error " << num(off->lag.rmse, "%.4f") << " -> "
-          << num(row.lag.rmse, "%.4f") << " (x" << num(lr, "%.2f") << ", target <= 0.5: "
-          << (std::isnan(lr) ? "n/a"
-              : lr <= 0.5    ? "PASS"
-                             : "FAIL")
-          << "); static variance " << num(off->still.variance, "%.3g") << " -> " << num(row.still.variance, "%.3g") << " (x"
-          << num(vr, "%.2f") << ", target <= 1.5: "
+          << num(row.lag.rmse, "%.4f");
+        if (std::isnan(lr))
+            f << " (no pixel's target changed)";
+        else
+            f << " (x" << num(lr, "%.3f") << ", target <= 0.5: " << (lr <= 0.5 ? "PASS" : "FAIL") << ")";
+        f << "; static variance " << num(off->still.variance, "%.3g") << " -> " << num(row.still.variance, "%.3g") << " (x"
+          << num(vr, "%.3f") << ", target <= 1.5: "
           << (std::isnan(vr) ? "n/a"
               : vr <= 1.5    ? "PASS"
                              : "FAIL")
-          << ")" << (scored_app ? "" : " (soft: not scored against the targets; reported to say what happens)") << "\n";
+          << "); static RMSE " << num(off->still.rmse, "%.4f") << " -> " << num(row.still.rmse, "%.4f")
+          << (soft ? " (soft: outside the issue's targets, shown to say what happens)" : "") << "\n";
     }
     if (!any) f << "- no lambda = 0.9 rows\n";
 }

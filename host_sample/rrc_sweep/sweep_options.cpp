@@ -59,7 +59,7 @@ std::string sweep_usage() {
            "                           lag error with the light moving, static variance with it fixed, rectify off/on;\n"
            "                           its defaults unless given: --size 192x128 --checkpoints 23,4 --lambdas 0.6,0.8,0.9\n"
            "                           --taps 4 --light-speed 1 --motion still --out out/rectify\n"
-           "  --rectify-gammas LIST    the study's rectify-on rows, one per gamma (default 1,1.5)\n"
+           "  --rectify-gammas LIST    the study's rectify-on rows, one per gamma (default 0.5,1,1.5)\n"
            "  --change-threshold T     the study's changed pixels (pcf, soft): the target moved by more than T since the\n"
            "                           frame before (default 0.05); env's: by more than 3 sigma of its target's noise\n"
            "  --clock C                auto (default: the wall clock of each pass's own submission on a CPU device\n"
