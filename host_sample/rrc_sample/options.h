@@ -30,6 +30,7 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
+    float light_speed = 0.0f;                // the moving light, degrees a frame (Scene::light_speed); 0 = fixed
     bool object_id = true;                   // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;
     bool quiet = false;
