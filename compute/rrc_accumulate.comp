@@ -225,7 +225,8 @@ void rrc_fill() {
     rrc_store = all(lessThan(id, size));  // no early return (rrc_reproject.glsl says why)
     ivec2 px = min(id, size - 1);
     float d_p = imageLoad(u_prev_depth, px).r;
-    bool fill_here = !rrc_is_background(d_p) && !rrc_is_invalid_depth(d_p);
+    bool fill_here = !rrc_is_background(d_p);
+    bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
 
 #define RRC_CH 0
 #include "rrc_fill_channel.glsl"

@@ -4,8 +4,8 @@
 // dispatch is bound as the next frame: the history inputs (u_hist_*, u_age)
 // hold this frame's results, u_prev_depth this frame's depth.
 //
-// Inputs from the enclosing rrc_fill(): size, px, fill_here (p's depth is
-// finite and not background), d_p (its depth).
+// Inputs from the enclosing rrc_fill(): size, px, fill_here (p is not
+// background), valid_p (p's depth is valid: else no neighbour counts), d_p (its depth).
 
 #define CH_(name) ch##name(RRC_CH)
 #define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
@@ -38,7 +38,7 @@ if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
                 if (CH_(_COMPONENTS) == 1u) v_q = vec4(v_q.x, 0.0, 0.0, 0.0);
                 uint n_q = LOAD_N(t, word);
                 float d_q = imageLoad(u_prev_depth, t).r;
-                bool ok = inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) && rrc_fill_similar(d_q, d_p, CH_(_FILL_TOLERANCE));
+                bool ok = valid_p && inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) && rrc_fill_similar(d_q, d_p, CH_(_FILL_TOLERANCE));
                 float w_q = ok ? float(min(n_q, T)) : 0.0;
                 acc += w_q * (ok ? v_q : vec4(0.0));
                 wsum += w_q;

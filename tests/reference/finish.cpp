@@ -120,13 +120,14 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
             res.filled[px] = 1;
 
             const double dp = fill_depth_proxy(p.mode, in.depth[px]);
+            const bool valid_p = !is_invalid_depth(p, in.depth[px]);  // an invalid depth takes no neighbour
             const double phi = options.fade ? static_cast<double>(T - np) / T : 1.0;
             double num[4] = {0, 0, 0, 0}, num_abs[4] = {0, 0, 0, 0}, wsum = 0.0;
             unsigned terms = 0;
             for (int b = -r; b <= r; ++b) {
                 for (int a = -r; a <= r; ++a) {
                     const int x = i + a, y = j + b;
-                    if ((a == 0 && b == 0) || x < 0 || y < 0 || x >= W || y >= H) continue;  // outside taps are skipped
+                    if (!valid_p || (a == 0 && b == 0) || x < 0 || y < 0 || x >= W || y >= H) continue;  // outside taps are skipped
                     const size_t q = index(W, x, y);
                     if (is_background(p, in.depth[q]) || in.age[q] < 1 || !finite_value(in.values, q)) continue;
                     const double dq = fill_depth_proxy(p.mode, in.depth[q]);
