@@ -23,6 +23,10 @@ struct Options {
     float epsilon_scale = 0.0f;              // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
     uint32_t depth_test = 0;                 // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
     float soft_prior = 4.0f;                 // PCSS fallback weight, in samples (see README.md)
+    float fill_prior = 4.0f;                 // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
+    uint32_t fill_radius = 0;                // --fill-radius (0: the library's default)
+    float fill_depth_tolerance = 0.0f;       // --fill-depth-tolerance (0: the library's default)
+    // Without --soft-fill the three fill options still set the CPU model of the fill (finish.h).
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
@@ -30,6 +34,13 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
+    // Issue 13's finishing steps (README.md, "Finishing steps"): display-only PCF remaps (never fed back to rrc).
+    bool pcf_smoothstep = false;
+    float pcf_smooth_e0 = 0.0f, pcf_smooth_e1 = 1.0f;  // --pcf-smoothstep E0,E1
+    float pcf_threshold = -1.0f;                        // --pcf-threshold X; < 0: off
+    std::vector<int> reference_frames;                  // --reference-frames: extra checkpoint frames
+    bool dump_soft = false;                             // --dump-soft: raw float images of soft's displays on checkpoints
+    uint32_t young_ages = 8;                            // --young-ages: the young-pixel table's ages 1..N
     bool object_id = true;                   // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;
     bool quiet = false;

@@ -35,6 +35,7 @@ struct RunResult {
     double oracle_seconds = 0.0;        // the visibility oracle's ray casts (overlapping the files)
     uint64_t validation_messages = 0;   // counted through device and instance destruction
     std::vector<std::string> messages;  // the first few
+    std::string finish_table;           // the young soft pixels' errors (finish.h), empty without them
 };
 
 /** Runs the sample.  progress: per-frame lines (nullptr or --quiet: none).

@@ -187,17 +187,23 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
         open_or_throw(f, (fs::path(out_dir) / "errors.csv").string());
         f << "frame,signal,pixels,rmse_raw,rmse_brute_force_4x,rmse_accumulated,psnr_raw,psnr_brute_force_4x,psnr_accumulated,rmse_raw_"
              "hits,"
-             "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss\n";
+             "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss,rmse_accumulated_vs_weighted,rmse_weighted_vs_target\n";
         for (const FrameRecord& r : run.frames)
             for (const SignalErrors& e : r.errors) {
                 f << r.index << "," << e.signal << "," << e.raw.pixels << "," << fmt("%.6f", e.raw.rmse) << ","
                   << fmt("%.6f", e.brute_force.rmse) << "," << fmt("%.6f", e.accumulated.rmse) << "," << fmt("%.3f", e.raw.psnr) << ","
                   << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << "," << fmt("%.6f", e.raw_hits.rmse) << ","
                   << fmt("%.6f", e.accumulated_hits.rmse) << ",";
-                if (e.signal == "soft")
-                    f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << "," << fmt("%.6f", e.fallback.rmse);
+                // shown: soft's --soft-prior display; pcf's remapped display (--pcf-smoothstep/--pcf-threshold)
+                if (e.shown.pixels)
+                    f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << ",";
                 else
                     f << ",,";
+                if (e.fallback.pixels) f << fmt("%.6f", e.fallback.rmse);
+                f << ",";
+                if (e.weighted_target.pixels) f << fmt("%.6f", e.accumulated_weighted.rmse) << "," << fmt("%.6f", e.weighted_target.rmse);
+                else
+                    f << ",";
                 f << "\n";
             }
     }
