@@ -1,5 +1,7 @@
 #include "finish.h"
 
+#include "oracle.h"
+
 #include <rrc/rrc.h>
 
 #include <algorithm>
@@ -83,18 +85,39 @@ FinishReport::FinishReport(const Options& o, uint32_t signals) : o_(o) {
     // The model needs the history: with rrc's own fill on, the output is the filled display.
     model_ = o.channels.soft.fill_age == 0;
     const ChannelSettings& s = o.channels.soft;
-    prior_.age = s.fill_age ? s.fill_age : 8;
+    prior_.age = s.fill_age ? s.fill_age : o.model_fill_age;
     prior_.radius = o.fill_radius ? o.fill_radius : RRC_DEFAULT_FILL_RADIUS;
     prior_.tolerance = o.fill_depth_tolerance > 0.0f ? o.fill_depth_tolerance : RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
     prior_.prior = o.fill_prior;
     none_ = prior_;
     none_.prior = 0.0f;
-    by_age_.resize(o.young_ages);
+    by_age_[0].resize(o.young_ages);
+    by_age_[1].resize(o.young_ages);
     if (o.dump_soft && enabled_) std::filesystem::create_directories(std::filesystem::path(o.out) / "finish");
 }
 
-void FinishReport::add(const FrameOutput& f, const FrameState& state) {
-    if (!enabled_ || !f.checkpoint || f.soft.reference.empty()) return;
+void FinishReport::add(const FrameOutput& f, const FrameState& state, const std::vector<uint8_t>& verdict) {
+    if (!enabled_) return;
+    {  // the start of each track: as age.comp carries the age
+        const size_t n = f.mask.size();
+        std::vector<uint8_t> kind(n, 0);
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const size_t i = (size_t)y * f.width + x;
+                if (f.mask[i] & RRC_MASK_BACKGROUND) continue;
+                if (!(f.mask[i] & RRC_MASK_HIT)) {
+                    const bool visible = verdict.size() == n && (verdict[i] & (kVerdictVisible | kVerdictStraddling));
+                    kind[i] = f.index == 0 || visible || verdict.size() != n ? 2 : 1;
+                } else if (kind_.size() == n) {
+                    const float* c = &f.prev_clip[i * 4];
+                    const int qx = std::clamp((int)std::floor((c[0] / c[3] + 1.0f) * 0.5f * f.width), 0, f.width - 1);
+                    const int qy = std::clamp((int)std::floor((c[1] / c[3] + 1.0f) * 0.5f * f.height), 0, f.height - 1);
+                    kind[i] = kind_[(size_t)qy * f.width + qx];
+                }
+            }
+        kind_ = std::move(kind);
+    }
+    if (!f.checkpoint || f.soft.reference.empty()) return;
     const SignalData& s = f.soft;
     std::vector<float> fp, f0;
     if (model_) {
@@ -113,10 +136,11 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state) {
             if (d[k]->empty()) continue;
             const double e = (double)(*d[k])[i] - (double)s.reference[i];
             all[k].sq += e * e, all[k].n++;
-            if (young) {
-                by_age_[a - 1][k].sq += e * e, by_age_[a - 1][k].n++;
-                young_[k].sq += e * e, young_[k].n++;
-            }
+            for (int set = 0; set < 2; ++set)
+                if (young && (set == 0 || kind_[i] == 1)) {
+                    by_age_[set][a - 1][k].sq += e * e, by_age_[set][a - 1][k].n++;
+                    young_[set][k].sq += e * e, young_[set][k].n++;
+                }
         }
     }
     Row row{f.index, {}};
@@ -144,16 +168,19 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state) {
 void FinishReport::write(const std::string& out_dir) const {
     if (!enabled_) return;
     std::ofstream y(std::filesystem::path(out_dir) / "young.csv");
-    y << "age,pixels";
+    y << "tracks,age,pixels";
     for (int k = 0; k < kDisplayCount; ++k) y << ",rmse_" << name((Display)k);
     y << "\n";
-    auto row = [&](const std::string& label, const std::array<Sum, kDisplayCount>& s) {
-        y << label << "," << s[kRaw].n;
+    auto row = [&](const char* set, const std::string& label, const std::array<Sum, kDisplayCount>& s) {
+        y << set << "," << label << "," << s[kRaw].n;
         for (int k = 0; k < kDisplayCount; ++k) y << "," << (s[k].n ? fmt("%.6f", s[k].rmse()) : "");
         y << "\n";
     };
-    for (size_t a = 0; a < by_age_.size(); ++a) row(std::to_string(a + 1), by_age_[a]);
-    row("1-" + std::to_string(by_age_.size()), young_);
+    const char* sets[2] = {"all", "disoccluded"};
+    for (int set = 0; set < 2; ++set) {
+        for (size_t a = 0; a < by_age_[set].size(); ++a) row(sets[set], std::to_string(a + 1), by_age_[set][a]);
+        row(sets[set], "1-" + std::to_string(by_age_[set].size()), young_[set]);
+    }
     std::ofstream c(std::filesystem::path(out_dir) / "curve.csv");
     c << "frame,frames_since_reset";
     for (int k = 0; k < kDisplayCount; ++k) c << ",rmse_" << name((Display)k);
@@ -166,15 +193,22 @@ void FinishReport::write(const std::string& out_dir) const {
 }
 
 std::string FinishReport::table() const {
-    if (!enabled_ || !young_[kRaw].n) return "";
+    if (!enabled_ || !young_[0][kRaw].n) return "";
     std::ostringstream s;
-    s << "young soft pixels (ages 1-" << by_age_.size() << ", " << young_[kRaw].n << " pixel-frames), RMSE against the reference:\n";
-    for (int k = 0; k < kDisplayCount; ++k)
-        if (young_[k].n) s << "  " << name((Display)k) << " " << fmt("%.4f", young_[k].rmse()) << "\n";
-    if (model_ && young_[kShown].n)
-        s << "  fill (prior " << prior_.prior << ") / shown (--soft-prior " << o_.soft_prior << "): "
-          << fmt("%.3f", young_[kFillPrior].rmse() / young_[kShown].rmse()) << "; no fallback / shown "
-          << fmt("%.3f", young_[kFillNone].rmse() / young_[kShown].rmse()) << "\n";
+    const char* sets[2] = {"every young track", "tracks started by a true disocclusion"};
+    for (int set = 0; set < 2; ++set) {
+        const auto& y = young_[set];
+        if (!y[kRaw].n) continue;
+        s << "young soft pixels, " << sets[set] << " (ages 1-" << by_age_[set].size() << ", " << y[kRaw].n
+          << " pixel-frames), RMSE against the reference:";
+        for (int k = 0; k < kDisplayCount; ++k)
+            if (y[k].n) s << " " << name((Display)k) << " " << fmt("%.4f", y[k].rmse());
+        if (model_ && y[kShown].n)
+            s << "; fill (prior " << prior_.prior << ") / shown (--soft-prior " << o_.soft_prior << ") "
+              << fmt("%.3f", y[kFillPrior].rmse() / y[kShown].rmse()) << ", no fallback / shown "
+              << fmt("%.3f", y[kFillNone].rmse() / y[kShown].rmse());
+        s << "\n";
+    }
     return s.str();
 }
 

@@ -37,8 +37,11 @@ public:
     static const char* name(Display d);
 
     FinishReport(const Options& options, uint32_t signals);
-    /** One frame (used only on checkpoints with a soft reference). */
-    void add(const FrameOutput& frame, const FrameState& state);
+    /** Every frame, in order.  verdict: the oracle's per-pixel Verdict bits (oracle.h), which
+     *  tell a true disocclusion (a miss on a point not visible in the previous frame) from a
+     *  miss the depth test made on a visible point; each track keeps its start's kind, carried
+     *  like the age (nearest at the previous position).  Errors only on checkpoints with a soft reference. */
+    void add(const FrameOutput& frame, const FrameState& state, const std::vector<uint8_t>& verdict);
     /** young.csv, curve.csv (and the dumps were written by add). */
     void write(const std::string& out_dir) const;
     /** A short table for the progress stream. */
@@ -54,8 +57,10 @@ private:
         uint64_t n = 0;
         double rmse() const;
     };
-    std::vector<std::array<Sum, kDisplayCount>> by_age_;  // index a - 1
-    std::array<Sum, kDisplayCount> young_;                // ages 1..N pooled
+    // [0] every young track, [1] tracks started by a true disocclusion (the oracle)
+    std::vector<std::array<Sum, kDisplayCount>> by_age_[2];  // index a - 1
+    std::array<Sum, kDisplayCount> young_[2];                // ages 1..N pooled
+    std::vector<uint8_t> kind_;                              // per pixel: 0 none, 1 disocclusion, 2 other miss
     struct Row {
         int frame;
         std::array<double, kDisplayCount> rmse;

@@ -115,6 +115,7 @@ std::string usage() {
            "  --reference-frames LIST  also take the reference on these frames (comma separated)\n"
            "  --dump-soft              on checkpoints write finish/soft_<what>_NNNN.f32 (raw float images of soft's displays)\n"
            "  --young-ages N           the young-pixel table (young.csv): ages 1..N (default 8)\n"
+           "  --model-fill-age T       T of the fill's CPU model, scored in young.csv without --soft-fill (default 8)\n"
            "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.6, env 0.8)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
@@ -238,6 +239,8 @@ Options parse_options(int argc, const char* const* argv) {
             while (std::getline(ss, item, ',')) o.reference_frames.push_back((int)to_int(a, item, 0, 100000));
         } else if (a == "--dump-soft")
             o.dump_soft = true;
+        else if (a == "--model-fill-age")
+            o.model_fill_age = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP + 1);
         else if (a == "--young-ages")
             o.young_ages = (uint32_t)to_int(a, value(), 1, 255);
         else if (a == "--static-camera")

@@ -40,6 +40,7 @@ struct Options {
     float pcf_threshold = -1.0f;                        // --pcf-threshold X; < 0: off
     std::vector<int> reference_frames;                  // --reference-frames: extra checkpoint frames
     bool dump_soft = false;                             // --dump-soft: raw float images of soft's displays on checkpoints
+    uint32_t model_fill_age = 8;                        // --model-fill-age: T of the fill's CPU model (without --soft-fill)
     uint32_t young_ages = 8;                            // --young-ages: the young-pixel table's ages 1..N
     bool object_id = true;                   // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;

@@ -123,7 +123,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             std::future<double> oracle_done = std::async(std::launch::async, [&] {
                 const auto oracle_start = std::chrono::steady_clock::now();
                 rec.visibility = oracle.judge(current_view, previous_view, o.width, o.height, out.mask,
-                                              reset ? kNoPrevious : previous.object, writer ? &verdict : nullptr);
+                                              reset ? kNoPrevious : previous.object, &verdict);
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - oracle_start).count();
             });
             rec.index = t;
@@ -131,10 +131,10 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             rec.hits = hit_stats(out.mask);
             rec.timings = out.timings;
             rec.errors = frame_errors(out);
-            finish.add(out, make_frame_state(scene, rs.render, t));
             if (writer) writer->write(out);
             run.oracle_seconds += oracle_done.get();
             if (writer) writer->write_oracle(t, verdict);
+            finish.add(out, make_frame_state(scene, rs.render, t), verdict);
             if (on_frame) on_frame(out, rec);
             if (progress) *progress << progress_line(rec, o.frames) << std::flush;
             run.frames.push_back(std::move(rec));

@@ -1,0 +1,227 @@
+#!/usr/bin/env python3
+"""Issue 13's measurements of the finishing steps, from rrc-sample runs.
+
+  python3 host_sample/rrc_sample/finish.py --sample build/host_sample/rrc_sample/rrc-sample --out out/finish --docs docs/finish
+
+Runs rrc-sample a few times (lavapipe: about 3 minutes in all), then writes the tables
+(finish.md) and the figures (PNG, matplotlib) into --docs:
+  A  soft shadows: young (newly disoccluded) pixels' RMSE over their first 8 frames for the
+     --soft-prior 4 display, the fill with the PCSS fallback and without it (young.csv of one
+     run: the fill's CPU model of docs/CONVENTIONS.md; with --soft-fill, rrc's own fill);
+     Figure-9-like convergence after a reset (frames 1, 3, 7, 20, 256) and its error curve.
+  B  PCF finishing: plain, Gaussian-blurred history, + smoothstep, + threshold (display only).
+  C  PCF confidence: RMSE against frames with and without confidence.
+"""
+import argparse, csv, math, os, subprocess, sys, time
+
+import numpy as np
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+ENV = dict(os.environ)
+ENV.setdefault("VK_ICD_FILENAMES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json")
+ENV.setdefault("XDG_RUNTIME_DIR", "/tmp")
+
+
+def run(sample, out, args, log):
+    cmd = [sample, "--quiet", "--no-images", "--out", out] + args
+    t = time.time()
+    p = subprocess.run(cmd, env=ENV, capture_output=True, text=True)
+    log.append((" ".join(["rrc-sample"] + args), p.returncode, time.time() - t))
+    if p.returncode:
+        print(p.stdout[-2000:], p.stderr[-2000:], file=sys.stderr)
+    return p.returncode == 0
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def num(v):
+    return float(v) if v not in ("", None) else float("nan")
+
+
+def load(d, name, frame, size):
+    w, h = size
+    p = os.path.join(d, "finish", "%s_%04d.f32" % (name, frame))
+    return np.fromfile(p, dtype=np.float32).reshape(h, w) if os.path.exists(p) else None
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sample", default="build/host_sample/rrc_sample/rrc-sample")
+    ap.add_argument("--out", default="out/finish")
+    ap.add_argument("--docs", default="docs/finish")
+    ap.add_argument("--young-frames", type=int, default=24)
+    ap.add_argument("--fill", type=int, default=8, help="T of the fill")
+    ap.add_argument("--smoothstep", default="0.2,0.8")
+    ap.add_argument("--threshold", default="0.5")
+    ap.add_argument("--skip", default="", help="parts to skip: A, B, C")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    os.makedirs(a.docs, exist_ok=True)
+    log, md = [], []
+    T = str(a.fill)
+
+    if "A" not in a.skip:
+        # A1: young pixels on the default moving-camera scene, the soft reference on every frame.
+        base = ["--frames", str(a.young_frames), "--reference-every", "1", "--signals", "soft"]
+        d = os.path.join(a.out, "young")
+        run(a.sample, d, base, log)
+        y = {r["age"]: r for r in rows(os.path.join(d, "young.csv"))}
+        pooled = [k for k in y if "-" in k][0]
+        rr = {}
+        dl = os.path.join(a.out, "young_rrc")
+        dl0 = os.path.join(a.out, "young_rrc_none")
+        if run(a.sample, dl, base + ["--soft-fill", T], log):
+            rr["rrc fill, PCSS fallback (--soft-fill %s)" % T] = {r["age"]: r for r in rows(os.path.join(dl, "young.csv"))}
+        if run(a.sample, dl0, base + ["--soft-fill", T, "--fill-prior", "0"], log):
+            rr["rrc fill, no fallback (--soft-fill %s --fill-prior 0)" % T] = {r["age"]: r for r in rows(os.path.join(dl0, "young.csv"))}
+        shown = num(y[pooled]["rmse_shown"])
+        md.append("## A. Young soft-shadow pixels (ages 1-8 after a miss), RMSE against the 16x16-grid reference\n")
+        md.append("`rrc-sample %s` (256x160, %d frames; every miss on a surface after frame 0 starts a track; %s pixel-frames)\n"
+                  % (" ".join(base), a.young_frames, y[pooled]["pixels"]))
+        md.append("| display | RMSE, ages 1-8 | / `--soft-prior 4` | verdict (target <= 0.70) |\n|---|---|---|---|")
+        def line(label, v):
+            ratio = v / shown
+            md.append("| %s | %.4f | %.3f | %s |" % (label, v, ratio, "met" if ratio <= 0.70 else "not met"))
+        md.append("| current display, `--soft-prior 4` | %.4f | 1 | |" % shown)
+        line("fill (T = %s, r = 2, P = 4), CPU model of CONVENTIONS.md" % T, num(y[pooled]["rmse_fill_prior"]))
+        line("fill without fallback (P = 0), CPU model", num(y[pooled]["rmse_fill_none"]))
+        for k, t in rr.items():
+            line(k, num(t[pooled]["rmse_accumulated"]))
+        md.append("| rrc's accumulated value alone (no fill, no prior) | %.4f | %.3f | |" % (num(y[pooled]["rmse_accumulated"]), num(y[pooled]["rmse_accumulated"]) / shown))
+        md.append("| PCSS alone | %.4f | %.3f | |" % (num(y[pooled]["rmse_pcss"]), num(y[pooled]["rmse_pcss"]) / shown))
+        md.append("")
+        md.append("Per age (RMSE; pixels):\n\n| age | pixels | raw | accumulated | --soft-prior 4 | PCSS | fill P=4 | fill P=0 |" +
+                  "".join(" %s |" % k.split(" (")[0] for k in rr) + "\n|---|---|---|---|---|---|---|---|" + "---|" * len(rr))
+        ages = sorted([k for k in y if "-" not in k], key=int)
+        for k in ages:
+            r = y[k]
+            md.append("| %s | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (k, r["pixels"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
+                      num(r["rmse_shown"]), num(r["rmse_pcss"]), num(r["rmse_fill_prior"]), num(r["rmse_fill_none"])) +
+                      "".join(" %.4f |" % num(t[k]["rmse_accumulated"]) for t in rr.values()))
+        md.append("")
+        fig, ax = plt.subplots(figsize=(6, 4))
+        x = [int(k) for k in ages]
+        for col, lab in [("rmse_shown", "--soft-prior 4"), ("rmse_fill_prior", "fill + PCSS (P=4)"), ("rmse_fill_none", "fill, no fallback"),
+                         ("rmse_accumulated", "accumulated"), ("rmse_pcss", "PCSS")]:
+            ax.plot(x, [num(y[k][col]) for k in ages], "o-", label=lab)
+        for k, t in rr.items():
+            ax.plot(x, [num(t[g]["rmse_accumulated"]) for g in ages], "s--", label=k.split(" (")[0])
+        ax.set_xlabel("frames since the miss (age)"); ax.set_ylabel("RMSE (young pixels)"); ax.legend(fontsize=7); ax.grid(alpha=0.3)
+        fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_young.png"), dpi=110); plt.close(fig)
+
+        # A2: Figure 9: a reset at frame 0, still camera (the torus still moves), 256 frames.
+        frames = [0, 1, 2, 3, 4, 6, 9, 14, 19, 31, 49, 79, 127, 199, 255]
+        fig9 = ["--static-camera", "--frames", "256", "--reference-every", "0", "--reference-frames", ",".join(map(str, frames)),
+                "--signals", "soft", "--size", "128x80", "--dump-soft"]
+        d9 = os.path.join(a.out, "fig9")
+        run(a.sample, d9, fig9, log)
+        c = rows(os.path.join(d9, "curve.csv"))
+        size = tuple(int(v) for v in open(os.path.join(d9, "finish", "size.txt")).read().split())
+        show = [0, 2, 6, 19, 255]
+        kinds = [("soft_raw", "one sample"), ("soft_accumulated", "rrc (no fill)"), ("soft_shown", "--soft-prior 4"),
+                 ("soft_fill_prior", "fill + PCSS"), ("soft_fill_none", "fill, no fallback")]
+        fig, ax = plt.subplots(len(kinds) + 1, len(show), figsize=(2.2 * len(show), 1.5 * (len(kinds) + 1)))
+        for j, f in enumerate(show):
+            ref = load(d9, "soft_reference", f, size)
+            ax[0, j].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0, j].set_title("frame %d" % (f + 1), fontsize=8)
+            for i, (k, lab) in enumerate(kinds):
+                im = load(d9, k, f, size)
+                ax[i + 1, j].imshow(im, cmap="gray", vmin=0, vmax=1)
+                e = math.sqrt(float(np.mean((im - ref) ** 2)))
+                ax[i + 1, j].set_xlabel("RMSE %.3f" % e, fontsize=7)
+        ax[0, 0].set_ylabel("reference", fontsize=8)
+        for i, (k, lab) in enumerate(kinds): ax[i + 1, 0].set_ylabel(lab, fontsize=8)
+        for q in ax.flat: q.set_xticks([]); q.set_yticks([])
+        fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_fig9.png"), dpi=110); plt.close(fig)
+        fig, ax = plt.subplots(figsize=(6, 4))
+        xs = [int(r["frames_since_reset"]) for r in c]
+        for col, lab in [("rmse_raw", "one sample"), ("rmse_accumulated", "rrc (no fill)"), ("rmse_shown", "--soft-prior 4"),
+                         ("rmse_fill_prior", "fill + PCSS"), ("rmse_fill_none", "fill, no fallback"), ("rmse_pcss", "PCSS")]:
+            ax.plot(xs, [num(r[col]) for r in c], "o-", ms=3, label=lab)
+        ax.set_xscale("log"); ax.set_xlabel("frames since the reset"); ax.set_ylabel("RMSE (every surface pixel)")
+        ax.legend(fontsize=7); ax.grid(alpha=0.3, which="both")
+        fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_fig9_curve.png"), dpi=110); plt.close(fig)
+        md.append("## A. Figure 9: convergence after a reset\n\n`rrc-sample %s`\n" % " ".join(fig9))
+        md.append("| frames since reset | one sample | rrc | --soft-prior 4 | fill + PCSS | fill, no fallback | PCSS |\n|---|---|---|---|---|---|---|")
+        for r in c:
+            md.append("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (r["frames_since_reset"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
+                      num(r["rmse_shown"]), num(r["rmse_fill_prior"]), num(r["rmse_fill_none"]), num(r["rmse_pcss"])))
+        md.append("\n![Figure 9](soft_fig9.png) ![curve](soft_fig9_curve.png) ![young](soft_young.png)\n")
+
+    if "B" not in a.skip:
+        pb = ["--signals", "pcf", "--frames", "60", "--reference-every", "10"]
+        steps = [("plain (bilinear)", "plain", []),
+                 ("Gaussian history (--history-filter gaussian)", "blur", ["--history-filter", "gaussian"]),
+                 ("Gaussian + smoothstep %s" % a.smoothstep, "smooth", ["--history-filter", "gaussian", "--pcf-smoothstep", a.smoothstep]),
+                 ("Gaussian + smoothstep + threshold %s" % a.threshold, "thresh",
+                  ["--history-filter", "gaussian", "--pcf-smoothstep", a.smoothstep, "--pcf-threshold", a.threshold]),
+                 ("plain + smoothstep %s (no blur)" % a.smoothstep, "plain_smooth", ["--pcf-smoothstep", a.smoothstep])]
+        md.append("## B. PCF finishing, RMSE against the fixed target (the exact disk mean), mean over the 6 checkpoints\n")
+        md.append("`rrc-sample %s ...` (256x160, the default moving camera)\n" % " ".join(pb))
+        md.append("| step | options | RMSE displayed | RMSE of the history (accumulated) |\n|---|---|---|---|")
+        imgs = []
+        for lab, tag, extra in steps:
+            d = os.path.join(a.out, "pcf_" + tag)
+            ok = run(a.sample, d, pb + extra + ["--dump-soft"], log)
+            if not ok:
+                md.append("| %s | `%s` | refused by this library build | |" % (lab, " ".join(extra)))
+                continue
+            e = [r for r in rows(os.path.join(d, "errors.csv")) if r["signal"] == "pcf"]
+            acc = np.mean([num(r["rmse_accumulated"]) for r in e])
+            shown = np.mean([num(r["rmse_shown"]) for r in e]) if e[0]["rmse_shown"] else acc
+            md.append("| %s | `%s` | %.4f | %.4f |" % (lab, " ".join(extra), shown, acc))
+            imgs.append((lab, d, tag))
+        md.append("")
+        if imgs:
+            size = tuple(int(v) for v in open(os.path.join(imgs[0][1], "finish", "size.txt")).read().split())
+            fig, ax = plt.subplots(1, len(imgs) + 1, figsize=(3.2 * (len(imgs) + 1), 2.6))
+            ref = load(imgs[0][1], "pcf_reference", 59, size)
+            ax[0].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0].set_title("target (exact disk mean)", fontsize=7)
+            for i, (lab, d, tag) in enumerate(imgs):
+                im = load(d, "pcf_shown", 59, size)
+                if im is None: im = load(d, "pcf_accumulated", 59, size)
+                ax[i + 1].imshow(im, cmap="gray", vmin=0, vmax=1)
+                ax[i + 1].set_title(lab, fontsize=7); ax[i + 1].set_xlabel("RMSE %.4f" % math.sqrt(float(np.mean((im - ref) ** 2))), fontsize=7)
+            for q in ax: q.set_xticks([]); q.set_yticks([])
+            fig.tight_layout(); fig.savefig(os.path.join(a.docs, "pcf_steps.png"), dpi=110); plt.close(fig)
+            md.append("![PCF steps, frame 60](pcf_steps.png)\n")
+
+    if "C" not in a.skip:
+        md.append("## C. PCF confidence: RMSE against frames since the reset (still camera, the torus moves)\n")
+        pc = ["--signals", "pcf", "--frames", "64", "--reference-every", "1", "--static-camera"]
+        md.append("`rrc-sample %s [--pcf-confidence]`\n" % " ".join(pc))
+        res = {}
+        for tag, extra in [("plain", []), ("confidence", ["--pcf-confidence"])]:
+            d = os.path.join(a.out, "conf_" + tag)
+            run(a.sample, d, pc + extra, log)
+            res[tag] = [r for r in rows(os.path.join(d, "errors.csv")) if r["signal"] == "pcf"]
+        fig, ax = plt.subplots(figsize=(6, 4))
+        for tag, e in res.items():
+            ax.plot([int(r["frame"]) + 1 for r in e], [num(r["rmse_accumulated"]) for r in e], label=tag + ", against the disk mean")
+        e = res["confidence"]
+        ax.plot([int(r["frame"]) + 1 for r in e], [num(r["rmse_accumulated_vs_weighted"]) for r in e], "--",
+                label="confidence, against the weighted disk mean")
+        ax.set_xscale("log"); ax.set_xlabel("frames since the reset"); ax.set_ylabel("RMSE"); ax.legend(fontsize=7); ax.grid(alpha=0.3, which="both")
+        fig.tight_layout(); fig.savefig(os.path.join(a.docs, "pcf_confidence.png"), dpi=110); plt.close(fig)
+        md.append("| frames since reset | plain | confidence (vs disk mean) | confidence (vs weighted mean) | weighted mean vs disk mean |\n|---|---|---|---|---|")
+        for i in [0, 1, 3, 7, 15, 31, 63]:
+            if i < len(e):
+                md.append("| %d | %.4f | %.4f | %.4f | %.4f |" % (i + 1, num(res["plain"][i]["rmse_accumulated"]), num(e[i]["rmse_accumulated"]),
+                          num(e[i]["rmse_accumulated_vs_weighted"]), num(e[i]["rmse_weighted_vs_target"])))
+        md.append("\n![confidence](pcf_confidence.png)\n")
+
+    md.append("## Runs\n\n| command | exit | seconds |\n|---|---|---|")
+    for c, rc, s in log:
+        md.append("| `%s` | %d | %.1f |" % (c, rc, s))
+    with open(os.path.join(a.docs, "finish.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    main()
