@@ -16,10 +16,10 @@
 namespace rrc_sample {
 
 struct FillParams {
-    uint32_t age = 8;        // T
-    uint32_t radius = 2;     // r
-    float tolerance = 0.05f; // tau
-    float prior = 0.0f;      // P, the fallback's weight in samples (0: none)
+    uint32_t age = 8;         // T
+    uint32_t radius = 2;      // r
+    float tolerance = 0.05f;  // tau
+    float prior = 0.0f;       // P, the fallback's weight in samples (0: none)
 };
 
 /** The fill of docs/CONVENTIONS.md on the CPU, for a one-component channel:

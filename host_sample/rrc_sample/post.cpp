@@ -66,9 +66,8 @@ PostPasses::PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const 
         fallback_.bind_image(p, 7, shown_.view, GEN);
         fallback_.bind_image(p, 8, pcss_.view, GEN);
     }
-    compose_ =
-        ComputeKernel(gpu, "compose", rrc_sample_compose_comp, sizeof rrc_sample_compose_comp, {UBO, TEX, TEX, IMG, IMG, IMG, IMG},
-                      sizeof(ComposePush), 3);
+    compose_ = ComputeKernel(gpu, "compose", rrc_sample_compose_comp, sizeof rrc_sample_compose_comp, {UBO, TEX, TEX, IMG, IMG, IMG, IMG},
+                             sizeof(ComposePush), 3);
     for (uint32_t s = 0; s < 3; ++s) {
         const SignalImages& in = s == kComposeAccumulated ? acc : s == kComposeRaw ? raw : ref;
         compose_.bind_buffer(s, 0, scene.uniforms());

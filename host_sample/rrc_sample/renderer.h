@@ -25,8 +25,8 @@ struct RendererSettings {
     float epsilon_scale = 0.0f;
     uint32_t depth_test = 0;  // RRC_DEPTH_TEST_*
     float soft_prior = 4.0f;
-    ChannelPresets channels;   // soft.fill_age: rrc's fill (the display shows rrc's soft output); pcf.confidence: w per pixel
-    PcfDisplay pcf_display;    // display-only remaps of the accumulated PCF
+    ChannelPresets channels;    // soft.fill_age: rrc's fill (the display shows rrc's soft output); pcf.confidence: w per pixel
+    PcfDisplay pcf_display;     // display-only remaps of the accumulated PCF
     bool use_object_id = true;  // rrc_context_desc.use_object_id
     uint32_t reference_samples = 256;
 };

@@ -23,7 +23,8 @@ std::string channel_line(const rrc_channel_desc& c) {
     char line[256];
     if (c.blend == RRC_BLEND_RUNNING_MEAN)
         std::snprintf(line, sizeof line, "%s: %u component%s, %s, age cap %u, %s, %s history", c.name, c.components,
-                      c.components > 1 ? "s" : "", blend, c.age_cap ? c.age_cap : 255u, filter, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
+                      c.components > 1 ? "s" : "", blend, c.age_cap ? c.age_cap : 255u, filter,
+                      c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
     else
         std::snprintf(line, sizeof line, "%s: %u component%s, %s, lambda %.2f, %s, %s history", c.name, c.components,
                       c.components > 1 ? "s" : "", blend, c.lambda, filter, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
@@ -122,8 +123,8 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             std::vector<uint8_t> verdict;  // per pixel, for oracle/oracle_NNNN.png
             std::future<double> oracle_done = std::async(std::launch::async, [&] {
                 const auto oracle_start = std::chrono::steady_clock::now();
-                rec.visibility = oracle.judge(current_view, previous_view, o.width, o.height, out.mask,
-                                              reset ? kNoPrevious : previous.object, &verdict);
+                rec.visibility =
+                    oracle.judge(current_view, previous_view, o.width, o.height, out.mask, reset ? kNoPrevious : previous.object, &verdict);
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - oracle_start).count();
             });
             rec.index = t;

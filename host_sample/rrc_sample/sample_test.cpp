@@ -186,8 +186,7 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
         ASSERT_LT(t, acc.size());
         EXPECT_EQ(f.pcf.accumulated, acc[t]) << "frame " << t << ": the display remap reached rrc's history";
         ASSERT_EQ(f.pcf.shown.size(), f.pcf.accumulated.size());
-        for (size_t i = 0; i < f.pcf.shown.size(); ++i)
-            ASSERT_TRUE(f.pcf.shown[i] == 0.0f || f.pcf.shown[i] == 1.0f) << "thresholded";
+        for (size_t i = 0; i < f.pcf.shown.size(); ++i) ASSERT_TRUE(f.pcf.shown[i] == 0.0f || f.pcf.shown[i] == 1.0f) << "thresholded";
         changed += f.colour[0] != colour[t];
         ++t;
     });
@@ -413,8 +412,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* adaptive[] = {"rrc-sample", "--depth-test", "adaptive"};
     EXPECT_EQ(parse_options(3, adaptive).depth_test, (uint32_t)RRC_DEPTH_TEST_ADAPTIVE);
 
-    const char* channels[] = {"rrc-sample", "--lambda", "0.9", "--blend", "fixed", "--history-filter", "catmull_rom",
-                              "--pcf-pattern", "rotated", "--seed", "3", "--soft-age-cap", "32"};
+    const char* channels[] = {"rrc-sample",  "--lambda",      "0.9",     "--blend", "fixed", "--history-filter",
+                              "catmull_rom", "--pcf-pattern", "rotated", "--seed",  "3",     "--soft-age-cap",
+                              "32"};
     o = parse_options((int)(sizeof channels / sizeof *channels), channels);
     EXPECT_EQ(o.channels.pcf.lambda, 0.9f);
     EXPECT_EQ(o.channels.env.lambda, 0.9f);
@@ -426,9 +426,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.pcf_pattern, 1u);
     EXPECT_EQ(o.seed, 3u);
 
-    const char* finish[] = {"rrc-sample", "--soft-fill", "8", "--fill-radius", "1", "--fill-prior", "2", "--history-filter", "gaussian",
-                            "--blur-sigma", "0.6", "--pcf-smoothstep", "0.2,0.8", "--pcf-threshold", "0.5", "--pcf-confidence",
-                            "--reference-frames", "4,7"};
+    const char* finish[] = {
+        "rrc-sample",         "--soft-fill",  "8",   "--fill-radius",    "1",       "--fill-prior",    "2",   "--history-filter",
+        "gaussian",           "--blur-sigma", "0.6", "--pcf-smoothstep", "0.2,0.8", "--pcf-threshold", "0.5", "--pcf-confidence",
+        "--reference-frames", "4,7"};
     o = parse_options((int)(sizeof finish / sizeof *finish), finish);
     EXPECT_EQ(o.channels.soft.fill_age, 8u);
     EXPECT_EQ(o.channels.soft.fill_radius, 1u);

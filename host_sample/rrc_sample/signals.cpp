@@ -148,7 +148,8 @@ void SignalPasses::record_brute_force(VkCommandBuffer cmd, uint32_t signals, uin
                                       const Scene& scene, ShadowPass& shadows) {
     // Points of the light sequence no per-frame signal uses (offset 1000003), shifted by the seed.
     std::vector<glm::vec3> points;
-    for (uint32_t j = 0; j < taps; ++j) points.push_back(lamp_sequence_point(scene.lamp, 1000003 + (int)taps * frame + (int)j, sampling.seed));
+    for (uint32_t j = 0; j < taps; ++j)
+        points.push_back(lamp_sequence_point(scene.lamp, 1000003 + (int)taps * frame + (int)j, sampling.seed));
     record_many(cmd, signals, 2, taps, sampling, points, scene, shadows);
 }
 

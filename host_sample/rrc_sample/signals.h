@@ -32,7 +32,7 @@ struct SignalImages {
 /** The estimators' randomness: the ensemble member and the PCF pattern (RenderSettings). */
 struct Sampling {
     uint32_t seed = 0;
-    uint32_t pcf_pattern = 0;  // 0 uniform disk, 1 the paper's rotated Poisson disk
+    uint32_t pcf_pattern = 0;     // 0 uniform disk, 1 the paper's rotated Poisson disk
     bool pcf_confidence = false;  // confidence-weighted taps, w written to confidence() (signal_pcf.comp)
 };
 

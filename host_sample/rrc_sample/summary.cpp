@@ -201,7 +201,8 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
                     f << ",,";
                 if (e.fallback.pixels) f << fmt("%.6f", e.fallback.rmse);
                 f << ",";
-                if (e.weighted_target.pixels) f << fmt("%.6f", e.accumulated_weighted.rmse) << "," << fmt("%.6f", e.weighted_target.rmse);
+                if (e.weighted_target.pixels)
+                    f << fmt("%.6f", e.accumulated_weighted.rmse) << "," << fmt("%.6f", e.weighted_target.rmse);
                 else
                     f << ",";
                 f << "\n";
