@@ -54,6 +54,31 @@ layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_AGE_CAP, 0)) const ui
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_AGE_CAP, 1)) const uint CH1_AGE_CAP = 255u;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_AGE_CAP, 2)) const uint CH2_AGE_CAP = 255u;
 layout(constant_id = RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_AGE_CAP, 3)) const uint CH3_AGE_CAP = 255u;
+// 0.4, the finishing steps (docs/CONVENTIONS.md, "Finishing steps"):
+// RRC_SPEC_CHANNEL2(property, slot).  Each is off (false / 0) by default.
+#define RRC_SLOTS2(T, NAME, property, off)                                                  \
+    layout(constant_id = RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_##property, 0)) const T CH0_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_##property, 1)) const T CH1_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_##property, 2)) const T CH2_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_##property, 3)) const T CH3_##NAME = off;
+#define RRC_SLOTS_OFF(T, NAME, off) const T CH0_##NAME = off, CH1_##NAME = off, CH2_##NAME = off, CH3_##NAME = off;
+#ifdef RRC_WITHOUT_RECTIFY  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(bool, RECTIFY, false)
+#else
+RRC_SLOTS2(bool, RECTIFY, RECTIFY, false)
+#endif
+RRC_SLOTS2(float, RECTIFY_GAMMA, RECTIFY_GAMMA, 1.0)
+RRC_SLOTS2(float, BLUR_G, BLUR_G, 0.125)
+#ifdef RRC_WITHOUT_FILL  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(uint, FILL_AGE, 0u)
+#else
+RRC_SLOTS2(uint, FILL_AGE, FILL_AGE, 0u)
+#endif
+RRC_SLOTS2(uint, FILL_RADIUS, FILL_RADIUS, 2u)
+RRC_SLOTS2(float, FILL_TOLERANCE, FILL_TOLERANCE, 0.05)
+RRC_SLOTS2(float, FILL_PRIOR, FILL_PRIOR, 0.0)
+#undef RRC_SLOTS2
+#undef RRC_SLOTS_OFF
 // Slot selectors: called with a literal slot, they fold to one constant.
 #define RRC_SLOT_SELECT(T, name) \
     T ch_##name(int c) { return c == 0 ? CH0_##name : c == 1 ? CH1_##name : c == 2 ? CH2_##name : CH3_##name; }
@@ -64,6 +89,13 @@ RRC_SLOT_SELECT(uint, FILTER)
 RRC_SLOT_SELECT(bool, CONFIDENCE)
 RRC_SLOT_SELECT(float, LAMBDA)
 RRC_SLOT_SELECT(uint, AGE_CAP)
+RRC_SLOT_SELECT(bool, RECTIFY)
+RRC_SLOT_SELECT(float, RECTIFY_GAMMA)
+RRC_SLOT_SELECT(float, BLUR_G)
+RRC_SLOT_SELECT(uint, FILL_AGE)
+RRC_SLOT_SELECT(uint, FILL_RADIUS)
+RRC_SLOT_SELECT(float, FILL_TOLERANCE)
+RRC_SLOT_SELECT(float, FILL_PRIOR)
 
 layout(set = 0, binding = RRC_BINDING_MASK, r8ui) uniform writeonly uimage2D u_mask;
 
@@ -86,6 +118,7 @@ layout(set = 0, binding = RRC_BINDING_HOST_SAMPLES) uniform sampler2D s_samples[
 layout(set = 0, binding = RRC_BINDING_HOST_CONFIDENCE) uniform sampler2D s_confidence[RRC_MAX_CHANNELS];  // INTEROP
 layout(set = 0, binding = RRC_BINDING_HOST_OUT) uniform writeonly image2D u_host_out[RRC_MAX_CHANNELS];  // INTEROP: any float format
 layout(set = 0, binding = RRC_BINDING_HOST_AGE_OUT, r16ui) uniform writeonly uimage2D u_host_age_out[RRC_MAX_CHANNELS];  // INTEROP, optional
+layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];  // FILL: the host's fallback estimate
 
 // Optional interop outputs, each its own pipeline variant (plugin/accumulate_pipeline.h,
 // KernelVariant): off, their code is compiled out.
@@ -103,6 +136,14 @@ layout(constant_id = RRC_SPEC_HOST_AGE_MASK) const uint HOST_AGE_MASK = 0u;
 layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 
 #include "rrc_cache.glsl"
+
+// The spatial fill's depth proxy: proportional to the view depth for an
+// infinite far plane (docs/CONVENTIONS.md, "The spatial fill").
+float rrc_fill_proxy(float d) {
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return 1.0 / (1.0 - d);
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return 1.0 / d;
+    return d;
+}
 
 // The frame's statistics (interop, STATS): `geometry` counts what the hit
 // test decides, `samples` the invalid samples (classify and resolve split them).
@@ -172,8 +213,37 @@ void rrc_list_quads() {
     if (listed && all(lessThan(id, quads))) rrc_list_quad(q);
 }
 
+// FILL: one invocation a pixel, after FUSED or RESOLVE, bound as the next
+// frame would be (its history inputs are this frame's results, its previous
+// depth this frame's depth): the displayed value of every channel with a
+// fill, into u_host_out (docs/CONVENTIONS.md, "The spatial fill").
+void rrc_fill() {
+    ivec2 size = imageSize(u_prev_depth);
+    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    rrc_store = all(lessThan(id, size));  // no early return (rrc_reproject.glsl says why)
+    ivec2 px = min(id, size - 1);
+    float d_p = imageLoad(u_prev_depth, px).r;
+    bool fill_here = !rrc_is_background(d_p) && !rrc_is_invalid_depth(d_p);
+    float delta_p = rrc_fill_proxy(d_p);
+
+#define RRC_CH 0
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 1
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 2
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 3
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+}
+
 void main() {
-    if (PHASE == RRC_PHASE_LIST)
+    if (PHASE == RRC_PHASE_FILL)
+        rrc_fill();
+    else if (PHASE == RRC_PHASE_LIST)
         rrc_list_quads();
     else
         rrc_pixel();

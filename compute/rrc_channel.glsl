@@ -57,9 +57,12 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         vec4 wt = g.taps.w;
         H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
         Wh = CH_(_CONFIDENCE) ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
-        if (CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM) {
-            // 4x4 taps, clamped to the range of the bilinear taps so it cannot ring.
-            vec4 wx = rrc_catmull_rom_weights(g.taps.f.x), wy = rrc_catmull_rom_weights(g.taps.f.y);
+        if (CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM || CH_(_FILTER) == RRC_HISTORY_FILTER_GAUSSIAN) {
+            // 4x4 taps.  Catmull-Rom is clamped to the range of the bilinear
+            // taps so it cannot ring; the Gaussian's weights are convex.
+            const bool CR = CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM;
+            vec4 wx = CR ? rrc_catmull_rom_weights(g.taps.f.x) : rrc_blur_weights(g.taps.f.x, CH_(_BLUR_G));
+            vec4 wy = CR ? rrc_catmull_rom_weights(g.taps.f.y) : rrc_blur_weights(g.taps.f.y, CH_(_BLUR_G));
             ivec2 hi = rrc_size() - 1;
             vec4 acc = vec4(0.0);
             float accw = 0.0;
@@ -71,8 +74,9 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
                     if (CH_(_CONFIDENCE)) accw += (wx[i] * wy[j]) * LOAD_W(t);
                 }
             }
-            H = clamp(acc, min(min(h00, h10), min(h01, h11)), max(max(h00, h10), max(h01, h11)));
-            if (CH_(_CONFIDENCE)) {
+            H = CR ? clamp(acc, min(min(h00, h10), min(h01, h11)), max(max(h00, h10), max(h01, h11))) : acc;
+            if (CH_(_CONFIDENCE) && !CR) Wh = accw;
+            if (CH_(_CONFIDENCE) && CR) {
                 vec4 wq = vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11));
                 Wh = clamp(accw, min(min(wq.x, wq.y), min(wq.z, wq.w)), max(max(wq.x, wq.y), max(wq.z, wq.w)));
             }
@@ -81,6 +85,39 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
 #undef LOAD_WORD
 #undef LOAD_H
 #undef LOAD_W
+
+    // -- rectification: the blend's H clamped to mu +- gamma sigma of this
+    //    frame's valid samples in the 3x3 block (docs/CONVENTIONS.md,
+    //    "Rectification"); formed about the centre sample, which is valid
+    //    wherever the blend uses it, so large magnitudes do not cancel.
+    vec4 H_blend = H;
+    if (CH_(_RECTIFY)) {
+        ivec2 hi = size - 1;
+        vec4 sum = vec4(0.0), sum2 = vec4(0.0);
+        float m = 0.0;
+        for (int b = -1; b <= 1; ++b)
+            for (int a = -1; a <= 1; ++a) {
+                ivec2 t = clamp(px + ivec2(a, b), ivec2(0), hi);
+                vec4 q = SAMPLED_INPUTS            ? texelFetch(s_samples[RRC_CH], t, 0)
+                         : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0)
+                                                  : imageLoad(u_sample4[RRC_CH], t);
+                if (CH_(_COMPONENTS) == 1u) q = vec4(q.x, 0.0, 0.0, 0.0);
+                float wq = !CH_(_CONFIDENCE) ? 1.0
+                           : SAMPLED_INPUTS  ? texelFetch(s_confidence[RRC_CH], t, 0).r
+                                             : imageLoad(u_confidence[RRC_CH], t).r;
+                bool ok = rrc_finite4(q) && rrc_finite(wq);
+                vec4 dq = ok ? q - s : vec4(0.0);
+                sum += dq;
+                sum2 += dq * dq;
+                m += ok ? 1.0 : 0.0;
+            }
+        vec4 mean_d = sum / max(m, 1.0);
+        vec4 sigma = sqrt(max(sum2 / max(m, 1.0) - mean_d * mean_d, vec4(0.0)));
+        vec4 lo = s + mean_d - CH_(_RECTIFY_GAMMA) * sigma, hi_v = s + mean_d + CH_(_RECTIFY_GAMMA) * sigma;
+        // A box an fp32 overflow made infinite or NaN clamps nothing.
+        bvec4 box = bvec4(uvec4(not(isnan(lo))) & uvec4(not(isnan(hi_v))) & uvec4(not(isinf(lo))) & uvec4(not(isinf(hi_v))));
+        H_blend = mix(H, clamp(H, lo, hi_v), box);
+    }
 
     // -- the table of docs/CONVENTIONS.md
     float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
@@ -91,9 +128,9 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         // underflows (w*s with a tiny w) nor overflows; each weight is formed
         // on its own (not as 1 - the other) so a tiny one is not cancelled.
         float inv = 1.0 / max(W_new, RRC_FLT_MIN);  // W_new < FLT_MIN keeps H below
-        blended = (lambda * Wh * inv) * H + ((1.0 - lambda) * w * inv) * s;
+        blended = (lambda * Wh * inv) * H_blend + ((1.0 - lambda) * w * inv) * s;
     } else {
-        blended = lambda * H + (1.0 - lambda) * s;
+        blended = lambda * H_blend + (1.0 - lambda) * s;
     }
     // REUSE: a refresh is a miss (docs/CONVENTIONS.md, "The shading cache").
     bool hit = REUSE_ ? hit_cached : hit_any;
@@ -135,7 +172,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
             imageStore(u_hist_out[RRC_CH], px, out_v);
             imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
         }
-        if (INTEROP) imageStore(u_host_out[RRC_CH], px, out_v);
+        if (INTEROP && CH_(_FILL_AGE) == 0u) imageStore(u_host_out[RRC_CH], px, out_v);  // a fill writes it (rrc_fill)
         if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
         if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
     }

@@ -36,4 +36,11 @@ vec4 rrc_catmull_rom_weights(float t) {
     return 0.5 * vec4(-t3 + 2.0 * t2 - t, 3.0 * t3 - 5.0 * t2 + 2.0, -3.0 * t3 + 4.0 * t2 + t, t3 - t2);
 }
 
+// The Gaussian history filter's weights for fraction t (taps at -1, 0, +1,
+// +2): the 3-tap blur [g, 1 - 2g, g] convolved with the bilinear [1 - t, t].
+vec4 rrc_blur_weights(float t, float g) {
+    float c = 1.0 - 2.0 * g, u = 1.0 - t;
+    return vec4(g * u, c * u + g * t, g * u + c * t, g * t);
+}
+
 #endif

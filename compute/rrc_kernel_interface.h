@@ -45,11 +45,24 @@
 #define RRC_SPEC_REFRESH_TILES_Y 51  // uint gy (TILED)
 #define RRC_SPEC_MAX_LIFETIME 52     // uint L, 0 = none
 
+// 0.4 per-channel constants (the finishing steps, docs/CONVENTIONS.md): a
+// second range, property k of slot c has id 56 + 4*k + c.
+#define RRC_CHANNEL2_PROPERTY_RECTIFY 0        // bool: history rectification
+#define RRC_CHANNEL2_PROPERTY_RECTIFY_GAMMA 1  // float gamma
+#define RRC_CHANNEL2_PROPERTY_BLUR_G 2         // float g = blur_sigma^2 / 2 (GAUSSIAN)
+#define RRC_CHANNEL2_PROPERTY_FILL_AGE 3       // uint T, 0 = no fill (the FILL phase; FUSED/RESOLVE: no host output)
+#define RRC_CHANNEL2_PROPERTY_FILL_RADIUS 4    // uint r
+#define RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE 5 // float tau
+#define RRC_CHANNEL2_PROPERTY_FILL_PRIOR 6     // float P, 0 = no fallback
+#define RRC_CHANNEL2_PROPERTY_COUNT 7
+#define RRC_SPEC_CHANNEL2(property, slot) (56 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+
 // ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
 #define RRC_PHASE_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
 #define RRC_PHASE_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels, channels untouched
 #define RRC_PHASE_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
 #define RRC_PHASE_RESOLVE 3u   // the channels with classify's mask: a dispatch over pixels, no hit test
+#define RRC_PHASE_FILL 4u      // the spatial fill: after FUSED or RESOLVE, over pixels, bound as the next frame (docs/CONVENTIONS.md)
 
 // ---- Descriptor bindings (set 0) -------------------------------------------
 // Geometry (rrc_reproject.glsl) and the mask: one image each.
@@ -88,12 +101,15 @@
 // Resolve reads the mask classify wrote (R8_UINT, the library's own mask)
 // through a sampler: the storage images are at lavapipe's 64 a stage already.
 #define RRC_BINDING_CLASSIFIED 28
-#define RRC_BINDING_LAST RRC_BINDING_CLASSIFIED
+// The spatial fill's fallback estimates (0.4), per channel slot: samplers
+// (the host's images, or the standalone uploads), read by the FILL phase only.
+#define RRC_BINDING_FALLBACK 29
+#define RRC_BINDING_LAST RRC_BINDING_FALLBACK
 // The buffer bindings, after every image binding: the host's statistics
 // buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]) and classify's
 // quad list (include/rrc/rrc_values.h layout).
-#define RRC_BINDING_STATS 29
-#define RRC_BINDING_QUADS 30
+#define RRC_BINDING_STATS 30
+#define RRC_BINDING_QUADS 31
 // Counter indices in it (the member order of rrc_vulkan_frame_stats).
 #define RRC_STAT_HITS 0
 #define RRC_STAT_MISSES 1

@@ -22,6 +22,9 @@ static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_CO
               "the shading cache's ids sit between the channel ids and the workgroup-size ids");
 static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "channel ids overlap the workgroup-size ids");
+static_assert(RRC_SPEC_CHANNEL2(0, 0) > RRC_SPEC_MAX_LIFETIME &&
+                  RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
+              "the second channel range sits between the shading cache's ids and the workgroup-size ids");
 
 struct SpecBuilder {
     std::vector<VkSpecializationMapEntry> entries;
@@ -132,6 +135,13 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
         spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_CONFIDENCE, slot), ch.confidence ? 1u : 0u);
         spec.add_float(channel_constant_id(RRC_CHANNEL_PROPERTY_LAMBDA, slot), ch.lambda);
         spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_AGE_CAP, slot), ch.age_cap);
+        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_RECTIFY, slot), ch.rectify ? 1u : 0u);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_RECTIFY_GAMMA, slot), ch.rectify_gamma);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_BLUR_G, slot), ch.blur_sigma * ch.blur_sigma * 0.5f);
+        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_AGE, slot), ch.fill_age);
+        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_RADIUS, slot), ch.fill_radius);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE, slot), ch.fill_depth_tolerance);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_PRIOR, slot), ch.fill_prior);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -86,7 +86,8 @@ DescriptorViews Placeholders::views() const {
         v.view[RRC_BINDING_AGE][s] = read(VK_FORMAT_R16_UINT);
         v.view[RRC_BINDING_HIST_OUT][s] = v.view[RRC_BINDING_WEIGHT_OUT][s] = v.view[RRC_BINDING_HOST_OUT][s] = wf;
         v.view[RRC_BINDING_AGE_OUT][s] = v.view[RRC_BINDING_HOST_AGE_OUT][s] = wu;
-        v.view[RRC_BINDING_HOST_SAMPLES][s] = v.view[RRC_BINDING_HOST_CONFIDENCE][s] = read(VK_FORMAT_R32_SFLOAT);
+        v.view[RRC_BINDING_HOST_SAMPLES][s] = v.view[RRC_BINDING_HOST_CONFIDENCE][s] = v.view[RRC_BINDING_FALLBACK][s] =
+            read(VK_FORMAT_R32_SFLOAT);
     }
     return v;
 }

@@ -20,7 +20,17 @@ struct ChannelConfig {
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
     uint32_t age_cap = RRC_DEFAULT_AGE_CAP;
     bool confidence = false;
+    // 0.4 finishing steps (docs/CONVENTIONS.md, "Finishing steps"), defaults applied.
+    bool rectify = false;
+    float rectify_gamma = RRC_DEFAULT_RECTIFY_GAMMA;
+    float blur_sigma = 0.0f;      // GAUSSIAN only (else 0)
+    uint32_t fill_age = 0;        // T; 0 = no fill
+    uint32_t fill_radius = RRC_DEFAULT_FILL_RADIUS;
+    float fill_depth_tolerance = RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
+    float fill_prior = 0.0f;      // > 0: frames carry a fallback
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
+    bool fill() const { return fill_age != 0; }
+    bool fallback() const { return fill_prior > 0.0f; }
 };
 
 // How the kernel's epsilon is formed: the value of EPS_KIND in
@@ -49,6 +59,11 @@ struct ContextConfig {
     uint32_t refresh_tiles[2] = {1, 1};       // TILED: {gx, gy}, gx * gy = n
     uint32_t max_lifetime = 0;                // 0: none
     uint32_t view_count = 1;
+    uint32_t fill_mask() const {  // bit c: channel c has a spatial fill
+        uint32_t m = 0;
+        for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].fill() ? 1u << i : 0u;
+        return m;
+    }
     uint32_t reuse_mask() const {             // bit c: channel c is REUSE
         uint32_t m = 0;
         for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].reuse() ? 1u << i : 0u;

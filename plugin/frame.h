@@ -22,8 +22,9 @@ struct FrameChannel {
     // Standalone: CPU arrays.
     const float* samples = nullptr;
     const float* confidence = nullptr;
+    const float* fallback = nullptr;  // the spatial fill's (0.4)
     // Vulkan: the host's images.
-    rrc_vulkan_image samples_image{}, confidence_image{}, output_image{}, age_image{};
+    rrc_vulkan_image samples_image{}, confidence_image{}, output_image{}, age_image{}, fallback_image{};
 };
 
 struct Frame {

@@ -52,6 +52,7 @@ Frame read_frame(const rrc_frame_desc* caller, size_t context_channels) {
     read_channels<rrc_channel_input>(f, d, context_channels, [](FrameChannel& to, const rrc_channel_input& from) {
         to.samples = from.samples;
         to.confidence = from.confidence;
+        to.fallback = from.fallback;
     });
     return f;
 }
@@ -68,6 +69,7 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
         to.confidence_image = from.confidence;
         to.output_image = from.output;
         to.age_image = from.age;
+        to.fallback_image = from.fallback;
     });
     return f;
 }
@@ -80,6 +82,7 @@ Frame read_resolve(const rrc_resolve_desc* caller, size_t context_channels) {
     read_channels<rrc_channel_input>(f, d, context_channels, [](FrameChannel& to, const rrc_channel_input& from) {
         to.samples = from.samples;
         to.confidence = from.confidence;
+        to.fallback = from.fallback;
     });
     return f;
 }

@@ -52,8 +52,9 @@ HostDevice host_device(const rrc_vulkan_device_desc& d) {
 InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_device_desc& d) {
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(host_device(d), Log{config.log, config.log_user}));
     const uint32_t in_flight = d.max_frames_in_flight ? d.max_frames_in_flight : 2;
-    // A frame records one pass (fused) or two (classify, resolve), each with its own set.
-    const uint32_t sets = 2 * (in_flight + 1);
+    // A frame records one pass (fused) or two (classify, resolve), each with
+    // its own set, and with a fill one more (the fill's).
+    const uint32_t sets = (config.fill_mask() ? 3 : 2) * (in_flight + 1);
     core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, sets, d.pipeline_cache));
     for (uint32_t i = 0; i < sets; ++i) ring_.push_back(core_->pipeline().allocate_set());
     stats_alignment_ = core_->device().limits.minStorageBufferOffsetAlignment;
@@ -155,7 +156,13 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     variant.storage_inputs = f.storage_inputs;
     for (uint32_t s = 0; s < f.channel_count && !classify; ++s)
         if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
+    const bool fill = !classify && config().fill_mask() != 0;
+    KernelVariant fill_variant = variant;
+    fill_variant.phase = RRC_PHASE_FILL;
+    fill_variant.host_age_mask = 0;
+    fill_variant.stats = false;
     core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
+    if (fill) core_->pipeline().pipeline(fill_variant);
     if (classify) {
         KernelVariant list = variant;
         list.phase = RRC_PHASE_LIST;
@@ -167,10 +174,10 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     DescriptorViews v = core_->library_views(view, p, source, AccumulatorCore::latest(source));
     HostBarriers hb;
     for (const LiveInput& in : core_->inputs()) {
-        if (classify && (in.role == InputRole::Samples || in.role == InputRole::Confidence)) continue;
+        if (classify && is_channel_input(in.role)) continue;
         const rrc_vulkan_image& img = host_image(f, in);
-        // storage_inputs: where the standalone path binds its own copy (ids are sampled either way)
-        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId;
+        // storage_inputs: where the standalone path binds its own copy (ids and fallbacks are sampled either way)
+        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId && in.role != InputRole::Fallback;
         const Binding b = storage ? in.own_binding : in.host_binding;
         v.view[b][in.slot] = img.view;
         v.layout[b][in.slot] = storage ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;
@@ -201,10 +208,27 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     }
     VkDescriptorSet set = ring_[next_set_];
     core_->pipeline().write_set(set, v);
+    VkDescriptorSet fill_set = VK_NULL_HANDLE;
+    if (fill) {
+        // The fill reads this frame's results as the next frame would (its
+        // history inputs, its previous depth) and writes the host's outputs.
+        DescriptorViews fv = core_->library_views(view, 1 - p, view, p);
+        for (const LiveInput& in : core_->inputs())
+            if (in.role == InputRole::Fallback) {
+                fv.view[RRC_BINDING_FALLBACK][in.slot] = host_image(f, in).view;
+                fv.layout[RRC_BINDING_FALLBACK][in.slot] = kReadLayout;
+            }
+        for (uint32_t s = 0; s < f.channel_count; ++s) fv.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
+        next_set_ = (next_set_ + 1) % (uint32_t)ring_.size();
+        fill_set = ring_[next_set_];
+        core_->pipeline().write_set(fill_set, fv);
+    }
 
     if (dev.fi.CmdBeginDebugUtilsLabelEXT) {
         VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-        label.pLabelName = classify ? "rrc: classify" : phase == RRC_PHASE_RESOLVE ? "rrc: resolve" : "rrc: reproject + accumulate";
+        label.pLabelName = classify                     ? "rrc: classify"
+                           : phase == RRC_PHASE_RESOLVE ? (fill ? "rrc: resolve + fill" : "rrc: resolve")
+                                                        : (fill ? "rrc: reproject + accumulate + fill" : "rrc: reproject + accumulate");
         dev.fi.CmdBeginDebugUtilsLabelEXT(cmd, &label);
     }
     if (!initialised_) record_initialisation(cmd);
@@ -218,6 +242,10 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     if (variant.stats && phase != RRC_PHASE_RESOLVE) record_stats_clear(cmd, f);
     if (classify) record_list_clear(cmd, list, list_offset);
     core_->record_dispatch(cmd, set, f, source.have_previous, variant);
+    if (fill) {
+        core_->record_history_barrier(cmd, 0, 0);  // the frame's results to the fill
+        core_->record_dispatch(cmd, fill_set, f, source.have_previous, fill_variant);
+    }
     if (classify) {
         // The list to the host's indirect dispatch and its miss shader (rrc_vulkan.h).
         VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};

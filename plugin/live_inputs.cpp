@@ -29,6 +29,10 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
                       one ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, c.channels[s].components, 4});
         if (c.channels[s].confidence)
             in.push_back({InputRole::Confidence, s, RRC_BINDING_CONFIDENCE, RRC_BINDING_HOST_CONFIDENCE, VK_FORMAT_R32_SFLOAT, 1, 4});
+        if (c.channels[s].fallback())
+            // Read by the fill only, through a sampler on both paths (as object ids).
+            in.push_back({InputRole::Fallback, s, RRC_BINDING_FALLBACK, RRC_BINDING_FALLBACK,
+                          one ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, c.channels[s].components, 4});
     }
     return in;
 }
@@ -41,6 +45,7 @@ const void* host_array(const Frame& f, const LiveInput& in) {
         case InputRole::ObjectId: return f.object_id;
         case InputRole::Samples: return f.channels[in.slot].samples;
         case InputRole::Confidence: return f.channels[in.slot].confidence;
+        case InputRole::Fallback: return f.channels[in.slot].fallback;
     }
     return nullptr;
 }
@@ -52,6 +57,7 @@ const rrc_vulkan_image& host_image(const Frame& f, const LiveInput& in) {
         case InputRole::Nocache: return f.nocache_image;
         case InputRole::ObjectId: return f.object_id_image;
         case InputRole::Samples: return f.channels[in.slot].samples_image;
+        case InputRole::Fallback: return f.channels[in.slot].fallback_image;
         case InputRole::Confidence: break;
     }
     return f.channels[in.slot].confidence_image;

@@ -13,7 +13,10 @@
 
 namespace rrc {
 
-enum class InputRole { Depth, Reprojection, Nocache, ObjectId, Samples, Confidence };
+enum class InputRole { Depth, Reprojection, Nocache, ObjectId, Samples, Confidence, Fallback };
+
+// The inputs of a channel (uploaded by resolve, not classify).
+inline bool is_channel_input(InputRole r) { return r == InputRole::Samples || r == InputRole::Confidence || r == InputRole::Fallback; }
 
 // Depth and object ids are kept from frame to frame (ViewState's ping-pong
 // images): the standalone path uploads them into the frame's parity, not

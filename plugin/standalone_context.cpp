@@ -19,13 +19,17 @@ VkImageSubresourceLayers color_layers() { return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 
 StandaloneContext::StandaloneContext(const ContextConfig& config) {
     Log log{config.log, config.log_user};
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(config.device_name, config.validation, log));
-    // Sets by (view, parity, source, source parity): 2 with one view.
-    const uint32_t views = config.view_count, sets = views == 1 ? 2 : 4 * views * views;
+    // Sets by (view, parity, source, source parity): 2 with one view; the
+    // fill's by (view, parity): 2 a view.
+    const uint32_t views = config.view_count, sets = (views == 1 ? 2 : 4 * views * views) + (config.fill_mask() ? 2 * views : 0);
     core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/false, sets));
     VulkanDevice& d = core_->device();
     auto& vk = d.vk;
     try {
         const uint32_t w = config.width, h = config.height;
+        for (const ChannelConfig& c : config.channels)
+            display_.emplace_back(c.fill() ? GpuImage(d, c.components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, w, h)
+                                           : GpuImage());
         for (const LiveInput& in : core_->inputs()) {
             inputs_.emplace_back(kept_as_history(in.role) ? GpuImage() : GpuImage(d, in.own_format, w, h));
             upload_bytes_ += align16((size_t)w * h * texel_bytes(in.own_format));
@@ -50,6 +54,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         if (fence_) vk.vkDestroyFence(d.device, fence_, nullptr);
         if (pool_) vk.vkDestroyCommandPool(d.device, pool_, nullptr);
         inputs_.clear();
+        display_.clear();
         upload_ = HostBuffer();
         readback_ = HostBuffer();
         quads_ = HostBuffer();
@@ -66,6 +71,7 @@ StandaloneContext::~StandaloneContext() {
     }
     // This path's resources go before the core, which destroys the device last.
     inputs_.clear();
+    display_.clear();
     upload_ = HostBuffer();
     readback_ = HostBuffer();
     quads_ = HostBuffer();
@@ -80,7 +86,15 @@ std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const Fram
     for (size_t i = 0; i < v.channels.size(); ++i) {
         const ChannelHistory& h = *v.channels[i];
         const FrameOutputs::Channel* co = out.channel_count ? &out.channels[i] : nullptr;
-        if (h.packed()) {
+        if (display_[i].image) {
+            // A fill: values are the displayed ones, ages the history's (docs/CONVENTIONS.md, "The spatial fill").
+            r.push_back({&display_[i], co ? (void*)co->values : nullptr});
+            uint16_t* ages = co ? co->age : nullptr;
+            if (h.packed())
+                r.push_back({&h.history[parity], ages, ages});
+            else
+                r.push_back({&h.age[parity], ages});
+        } else if (h.packed()) {
             // values and ages from one image: copied when either is asked for
             void* values = co ? (void*)co->values : nullptr;
             uint16_t* ages = co ? co->age : nullptr;
@@ -116,8 +130,8 @@ const GpuImage& StandaloneContext::own_input(const ViewState& view, size_t input
     }
 }
 
-VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp) {
-    const uint32_t key = ((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp;
+VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp, bool fill) {
+    const uint32_t key = (((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp) * 2 + (fill ? 1 : 0);
     auto found = sets_.find(key);
     if (found != sets_.end()) return found->second;
     const ViewState& v = core_->view(view);
@@ -127,6 +141,9 @@ VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t s
         const LiveInput& in = core_->inputs()[i];
         d.view[in.own_binding][in.slot] = own_input(v, i, p).view;
     }
+    if (fill)  // the fill writes the displayed values (rrc_accumulate.comp, rrc_fill)
+        for (uint32_t s = 0; s < display_.size(); ++s)
+            if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;
     VkDescriptorSet set = core_->pipeline().allocate_set();
     core_->pipeline().write_set(set, d);
     sets_[key] = set;
@@ -139,6 +156,8 @@ void StandaloneContext::initialise_images() {
     std::vector<GpuImage*> all;
     core_->collect_images(all);
     for (GpuImage& img : inputs_) all.push_back(&img);
+    for (GpuImage& img : display_)
+        if (img.image) all.push_back(&img);
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
@@ -151,7 +170,7 @@ void StandaloneContext::initialise_images() {
 // arrays with fewer components than their image (MOTION_DEPTH's 3 floats)
 // are padded with zeros.
 bool StandaloneContext::uploads(const LiveInput& in, uint32_t phase) const {
-    const bool channel = in.role == InputRole::Samples || in.role == InputRole::Confidence;
+    const bool channel = is_channel_input(in.role);
     return phase == RRC_PHASE_FUSED || (phase == RRC_PHASE_RESOLVE) == channel;
 }
 
@@ -220,6 +239,12 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     KernelVariant variant;
     variant.phase = phase;
     core_->record_dispatch(cmd_, set, f, prev_valid, variant);
+    if (phase != RRC_PHASE_CLASSIFY && config().fill_mask()) {
+        // The fill reads this frame's results as the next frame would.
+        core_->record_history_barrier(cmd_, 0, 0);
+        variant.phase = RRC_PHASE_FILL;
+        core_->record_dispatch(cmd_, set_for(f.view, 1 - parity, f.view, parity, true), f, prev_valid, variant);
+    }
     // 3. Requested outputs (and the mask, for the statistics) to the copy,
     //    then back to GENERAL: next frame's kernel reads them as history.
     transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,

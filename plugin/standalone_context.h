@@ -56,7 +56,8 @@ private:
     const GpuImage& own_input(const ViewState& view, size_t input, uint32_t parity) const;
     // The set of a frame that writes `parity` of `view` and reads `source`'s
     // set `source_parity`: made and written the first time it is needed.
-    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity);
+    // fill: the FILL phase's set (bound as the next frame, the displayed values as its host outputs).
+    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity, bool fill = false);
     void initialise_images();
     void reserve_batch(uint32_t frames);
     // Which inputs a pass uploads: all (FUSED), the geometry (CLASSIFY) or the channels' (RESOLVE).
@@ -79,6 +80,7 @@ private:
 
     std::unique_ptr<AccumulatorCore> core_;
     std::vector<GpuImage> inputs_;  // one per core_->inputs() entry, except Depth (the view's depth[parity])
+    std::vector<GpuImage> display_; // per channel: the fill's displayed values (empty without a fill)
     HostBuffer upload_, readback_;  // batch_capacity_ regions of *_bytes_ each
     HostBuffer quads_;              // classify's quad list (rrc_values.h layout), read on the CPU
     Frame classified_;              // the classified frame's parameters, for resolve's push constants

@@ -30,9 +30,9 @@ struct StructInfo;
         static constexpr size_t size_0_1 = first_size; \
     }
 RRC_STRUCT_INFO(rrc_context_desc, RRC_STRUCT_TYPE_CONTEXT_DESC, offsetof(rrc_context_desc, depth_test));
-RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, sizeof(rrc_channel_desc));
+RRC_STRUCT_INFO(rrc_channel_desc, RRC_STRUCT_TYPE_CHANNEL_DESC, offsetof(rrc_channel_desc, rectify));  // 0.4 appends
 RRC_STRUCT_INFO(rrc_frame_desc, RRC_STRUCT_TYPE_FRAME_DESC, offsetof(rrc_frame_desc, object_id));
-RRC_STRUCT_INFO(rrc_channel_input, RRC_STRUCT_TYPE_CHANNEL_INPUT, sizeof(rrc_channel_input));
+RRC_STRUCT_INFO(rrc_channel_input, RRC_STRUCT_TYPE_CHANNEL_INPUT, offsetof(rrc_channel_input, fallback));  // 0.4 appends
 RRC_STRUCT_INFO(rrc_frame_output, RRC_STRUCT_TYPE_FRAME_OUTPUT, offsetof(rrc_frame_output, refreshed));
 RRC_STRUCT_INFO(rrc_channel_output, RRC_STRUCT_TYPE_CHANNEL_OUTPUT, sizeof(rrc_channel_output));
 RRC_STRUCT_INFO(rrc_vulkan_device_desc, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, sizeof(rrc_vulkan_device_desc));

@@ -55,7 +55,7 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     out.lambda = c.lambda;
     if (c.blend > uint32_t{RRC_BLEND_REUSE}) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
     out.blend = c.blend;
-    if (c.filter > uint32_t{RRC_HISTORY_FILTER_CATMULL_ROM})
+    if (c.filter > uint32_t{RRC_HISTORY_FILTER_GAUSSIAN})
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
     out.filter = c.filter;
     if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
@@ -63,6 +63,36 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     out.confidence = c.confidence != 0;
     if (out.confidence && out.reuse())
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and confidence: a shading cache keeps values, it does not weigh them", what);
+    // 0.4: the finishing steps (docs/CONVENTIONS.md, "Finishing steps").
+    out.rectify = c.rectify != 0;
+    if (out.rectify && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and rectify: a shading cache takes no sample on a hit to rectify against", what);
+    if (!(c.rectify_gamma >= 0.0f && c.rectify_gamma <= RRC_MAX_RECTIFY_GAMMA))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.rectify_gamma is %g, must be in (0, %g] (0 = default)", what, (double)c.rectify_gamma,
+             (double)RRC_MAX_RECTIFY_GAMMA);
+    if (c.rectify_gamma != 0.0f && !out.rectify)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.rectify_gamma is %g but rectify is 0", what, (double)c.rectify_gamma);
+    out.rectify_gamma = c.rectify_gamma == 0.0f ? RRC_DEFAULT_RECTIFY_GAMMA : c.rectify_gamma;
+    if (!(c.blur_sigma >= 0.0f && c.blur_sigma <= RRC_MAX_BLUR_SIGMA))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_sigma is %g, must be in (0, %g] (0 = default)", what, (double)c.blur_sigma,
+             (double)RRC_MAX_BLUR_SIGMA);
+    if (c.blur_sigma != 0.0f && c.filter != RRC_HISTORY_FILTER_GAUSSIAN)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_sigma is %g but the filter is not GAUSSIAN", what, (double)c.blur_sigma);
+    out.blur_sigma = c.filter != RRC_HISTORY_FILTER_GAUSSIAN ? 0.0f : c.blur_sigma == 0.0f ? RRC_DEFAULT_BLUR_SIGMA : c.blur_sigma;
+    if (c.fill_age > out.age_cap + 1u)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_age is %u, at most the age cap + 1 (%u)", what, c.fill_age, out.age_cap + 1u);
+    out.fill_age = c.fill_age;
+    if (c.fill_radius > RRC_MAX_FILL_RADIUS)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_radius is %u, at most %u", what, c.fill_radius, RRC_MAX_FILL_RADIUS);
+    if (!(c.fill_depth_tolerance >= 0.0f && c.fill_depth_tolerance <= 1.0f))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_depth_tolerance is %g, must be in (0, 1] (0 = default)", what, (double)c.fill_depth_tolerance);
+    if (!(c.fill_prior >= 0.0f && c.fill_prior <= (float)RRC_MAX_AGE_CAP))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_prior is %g, must be in [0, %u] samples", what, (double)c.fill_prior, RRC_MAX_AGE_CAP);
+    if (out.fill_age == 0 && (c.fill_radius != 0 || c.fill_depth_tolerance != 0.0f || c.fill_prior != 0.0f))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s sets fill_radius, fill_depth_tolerance or fill_prior but fill_age is 0 (no fill)", what);
+    out.fill_radius = c.fill_radius == 0 ? RRC_DEFAULT_FILL_RADIUS : c.fill_radius;
+    out.fill_depth_tolerance = c.fill_depth_tolerance == 0.0f ? RRC_DEFAULT_FILL_DEPTH_TOLERANCE : c.fill_depth_tolerance;
+    out.fill_prior = c.fill_prior;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the
@@ -334,6 +364,9 @@ void validate_channels(const ContextConfig& c, const Frame& f) {
         if (c.channels[i].confidence)
             need(f, ch.confidence, ch.confidence_image, RRC_ERROR_MISSING_INPUT, what + ".confidence",
                  " but channel \"" + c.channels[i].name + "\" has confidence");
+        if (c.channels[i].fallback())
+            need(f, ch.fallback, ch.fallback_image, RRC_ERROR_MISSING_INPUT, what + ".fallback",
+                 " but channel \"" + c.channels[i].name + "\" has fill_prior > 0");
         if (vulkan) need(f, (const float*)nullptr, ch.output_image, RRC_ERROR_MISSING_INPUT, what + ".output", name);
         if (vulkan && ch.age_image.image && ch.age_image.format != VK_FORMAT_R16_UINT)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(),

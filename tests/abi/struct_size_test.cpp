@@ -42,9 +42,9 @@ const rrc_abi_entry kLayout02[] = {
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
-    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 3, 0)) << "rule 6: the current header is 0.3.0";
+    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 4, 0)) << "rule 6: the current header is 0.4.0";
     EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), 0u);
-    EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 3u) << "the library must be at least as new as its header";
+    EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 4u) << "the library must be at least as new as its header";
 }
 
 TEST(AbiLayout, Every01MemberKeepsItsOffsetSizeAndTag) {
@@ -63,15 +63,15 @@ TEST(AbiLayout, Every01MemberKeepsItsOffsetSizeAndTag) {
     EXPECT_GE(n, 100u);
 }
 
-// Rule 2: only the structs 0.2 and 0.3 append to grew, and their new members
+// Rule 2: only the structs 0.2, 0.3 and 0.4 append to grew, and their new members
 // start at or after the 0.1 size: rrc_vulkan_channel_images (age),
 // rrc_vulkan_frame_desc (stats_buffer, stats_offset, object_id, storage_inputs),
 // rrc_context_desc (depth_test, use_object_id; 0.3: refresh_policy,
 // refresh_period, refresh_tiles, max_lifetime), rrc_frame_desc (object_id),
-// rrc_frame_output (0.3: refreshed).
+// rrc_frame_output (0.3: refreshed), rrc_channel_desc and rrc_channel_input (0.4: the finishing steps).
 TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     const char* const appended[] = {"rrc_vulkan_channel_images", "rrc_vulkan_frame_desc", "rrc_context_desc", "rrc_frame_desc",
-                                    "rrc_frame_output"};
+                                    "rrc_frame_output",          "rrc_channel_desc",      "rrc_channel_input"};
     for (const rrc_abi_entry* e = rrc_abi_0_1_layout; e->struct_name; ++e) {
         if (e->member) continue;
         size_t now = 0;
@@ -80,7 +80,7 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
         bool grows = false;
         for (const char* a : appended) grows = grows || std::strcmp(e->struct_name, a) == 0;
         if (grows)
-            EXPECT_LT(e->offset, now) << e->struct_name << ": 0.2 or 0.3 appends members";
+            EXPECT_LT(e->offset, now) << e->struct_name << ": 0.2, 0.3 or 0.4 appends members";
         else
             EXPECT_EQ(e->offset, now) << e->struct_name << ": its 0.1 size must equal its 0.2 size";
     }
@@ -95,6 +95,9 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_context_desc, refresh_policy), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_context_desc, max_lifetime), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_frame_output, refreshed), size01("rrc_frame_output"));
+    EXPECT_GE(offsetof(rrc_channel_desc, rectify), size01("rrc_channel_desc"));  // 0.4
+    EXPECT_GE(offsetof(rrc_channel_input, fallback), size01("rrc_channel_input"));
+    EXPECT_GE(offsetof(rrc_vulkan_channel_images, fallback), size01("rrc_vulkan_channel_images"));
     EXPECT_EQ(sizeof(rrc_vulkan_frame_stats), 32u);
 }
 

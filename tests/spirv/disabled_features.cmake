@@ -68,9 +68,27 @@ endfunction()
 foreach(p COMPONENTS FP16 BLEND FILTER CONFIDENCE)
   rrc_channel_ids(${p} IDS_${p})
 endforeach()
+# 0.4's second range: id of property k of slot c: 56 + slots*k + c (RRC_SPEC_CHANNEL2)
+if(NOT interface MATCHES "RRC_SPEC_CHANNEL2\\(property, slot\\) \\(([0-9]+) \\+")
+  message(FATAL_ERROR "rrc_kernel_interface.h defines no RRC_SPEC_CHANNEL2")
+endif()
+set(ID_CHANNEL2_FIRST ${CMAKE_MATCH_1})
+function(rrc_channel2_ids property out)
+  rrc_define(RRC_CHANNEL2_PROPERTY_${property} k)
+  set(ids "")
+  math(EXPR last "${ID_CHANNEL_SLOTS} - 1")
+  foreach(c RANGE ${last})
+    math(EXPR id "${ID_CHANNEL2_FIRST} + ${ID_CHANNEL_SLOTS} * ${k} + ${c}")
+    list(APPEND ids ${id})
+  endforeach()
+  set(${out} ${ids} PARENT_SCOPE)
+endfunction()
+foreach(p RECTIFY FILL_AGE)
+  rrc_channel2_ids(${p} IDS_${p})
+endforeach()
 
 # Feature -> its spec ids and the value that turns it on.
-set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE)
+set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL)
 set(F_NOCACHE_IDS ${ID_HAS_NOCACHE})
 set(F_INTEROP_IDS ${ID_INTEROP})
 set(F_ADAPTIVE_IDS ${ID_ADAPTIVE})
@@ -78,10 +96,13 @@ set(F_OBJECT_ID_IDS ${ID_OBJECT_ID})
 set(F_CONFIDENCE_IDS ${IDS_CONFIDENCE})
 set(F_STATS_IDS ${ID_STATS})
 set(F_HOST_AGE_IDS ${ID_HOST_AGE_MASK})
+set(F_RECTIFY_IDS ${IDS_RECTIFY})
+set(F_FILL_IDS ${IDS_FILL_AGE})
 foreach(f IN LISTS features)
   set(F_${f}_ON true)
 endforeach()
 set(F_HOST_AGE_ON 15)  # every slot's age to the host
+set(F_FILL_ON 4)       # fill_age 4 on every slot
 
 # ---- Bases: the configuration around the feature ----------------------------
 # Each: a list of "id:value" pairs, and the features checked there.
@@ -97,7 +118,7 @@ set(BASE_defaults_FEATURES ${features})
 # packed fp16 scalar, slot 1 RGBA fp32, Catmull-Rom, AGE_AWARE.
 set(BASE_interop_SET ${ID_INTEROP}:true ${ID_DEPTH_MODE}:1 ${ID_CHANNEL_COUNT}:2
     ${slot1_components}:4 ${slot1_fp16}:false ${slot1_filter}:2 ${slot1_blend}:1)
-set(BASE_interop_FEATURES NOCACHE ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE)
+set(BASE_interop_FEATURES NOCACHE ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL)
 # all_on: the interop base with every other feature on (leave one out;
 # INTEROP itself off when it is the feature checked).
 set(BASE_all_on_SET ${BASE_interop_SET})

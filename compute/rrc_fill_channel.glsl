@@ -1,0 +1,62 @@
+// One channel slot of the spatial fill (the FILL phase of
+// rrc_accumulate.comp, docs/CONVENTIONS.md "The spatial fill").  Included once
+// per slot with RRC_CH defined to a literal, as rrc_channel.glsl.  The
+// dispatch is bound as the next frame: the history inputs (u_hist_*, u_age)
+// hold this frame's results, u_prev_depth this frame's depth.
+//
+// Inputs from the enclosing rrc_fill(): size, px, fill_here (p's depth is
+// finite and not background), delta_p (its depth proxy).
+
+#define CH_(name) ch##name(RRC_CH)
+#define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
+
+if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
+#define LOAD_WORD(t) imageLoad(u_hist_packed[RRC_CH], t).r
+#define LOAD_V(t) (PACKED_ ? vec4(unpackHalf2x16(LOAD_WORD(t)).x, 0.0, 0.0, 0.0) \
+                   : CH_(_FP16) ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
+                   : (CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_hist_r32f[RRC_CH], t).r, 0.0, 0.0, 0.0) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
+#define LOAD_N(t) (PACKED_ ? LOAD_WORD(t) >> 16 : imageLoad(u_age[RRC_CH], t).r)
+    const uint T = CH_(_FILL_AGE);
+    const int R = int(CH_(_FILL_RADIUS));
+    vec4 v_p = LOAD_V(px);
+    if (CH_(_COMPONENTS) == 1u) v_p = vec4(v_p.x, 0.0, 0.0, 0.0);
+    uint n_p = LOAD_N(px);
+    vec4 shown = v_p;
+    if (fill_here && n_p < T) {
+        float phi = float(T - n_p) / float(T);
+        vec4 acc = vec4(0.0);
+        float wsum = 0.0;
+        for (int b = -R; b <= R; ++b)
+            for (int a = -R; a <= R; ++a) {
+                ivec2 q = px + ivec2(a, b);
+                bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) && (a != 0 || b != 0);
+                ivec2 t = clamp(q, ivec2(0), size - 1);
+                vec4 v_q = LOAD_V(t);
+                if (CH_(_COMPONENTS) == 1u) v_q = vec4(v_q.x, 0.0, 0.0, 0.0);
+                uint n_q = LOAD_N(t);
+                float d_q = imageLoad(u_prev_depth, t).r;
+                bool ok = inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) &&
+                          abs(rrc_fill_proxy(d_q) - delta_p) <= CH_(_FILL_TOLERANCE) * delta_p;
+                float w_q = ok ? float(min(n_q, T)) : 0.0;
+                acc += w_q * (ok ? v_q : vec4(0.0));
+                wsum += w_q;
+            }
+        if (CH_(_FILL_PRIOR) > 0.0) {
+            vec4 f = texelFetch(s_fallback[RRC_CH], px, 0);
+            if (CH_(_COMPONENTS) == 1u) f = vec4(f.x, 0.0, 0.0, 0.0);
+            bool f_ok = rrc_finite4(f);
+            acc += f_ok ? CH_(_FILL_PRIOR) * f : vec4(0.0);
+            wsum += f_ok ? CH_(_FILL_PRIOR) : 0.0;
+        }
+        float n = float(n_p);
+        float den = n + phi * wsum;
+        shown = den > 0.0 ? (n * v_p + phi * acc) / den : v_p;
+    }
+    if (rrc_store) imageStore(u_host_out[RRC_CH], px, shown);
+#undef LOAD_WORD
+#undef LOAD_V
+#undef LOAD_N
+}
+
+#undef PACKED_
+#undef CH_
