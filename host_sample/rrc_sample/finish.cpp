@@ -97,6 +97,18 @@ FinishReport::FinishReport(const Options& o, uint32_t signals) : o_(o) {
 }
 
 void FinishReport::add(const FrameOutput& f, const FrameState& state, const std::vector<uint8_t>& verdict) {
+    if (o_.dump_soft && f.checkpoint && !f.pcf.reference.empty()) {
+        const std::string dir = (std::filesystem::path(o_.out) / "finish").string();
+        std::filesystem::create_directories(dir);
+        dump(dir, "pcf_reference", f.index, f.pcf.reference);
+        dump(dir, "pcf_raw", f.index, f.pcf.raw);
+        dump(dir, "pcf_accumulated", f.index, f.pcf.accumulated);
+        dump(dir, "pcf_shown", f.index, f.pcf.shown);
+        dump(dir, "pcf_confidence", f.index, f.pcf.confidence);
+        dump(dir, "pcf_weighted_target", f.index, f.pcf.weighted_target);
+        std::ofstream m(std::filesystem::path(dir) / "size.txt");
+        m << f.width << " " << f.height << "\n";
+    }
     if (!enabled_) return;
     {  // the start of each track: as age.comp carries the age
         const size_t n = f.mask.size();
@@ -150,14 +162,6 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state, const std:
         const std::string dir = (std::filesystem::path(o_.out) / "finish").string();
         dump(dir, "soft_reference", f.index, s.reference);
         for (int k = 0; k < kDisplayCount; ++k) dump(dir, (std::string("soft_") + name((Display)k)).c_str(), f.index, *d[k]);
-        if (!f.pcf.reference.empty()) {
-            dump(dir, "pcf_reference", f.index, f.pcf.reference);
-            dump(dir, "pcf_raw", f.index, f.pcf.raw);
-            dump(dir, "pcf_accumulated", f.index, f.pcf.accumulated);
-            dump(dir, "pcf_shown", f.index, f.pcf.shown);
-            dump(dir, "pcf_confidence", f.index, f.pcf.confidence);
-            dump(dir, "pcf_weighted_target", f.index, f.pcf.weighted_target);
-        }
         std::vector<float> age(f.age.begin(), f.age.end());
         dump(dir, "age", f.index, age);
         std::ofstream m(std::filesystem::path(dir) / "size.txt");
