@@ -51,7 +51,8 @@ std::vector<Config> full_sweep() {
     }
     const std::pair<const char*, rrc_history_filter> filters[] = {{"filter_nearest", RRC_HISTORY_FILTER_NEAREST},
                                                                   {"filter_bilinear", RRC_HISTORY_FILTER_BILINEAR},
-                                                                  {"filter_catmull_rom", RRC_HISTORY_FILTER_CATMULL_ROM}};
+                                                                  {"filter_catmull_rom", RRC_HISTORY_FILTER_CATMULL_ROM},
+                                                                  {"filter_gaussian", RRC_HISTORY_FILTER_GAUSSIAN}};
     for (const auto& f : filters) {
         Config c = vary(f.first, "filter");
         c.channels[0].filter = f.second;
@@ -65,6 +66,8 @@ std::vector<Config> full_sweep() {
     } switches[] = {
         {"confidence", "confidence", [](Config& c) { c.channels[0].confidence = true; }},
         {"nocache", "nocache", [](Config& c) { c.nocache = true; }},
+        {"rectify", "rectify", [](Config& c) { c.channels[0].rectify = true; }},
+        {"fill", "fill", [](Config& c) { c.channels[0].fill_age = 8; }},
         {"object_id", "object_id", [](Config& c) { c.object_id = true; }},
         {"depth_fixed", "depth_test", [](Config& c) { c.depth_test = RRC_DEPTH_TEST_FIXED; }},
         {"sampled_inputs", "inputs", [](Config& c) { c.sampled_inputs = true; }},
@@ -100,6 +103,8 @@ std::string channels_text(const Config& c) {
         if (!s.empty()) s += "+";
         s += std::to_string(ch.components) + (ch.precision == RRC_HISTORY_FP32 ? "f32" : "f16");
         if (ch.confidence) s += "c";
+        if (ch.rectify) s += "r";
+        if (ch.fill_age) s += "F";
     }
     return s;
 }

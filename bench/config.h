@@ -17,6 +17,8 @@ struct ChannelConfig {
     rrc_history_precision precision = RRC_HISTORY_FP16;
     rrc_history_filter filter = 0;                    // 0: the library's default
     bool confidence = false;
+    bool rectify = false;   // 0.4: history rectification (reads 8 more samples; no byte the roof counts)
+    uint32_t fill_age = 0;  // 0.4: the spatial fill, no fallback (a second dispatch; no byte the roof counts)
 };
 
 struct Config {

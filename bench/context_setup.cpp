@@ -21,6 +21,8 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
         channels_.push_back(rrc_host::channel(("signal" + std::to_string(i)).c_str(), ch.components, 0.6f, ch.precision,
                                               c.shading_cache != Config::Cache::Off ? RRC_BLEND_REUSE : RRC_BLEND_FIXED, ch.filter, 0,
                                               ch.confidence ? 1u : 0u));
+        channels_.back().rectify = ch.rectify ? 1u : 0u;
+        channels_.back().fill_age = ch.fill_age;
     }
     desc_ = rrc_host::context_desc(c.width, c.height, channels_);
     desc_.depth_mode = RRC_DEPTH_MODE_REVERSED;

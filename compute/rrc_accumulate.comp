@@ -137,12 +137,14 @@ layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counter
 
 #include "rrc_cache.glsl"
 
-// The spatial fill's depth proxy: proportional to the view depth for an
-// infinite far plane (docs/CONVENTIONS.md, "The spatial fill").
-float rrc_fill_proxy(float d) {
-    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return 1.0 / (1.0 - d);
-    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return 1.0 / d;
-    return d;
+// The spatial fill's depth test |delta_q - delta_p| <= tau delta_p on the
+// proxy delta (docs/CONVENTIONS.md, "The spatial fill": d, 1/(1 - z), 1/z),
+// multiplied out so that no tap divides: STANDARD |z_q - z_p| <= tau (1 - z_q),
+// REVERSED |z_p - z_q| <= tau z_q (both denominators positive off background).
+bool rrc_fill_similar(float d_q, float d_p, float tau) {
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return abs(d_q - d_p) <= tau * (1.0 - d_q);
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return abs(d_p - d_q) <= tau * d_q;
+    return abs(d_q - d_p) <= tau * d_p;
 }
 
 // The frame's statistics (interop, STATS): `geometry` counts what the hit
@@ -224,7 +226,6 @@ void rrc_fill() {
     ivec2 px = min(id, size - 1);
     float d_p = imageLoad(u_prev_depth, px).r;
     bool fill_here = !rrc_is_background(d_p) && !rrc_is_invalid_depth(d_p);
-    float delta_p = rrc_fill_proxy(d_p);
 
 #define RRC_CH 0
 #include "rrc_fill_channel.glsl"

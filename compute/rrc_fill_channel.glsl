@@ -5,22 +5,24 @@
 // hold this frame's results, u_prev_depth this frame's depth.
 //
 // Inputs from the enclosing rrc_fill(): size, px, fill_here (p's depth is
-// finite and not background), delta_p (its depth proxy).
+// finite and not background), d_p (its depth).
 
 #define CH_(name) ch##name(RRC_CH)
 #define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
 
 if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
-#define LOAD_WORD(t) imageLoad(u_hist_packed[RRC_CH], t).r
-#define LOAD_V(t) (PACKED_ ? vec4(unpackHalf2x16(LOAD_WORD(t)).x, 0.0, 0.0, 0.0) \
+    // A packed channel's value and age come in one word (one load a tap).
+#define LOAD_WORD(t) (PACKED_ ? imageLoad(u_hist_packed[RRC_CH], t).r : 0u)
+#define LOAD_V(t, word) (PACKED_ ? vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0) \
                    : CH_(_FP16) ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
                    : (CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_hist_r32f[RRC_CH], t).r, 0.0, 0.0, 0.0) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
-#define LOAD_N(t) (PACKED_ ? LOAD_WORD(t) >> 16 : imageLoad(u_age[RRC_CH], t).r)
+#define LOAD_N(t, word) (PACKED_ ? (word) >> 16 : imageLoad(u_age[RRC_CH], t).r)
     const uint T = CH_(_FILL_AGE);
     const int R = int(CH_(_FILL_RADIUS));
-    vec4 v_p = LOAD_V(px);
+    uint word_p = LOAD_WORD(px);
+    vec4 v_p = LOAD_V(px, word_p);
     if (CH_(_COMPONENTS) == 1u) v_p = vec4(v_p.x, 0.0, 0.0, 0.0);
-    uint n_p = LOAD_N(px);
+    uint n_p = LOAD_N(px, word_p);
     vec4 shown = v_p;
     if (fill_here && n_p < T) {
         float phi = float(T - n_p) / float(T);
@@ -31,12 +33,12 @@ if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
                 ivec2 q = px + ivec2(a, b);
                 bool inside = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) && (a != 0 || b != 0);
                 ivec2 t = clamp(q, ivec2(0), size - 1);
-                vec4 v_q = LOAD_V(t);
+                uint word = LOAD_WORD(t);
+                vec4 v_q = LOAD_V(t, word);
                 if (CH_(_COMPONENTS) == 1u) v_q = vec4(v_q.x, 0.0, 0.0, 0.0);
-                uint n_q = LOAD_N(t);
+                uint n_q = LOAD_N(t, word);
                 float d_q = imageLoad(u_prev_depth, t).r;
-                bool ok = inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) &&
-                          abs(rrc_fill_proxy(d_q) - delta_p) <= CH_(_FILL_TOLERANCE) * delta_p;
+                bool ok = inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) && rrc_fill_similar(d_q, d_p, CH_(_FILL_TOLERANCE));
                 float w_q = ok ? float(min(n_q, T)) : 0.0;
                 acc += w_q * (ok ? v_q : vec4(0.0));
                 wsum += w_q;

@@ -81,6 +81,29 @@ std::vector<DescCase> desc_cases() {
         {"blend", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blend"},
         {"filter", [](D&, C& c) { c[0].filter = 9; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].filter"},
         {"age_cap", [](D&, C& c) { c[0].age_cap = RRC_MAX_AGE_CAP + 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].age_cap"},
+        // The finishing steps (0.4).
+        {"filter_past_gaussian", [](D&, C& c) { c[0].filter = RRC_HISTORY_FILTER_GAUSSIAN + 1; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0].filter"},
+        {"rectify_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].rectify = 1; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0]"},
+        {"rectify_gamma_large", [](D&, C& c) { c[1].rectify = 1, c[1].rectify_gamma = RRC_MAX_RECTIFY_GAMMA * 2; },
+         RRC_ERROR_INVALID_ARGUMENT, "channels[1].rectify_gamma"},
+        {"rectify_gamma_nan", [](D&, C& c) { c[1].rectify = 1, c[1].rectify_gamma = kNaN; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[1].rectify_gamma"},
+        {"rectify_gamma_without_rectify", [](D&, C& c) { c[0].rectify_gamma = 2.0f; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0].rectify_gamma"},
+        {"blur_sigma_without_gaussian", [](D&, C& c) { c[0].blur_sigma = 0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_sigma"},
+        {"blur_sigma_large", [](D&, C& c) { c[0].filter = RRC_HISTORY_FILTER_GAUSSIAN, c[0].blur_sigma = 0.9f; },
+         RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_sigma"},
+        {"blur_sigma_negative", [](D&, C& c) { c[0].filter = RRC_HISTORY_FILTER_GAUSSIAN, c[0].blur_sigma = -0.5f; },
+         RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_sigma"},
+        {"fill_age_past_cap", [](D&, C& c) { c[0].age_cap = 8, c[0].fill_age = 10; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].fill_age"},
+        {"fill_radius_large", [](D&, C& c) { c[0].fill_age = 4, c[0].fill_radius = RRC_MAX_FILL_RADIUS + 1; },
+         RRC_ERROR_INVALID_ARGUMENT, "channels[0].fill_radius"},
+        {"fill_tolerance_nan", [](D&, C& c) { c[0].fill_age = 4, c[0].fill_depth_tolerance = kNaN; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0].fill_depth_tolerance"},
+        {"fill_prior_negative", [](D&, C& c) { c[0].fill_age = 4, c[0].fill_prior = -1.0f; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0].fill_prior"},
+        {"fill_prior_without_fill", [](D&, C& c) { c[0].fill_prior = 4.0f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0]"},
         // The shading cache (0.3): channel 0 made REUSE where a case needs one.
         {"reuse_with_confidence", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].confidence = 1; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},
@@ -164,6 +187,8 @@ TEST(Api, ForeignHandleIsDetectedWithoutDereferencing) {
 TEST(Api, BadFramesLeaveOutputsUntouched) {
     const uint32_t W = 16, H = 8;
     std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f, RRC_HISTORY_FP32, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0, 1)};
+    channels[0].fill_age = 4;  // 0.4: frames carry a fallback
+    channels[0].fill_prior = 2.0f;
     rrc_context_desc d = context_desc(W, H, channels);
     d.reprojection = RRC_REPROJECTION_PREV_CLIP;
     d.use_nocache_mask = 1;
@@ -172,6 +197,8 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
     std::vector<float> depth(W * H, 0.5f), clip = static_prev_clip(W, H, 0.5f), s(W * H, 1.0f), conf(W * H, 1.0f);
     std::vector<uint8_t> nocache(W * H, 0);
     rrc_channel_input in = channel_input(s.data(), conf.data());
+    std::vector<float> fallback(W * H, 0.5f);
+    in.fallback = fallback.data();
     auto good = [&] {
         rrc_frame_desc f = frame_desc();
         f.depth = depth.data();
@@ -207,6 +234,12 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
          [&](rrc_frame_desc& f, rrc_channel_input& i) {
              i = in;
              i.confidence = nullptr;
+             f.channels = &i;
+         }},
+        {"fallback", RRC_ERROR_MISSING_INPUT,
+         [&](rrc_frame_desc& f, rrc_channel_input& i) {
+             i = in;
+             i.fallback = nullptr;
              f.channels = &i;
          }},
         {"frame.channels[0].type", RRC_ERROR_INVALID_STRUCT,

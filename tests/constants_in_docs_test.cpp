@@ -156,3 +156,14 @@ TEST(ConstantsInDocs, DefaultBackgroundThreshold) {
                          {"include/rrc/rrc.h", "LINEAR: d >= this is background; 0 = default "},
                          {kAccumulateHelp, "linear depth >= T is background ("}});
 }
+
+// 0.4: the finishing steps' defaults and limits, as docs/CONVENTIONS.md states them.
+TEST(ConstantsInDocs, FinishingStepDefaults) {
+    expect_value<float>("RRC_DEFAULT_RECTIFY_GAMMA", RRC_DEFAULT_RECTIFY_GAMMA, {{"docs/CONVENTIONS.md", "γ = `rectify_gamma`, default "}});
+    expect_value<float>("RRC_MAX_RECTIFY_GAMMA", RRC_MAX_RECTIFY_GAMMA, {{"docs/CONVENTIONS.md", "`rectify_gamma`, default 1, at most "}});
+    expect_value<float>("RRC_DEFAULT_BLUR_SIGMA", RRC_DEFAULT_BLUR_SIGMA, {{"docs/CONVENTIONS.md", "σ_b = `blur_sigma`, default "}});
+    expect_value<unsigned>("RRC_DEFAULT_FILL_RADIUS", RRC_DEFAULT_FILL_RADIUS, {{"docs/CONVENTIONS.md", "r = `fill_radius` (default "}});
+    expect_value<unsigned>("RRC_MAX_FILL_RADIUS", RRC_MAX_FILL_RADIUS, {{"docs/CONVENTIONS.md", "(default 2, at most "}});
+    expect_value<float>("RRC_DEFAULT_FILL_DEPTH_TOLERANCE", RRC_DEFAULT_FILL_DEPTH_TOLERANCE,
+                        {{"docs/CONVENTIONS.md", "τ = `fill_depth_tolerance` (default "}});
+}

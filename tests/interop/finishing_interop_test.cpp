@@ -1,0 +1,152 @@
+// The 0.4 finishing steps on the interop path (include/rrc/rrc_vulkan.h):
+// rectification, the Gaussian history filter and the spatial fill with a
+// fallback give the same bits through the host's device and command buffers
+// as through the standalone path, under the validation layer with
+// synchronization validation.  The fill is a second dispatch writing the
+// host's output image: the test also checks that it really changed the
+// young pixels (else a fill that never ran would pass) and left the others.
+#include "interop/vulkan_host.h"
+#include "support/rrc_test_context.h"
+#include "support/scene_frames.h"
+
+#include <rrc/rrc_vulkan.h>
+
+#include "rrc_interop.h"
+
+using namespace rrc_test;
+
+namespace {
+
+const int W = 48, H = 32, kFrames = 6;
+
+// pcf: packed fp16, rectified, filled with a fallback worth 2 samples;
+// env: fp32 RGBA, Gaussian history with confidence, filled without fallback.
+std::vector<rrc_channel_desc> test_channels(bool fill) {
+    std::vector<rrc_channel_desc> c = {channel("pcf", 1, 0.8f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR),
+                                       channel("env", 4, 0.7f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_GAUSSIAN, 0, 1)};
+    c[0].rectify = 1;
+    c[0].rectify_gamma = 1.5f;
+    c[1].blur_sigma = 0.7f;
+    if (fill) {
+        c[0].fill_age = 4;
+        c[0].fill_prior = 2.0f;
+        c[1].fill_age = 3;
+        c[1].fill_radius = 1;
+    }
+    return c;
+}
+
+rrc_scene::SceneConfig test_scene() {
+    rrc_scene::SceneConfig sc = scene_config(W, H, RRC_DEPTH_MODE_REVERSED);
+    sc.jitter = true;
+    return sc;
+}
+
+std::vector<float> fallback_of(const rrc_scene::Frame& f) {
+    std::vector<float> fb(f.signal1.size());
+    for (size_t i = 0; i < fb.size(); ++i) fb[i] = 0.25f + 0.5f * (float)((i * 7) % 11) / 11.0f;
+    return fb;
+}
+
+std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
+    std::vector<float> f(bytes.size() / 4);
+    std::memcpy(f.data(), bytes.data(), bytes.size());
+    return f;
+}
+
+TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
+    rrc_scene::Scene scene(test_scene());
+    std::vector<SceneFrameInputs> inputs(kFrames);
+    std::vector<std::vector<float>> fallbacks(kFrames);
+    std::vector<FrameResult> expected, unfilled;
+    {
+        std::vector<rrc_channel_desc> channels = test_channels(true), plain = test_channels(false);
+        Context ctx(scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels));
+        Context twin(scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, plain));
+        ASSERT_TRUE(ctx);
+        ASSERT_TRUE(twin);
+        for (int t = 0; t < kFrames; ++t) {
+            inputs[t].frame = scene.render(t);
+            make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
+            fallbacks[t] = fallback_of(inputs[t].frame);
+            inputs[t].inputs[0].fallback = fallbacks[t].data();  // the twin has no fill_prior: ignored
+            inputs[t].desc.channels = inputs[t].inputs.data();
+            expected.push_back(ctx.run(inputs[t].desc));
+            unfilled.push_back(twin.run(inputs[t].desc));
+        }
+    }
+    // The fill changed young pixels and only them; ages and the next
+    // frame's history (the twin's) are the fill's business not at all.
+    size_t young = 0, changed = 0;
+    for (int t = 0; t < kFrames; ++t)
+        for (size_t i = 0; i < (size_t)W * H; ++i) {
+            EXPECT_EQ(expected[t].age[0][i], unfilled[t].age[0][i]) << "frame " << t << " pixel " << i;
+            const bool is_young = expected[t].age[0][i] < 4 && !(expected[t].mask[i] & RRC_MASK_BACKGROUND);
+            young += is_young ? 1 : 0;
+            if (!is_young) EXPECT_EQ(expected[t].values[0][i], unfilled[t].values[0][i]) << "frame " << t << " pixel " << i;
+            changed += expected[t].values[0][i] != unfilled[t].values[0][i] ? 1 : 0;
+        }
+    EXPECT_GT(young, (size_t)W * H / 2) << "the scene must have young pixels (frame 0 has every pixel at age <= 1)";
+    EXPECT_GT(changed, young / 2) << "the fill must change most young pixels";
+
+    VulkanHost host;
+    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, 2);
+    std::vector<rrc_channel_desc> channels = test_channels(true);
+    rrc_context_desc cd = scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
+    rrc_context* ctx = nullptr;
+    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
+    HostImage depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
+    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    HostImage fb = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
+    HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
+    HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
+    HostImage age1 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
+    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    for (HostImage* img : {&out1, &out4, &age1}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, dro = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    for (int t = 0; t < kFrames; ++t) {
+        const SceneFrameInputs& in = inputs[t];
+        host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
+        host.upload(clip, in.reprojection.data(), W * H * 16, ro);
+        host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
+        host.upload(s4, in.frame.signal4.data(), W * H * 16, ro);
+        host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
+        host.upload(fb, fallbacks[t].data(), W * H * 4, ro);
+        rrc_vulkan_channel_images ch[2];
+        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+        ch[0].samples = rrc_host::vulkan_image(s1, ro);
+        ch[0].output = rrc_host::vulkan_image(out1, VK_IMAGE_LAYOUT_GENERAL);
+        ch[0].age = rrc_host::vulkan_image(age1, VK_IMAGE_LAYOUT_GENERAL);
+        ch[0].fallback = rrc_host::vulkan_image(fb, ro);
+        ch[1].samples = rrc_host::vulkan_image(s4, ro);
+        ch[1].confidence = rrc_host::vulkan_image(conf, ro);
+        ch[1].output = rrc_host::vulkan_image(out4, VK_IMAGE_LAYOUT_GENERAL);
+        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+        f.frame_index = t;
+        f.depth = rrc_host::vulkan_image(depth, dro);
+        f.reprojection = rrc_host::vulkan_image(clip, ro);
+        std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
+        std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
+        f.channel_count = 2;
+        f.channels = ch;
+        f.command_buffer = host.begin();
+        ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+        host.submit_and_wait(f.command_buffer);
+        EXPECT_EQ(as_floats(host.download(out1, VK_IMAGE_LAYOUT_GENERAL)), expected[t].values[0]) << "frame " << t;
+        EXPECT_EQ(as_floats(host.download(out4, VK_IMAGE_LAYOUT_GENERAL)), expected[t].values[1]) << "frame " << t;
+        const std::vector<unsigned char> a = host.download(age1, VK_IMAGE_LAYOUT_GENERAL);
+        std::vector<uint16_t> ages(W * H);
+        std::memcpy(ages.data(), a.data(), a.size());
+        EXPECT_EQ(ages, expected[t].age[0]) << "frame " << t;
+    }
+    rrc_context_destroy(ctx);
+    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &fb, &out1, &out4, &age1}) host.destroy(*img);
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << (host.messages().empty() ? "" : host.messages().front());
+}
+
+}  // namespace
