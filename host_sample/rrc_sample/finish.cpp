@@ -106,6 +106,7 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state, const std:
         dump(dir, "pcf_shown", f.index, f.pcf.shown);
         dump(dir, "pcf_confidence", f.index, f.pcf.confidence);
         dump(dir, "pcf_weighted_target", f.index, f.pcf.weighted_target);
+        dump(dir, "age", f.index, std::vector<float>(f.age.begin(), f.age.end()));
         std::ofstream m(std::filesystem::path(dir) / "size.txt");
         m << f.width << " " << f.height << "\n";
     }

@@ -24,14 +24,30 @@ ENV.setdefault("VK_ICD_FILENAMES", "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json"
 ENV.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
 
+REUSE = False
+
+
 def run(sample, out, args, log):
     cmd = [sample, "--quiet", "--no-images", "--out", out] + args
+    stamp = os.path.join(out, "finish_run.txt")
+    if REUSE and os.path.exists(stamp):  # --reuse: a finished run of the same command
+        rc, secs, prev = open(stamp).read().split(" ", 2)
+        if prev.strip() == " ".join(args):
+            log.append((" ".join(["rrc-sample"] + args), int(rc), float(secs)))
+            return int(rc) == 0
     t = time.time()
     p = subprocess.run(cmd, env=ENV, capture_output=True, text=True)
     log.append((" ".join(["rrc-sample"] + args), p.returncode, time.time() - t))
     if p.returncode:
         print(p.stdout[-2000:], p.stderr[-2000:], file=sys.stderr)
+    os.makedirs(out, exist_ok=True)
+    with open(stamp, "w") as f:
+        f.write("%d %.1f %s\n" % (p.returncode, time.time() - t, " ".join(args)))
     return p.returncode == 0
+
+
+def rmse_on(im, ref, surface):
+    return math.sqrt(float(np.mean((im[surface] - ref[surface]) ** 2)))
 
 
 def rows(path):
@@ -68,7 +84,10 @@ def main():
     ap.add_argument("--smoothstep", default="0.2,0.8")
     ap.add_argument("--threshold", default="0.5")
     ap.add_argument("--skip", default="", help="parts to skip: A, B, C")
+    ap.add_argument("--reuse", action="store_true", help="keep the runs already in --out (redraw only)")
     a = ap.parse_args()
+    global REUSE
+    REUSE = a.reuse
     os.makedirs(a.out, exist_ok=True)
     os.makedirs(a.docs, exist_ok=True)
     log, md = [], []
@@ -78,15 +97,18 @@ def main():
         # A1: young pixels on the default moving-camera scene, the soft reference on every frame.
         base = ["--frames", str(a.young_frames), "--reference-every", "1", "--signals", "soft"]
         variants = [("T = %s, r = 2, tau = 0.05 (the library's defaults)" % T, "young", ["--model-fill-age", T]),
-                    ("T = %s, r = 1, tau = 0.02" % T, "young_r1", ["--model-fill-age", T, "--fill-radius", "1", "--fill-depth-tolerance", "0.02"])]
+                    ("T = %s, r = 1, tau = 0.02" % T, "young_r1", ["--model-fill-age", T, "--fill-radius", "1", "--fill-depth-tolerance", "0.02"]),
+                    ("T = %s, r = 2, tau = 0.005" % T, "young_t005", ["--model-fill-age", T, "--fill-depth-tolerance", "0.005"])]
         tables = []
         for lab, tag, extra in variants:
             d = os.path.join(a.out, tag)
             run(a.sample, d, base + extra, log)
             tables.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
         rr = []
-        for lab, extra in [("rrc's fill, PCSS fallback", ["--soft-fill", T]), ("rrc's fill, no fallback", ["--soft-fill", T, "--fill-prior", "0"])]:
-            d = os.path.join(a.out, "young_rrc" + ("0" if "0" in extra[-1:] else ""))
+        tuned = ["--fill-depth-tolerance", "0.005"]
+        for i, (lab, extra) in enumerate([("rrc's fill, PCSS fallback", ["--soft-fill", T]), ("rrc's fill, no fallback", ["--soft-fill", T, "--fill-prior", "0"]),
+                                          ("rrc's fill, PCSS fallback, tau = 0.005", ["--soft-fill", T] + tuned)]):
+            d = os.path.join(a.out, "young_rrc%d" % i)
             if run(a.sample, d, base + extra, log):
                 rr.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
         md.append("## A. Young soft-shadow pixels: RMSE over their first 8 frames against the 16x16-grid reference\n")
@@ -116,13 +138,13 @@ def main():
             for col, what in [("rmse_accumulated", "rrc's value alone (no fill, no prior)"), ("rmse_pcss", "PCSS alone"), ("rmse_raw", "this frame's one sample")]:
                 v = num(pooled[col])
                 md.append("| %s | | %.4f | %.3f | |" % (what, v, v / shown))
-            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS | fill P=4 | fill P=0 | fill P=4, r=1 |" +
+            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS | fill P=4 | fill P=0 | fill P=4, tau=0.005 |" +
                       "".join(" %s |" % lab for lab, _, _ in rr) + "\n|---|---|---|---|---|---|---|---|---|" + "---|" * len(rr))
             for g in sorted(k for k in y0[tracks] if k != "pooled"):
                 r = y0[tracks][g]
                 md.append("| %d | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (g, r["pixels"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
                           num(r["rmse_shown"]), num(r["rmse_pcss"]), num(r["rmse_fill_prior"]), num(r["rmse_fill_none"]),
-                          num(tables[1][2][tracks][g]["rmse_fill_prior"])) + "".join(" %.4f |" % num(y[tracks][g]["rmse_accumulated"]) for _, _, y in rr))
+                          num(tables[2][2][tracks][g]["rmse_fill_prior"])) + "".join(" %.4f |" % num(y[tracks][g]["rmse_accumulated"]) for _, _, y in rr))
             md.append("")
         fig, axs = plt.subplots(1, 2, figsize=(11, 4))
         for ax, tracks in zip(axs, ("disoccluded", "all")):
@@ -131,7 +153,7 @@ def main():
             for col, lab in [("rmse_shown", "--soft-prior 4"), ("rmse_fill_prior", "fill + PCSS (P=4)"), ("rmse_fill_none", "fill, no fallback"),
                              ("rmse_accumulated", "rrc alone"), ("rmse_pcss", "PCSS")]:
                 ax.plot(ages, [num(y[g][col]) for g in ages], "o-", label=lab)
-            ax.plot(ages, [num(tables[1][2][tracks][g]["rmse_fill_prior"]) for g in ages], "o:", label="fill + PCSS, r=1, tau=0.02")
+            ax.plot(ages, [num(tables[2][2][tracks][g]["rmse_fill_prior"]) for g in ages], "o:", label="fill + PCSS, tau=0.005")
             for lab, _, t in rr:
                 ax.plot(ages, [num(t[tracks][g]["rmse_accumulated"]) for g in ages], "s--", label=lab)
             ax.set_title("%s tracks" % tracks, fontsize=9)
@@ -141,23 +163,23 @@ def main():
         # A2: Figure 9: a reset at frame 0, still camera (the torus still moves), 256 frames.
         frames = [0, 1, 2, 3, 4, 6, 9, 14, 19, 31, 49, 79, 127, 199, 255]
         fig9 = ["--static-camera", "--frames", "256", "--reference-every", "0", "--reference-frames", ",".join(map(str, frames)),
-                "--signals", "soft", "--size", "128x80", "--dump-soft"]
+                "--signals", "soft", "--size", "128x80", "--dump-soft", "--fill-depth-tolerance", "0.005"]
         d9 = os.path.join(a.out, "fig9")
         run(a.sample, d9, fig9, log)
         c = rows(os.path.join(d9, "curve.csv"))
         size = tuple(int(v) for v in open(os.path.join(d9, "finish", "size.txt")).read().split())
         show = [0, 2, 6, 19, 255]
         kinds = [("soft_raw", "one sample"), ("soft_accumulated", "rrc (no fill)"), ("soft_shown", "--soft-prior 4"),
-                 ("soft_fill_prior", "fill + PCSS"), ("soft_fill_none", "fill, no fallback")]
+                 ("soft_fill_prior", "fill + PCSS\n(tau=0.005)"), ("soft_fill_none", "fill, no fallback")]
         fig, ax = plt.subplots(len(kinds) + 1, len(show), figsize=(2.2 * len(show), 1.5 * (len(kinds) + 1)))
         for j, f in enumerate(show):
             ref = load(d9, "soft_reference", f, size)
+            surface = load(d9, "age", f, size) > 0
             ax[0, j].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0, j].set_title("frame %d" % (f + 1), fontsize=8)
             for i, (k, lab) in enumerate(kinds):
                 im = load(d9, k, f, size)
                 ax[i + 1, j].imshow(im, cmap="gray", vmin=0, vmax=1)
-                e = math.sqrt(float(np.mean((im - ref) ** 2)))
-                ax[i + 1, j].set_xlabel("RMSE %.3f" % e, fontsize=7)
+                ax[i + 1, j].set_xlabel("RMSE %.3f" % rmse_on(im, ref, surface), fontsize=7)
         ax[0, 0].set_ylabel("reference", fontsize=8)
         for i, (k, lab) in enumerate(kinds): ax[i + 1, 0].set_ylabel(lab, fontsize=8)
         for q in ax.flat: q.set_xticks([]); q.set_yticks([])
@@ -165,7 +187,7 @@ def main():
         fig, ax = plt.subplots(figsize=(6, 4))
         xs = [int(r["frames_since_reset"]) for r in c]
         for col, lab in [("rmse_raw", "one sample"), ("rmse_accumulated", "rrc (no fill)"), ("rmse_shown", "--soft-prior 4"),
-                         ("rmse_fill_prior", "fill + PCSS"), ("rmse_fill_none", "fill, no fallback"), ("rmse_pcss", "PCSS")]:
+                         ("rmse_fill_prior", "fill + PCSS (tau=0.005)"), ("rmse_fill_none", "fill, no fallback (tau=0.005)"), ("rmse_pcss", "PCSS")]:
             ax.plot(xs, [num(r[col]) for r in c], "o-", ms=3, label=lab)
         ax.set_xscale("log"); ax.set_xlabel("frames since the reset"); ax.set_ylabel("RMSE (every surface pixel)")
         ax.legend(fontsize=7); ax.grid(alpha=0.3, which="both")
@@ -203,15 +225,20 @@ def main():
         md.append("")
         if imgs:
             size = tuple(int(v) for v in open(os.path.join(imgs[0][1], "finish", "size.txt")).read().split())
-            fig, ax = plt.subplots(1, len(imgs) + 1, figsize=(3.2 * (len(imgs) + 1), 2.6))
+            n = len(imgs)
+            fig, ax = plt.subplots(2, n + 1, figsize=(2.9 * (n + 1), 4.4))
             ref = load(imgs[0][1], "pcf_reference", 59, size)
-            ax[0].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0].set_title("target (exact disk mean)", fontsize=7)
+            surface = load(imgs[0][1], "age", 59, size) > 0
+            ax[0, 0].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0, 0].set_title("target (exact disk mean)", fontsize=7)
+            ax[1, 0].imshow(surface, cmap="gray", vmin=0, vmax=1); ax[1, 0].set_title("surface (scored pixels)", fontsize=7)
             for i, (lab, d, tag) in enumerate(imgs):
                 im = load(d, "pcf_shown", 59, size)
                 if im is None: im = load(d, "pcf_accumulated", 59, size)
-                ax[i + 1].imshow(im, cmap="gray", vmin=0, vmax=1)
-                ax[i + 1].set_title(lab, fontsize=7); ax[i + 1].set_xlabel("RMSE %.4f" % math.sqrt(float(np.mean((im - ref) ** 2))), fontsize=7)
-            for q in ax: q.set_xticks([]); q.set_yticks([])
+                ax[0, i + 1].imshow(im, cmap="gray", vmin=0, vmax=1)
+                ax[0, i + 1].set_title(lab, fontsize=7)
+                ax[1, i + 1].imshow(np.abs(im - ref) * surface, cmap="magma", vmin=0, vmax=0.5)
+                ax[1, i + 1].set_title("|error| (0..0.5), RMSE %.4f" % rmse_on(im, ref, surface), fontsize=7)
+            for q in ax.flat: q.set_xticks([]); q.set_yticks([])
             fig.tight_layout(); fig.savefig(os.path.join(a.docs, "pcf_steps.png"), dpi=110); plt.close(fig)
             md.append("![PCF steps, frame 60](pcf_steps.png)\n")
 
