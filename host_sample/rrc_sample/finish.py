@@ -206,7 +206,10 @@ def main():
                  ("Gaussian + smoothstep %s" % a.smoothstep, "smooth", ["--history-filter", "gaussian", "--pcf-smoothstep", a.smoothstep]),
                  ("Gaussian + smoothstep + threshold %s" % a.threshold, "thresh",
                   ["--history-filter", "gaussian", "--pcf-smoothstep", a.smoothstep, "--pcf-threshold", a.threshold]),
-                 ("plain + smoothstep %s (no blur)" % a.smoothstep, "plain_smooth", ["--pcf-smoothstep", a.smoothstep])]
+                 ("plain + smoothstep %s (no blur)" % a.smoothstep, "plain_smooth", ["--pcf-smoothstep", a.smoothstep]),
+                 ("plain, still camera", "still_plain", ["--static-camera"]),
+                 ("Gaussian history, still camera", "still_blur", ["--static-camera", "--history-filter", "gaussian"]),
+                 ("Gaussian history sigma 0.8, still camera", "still_blur08", ["--static-camera", "--history-filter", "gaussian", "--blur-sigma", "0.8"])]
         md.append("## B. PCF finishing, RMSE against the fixed target (the exact disk mean), mean over the 6 checkpoints\n")
         md.append("`rrc-sample %s ...` (256x160, the default moving camera)\n" % " ".join(pb))
         md.append("| step | options | RMSE displayed | RMSE of the history (accumulated) |\n|---|---|---|---|")
@@ -221,7 +224,8 @@ def main():
             acc = np.mean([num(r["rmse_accumulated"]) for r in e])
             shown = np.mean([num(r["rmse_shown"]) for r in e]) if e[0]["rmse_shown"] else acc
             md.append("| %s | `%s` | %.4f | %.4f |" % (lab, " ".join(extra), shown, acc))
-            imgs.append((lab, d, tag))
+            if "still" not in tag:
+                imgs.append((lab, d, tag))
         md.append("")
         if imgs:
             size = tuple(int(v) for v in open(os.path.join(imgs[0][1], "finish", "size.txt")).read().split())

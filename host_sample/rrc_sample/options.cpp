@@ -220,7 +220,7 @@ Options parse_options(int argc, const char* const* argv) {
         else if (a == "--fill-prior")
             o.fill_prior = to_float(a, value(), 0.0f, 1e6f);
         else if (a == "--blur-sigma")
-            o.channels.pcf.blur_sigma = to_float(a, value(), 0.0f, 1.0f);
+            o.channels.pcf.blur_sigma = to_float(a, value(), 0.0f, RRC_MAX_BLUR_SIGMA);
         else if (a == "--pcf-smoothstep") {
             const std::string v = value();
             const size_t c = v.find(',');
