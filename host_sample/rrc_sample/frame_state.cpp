@@ -14,9 +14,9 @@ glm::mat4 camera_view_proj(const Scene& scene, const RenderSettings& s, double t
     return reversed_perspective(c.fov_y, (float)s.width / (float)s.height, scene.near_plane, scene.far_plane) * view;
 }
 
-glm::mat4 sun_view_proj(const Scene& scene) {
+glm::mat4 sun_view_proj(const Scene& scene, glm::vec3 towards_sun) {
     const float e = scene.sun_extent;
-    const glm::mat4 view = glm::lookAt(scene.sun_direction * 40.0f, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 view = glm::lookAt(towards_sun * 40.0f, glm::vec3(0.0f), glm::vec3(0, 1, 0));
     return glm::orthoRH_ZO(-e, e, -e, e, 1.0f, 80.0f) * view;
 }
 
@@ -101,8 +101,10 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& s, int ind
     st.prev_view_proj = glm::dmat4(pvp);
 
     const float sun_texel = 2.0f * scene.sun_extent / (float)s.sun_map;
-    u.sun_vp = sun_view_proj(scene);
-    u.sun_dir = glm::vec4(scene.sun_direction, 1.5f * sun_texel);
+    // The moving light (Scene::light_speed): the sun and, through bump.z, the environment map turn together.
+    const glm::vec3 sun = scene.sun_direction_at(index);
+    u.sun_vp = sun_view_proj(scene, sun);
+    u.sun_dir = glm::vec4(sun, 1.5f * sun_texel);
     u.sun_colour = glm::vec4(scene.sun_colour, s.pcf_radius);
     u.ambient = glm::vec4(scene.ambient, 0.03f);
 
@@ -122,7 +124,7 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& s, int ind
     const Camera cam = scene.camera(t);
     u.camera_pos = glm::vec4(cam.eye, (float)t);
     u.sphere = scene.sphere;
-    u.bump = glm::vec4(55.0f, 0.45f, 0.0f, 0.0f);
+    u.bump = glm::vec4(55.0f, 0.45f, scene.light_angle(index), 0.0f);  // z: the environment map's turn (shaders/env.glsl)
     u.frame = glm::uvec4((uint32_t)index, (uint32_t)s.taps, s.width, s.height);
     const std::vector<glm::vec2> disk = poisson_disk(s.taps);
     for (int i = 0; i < kMaxTaps; ++i) u.poisson[i] = i < (int)disk.size() ? glm::vec4(disk[i], 0, 0) : glm::vec4(0.0f);

@@ -34,7 +34,7 @@ struct FrameUniforms {
     glm::vec4 lamp_facing;        // w: relative depth bias
     glm::vec4 lamp_colour;        // w: sun map size (texels)
     glm::vec4 sphere;             // mirror sphere centre, radius
-    glm::vec4 bump;               // x: bump frequency (1/m), y: strength
+    glm::vec4 bump;               // x: bump frequency (1/m), y: strength, z: the environment map's turn (radians, Scene::light_angle)
     glm::uvec4 frame;             // x: frame index, y: taps k, z: width, w: height
     glm::vec4 poisson[kMaxTaps];  // xy: the k-tap pattern in the unit disk
 };
@@ -53,9 +53,9 @@ struct RenderSettings {
     int taps = 4;
     float fps = 30.0f;
     uint32_t sun_map = 512, lamp_map = 512;
-    float pcf_radius = 3.0f;  // sun-map texels
-    uint32_t seed = 0;        // ensemble member: moves every random stream (0: the sample's own)
-    uint32_t pcf_pattern = 0; // 0 the uniform disk (unbiased for the exact target), 1 the paper's rotated Poisson disk
+    float pcf_radius = 3.0f;   // sun-map texels
+    uint32_t seed = 0;         // ensemble member: moves every random stream (0: the sample's own)
+    uint32_t pcf_pattern = 0;  // 0 the uniform disk (unbiased for the exact target), 1 the paper's rotated Poisson disk
 };
 
 struct FrameState {

@@ -127,6 +127,8 @@ std::string usage() {
            "  --shadow-map-size S      sun and lamp shadow maps, S x S texels (default 512)\n"
            "  --pcf-radius R           PCF disk radius in sun shadow-map texels (default 3)\n"
            "  --static-camera          keep the camera still (the torus still moves)\n"
+           "  --light-speed DEG        the moving light: the sun and the environment map turn DEG degrees a frame\n"
+           "                           about the vertical axis (default 0: fixed; the area lamp never moves)\n"
            "  --no-object-id           do not give rrc the G-buffer's per-pixel object ids (default: given, so a hit\n"
            "                           also needs every previous-depth tap to show the pixel's object; see README.md)\n"
            "  --no-images              write only summary.md, summary.csv and errors.csv\n"
@@ -245,6 +247,8 @@ Options parse_options(int argc, const char* const* argv) {
             o.young_ages = (uint32_t)to_int(a, value(), 1, 255);
         else if (a == "--static-camera")
             o.static_camera = true;
+        else if (a == "--light-speed")
+            o.light_speed = to_float(a, value(), -180.0f, 180.0f);
         else if (a == "--no-object-id")
             o.object_id = false;
         else if (a == "--no-images")

@@ -42,6 +42,7 @@ struct Options {
     bool dump_soft = false;                            // --dump-soft: raw float images of soft's displays on checkpoints
     uint32_t model_fill_age = 8;                       // --model-fill-age: T of the fill's CPU model (without --soft-fill)
     uint32_t young_ages = 8;                           // --young-ages: the young-pixel table's ages 1..N
+    float light_speed = 0.0f;                          // the moving light, degrees a frame (Scene::light_speed); 0 = fixed
     bool object_id = true;                             // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;
     bool quiet = false;

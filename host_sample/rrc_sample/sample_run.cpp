@@ -52,6 +52,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     if (o.quiet) progress = nullptr;
     Scene scene = Scene::make(o.scene);
     if (o.static_camera) scene.camera_speed = 0.0f;
+    scene.light_speed = o.light_speed;
     RunResult run;
     run.options = o;
     run.signals = o.signals ? (o.signals & scene.signals) : scene.signals;

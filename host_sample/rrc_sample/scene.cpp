@@ -76,6 +76,14 @@ glm::mat4 Scene::model(size_t i, double t) const {
     return m;
 }
 
+float Scene::light_angle(int index) const { return glm::radians(light_speed) * (float)index; }
+
+glm::vec3 Scene::sun_direction_at(int index) const {
+    if (light_speed == 0.0f) return sun_direction;  // bit for bit the fixed light
+    // A right-handed turn about +y (GLM's rotate); shaders/env.glsl turns the environment map the same way.
+    return glm::vec3(glm::rotate(glm::mat4(1.0f), light_angle(index), glm::vec3(0, 1, 0)) * glm::vec4(sun_direction, 0.0f));
+}
+
 Camera Scene::camera(double t) const {
     // A slow arc in front of the temple, rising a little, looking at its steps.
     const double a = 1.95 - 0.35 * t * camera_speed;  // radians around the y axis

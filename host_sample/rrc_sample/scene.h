@@ -63,6 +63,14 @@ public:
     Camera camera(double t) const;
     /** 0 = fixed camera (tests that want static pixels); 1 = the scene's flight. */
     float camera_speed = 1.0f;
+    /** The moving light (rrc-sample and rrc-sweep --light-speed): degrees per frame that the sun and
+     *  the environment map turn about the vertical (y) axis, counter-clockwise seen from above; 0 = the
+     *  scene's fixed light.  The area lamp (soft shadows) does not move. */
+    float light_speed = 0.0f;
+    /** The light's turn at frame `index`, radians (0 when light_speed is 0). */
+    float light_angle(int index) const;
+    /** Towards the sun at frame `index`: sun_direction turned by light_angle(index). */
+    glm::vec3 sun_direction_at(int index) const;
 };
 
 }  // namespace rrc_sample

@@ -26,6 +26,10 @@ struct SweepOptions {
     bool rotated = true;                  // pcf: the paper's rotated pattern as extra rows
     uint32_t signals = 0;                 // rrc_sample Signal bits; 0 = every signal the scene uses
     std::string motion = "all";           // all (the sample's), camera-still (the torus moves), still (nothing moves)
+    float light_speed = 0.0f;             // the moving light: degrees a frame the sun and environment turn (Scene::light_speed)
+    std::string study;                    // "" the sweep; "rectify" the rectification study (rectify_study.h)
+    std::vector<float> rectify_gammas = {0.5f, 1.0f, 1.5f};  // the study's rectify-on rows
+    float change_threshold = 0.05f;       // the study: a pcf/soft target changed when it moved by more (env: 3 sigma of its noise)
     std::string clock = "auto";           // auto (wall on a CPU device, timestamps otherwise), wall or timestamps
     std::string out = "out/sweep";
     bool plots = true;                    // run fronts.py at the end

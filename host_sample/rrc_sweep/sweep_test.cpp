@@ -2,8 +2,12 @@
 // known, the PCF target's disk-rectangle areas against direct integration,
 // and a small sweep under the validation layer: every estimator's variance
 // falls with k, the unbiased ones have no bias against their target, the
-// paper's rotated pattern has, and accumulation beats one frame.
+// paper's rotated pattern has, and accumulation beats one frame.  The moving
+// light turns the sun as stated, and the rectification study's lag error
+// sees it: some pixels change, rrc lags behind them, rectification cuts it.
 #include "ensemble.h"
+#include "rectify_study.h"
+#include "scene.h"
 #include "sweep_run.h"
 
 #include <gtest/gtest.h>
@@ -160,6 +164,59 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
     EXPECT_GT(rot->metrics.bias2, 0.05 * rot->metrics.variance);
+}
+
+TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
+    rrc_sample::Scene scene = rrc_sample::Scene::make("temple");
+    const glm::vec3 d0 = scene.sun_direction;
+    EXPECT_EQ(scene.sun_direction_at(37), d0) << "light speed 0: the fixed sun";
+    scene.light_speed = 1.5f;
+    EXPECT_EQ(scene.sun_direction_at(0), d0);
+    const glm::vec3 d = scene.sun_direction_at(20);  // 30 degrees
+    EXPECT_NEAR(d.y, d0.y, 1e-6) << "about the vertical axis";
+    const glm::vec2 a(d0.x, d0.z), b(d.x, d.z);
+    EXPECT_NEAR(std::acos(glm::dot(a, b) / (glm::length(a) * glm::length(b))), glm::radians(30.0f), 1e-4);
+    EXPECT_NEAR(scene.light_angle(20), glm::radians(30.0f), 1e-6);
+}
+
+TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationCutsTheLag) {
+    SweepOptions o;
+    o.study = "rectify";
+    o.width = 96;
+    o.height = 64;
+    o.frames = 26;
+    o.first_checkpoint = 17;
+    o.checkpoint_every = 8;  // checkpoints 17 and 25: lambda = 0.9's lag has settled
+    o.seeds = 3;
+    o.rrc_taps = {4};
+    o.lambdas = {0.9f};
+    o.rectify_gammas = {1.0f};
+    o.signals = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv;
+    o.light_speed = 1.0f;
+    o.motion = "still";
+    o.out = "";  // no changed_<app>.pgm
+    o.validation = true;
+    o.quiet = true;
+    const RectifyResult r = run_rectify_study(o, nullptr);
+    EXPECT_EQ(r.validation_messages, 0u);
+    ASSERT_EQ(r.apps.size(), 2u);
+    ASSERT_EQ(r.rows.size(), 4u);  // pcf, env x off, on
+    // The targets follow the light: the sun's turn moves pcf's shadow edges, some pixels change and most do not.
+    EXPECT_GT(r.changed_pixels[0], 20u);
+    EXPECT_LT(r.changed_fraction[0], 0.5);
+    for (const RectifyRow& row : r.rows) {
+        SCOPED_TRACE(std::string(row.app.name) + (row.rectify ? " rectified" : ""));
+        EXPECT_EQ(row.still.seeds, 3);
+        EXPECT_GT(row.still.variance, 0.0);
+        if (row.app.signal != rrc_sample::kSignalPcf) continue;
+        EXPECT_EQ(row.lag.checkpoints, 2);
+        // Nothing else moves, so the error on the changed pixels is rrc's lag: well above the fixed light's.
+        if (!row.rectify) EXPECT_GT(row.lag.rmse, 2.0 * row.still.rmse);
+    }
+    const RectifyRow &off = r.rows[0], &on = r.rows[1];
+    ASSERT_TRUE(off.app.signal == rrc_sample::kSignalPcf && !off.rectify && on.rectify);
+    EXPECT_LT(on.lag.rmse, 0.9 * off.lag.rmse) << "rectification at lambda 0.9 must cut pcf's lag behind the moving light";
+    EXPECT_LT(on.still.variance, 1.5 * off.still.variance) << "and keep its static variance";
 }
 
 }  // namespace

@@ -5,14 +5,22 @@
 // Radiance from direction d: a sky with a band of coloured banners along the
 // horizon and a sun, over a checkered ground.  Hard edges on purpose: a
 // bumpy mirror turns them into sub-pixel detail that one sample aliases.
-vec3 env_radiance(vec3 d) {
-    d = normalize(d);
+// The moving light (--light-speed): the map turns about +y by u.bump.z
+// radians with the sun (frame_state.cpp), so d is turned back by it into the
+// map's own frame; the sun's highlight follows u.sun_dir, already turned.
+vec3 env_radiance(vec3 d_world) {
+    d_world = normalize(d_world);
+    vec3 d = d_world;
+    if (u.bump.z != 0.0) {
+        float c = cos(u.bump.z), s = sin(u.bump.z);
+        d = vec3(c * d_world.x - s * d_world.z, d_world.y, s * d_world.x + c * d_world.z);
+    }
     if (d.y >= 0.0) {
         vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(d.y));
         float az = atan(d.z, d.x) * (12.0 / (2.0 * PI));
         bool warm = fract(az) < 0.5;
         if (d.y < 0.07) sky = warm ? vec3(1.1, 0.55, 0.18) : vec3(0.18, 0.6, 0.32);
-        float s = max(dot(d, u.sun_dir.xyz), 0.0);
+        float s = max(dot(d_world, u.sun_dir.xyz), 0.0);
         sky += vec3(1.6, 1.4, 1.0) * pow(s, 200.0);
         return sky;
     }

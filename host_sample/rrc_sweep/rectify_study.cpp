@@ -1,0 +1,403 @@
+#include "rectify_study.h"
+
+#include "rrc_stage.h"
+#include "sweep_engine.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+namespace rrc_sweep {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/** One configuration of the study: an application's FIXED/bilinear channel at lambda, rectify off or on. */
+struct StudyConfig {
+    App app;
+    rrc_sample::ChannelSettings channel;
+};
+
+std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
+    std::vector<StudyConfig> c;
+    for (const App& app : apps_of(sigs))
+        for (float lambda : o.lambdas) {
+            rrc_sample::ChannelSettings off{lambda, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0};
+            c.push_back({app, off});
+            for (float gamma : o.rectify_gammas) {
+                rrc_sample::ChannelSettings on = off;
+                on.rectify = 1;
+                on.rectify_gamma = gamma;
+                c.push_back({app, on});
+            }
+        }
+    return c;
+}
+
+void full_barrier(VkCommandBuffer c) {
+    rrc_sample::memory_barrier(c, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                               VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+}
+
+/** The targets of one frame (the sweep's: sweep_run.cpp, make_targets) and its materials. */
+struct FrameTarget {
+    std::vector<uint8_t> material;
+    std::vector<float> pcf, env, env_twin, soft;
+    const std::vector<float>& of(uint32_t signal) const { return signal == kSignalPcf ? pcf : signal == kSignalEnv ? env : soft; }
+};
+
+FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t samples) {
+    rrc_sample::Readback rb(e.gpu);
+    const rrc_sample::SignalImages& ref = e.signals.reference();
+    const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
+    const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    rb.allocate();
+    FrameTarget ft;
+    const FrameState state = e.begin_frame(f, 1, 0);
+    for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) ? 2u : 1u); ++twin) {
+        e.submit(0, [&](VkCommandBuffer c, auto&&) {
+            e.record_geometry(c, state, sigs);
+            // twin 1: env's second, independent estimate (the random stream of seed 1).
+            e.signals.record_reference(c, twin ? kSignalEnv : sigs, samples, e.scene, e.shadows, twin);
+            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
+        });
+        if (twin) {
+            ft.env_twin = floats_of(rb, s_env);
+            continue;
+        }
+        ft.pcf = floats_of(rb, s_pcf);
+        ft.env = floats_of(rb, s_env);
+        ft.soft = floats_of(rb, s_soft);
+        std::vector<uint16_t> nm(rb.bytes(s_normal) / 2);
+        std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
+        ft.material.resize(nm.size() / 4);
+        for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
+    }
+    return ft;
+}
+
+bool scored(uint32_t signal, uint8_t m) { return signal == kSignalEnv ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; }
+
+/** env's target noise per value, half the mean squared difference of the two estimates over `pixels`. */
+double env_noise(const FrameTarget& t, const std::vector<uint32_t>& pixels) {
+    double n = 0.0;
+    for (uint32_t p : pixels)
+        for (int c = 0; c < 3; ++c) n += 0.5 * std::pow((double)t.env[p * 4 + c] - t.env_twin[p * 4 + c], 2.0);
+    return pixels.empty() ? 0.0 : n / (3.0 * (double)pixels.size());
+}
+
+/** What one scenario gives per application: its checkpoints' targets (only those with pixels to score). */
+struct AppTargets {
+    std::vector<CheckpointTarget> targets;
+    std::vector<size_t> checkpoint;  // which of o.checkpoints() each is
+    double fraction = 0.0, threshold = 0.0, change = 0.0;
+    size_t pixels = 0;
+};
+
+/** Runs every configuration over every seed in one scene; returns each configuration's metrics.
+ *  moving: the lag-error targets (changed pixels); else every scored pixel. */
+std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, const SweepOptions& o, uint32_t sigs,
+                                  const std::vector<StudyConfig>& configs, bool moving, std::map<uint32_t, AppTargets>* stats,
+                                  std::ostream* progress, const std::chrono::steady_clock::time_point& start) {
+    rrc_sample::RenderSettings rs;
+    rs.width = o.width;
+    rs.height = o.height;
+    Engine e(gpu, scene, rs);
+    const std::vector<int> checkpoints = o.checkpoints();
+    const int last = checkpoints.back();
+    const int k = o.rrc_taps.front();
+
+    // ---- Targets: each checkpoint's, and (moving) the frame's before, to find the pixels that changed.
+    std::map<uint32_t, AppTargets> apps;
+    for (size_t ci = 0; ci < checkpoints.size(); ++ci) {
+        const int t = checkpoints[ci];
+        const FrameTarget cur = frame_target(e, t, sigs, (uint32_t)o.reference_samples);
+        FrameTarget prev;
+        if (moving) prev = frame_target(e, t - 1, sigs, (uint32_t)o.reference_samples);
+        for (const App& app : apps_of(sigs)) {
+            AppTargets& at = apps[app.signal];
+            const bool env = app.signal == kSignalEnv;
+            const int stride = stride_of(app.signal), comps = env ? 3 : 1;
+            const std::vector<float>& now = cur.of(app.signal);
+            std::vector<uint32_t> all;
+            for (uint32_t p = 0; p < cur.material.size(); ++p)
+                if (scored(app.signal, cur.material[p])) all.push_back(p);
+            const double noise_all = env ? env_noise(cur, all) : 0.0;
+            CheckpointTarget ct;
+            ct.components = comps;
+            if (moving) {
+                const std::vector<float>& before = prev.of(app.signal);
+                const double tau = change_threshold(app.signal, o.change_threshold, noise_all);
+                at.threshold = std::max(at.threshold, tau);
+                double change = 0.0;
+                for (uint32_t p : all) {
+                    if (!scored(app.signal, prev.material[p])) continue;
+                    double d = 0.0;
+                    for (int c = 0; c < comps; ++c) d = std::max(d, (double)std::abs(now[p * stride + c] - before[p * stride + c]));
+                    if (d > tau) ct.pixels.push_back(p), change += d;
+                }
+                at.fraction += all.empty() ? 0.0 : (double)ct.pixels.size() / (double)all.size() / (double)checkpoints.size();
+                at.change += change;
+                at.pixels += ct.pixels.size();
+            } else {
+                ct.pixels = all;
+            }
+            for (uint32_t p : ct.pixels)
+                for (int c = 0; c < comps; ++c) ct.target.push_back(now[p * stride + c]);
+            ct.noise = env ? env_noise(cur, ct.pixels) : 0.0;
+            ct.is_static.assign(ct.pixels.size(), 0);
+            if (moving && ci == 0 && !o.out.empty()) {  // the first checkpoint's changed pixels, to look at: changed_<app>.pgm
+                std::filesystem::create_directories(o.out);
+                std::ofstream pgm(std::filesystem::path(o.out) / ("changed_" + std::string(app.name) + ".pgm"), std::ios::binary);
+                std::vector<uint8_t> img(cur.material.size(), 0);
+                for (uint32_t p : all) img[p] = 80;
+                for (uint32_t p : ct.pixels) img[p] = 255;
+                pgm << "P5\n" << o.width << " " << o.height << "\n255\n";
+                pgm.write((const char*)img.data(), (std::streamsize)img.size());
+            }
+            if (ct.pixels.empty()) continue;  // nothing to score at this checkpoint
+            at.targets.push_back(std::move(ct));
+            at.checkpoint.push_back(ci);
+        }
+    }
+    for (auto& [sig, at] : apps)
+        if (at.pixels) at.change /= (double)at.pixels;
+    if (progress)
+        *progress << (moving ? "light moving" : "light fixed") << ": targets of " << checkpoints.size() * (moving ? 2 : 1) << " frames ("
+                  << (int)std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s)" << std::endl;
+
+    // ---- rrc: one context per configuration, all fed the same signals, frame by frame and seed by seed.
+    std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
+    for (const StudyConfig& c : configs) {
+        rrc_sample::RrcSettings s;
+        s.width = o.width;
+        s.height = o.height;
+        s.signals = c.app.signal;
+        s.near_plane = scene.near_plane;
+        s.far_plane = scene.far_plane;
+        if (c.app.signal == kSignalPcf) s.channels.pcf = c.channel;
+        if (c.app.signal == kSignalEnv) s.channels.env = c.channel;
+        if (c.app.signal == kSignalSoft) s.channels.soft = c.channel;
+        stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
+    }
+    rrc_sample::Readback rb(gpu);
+    std::vector<int> slots;
+    for (size_t i = 0; i < stages.size(); ++i) slots.push_back(rb.add(signal_image(stages[i]->accumulated(), configs[i].app.signal)));
+    rb.allocate();
+    std::vector<Ensemble> ensembles;
+    for (const StudyConfig& c : configs) ensembles.emplace_back(apps[c.app.signal].targets.size());
+    for (int seed = 0; seed < o.seeds; ++seed) {
+        const Sampling sampling{kFirstSeed + (uint32_t)seed, 0};
+        for (int f = 0; f <= last; ++f) {
+            const FrameState state = e.begin_frame(f, k, sampling.seed);
+            const auto cp = std::find(checkpoints.begin(), checkpoints.end(), f);
+            const bool read = cp != checkpoints.end();
+            e.submit(0, [&](VkCommandBuffer c, auto&&) {
+                e.record_geometry(c, state, sigs);
+                full_barrier(c);
+                // soft: the frame's one point of the light, its map rendered here (as the sweep's k = 1 runs).
+                e.signals.record(c, sigs, state, sampling, rrc_sample::lamp_frame_points(scene.lamp, f, 1, sampling.seed), scene,
+                                 e.shadows);
+                full_barrier(c);
+                for (auto& st : stages) st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
+                if (read) rb.record(c, slots);
+            });
+            if (!read) continue;
+            const size_t ci = (size_t)(cp - checkpoints.begin());
+            for (size_t i = 0; i < stages.size(); ++i) {
+                const AppTargets& at = apps[configs[i].app.signal];
+                const auto it = std::find(at.checkpoint.begin(), at.checkpoint.end(), ci);
+                if (it == at.checkpoint.end()) continue;
+                const size_t j = (size_t)(it - at.checkpoint.begin());
+                const std::vector<float> img = floats_of(rb, slots[i]);
+                ensembles[i].add(j, at.targets[j], img.data(), stride_of(configs[i].app.signal));
+            }
+        }
+        if (progress)
+            *progress << (moving ? "light moving" : "light fixed") << ", " << configs.size() << " configurations: seed " << seed + 1 << "/"
+                      << o.seeds << " done (" << (int)std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+                      << " s)" << std::endl;
+    }
+    std::vector<Metrics> m;
+    for (size_t i = 0; i < configs.size(); ++i) {
+        const AppTargets& at = apps[configs[i].app.signal];
+        if (at.targets.empty()) {
+            Metrics none;
+            none.rmse = none.bias2 = none.variance = none.mse_measured = none.psnr = none.flicker = kNaN;
+            m.push_back(none);
+        } else {
+            m.push_back(ensembles[i].metrics(at.targets));
+        }
+    }
+    if (stats) *stats = apps;
+    return m;
+}
+
+std::string num(double v, const char* fmt = "%.4g") {
+    if (std::isnan(v)) return "n/a";
+    char b[64];
+    std::snprintf(b, sizeof b, fmt, v);
+    return b;
+}
+
+const RectifyRow* off_row(const RectifyResult& r, const RectifyRow& row) {
+    for (const RectifyRow& x : r.rows)
+        if (x.app.signal == row.app.signal && x.lambda == row.lambda && !x.rectify) return &x;
+    return nullptr;
+}
+
+}  // namespace
+
+double change_threshold(uint32_t signal, double tau, double noise) {
+    // env's values are radiance and its target is itself a 256-ray estimate: its changes are
+    // scored above the noise of a difference of two estimates (3 sigma), at least 0.01.
+    return signal == kSignalEnv ? std::max(0.01, 3.0 * std::sqrt(2.0 * noise)) : tau;
+}
+
+RectifyResult run_rectify_study(const SweepOptions& o, std::ostream* progress) {
+    if (o.quiet) progress = nullptr;
+    if (o.light_speed == 0.0f) throw std::runtime_error("the rectification study needs a moving light (--light-speed)");
+    const auto start = std::chrono::steady_clock::now();
+    rrc_sample::Scene scene = rrc_sample::Scene::make(o.scene);
+    if (o.motion != "all") scene.camera_speed = 0.0f;
+    if (o.motion == "still")
+        for (auto& obj : scene.objects) obj.moves = false;
+    RectifyResult r;
+    const uint32_t sigs = o.signals ? (o.signals & scene.signals) : scene.signals;
+    if (!sigs) throw std::runtime_error("scene " + scene.name + " uses none of the signals asked for");
+    r.k = o.rrc_taps.front();
+    r.light_speed = o.light_speed;
+    r.apps = apps_of(sigs);
+    Gpu gpu(rrc_sample::GpuOptions{o.validation, o.device});
+    r.device = gpu.device_name();
+    const std::vector<StudyConfig> configs = study_configs(o, sigs);
+    if (progress)
+        *progress << "rrc-sweep --study rectify: scene " << scene.name << ", " << o.width << "x" << o.height << ", motion " << o.motion
+                  << ", light " << o.light_speed << " degrees a frame, k = " << r.k << ", " << configs.size() << " configurations, "
+                  << o.seeds << " seeds, checkpoints " << o.checkpoints().front() << ".." << o.checkpoints().back() << " every "
+                  << o.checkpoint_every << "\ndevice: " << r.device << (o.validation ? " (validation layer on)" : "") << std::endl;
+
+    std::map<uint32_t, AppTargets> moving_stats;
+    scene.light_speed = o.light_speed;
+    const std::vector<Metrics> lag = run_scenario(gpu, scene, o, sigs, configs, true, &moving_stats, progress, start);
+    scene.light_speed = 0.0f;
+    const std::vector<Metrics> still = run_scenario(gpu, scene, o, sigs, configs, false, nullptr, progress, start);
+    for (size_t i = 0; i < configs.size(); ++i) {
+        RectifyRow row;
+        row.app = configs[i].app;
+        row.lambda = configs[i].channel.lambda;
+        row.rectify = configs[i].channel.rectify;
+        row.gamma = row.rectify ? configs[i].channel.rectify_gamma : 0.0f;
+        row.lag = lag[i];
+        row.still = still[i];
+        r.rows.push_back(row);
+    }
+    for (const App& app : r.apps) {
+        const AppTargets& at = moving_stats[app.signal];
+        r.changed_fraction.push_back(at.fraction);
+        r.change_threshold.push_back(at.threshold);
+        r.mean_change.push_back(at.pixels ? at.change : kNaN);
+        r.changed_pixels.push_back(at.pixels);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    vkDeviceWaitIdle(gpu.device);
+    r.validation_messages = gpu.message_count();
+    return r;
+}
+
+void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const std::string& command_line) {
+    const std::filesystem::path dir(o.out);
+    std::filesystem::create_directories(dir);
+    auto open = [&](const char* name) {
+        std::ofstream f(dir / name);
+        if (!f) throw std::runtime_error("cannot write " + (dir / name).string());
+        return f;
+    };
+    {
+        std::ofstream f = open("rectify.csv");
+        f << "app,k,lambda,blend,filter,rectify,gamma,light_speed,lag_rmse,lag_bias2,lag_variance,lag_checkpoints,static_variance,"
+             "static_rmse,static_bias2,lag_ratio,variance_ratio,seeds\n";
+        for (const RectifyRow& row : r.rows) {
+            const RectifyRow* off = off_row(r, row);
+            const double lag_ratio = off ? row.lag.rmse / off->lag.rmse : kNaN;
+            const double var_ratio = off ? row.still.variance / off->still.variance : kNaN;
+            f << row.app.name << "," << r.k << "," << num(row.lambda, "%.2f") << ",fixed,bilinear," << row.rectify << ","
+              << num(row.gamma, "%.2f") << "," << num(r.light_speed, "%g") << "," << num(row.lag.rmse, "%.6g") << ","
+              << num(row.lag.bias2, "%.6g") << "," << num(row.lag.variance, "%.6g") << "," << row.lag.checkpoints << ","
+              << num(row.still.variance, "%.6g") << "," << num(row.still.rmse, "%.6g") << "," << num(row.still.bias2, "%.6g") << ","
+              << num(lag_ratio, "%.4f") << "," << num(var_ratio, "%.4f") << "," << row.still.seeds << "\n";
+        }
+    }
+    std::ofstream f = open("rectify.md");
+    char date[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    f << "# History rectification: lag error and static variance\n\n"
+      << "- command: `" << command_line << "`\n"
+      << "- date: " << date << "; device: " << r.device << "; " << (int)r.seconds << " s\n"
+      << "- scene " << o.scene << ", " << o.width << "x" << o.height << ", motion " << o.motion << " (camera"
+      << (o.motion == "all"            ? " and torus move"
+          : o.motion == "camera-still" ? " still, the torus moves"
+                                       : " and torus still")
+      << "), k = " << r.k << " samples a frame, FIXED blend, bilinear history, " << o.seeds << " seeds, frames 0.."
+      << o.checkpoints().back() << " from a reset, scored at " << o.checkpoints().front() << ".." << o.checkpoints().back() << " every "
+      << o.checkpoint_every << "\n"
+      << "- moving light: the sun and the environment map turn " << r.light_speed
+      << " degrees a frame about the vertical axis (30 frames a second of scene time); the area lamp (soft) does not move\n"
+      << "- lag error: RMSE against the moving light's target on the pixels whose target changed since the frame before (a component by "
+         "more than the threshold below), MSE over seeds and those pixels, averaged over the scored frames (env: the target's own noise "
+         "subtracted)\n"
+      << "- static variance: the same rows with the light fixed, the unbiased variance across seeds per value, averaged over every scored "
+         "pixel and frame; ratio = with rectification / without, same lambda\n\n"
+      << "| app | changed pixels (share of scored) | threshold | mean change |\n|---|---|---|---|\n";
+    for (size_t a = 0; a < r.apps.size(); ++a)
+        f << "| " << r.apps[a].name << " | " << r.changed_pixels[a] << " (" << num(100.0 * r.changed_fraction[a], "%.1f") << "%) | "
+          << num(r.change_threshold[a], "%.3g") << " | " << num(r.mean_change[a], "%.3g") << " |\n";
+    f << "\n| app | lambda | rectify | lag error | lag ratio | static variance | variance ratio | static RMSE | static bias² |\n"
+      << "|---|---|---|---|---|---|---|---|---|\n";
+    for (const RectifyRow& row : r.rows) {
+        const RectifyRow* off = off_row(r, row);
+        f << "| " << row.app.name << " | " << num(row.lambda, "%.2f") << " | "
+          << (row.rectify ? "on, γ = " + num(row.gamma, "%g") : std::string("off")) << " | " << num(row.lag.rmse, "%.4f") << " | "
+          << (row.rectify && off ? num(row.lag.rmse / off->lag.rmse, "%.2f") : std::string("")) << " | " << num(row.still.variance, "%.3g")
+          << " | " << (row.rectify && off ? num(row.still.variance / off->still.variance, "%.2f") : std::string("")) << " | "
+          << num(row.still.rmse, "%.4f") << " | " << num(row.still.bias2, "%.3g") << " |\n";
+    }
+    f << "\n## Verdicts (lambda = 0.9: lag error at most half of without, static variance at most 1.5x)\n\n";
+    bool any = false;
+    for (const RectifyRow& row : r.rows) {
+        if (!row.rectify || std::abs(row.lambda - 0.9f) > 1e-4f) continue;
+        const RectifyRow* off = off_row(r, row);
+        if (!off) continue;
+        any = true;
+        const double lr = row.lag.rmse / off->lag.rmse, vr = row.still.variance / off->still.variance;
+        const bool soft = row.app.signal == kSignalSoft;
+        f << "- " << row.app.name << ", γ = " << num(row.gamma, "%g") << ": lag error " << num(off->lag.rmse, "%.4f") << " -> "
+          << num(row.lag.rmse, "%.4f");
+        if (std::isnan(lr))
+            f << " (no pixel's target changed)";
+        else
+            f << " (x" << num(lr, "%.3f") << ", target <= 0.5: " << (lr <= 0.5 ? "PASS" : "FAIL") << ")";
+        f << "; static variance " << num(off->still.variance, "%.3g") << " -> " << num(row.still.variance, "%.3g") << " (x"
+          << num(vr, "%.3f") << ", target <= 1.5: "
+          << (std::isnan(vr) ? "n/a"
+              : vr <= 1.5    ? "PASS"
+                             : "FAIL")
+          << "); static RMSE " << num(off->still.rmse, "%.4f") << " -> " << num(row.still.rmse, "%.4f")
+          << (soft ? " (soft: outside the issue's targets, shown to say what happens)" : "") << "\n";
+    }
+    if (!any) f << "- no lambda = 0.9 rows\n";
+}
+
+}  // namespace rrc_sweep

@@ -1,0 +1,150 @@
+// The GPU objects of one sweep frame, shared by the sweep (sweep_run.cpp) and
+// the rectification study (rectify_study.cpp): rrc-sample's scene, shadow
+// maps, G-buffer and signal passes without its Renderer, one command buffer
+// submitted and waited for at a time, with timestamps.
+#pragma once
+
+#include "frame_state.h"
+#include "gpu.h"
+#include "raster.h"
+#include "readback.h"
+#include "scene.h"
+#include "signals.h"
+
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace rrc_sweep {
+
+using rrc_sample::FrameState;
+using rrc_sample::Gpu;
+using rrc_sample::Image;
+using rrc_sample::kSignalEnv;
+using rrc_sample::kSignalPcf;
+using rrc_sample::kSignalSoft;
+using rrc_sample::Sampling;
+
+constexpr uint32_t kQueries = 512;
+// The brute force's and the rrc runs' seeds are 1..S; seeds 0 and 1 of the
+// reference streams give env's target and its independent twin.
+constexpr uint32_t kFirstSeed = 1;
+
+/** One signal image as floats (R32F: 1 per pixel, RGBA32F: 4). */
+inline std::vector<float> floats_of(const rrc_sample::Readback& r, int slot) {
+    std::vector<float> v(r.bytes(slot) / sizeof(float));
+    std::memcpy(v.data(), r.data(slot), r.bytes(slot));
+    return v;
+}
+
+inline const Image& signal_image(const rrc_sample::SignalImages& images, uint32_t signal) {
+    return signal == kSignalPcf ? images.pcf : signal == kSignalEnv ? images.env : images.soft;
+}
+inline int stride_of(uint32_t signal) { return signal == kSignalEnv ? 4 : 1; }
+
+/** The GPU objects of the sample's frame, without rrc-sample's Renderer: the sweep records its own frames. */
+struct Engine {
+    Engine(Gpu& g, const rrc_sample::Scene& s, const rrc_sample::RenderSettings& rs)
+        : gpu(g),
+          scene(s),
+          settings(rs),
+          gpu_scene(g, s),
+          maps(rrc_sample::create_shadow_maps(g, rs)),
+          shadows(g, gpu_scene),
+          gbuffer(g, gpu_scene, rs.width, rs.height),
+          signals(g, gpu_scene, gbuffer.images(), maps, rs.width, rs.height) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = gpu.pool;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        rrc_sample::vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd), "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        rrc_sample::vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence), "vkCreateFence");
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qci.queryCount = kQueries;
+        rrc_sample::vk_check(vkCreateQueryPool(gpu.device, &qci, nullptr, &queries), "vkCreateQueryPool");
+    }
+    ~Engine() {
+        vkDeviceWaitIdle(gpu.device);
+        vkDestroyQueryPool(gpu.device, queries, nullptr);
+        vkDestroyFence(gpu.device, fence, nullptr);
+        vkFreeCommandBuffers(gpu.device, gpu.pool, 1, &cmd);
+        rrc_sample::destroy_shadow_maps(gpu, maps);
+    }
+
+    /** Sets frame `index`'s uniforms (the GPU is idle) and returns its state. */
+    FrameState begin_frame(int index, int taps, uint32_t seed) {
+        rrc_sample::RenderSettings rs = settings;
+        rs.taps = taps;
+        rs.seed = seed;
+        FrameState state = rrc_sample::make_frame_state(scene, rs, index);
+        gpu_scene.update(state);
+        return state;
+    }
+
+    /** Records with `body` (after the previous frame's work and the query reset), submits, waits;
+     *  returns the `stamps` timestamps in milliseconds. */
+    template <typename Body>
+    std::vector<double> submit(uint32_t stamps, Body&& body) {
+        if (stamps > kQueries) throw std::runtime_error("rrc-sweep: more timestamps in a frame than the query pool holds");
+        rrc_sample::vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        rrc_sample::vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+        vkCmdResetQueryPool(cmd, queries, 0, kQueries);
+        rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        uint32_t next = 0;
+        // A full barrier before each timestamp: lavapipe may write a BOTTOM_OF_PIPE timestamp before a
+        // dispatch recorded ahead of it has finished (a lone dispatch then timed at 0.07 ms instead of
+        // milliseconds); after the barrier each interval holds exactly the work recorded in it.
+        auto stamp = [&] {
+            rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, next++);
+        };
+        body(cmd, stamp);
+        rrc_sample::vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &cmd;
+        const auto t0 = std::chrono::steady_clock::now();
+        rrc_sample::vk_check(vkQueueSubmit(gpu.queue, 1, &si, fence), "vkQueueSubmit");
+        rrc_sample::vk_check(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        last_wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        rrc_sample::vk_check(vkResetFences(gpu.device, 1, &fence), "vkResetFences");
+        if (next != stamps) throw std::runtime_error("rrc-sweep: a frame wrote another number of timestamps than it declared");
+        std::vector<double> ms;
+        if (stamps == 0) return ms;
+        std::vector<uint64_t> ts(stamps);
+        rrc_sample::vk_check(vkGetQueryPoolResults(gpu.device, queries, 0, stamps, stamps * sizeof(uint64_t), ts.data(), sizeof(uint64_t),
+                                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                             "vkGetQueryPoolResults");
+        const double period = gpu.properties.limits.timestampPeriod * 1e-6;
+        for (uint32_t i = 0; i < stamps; ++i) ms.push_back((double)ts[i] * period);
+        return ms;
+    }
+
+    /** The frame's geometry: the sun's map (pcf's) and the G-buffer. */
+    void record_geometry(VkCommandBuffer c, const FrameState& state, uint32_t sigs) {
+        if (sigs & kSignalPcf) shadows.record(c, maps.sun, state.uniforms.sun_vp);
+        gbuffer.record(c);
+    }
+
+    Gpu& gpu;
+    const rrc_sample::Scene& scene;
+    rrc_sample::RenderSettings settings;
+    rrc_sample::GpuScene gpu_scene;
+    rrc_sample::ShadowMaps maps;
+    rrc_sample::ShadowPass shadows;
+    rrc_sample::GBufferPass gbuffer;
+    rrc_sample::SignalPasses signals;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    VkQueryPool queries = VK_NULL_HANDLE;
+    double last_wall_ms = 0.0;  // the last submission, vkQueueSubmit to its fence
+};
+
+}  // namespace rrc_sweep
