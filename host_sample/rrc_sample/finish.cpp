@@ -73,6 +73,19 @@ std::vector<float> fill_model(const FrameOutput& fr, const glm::dmat4& vp, const
     return shown;
 }
 
+FinishErrors finish_errors(const FrameOutput& f) {
+    FinishErrors e;
+    if (!f.checkpoint || f.pcf.reference.empty()) return e;
+    std::vector<uint8_t> surface(f.mask.size());  // as frame_errors: pcf over every surface pixel
+    for (size_t i = 0; i < f.mask.size(); ++i) surface[i] = !(f.mask[i] & RRC_MASK_BACKGROUND);
+    if (!f.pcf.display.empty()) e.pcf_display = error_against(f.pcf.display, f.pcf.reference, 1, 1, surface);
+    if (!f.pcf.weighted_target.empty()) {
+        e.pcf_vs_weighted = error_against(f.pcf.accumulated, f.pcf.weighted_target, 1, 1, surface);
+        e.weighted_vs_target = error_against(f.pcf.weighted_target, f.pcf.reference, 1, 1, surface);
+    }
+    return e;
+}
+
 const char* FinishReport::name(Display d) {
     static const char* names[kDisplayCount] = {"raw", "accumulated", "shown", "pcss", "fill_prior", "fill_none"};
     return names[d];
@@ -103,7 +116,7 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state, const std:
         dump(dir, "pcf_reference", f.index, f.pcf.reference);
         dump(dir, "pcf_raw", f.index, f.pcf.raw);
         dump(dir, "pcf_accumulated", f.index, f.pcf.accumulated);
-        dump(dir, "pcf_shown", f.index, f.pcf.shown);
+        dump(dir, "pcf_shown", f.index, f.pcf.display);
         dump(dir, "pcf_confidence", f.index, f.pcf.confidence);
         dump(dir, "pcf_weighted_target", f.index, f.pcf.weighted_target);
         dump(dir, "age", f.index, std::vector<float>(f.age.begin(), f.age.end()));

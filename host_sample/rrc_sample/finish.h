@@ -6,6 +6,7 @@
 #pragma once
 
 #include "frame_state.h"
+#include "metrics.h"
 #include "options.h"
 #include "renderer.h"
 
@@ -29,6 +30,14 @@ struct FillParams {
  *  estimate (used iff prior > 0).  Returns the displayed value of every pixel. */
 std::vector<float> fill_model(const FrameOutput& frame, const glm::dmat4& view_proj, const std::vector<float>& values,
                               const std::vector<float>& fallback, const FillParams& params);
+
+/** The finishing steps' extra errors of a checkpoint (empty otherwise), beside metrics.h's. */
+struct FinishErrors {
+    ErrorStats pcf_display;         // pcf's remapped display (--pcf-smoothstep, --pcf-threshold) against the fixed target
+    ErrorStats pcf_vs_weighted;     // with confidence: the accumulated pcf against the confidence-weighted disk mean
+    ErrorStats weighted_vs_target;  // with confidence: that weighted mean against the fixed target (the disk mean)
+};
+FinishErrors finish_errors(const FrameOutput& frame);
 
 /** Accumulates, over a run, the soft channel's error by pixel age and per checkpoint. */
 class FinishReport {

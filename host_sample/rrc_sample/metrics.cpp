@@ -60,11 +60,9 @@ std::vector<SignalErrors> frame_errors(const FrameOutput& f) {
         for (size_t i = 0; i < n; ++i) valid_hits[i] = valid[i] && hits[i];
         e.raw_hits = error_against(s.raw, s.reference, s.components, compare, valid_hits);
         e.accumulated_hits = error_against(s.accumulated, s.reference, s.components, compare, valid_hits);
-        if (!s.shown.empty()) e.shown = error_against(s.shown, s.reference, 1, 1, valid);
-        if (!s.pcss.empty()) e.fallback = error_against(s.pcss, s.reference, 1, 1, valid);
-        if (!s.weighted_target.empty()) {
-            e.accumulated_weighted = error_against(s.accumulated, s.weighted_target, 1, 1, valid);
-            e.weighted_target = error_against(s.weighted_target, s.reference, 1, 1, valid);
+        if (!s.shown.empty()) {
+            e.shown = error_against(s.shown, s.reference, 1, 1, valid);
+            e.fallback = error_against(s.pcss, s.reference, 1, 1, valid);
         }
         out.push_back(e);
     };

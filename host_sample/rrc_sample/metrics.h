@@ -30,9 +30,7 @@ struct SignalErrors {
     std::string signal;
     ErrorStats raw, accumulated;
     ErrorStats brute_force;                 // 4x the per-frame samples, one frame
-    ErrorStats shown, fallback;             // soft: displayed (accumulated + PCSS fallback), PCSS alone; pcf: the remapped display
-    ErrorStats accumulated_weighted;        // pcf with confidence: accumulated against the confidence-weighted disk mean
-    ErrorStats weighted_target;             // pcf with confidence: that weighted mean against the fixed target
+    ErrorStats shown, fallback;             // soft only: displayed (accumulated + PCSS fallback), PCSS alone
     ErrorStats raw_hits, accumulated_hits;  // over cache hits only
 };
 

@@ -233,8 +233,8 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
         if (out.checkpoint) out.pcf.weighted_target = copy_of<float>(r.data(slot_.weighted), r.bytes(slot_.weighted));
     }
     if ((s_.signals & kSignalPcf) && s_.pcf_display.any()) {
-        out.pcf.shown.resize(out.pcf.accumulated.size());
-        for (size_t i = 0; i < out.pcf.shown.size(); ++i) out.pcf.shown[i] = s_.pcf_display.apply(out.pcf.accumulated[i]);
+        out.pcf.display.resize(out.pcf.accumulated.size());
+        for (size_t i = 0; i < out.pcf.display.size(); ++i) out.pcf.display[i] = s_.pcf_display.apply(out.pcf.accumulated[i]);
     }
     if (s_.signals & kSignalSoft) {
         out.soft.shown = copy_of<float>(r.data(slot_.shown), r.bytes(slot_.shown));

@@ -45,8 +45,8 @@ struct SignalData {
     int components = 1;
     std::vector<float> raw, accumulated, reference;  // reference: checkpoints only
     std::vector<float> brute_force;                  // checkpoints: 4x the per-frame samples
-    std::vector<float> shown, pcss;                  // soft: the --soft-prior display, the PCSS estimate; pcf: the remapped
-                                                     // display (PcfDisplay), when one is on
+    std::vector<float> shown, pcss;                  // soft only: the --soft-prior display, the fallback
+    std::vector<float> display;                      // pcf with a PcfDisplay remap: what is shown (the remapped accumulated)
     std::vector<float> confidence;                   // pcf with confidence: the per-frame w
     std::vector<float> weighted_target;              // pcf with confidence, checkpoints: the confidence-weighted disk mean
 };

@@ -133,6 +133,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             rec.hits = hit_stats(out.mask);
             rec.timings = out.timings;
             rec.errors = frame_errors(out);
+            rec.finish = finish_errors(out);
             if (writer) writer->write(out);
             run.oracle_seconds += oracle_done.get();
             if (writer) writer->write_oracle(t, verdict);

@@ -3,6 +3,7 @@
 // validation test call it.
 #pragma once
 
+#include "finish.h"
 #include "metrics.h"
 #include "options.h"
 #include "oracle.h"
@@ -22,6 +23,7 @@ struct FrameRecord {
     VisibilityStats visibility;  // recall and false hits against the oracle of true visibility (oracle.h)
     FrameTimings timings;
     std::vector<SignalErrors> errors;  // checkpoints only
+    FinishErrors finish;               // checkpoints: pcf's remapped display, confidence's targets (finish.h)
 };
 
 struct RunResult {

@@ -159,7 +159,8 @@ TEST(RrcSample, PcfConfidenceImage) {
     EXPECT_GT(weighted_gap, 1e-3) << "the confidence-weighted disk mean differs from the disk mean near shadow edges";
     const SignalErrors* e = find(r.frames[5], "pcf");
     ASSERT_NE(e, nullptr);
-    EXPECT_LT(e->weighted_target.rmse, 0.05) << "but not by much";
+    EXPECT_GT(r.frames[5].finish.weighted_vs_target.pixels, 0u);
+    EXPECT_LT(r.frames[5].finish.weighted_vs_target.rmse, 0.05) << "but not by much";
     EXPECT_LT(e->accumulated.rmse, e->raw.rmse);
 }
 
@@ -185,8 +186,9 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
     run_sample(d, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
         ASSERT_LT(t, acc.size());
         EXPECT_EQ(f.pcf.accumulated, acc[t]) << "frame " << t << ": the display remap reached rrc's history";
-        ASSERT_EQ(f.pcf.shown.size(), f.pcf.accumulated.size());
-        for (size_t i = 0; i < f.pcf.shown.size(); ++i) ASSERT_TRUE(f.pcf.shown[i] == 0.0f || f.pcf.shown[i] == 1.0f) << "thresholded";
+        ASSERT_EQ(f.pcf.display.size(), f.pcf.accumulated.size());
+        for (size_t i = 0; i < f.pcf.display.size(); ++i)
+            ASSERT_TRUE(f.pcf.display[i] == 0.0f || f.pcf.display[i] == 1.0f) << "thresholded";
         changed += f.colour[0] != colour[t];
         ++t;
     });

@@ -197,14 +197,16 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
                   << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << "," << fmt("%.6f", e.raw_hits.rmse) << ","
                   << fmt("%.6f", e.accumulated_hits.rmse) << ",";
                 // shown: soft's --soft-prior display; pcf's remapped display (--pcf-smoothstep/--pcf-threshold)
-                if (e.shown.pixels)
-                    f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << ",";
+                const bool pcf = e.signal == "pcf";
+                const ErrorStats& shown = pcf ? r.finish.pcf_display : e.shown;
+                if (shown.pixels)
+                    f << fmt("%.6f", shown.rmse) << "," << fmt("%.3f", shown.psnr) << ",";
                 else
                     f << ",,";
-                if (e.fallback.pixels) f << fmt("%.6f", e.fallback.rmse);
+                if (e.signal == "soft") f << fmt("%.6f", e.fallback.rmse);
                 f << ",";
-                if (e.weighted_target.pixels)
-                    f << fmt("%.6f", e.accumulated_weighted.rmse) << "," << fmt("%.6f", e.weighted_target.rmse);
+                if (pcf && r.finish.weighted_vs_target.pixels)
+                    f << fmt("%.6f", r.finish.pcf_vs_weighted.rmse) << "," << fmt("%.6f", r.finish.weighted_vs_target.rmse);
                 else
                     f << ",";
                 f << "\n";
