@@ -101,9 +101,25 @@ std::string usage() {
            "                           0 = the library default, 4 ulp under --depth-test fixed; not with --depth-test adaptive)\n"
            "  --soft-prior N           weight of the PCSS fallback on young soft-shadow pixels, in samples (default 4)\n"
            "  --soft-age-cap N         the soft channel's age cap (default 64)\n"
+           "  --soft-fill T            rrc's spatial fill on the soft channel for pixels younger than T frames (fill_age;\n"
+           "                           default 0 = off); the display then shows rrc's output, not the --soft-prior blend\n"
+           "  --fill-radius R          the fill's window half width (default 0: the library's, 2)\n"
+           "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.05)\n"
+           "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
+           "                           fallback image (default 4; 0 = no fallback)\n"
+           "  --blur-sigma S           the pcf channel's Gaussian blur (with --history-filter gaussian; default 0: the library's 0.5)\n"
+           "  --pcf-smoothstep E0,E1   display only: show smoothstep(E0, E1, pcf) (never fed back to rrc)\n"
+           "  --pcf-threshold X        display only: show pcf >= X as 1, else 0 (after the smoothstep, if any)\n"
+           "  --pcf-confidence         the pcf signal pass writes the shadow-map test confidence per pixel (Scherzer 2007);\n"
+           "                           the pcf channel gets confidence = 1 and that image\n"
+           "  --reference-frames LIST  also take the reference on these frames (comma separated)\n"
+           "  --dump-soft              on checkpoints write finish/soft_<what>_NNNN.f32 (raw float images of soft's displays)\n"
+           "  --young-ages N           the young-pixel table (young.csv): ages 1..N (default 8)\n"
+           "  --model-fill-age T       T of the fill's CPU model, scored in young.csv without --soft-fill (default 8)\n"
            "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.6, env 0.8)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
-           "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest\n"
+           "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
+           "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
            "  --pcf-pattern P          disk (default: k taps uniform over the filter disk, unbiased for the exact disk\n"
            "                           mean the reference is) or rotated (the paper's Poisson disk, rotated per pixel)\n"
            "  --seed N                 ensemble member: moves every random stream of the signals (default 0)\n"
@@ -175,6 +191,10 @@ Options parse_options(int argc, const char* const* argv) {
             if (!rrc_host::enum_value(rrc_host::kBlendNames, v, o.channels.pcf.blend))
                 throw OptionError("--blend: expected " + rrc_host::enum_choices(rrc_host::kBlendNames) + ", got \"" + v + "\"");
             o.channels.env.blend = o.channels.pcf.blend;
+        } else if (a == "--history-filter" && i + 1 < argc && std::string(argv[i + 1]) == "gaussian") {
+            // host_sample/common's table has no GAUSSIAN yet; it is the pcf channel's (the amortized-PCF chapter's blur).
+            ++i;
+            o.channels.pcf.filter = RRC_HISTORY_FILTER_GAUSSIAN;
         } else if (a == "--history-filter") {
             const std::string v = value();
             if (!rrc_host::enum_value(rrc_host::kHistoryFilterNames, v, o.channels.pcf.filter))
@@ -193,6 +213,38 @@ Options parse_options(int argc, const char* const* argv) {
             o.sun_map = o.lamp_map = (uint32_t)to_int(a, value(), 16, 8192);
         else if (a == "--pcf-radius")
             o.pcf_radius = to_float(a, value(), 0.0f, 64.0f);
+        else if (a == "--soft-fill")
+            o.channels.soft.fill_age = (uint32_t)to_int(a, value(), 0, RRC_MAX_AGE_CAP + 1);
+        else if (a == "--fill-radius")
+            o.fill_radius = (uint32_t)to_int(a, value(), 0, RRC_MAX_FILL_RADIUS);
+        else if (a == "--fill-depth-tolerance")
+            o.fill_depth_tolerance = to_float(a, value(), 0.0f, 1e6f);
+        else if (a == "--fill-prior")
+            o.fill_prior = to_float(a, value(), 0.0f, 1e6f);
+        else if (a == "--blur-sigma")
+            o.channels.pcf.blur_sigma = to_float(a, value(), 0.0f, RRC_MAX_BLUR_SIGMA);
+        else if (a == "--pcf-smoothstep") {
+            const std::string v = value();
+            const size_t c = v.find(',');
+            if (c == std::string::npos) throw OptionError("--pcf-smoothstep: expected E0,E1, got \"" + v + "\"");
+            o.pcf_smooth_e0 = to_float(a, v.substr(0, c), -1e6f, 1e6f);
+            o.pcf_smooth_e1 = to_float(a, v.substr(c + 1), -1e6f, 1e6f);
+            if (!(o.pcf_smooth_e1 > o.pcf_smooth_e0)) throw OptionError("--pcf-smoothstep: needs E0 < E1");
+            o.pcf_smoothstep = true;
+        } else if (a == "--pcf-threshold")
+            o.pcf_threshold = to_float(a, value(), 0.0f, 1.0f);
+        else if (a == "--pcf-confidence")
+            o.channels.pcf.confidence = 1;
+        else if (a == "--reference-frames") {
+            std::stringstream ss(value());
+            std::string item;
+            while (std::getline(ss, item, ',')) o.reference_frames.push_back((int)to_int(a, item, 0, 100000));
+        } else if (a == "--dump-soft")
+            o.dump_soft = true;
+        else if (a == "--model-fill-age")
+            o.model_fill_age = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP + 1);
+        else if (a == "--young-ages")
+            o.young_ages = (uint32_t)to_int(a, value(), 1, 255);
         else if (a == "--static-camera")
             o.static_camera = true;
         else if (a == "--light-speed")
@@ -210,6 +262,14 @@ Options parse_options(int argc, const char* const* argv) {
         else
             throw OptionError("unknown option \"" + a + "\" (--help lists them)");
     }
+    if (o.channels.pcf.blur_sigma > 0.0f && o.channels.pcf.filter != RRC_HISTORY_FILTER_GAUSSIAN)
+        throw OptionError("--blur-sigma needs --history-filter gaussian");
+    // The fill's fallback is the PCSS estimate, worth --fill-prior samples; without a fill rrc takes none.
+    // The fill's members go to rrc only with a fill (the library refuses them without one).
+    const bool fill = o.channels.soft.fill_age != 0;
+    o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
+    o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
+    o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
     // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)
         throw OptionError("--depth-test adaptive takes no --epsilon-scale (an epsilon makes the test fixed)");

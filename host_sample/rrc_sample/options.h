@@ -15,14 +15,18 @@ struct Options {
     int frames = 60;
     uint32_t width = 256, height = 160;
     std::string out = "out/sample";
-    int reference_every = 10;                // checkpoint frames: t % K == K-1, and the last frame; 0 = none
-    int reference_samples = 256;             // per pixel (pcf taps, env sub-pixel rays, soft shadow maps)
-    int taps = 4;                            // k: pcf taps and env sub-pixel samples per frame
-    uint32_t signals = 0;                    // Signal bits; 0 = every signal the scene uses
-    uint32_t reprojection = 0;               // RRC_REPROJECTION_*
-    float epsilon_scale = 0.0f;              // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
-    uint32_t depth_test = 0;                 // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
-    float soft_prior = 4.0f;                 // PCSS fallback weight, in samples (see README.md)
+    int reference_every = 10;           // checkpoint frames: t % K == K-1, and the last frame; 0 = none
+    int reference_samples = 256;        // per pixel (pcf taps, env sub-pixel rays, soft shadow maps)
+    int taps = 4;                       // k: pcf taps and env sub-pixel samples per frame
+    uint32_t signals = 0;               // Signal bits; 0 = every signal the scene uses
+    uint32_t reprojection = 0;          // RRC_REPROJECTION_*
+    float epsilon_scale = 0.0f;         // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
+    uint32_t depth_test = 0;            // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
+    float soft_prior = 4.0f;            // PCSS fallback weight, in samples (see README.md)
+    float fill_prior = 4.0f;            // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
+    uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
+    float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
+    // Without --soft-fill the three fill options still set the CPU model of the fill (finish.h).
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
@@ -30,8 +34,16 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
-    float light_speed = 0.0f;                // the moving light, degrees a frame (Scene::light_speed); 0 = fixed
-    bool object_id = true;                   // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
+    // Issue 13's finishing steps (README.md, "Finishing steps"): display-only PCF remaps (never fed back to rrc).
+    bool pcf_smoothstep = false;
+    float pcf_smooth_e0 = 0.0f, pcf_smooth_e1 = 1.0f;  // --pcf-smoothstep E0,E1
+    float pcf_threshold = -1.0f;                       // --pcf-threshold X; < 0: off
+    std::vector<int> reference_frames;                 // --reference-frames: extra checkpoint frames
+    bool dump_soft = false;                            // --dump-soft: raw float images of soft's displays on checkpoints
+    uint32_t model_fill_age = 8;                       // --model-fill-age: T of the fill's CPU model (without --soft-fill)
+    uint32_t young_ages = 8;                           // --young-ages: the young-pixel table's ages 1..N
+    float light_speed = 0.0f;                          // the moving light, degrees a frame (Scene::light_speed); 0 = fixed
+    bool object_id = true;                             // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)
     bool validation = false;
     bool quiet = false;
     bool write_images = true;  // PNG/EXR per frame; the summary is always written

@@ -11,16 +11,29 @@ namespace rrc_sample {
 
 enum ComposeInput : uint32_t { kComposeAccumulated = 0, kComposeRaw = 1, kComposeReference = 2 };
 
+/** Display-only remaps of the accumulated PCF (compose.comp): never fed back to rrc. */
+struct PcfDisplay {
+    bool smoothstep = false;
+    float e0 = 0.0f, e1 = 1.0f;
+    float threshold = -1.0f;  // < 0: off
+    bool any() const { return smoothstep || threshold >= 0.0f; }
+    /** The same remap on the CPU (the metrics score what is shown). */
+    float apply(float v) const;
+};
+
 class PostPasses {
 public:
     PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask,
-               const SignalImages& accumulated, const SignalImages& raw, const SignalImages& reference, uint32_t width, uint32_t height);
+               const SignalImages& accumulated, const SignalImages& raw, const SignalImages& reference, uint32_t width, uint32_t height,
+               bool soft_fill = false, const PcfDisplay& pcf_display = {});
     ~PostPasses();
     PostPasses(const PostPasses&) = delete;
     PostPasses& operator=(const PostPasses&) = delete;
 
     /** Age (frame parity selects the ping-pong side) and, with soft shadows, the fallback. */
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
+    /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
+    void record_pcss(VkCommandBuffer cmd, uint32_t parity);
     void record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input);
 
     const Image& age(uint32_t parity) const { return age_[parity]; }
@@ -31,6 +44,7 @@ public:
 private:
     Gpu& gpu_;
     uint32_t width_, height_;
+    PcfDisplay pcf_display_;
     Image age_[2], shown_, pcss_, colour_[3];
     ComputeKernel age_kernel_, fallback_, compose_;
 };

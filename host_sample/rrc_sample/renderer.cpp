@@ -38,7 +38,7 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
         w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.channels, s.use_object_id};
     rrc_.reset(new RrcStage(gpu, rs));
     post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
-                               signals_->reference(), w, h));
+                               signals_->reference(), w, h, s.channels.soft.fill_age > 0, s.pcf_display));
 
     readback_.reset(new Readback(gpu));
     Readback& r = *readback_;
@@ -58,6 +58,8 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
     slot_.position = r.add(gbuffer_->images().position, ro);
     slot_.normal = r.add(gbuffer_->images().normal, ro);
     slot_.prev_clip = r.add(gbuffer_->images().prev_clip, ro);
+    slot_.confidence = r.add(signals_->pcf_confidence());
+    slot_.weighted = r.add(signals_->pcf_weighted_target());
     r.allocate();
 
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
@@ -121,10 +123,15 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     gbuffer_->record(cmd);
     stamp(kGBuffer);
     label(gpu_, cmd, "signals");
-    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern};
+    const bool confidence = s_.channels.pcf.confidence != 0;
+    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence};
     signals_->record(cmd, sig, state, sampling);
+    // rrc's soft fill takes the PCSS estimate as its fallback: computed before rrc's dispatch.
+    const bool fallback = (sig & kSignalSoft) && s_.channels.soft.fill_prior > 0.0f;
+    if (fallback) post_->record_pcss(cmd, parity_);
     stamp(kSignals);
-    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset);
+    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(),
+                 fallback ? &post_->soft_pcss() : nullptr);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);
@@ -132,7 +139,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     stamp(kPost);
     if (checkpoint) {
         label(gpu_, cmd, "reference");
-        signals_->record_reference(cmd, sig, s_.reference_samples, scene_, *shadows_);
+        signals_->record_reference(cmd, sig, s_.reference_samples, scene_, *shadows_, 0, confidence);
         stamp(kReference);
         // 4x the per-frame budget: 4k pcf taps and env rays, soft from 4 light points (it has one a frame).
         signals_->record_brute_force(cmd, sig & ~kSignalSoft, 4 * (uint32_t)s_.render.taps, index, sampling, scene_, *shadows_);
@@ -145,6 +152,8 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     std::vector<int> slots = {slot_.mask, slot_.age[parity_], slot_.colour[0], slot_.shown,
                               slot_.pcss, slot_.position,     slot_.normal,    slot_.prev_clip};
     for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]);
+    if (confidence) slots.push_back(slot_.confidence);
+    if (confidence && checkpoint) slots.push_back(slot_.weighted);
     if (checkpoint)
         for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);
     if (checkpoint) slots.push_back(slot_.colour[1]), slots.push_back(slot_.colour[2]);
@@ -162,6 +171,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     FrameOutput out;
     out.index = index;
     out.checkpoint = checkpoint;
+    out.width = (int)s_.render.width, out.height = (int)s_.render.height;
     out.eye = glm::vec3(state.uniforms.camera_pos);
     out.pixel_angle = scene_.camera(state.uniforms.camera_pos.w).fov_y / (float)s_.render.height;
     out.timings.cpu_frame = std::chrono::duration<double, std::milli>(t1 - t0).count();
@@ -217,6 +227,14 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
             sd[k]->reference = copy_of<float>(r.data(slot_.ref[k]), r.bytes(slot_.ref[k]));
             sd[k]->brute_force = copy_of<float>(r.data(slot_.brute[k]), r.bytes(slot_.brute[k]));
         }
+    }
+    if ((s_.signals & kSignalPcf) && s_.channels.pcf.confidence) {
+        out.pcf.confidence = copy_of<float>(r.data(slot_.confidence), r.bytes(slot_.confidence));
+        if (out.checkpoint) out.pcf.weighted_target = copy_of<float>(r.data(slot_.weighted), r.bytes(slot_.weighted));
+    }
+    if ((s_.signals & kSignalPcf) && s_.pcf_display.any()) {
+        out.pcf.display.resize(out.pcf.accumulated.size());
+        for (size_t i = 0; i < out.pcf.display.size(); ++i) out.pcf.display[i] = s_.pcf_display.apply(out.pcf.accumulated[i]);
     }
     if (s_.signals & kSignalSoft) {
         out.soft.shown = copy_of<float>(r.data(slot_.shown), r.bytes(slot_.shown));

@@ -25,7 +25,8 @@ struct RendererSettings {
     float epsilon_scale = 0.0f;
     uint32_t depth_test = 0;  // RRC_DEPTH_TEST_*
     float soft_prior = 4.0f;
-    ChannelPresets channels;
+    ChannelPresets channels;    // soft.fill_age: rrc's fill (the display shows rrc's soft output); pcf.confidence: w per pixel
+    PcfDisplay pcf_display;     // display-only remaps of the accumulated PCF
     bool use_object_id = true;  // rrc_context_desc.use_object_id
     uint32_t reference_samples = 256;
 };
@@ -44,12 +45,16 @@ struct SignalData {
     int components = 1;
     std::vector<float> raw, accumulated, reference;  // reference: checkpoints only
     std::vector<float> brute_force;                  // checkpoints: 4x the per-frame samples
-    std::vector<float> shown, pcss;                  // soft only: what is displayed, the fallback
+    std::vector<float> shown, pcss;                  // soft only: the --soft-prior display, the fallback
+    std::vector<float> display;                      // pcf with a PcfDisplay remap: what is shown (the remapped accumulated)
+    std::vector<float> confidence;                   // pcf with confidence: the per-frame w
+    std::vector<float> weighted_target;              // pcf with confidence, checkpoints: the confidence-weighted disk mean
 };
 
 struct FrameOutput {
     int index = 0;
     bool checkpoint = false;
+    int width = 0, height = 0;
     std::vector<uint8_t> mask;                   // rrc's mask bits
     std::vector<uint16_t> age;                   // the host's age map
     std::array<std::vector<uint8_t>, 3> colour;  // RGBA8: accumulated; raw, reference (checkpoints)
@@ -90,7 +95,7 @@ private:
     std::unique_ptr<PostPasses> post_;
     std::unique_ptr<Readback> readback_;
     struct Slots {
-        int mask, age[2], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip;
+        int mask, age[2], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip, confidence, weighted;
     } slot_{};
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

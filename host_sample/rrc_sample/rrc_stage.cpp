@@ -76,18 +76,27 @@ uint64_t RrcStage::memory_bytes() const {
 }
 
 void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
-                      bool reset) {
+                      bool reset, const Image* pcf_confidence, const Image* soft_fallback) {
     const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
     std::vector<rrc_vulkan_channel_images> ch;
-    auto add = [&](const Image& in, const Image& out) {
+    auto add = [&](const Image& in, const Image& out, const ChannelSettings& cs, const Image* confidence, const Image* fallback) {
         auto c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         c.samples = view_of(in, GEN);
         c.output = view_of(out, GEN);
+        if (cs.confidence) {
+            if (!confidence) throw std::runtime_error("rrc_stage: a confidence channel needs its confidence image");
+            c.confidence = view_of(*confidence, GEN);
+        }
+        if (cs.fill_prior > 0.0f) {
+            if (!fallback) throw std::runtime_error("rrc_stage: a fill with a prior needs its fallback image");
+            c.fallback = view_of(*fallback, GEN);
+        }
         ch.push_back(c);
     };
-    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf);
-    if (settings_.signals & kSignalEnv) add(samples.env, out_.env);
-    if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft);
+    const ChannelPresets& p = settings_.channels;
+    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf, p.pcf, pcf_confidence, nullptr);
+    if (settings_.signals & kSignalEnv) add(samples.env, out_.env, p.env, nullptr, nullptr);
+    if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft, p.soft, nullptr, soft_fallback);
 
     auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
     f.command_buffer = cmd;

@@ -38,9 +38,12 @@ public:
     RrcStage(const RrcStage&) = delete;
     RrcStage& operator=(const RrcStage&) = delete;
 
-    /** Records rrc's barriers and its one dispatch.  reset: every pixel misses. */
+    /** Records rrc's barriers and its dispatches.  reset: every pixel misses.  pcf_confidence:
+     *  the pcf channel's confidence image (required iff its settings have confidence);
+     *  soft_fallback: the soft channel's fill fallback, the PCSS estimate (required iff its
+     *  fill_prior > 0), already written (and made visible) by the caller. */
     void record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
-                bool reset);
+                bool reset, const Image* pcf_confidence = nullptr, const Image* soft_fallback = nullptr);
 
     const SignalImages& accumulated() const { return out_; }
     const Image& mask() const { return mask_; }

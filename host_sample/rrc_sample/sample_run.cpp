@@ -1,5 +1,6 @@
 #include "sample_run.h"
 
+#include "finish.h"
 #include "output.h"
 #include "scene.h"
 #include "summary.h"
@@ -15,19 +16,33 @@ namespace {
 
 std::string channel_line(const rrc_channel_desc& c) {
     const char* blend = c.blend == RRC_BLEND_FIXED ? "fixed" : c.blend == RRC_BLEND_AGE_AWARE ? "age_aware" : "running_mean";
+    const char* filter = c.filter == RRC_HISTORY_FILTER_NEAREST       ? "nearest"
+                         : c.filter == RRC_HISTORY_FILTER_CATMULL_ROM ? "catmull_rom"
+                         : c.filter == RRC_HISTORY_FILTER_GAUSSIAN    ? "gaussian"
+                                                                      : "bilinear";
     char line[256];
     if (c.blend == RRC_BLEND_RUNNING_MEAN)
-        std::snprintf(line, sizeof line, "%s: %u component%s, %s, age cap %u, bilinear, %s history", c.name, c.components,
-                      c.components > 1 ? "s" : "", blend, c.age_cap ? c.age_cap : 255u, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
+        std::snprintf(line, sizeof line, "%s: %u component%s, %s, age cap %u, %s, %s history", c.name, c.components,
+                      c.components > 1 ? "s" : "", blend, c.age_cap ? c.age_cap : 255u, filter,
+                      c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
     else
-        std::snprintf(line, sizeof line, "%s: %u component%s, %s, lambda %.2f, bilinear, %s history", c.name, c.components,
-                      c.components > 1 ? "s" : "", blend, c.lambda, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
-    return line;
+        std::snprintf(line, sizeof line, "%s: %u component%s, %s, lambda %.2f, %s, %s history", c.name, c.components,
+                      c.components > 1 ? "s" : "", blend, c.lambda, filter, c.precision == RRC_HISTORY_FP32 ? "fp32" : "fp16");
+    std::string l = line;
+    if (c.filter == RRC_HISTORY_FILTER_GAUSSIAN)
+        l += ", blur sigma " + std::to_string(c.blur_sigma > 0.0f ? c.blur_sigma : RRC_DEFAULT_BLUR_SIGMA).substr(0, 5);
+    if (c.confidence) l += ", confidence";
+    if (c.fill_age)
+        l += ", fill below age " + std::to_string(c.fill_age) + " (radius " + std::to_string(c.fill_radius ? c.fill_radius : 2u) +
+             ", fallback weight " + std::to_string(c.fill_prior).substr(0, 4) + ")";
+    return l;
 }
 
 }  // namespace
 
 bool is_checkpoint(const Options& o, int frame) {
+    for (int f : o.reference_frames)
+        if (f == frame) return true;
     if (o.reference_every <= 0) return false;
     return frame % o.reference_every == o.reference_every - 1 || frame == o.frames - 1;
 }
@@ -60,6 +75,9 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.depth_test = o.depth_test;
     rs.soft_prior = o.soft_prior;
     rs.channels = o.channels;
+    rs.pcf_display.smoothstep = o.pcf_smoothstep;
+    rs.pcf_display.e0 = o.pcf_smooth_e0, rs.pcf_display.e1 = o.pcf_smooth_e1;
+    rs.pcf_display.threshold = o.pcf_threshold;
     rs.render.seed = o.seed;
     rs.render.pcf_pattern = o.pcf_pattern;
     rs.use_object_id = o.object_id;
@@ -90,6 +108,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
         renderer.render(0, true, false);
         const auto start = std::chrono::steady_clock::now();
         const VisibilityOracle oracle(scene);
+        FinishReport finish(o, run.signals);
         FrameOutput previous;
         for (int t = 0; t < o.frames; ++t) {
             const bool reset = t == 0;
@@ -105,8 +124,8 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             std::vector<uint8_t> verdict;  // per pixel, for oracle/oracle_NNNN.png
             std::future<double> oracle_done = std::async(std::launch::async, [&] {
                 const auto oracle_start = std::chrono::steady_clock::now();
-                rec.visibility = oracle.judge(current_view, previous_view, o.width, o.height, out.mask,
-                                              reset ? kNoPrevious : previous.object, writer ? &verdict : nullptr);
+                rec.visibility =
+                    oracle.judge(current_view, previous_view, o.width, o.height, out.mask, reset ? kNoPrevious : previous.object, &verdict);
                 return std::chrono::duration<double>(std::chrono::steady_clock::now() - oracle_start).count();
             });
             rec.index = t;
@@ -114,15 +133,20 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             rec.hits = hit_stats(out.mask);
             rec.timings = out.timings;
             rec.errors = frame_errors(out);
+            rec.finish = finish_errors(out);
             if (writer) writer->write(out);
             run.oracle_seconds += oracle_done.get();
             if (writer) writer->write_oracle(t, verdict);
+            finish.add(out, make_frame_state(scene, rs.render, t), verdict);
             if (on_frame) on_frame(out, rec);
             if (progress) *progress << progress_line(rec, o.frames) << std::flush;
             run.frames.push_back(std::move(rec));
             previous = std::move(out);
         }
         run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        finish.write(o.out);
+        run.finish_table = finish.table();
+        if (progress) *progress << run.finish_table;
     } catch (...) {
         gpu.shutdown();
         throw;

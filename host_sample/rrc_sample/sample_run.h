@@ -3,6 +3,7 @@
 // validation test call it.
 #pragma once
 
+#include "finish.h"
 #include "metrics.h"
 #include "options.h"
 #include "oracle.h"
@@ -22,6 +23,7 @@ struct FrameRecord {
     VisibilityStats visibility;  // recall and false hits against the oracle of true visibility (oracle.h)
     FrameTimings timings;
     std::vector<SignalErrors> errors;  // checkpoints only
+    FinishErrors finish;               // checkpoints: pcf's remapped display, confidence's targets (finish.h)
 };
 
 struct RunResult {
@@ -35,6 +37,7 @@ struct RunResult {
     double oracle_seconds = 0.0;        // the visibility oracle's ray casts (overlapping the files)
     uint64_t validation_messages = 0;   // counted through device and instance destruction
     std::vector<std::string> messages;  // the first few
+    std::string finish_table;           // the young soft pixels' errors (finish.h), empty without them
 };
 
 /** Runs the sample.  progress: per-frame lines (nullptr or --quiet: none).

@@ -2,16 +2,19 @@
 // validation, on its own instance and device: a short sequence must produce
 // zero messages (device and instance destruction included, so leaked objects
 // count), hit the cache, and accumulate signals that beat one frame's samples.
+#include "finish.h"
 #include "frame_state.h"
 #include "options.h"
 #include "oracle.h"
 #include "sample_run.h"
+#include "scene.h"
 
 #include <gtest/gtest.h>
 #include <rrc/rrc.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -118,6 +121,132 @@ TEST(RrcSample, DefaultDepthTestRecallAndNoFalseHits) {
     for (const FrameRecord& f : n.frames) w += f.visibility;
     EXPECT_GT(w.false_hits, 0u) << "without object ids a hit whose taps lie on another object can be false";
     EXPECT_GE(w.recall(), v.recall()) << "object ids only refuse hits";
+}
+
+// Issue 13, C: with --pcf-confidence the pcf pass writes Scherzer's per-tap confidence,
+// combined as w = mean(c_i): in [0, 1] everywhere, 1 on the background, and not all ones
+// on surfaces (a tap exactly at a texel centre is rare); the reference writes the
+// confidence-weighted disk mean beside the exact one, close to it but not equal.
+TEST(RrcSample, PcfConfidenceImage) {
+    Options o = tiny("confidence");
+    o.signals = kSignalPcf;
+    o.write_images = false;
+    o.channels.pcf.confidence = 1;
+    size_t frames = 0, below_one = 0, surface = 0;
+    double weighted_gap = 0.0;
+    RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        ++frames;
+        ASSERT_EQ(f.pcf.confidence.size(), f.mask.size());
+        for (size_t i = 0; i < f.mask.size(); ++i) {
+            const float w = f.pcf.confidence[i];
+            ASSERT_TRUE(w >= 0.0f && w <= 1.0f) << "pixel " << i << ": " << w;
+            if (f.mask[i] & RRC_MASK_BACKGROUND) {
+                EXPECT_EQ(w, 1.0f);
+                continue;
+            }
+            ++surface;
+            below_one += w < 0.999f;
+        }
+        if (f.checkpoint) {
+            ASSERT_EQ(f.pcf.weighted_target.size(), f.mask.size());
+            for (size_t i = 0; i < f.mask.size(); ++i)
+                weighted_gap = std::max(weighted_gap, (double)std::fabs(f.pcf.weighted_target[i] - f.pcf.reference[i]));
+        }
+    });
+    EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    EXPECT_EQ(frames, 6u);
+    EXPECT_GT(below_one, surface * 9 / 10) << "k = 4 taps all at texel centres should be rare";
+    EXPECT_GT(weighted_gap, 1e-3) << "the confidence-weighted disk mean differs from the disk mean near shadow edges";
+    const SignalErrors* e = find(r.frames[5], "pcf");
+    ASSERT_NE(e, nullptr);
+    EXPECT_GT(r.frames[5].finish.weighted_vs_target.pixels, 0u);
+    EXPECT_LT(r.frames[5].finish.weighted_vs_target.rmse, 0.05) << "but not by much";
+    EXPECT_LT(e->accumulated.rmse, e->raw.rmse);
+}
+
+// Issue 13, B: the smoothstep and the threshold are display steps: rrc's history (its
+// output, the accumulated pcf) is the same with and without them, frame for frame, while
+// the composed frame changes.
+TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
+    Options o = tiny("display_plain");
+    o.validation = false;
+    o.signals = kSignalPcf;
+    o.write_images = false;
+    std::vector<std::vector<float>> acc;
+    std::vector<std::vector<uint8_t>> colour;
+    run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        acc.push_back(f.pcf.accumulated);
+        colour.push_back(f.colour[0]);
+    });
+    Options d = o;
+    d.out += "_remap";
+    d.pcf_smoothstep = true, d.pcf_smooth_e0 = 0.2f, d.pcf_smooth_e1 = 0.8f;
+    d.pcf_threshold = 0.5f;
+    size_t t = 0, changed = 0;
+    run_sample(d, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        ASSERT_LT(t, acc.size());
+        EXPECT_EQ(f.pcf.accumulated, acc[t]) << "frame " << t << ": the display remap reached rrc's history";
+        ASSERT_EQ(f.pcf.display.size(), f.pcf.accumulated.size());
+        for (size_t i = 0; i < f.pcf.display.size(); ++i)
+            ASSERT_TRUE(f.pcf.display[i] == 0.0f || f.pcf.display[i] == 1.0f) << "thresholded";
+        changed += f.colour[0] != colour[t];
+        ++t;
+    });
+    EXPECT_EQ(t, acc.size());
+    EXPECT_EQ(changed, t) << "every composed frame shows the remap";
+}
+
+// Issue 13, A: rrc's fill (--soft-fill 4, the PCSS estimate as fallback) changes what young
+// soft-shadow pixels show and nothing else: pixels of age >= T show the history (the same
+// as a run without the fill, bit for bit), young ones differ, and they follow the fill's
+// formula (docs/CONVENTIONS.md; finish.h's CPU model, on the run without the fill).
+// Needs the library's fill kernel (API 0.4).
+TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
+    Options o = tiny("fill_off");
+    o.validation = false;
+    o.signals = kSignalSoft;
+    o.reference_every = 0;
+    o.write_images = false;
+    o.frames = 10;  // frames 0..3 are young everywhere (the reset)
+    const uint32_t T = 4;
+    Scene scene = Scene::make(o.scene);
+    RenderSettings rs;
+    rs.width = o.width, rs.height = o.height, rs.taps = o.taps, rs.fps = o.fps, rs.sun_map = o.sun_map, rs.lamp_map = o.lamp_map;
+    FillParams fp;
+    fp.age = T, fp.prior = 4.0f;
+    std::vector<std::vector<float>> plain, model;
+    std::vector<std::vector<uint16_t>> ages;
+    run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        plain.push_back(f.soft.accumulated);
+        ages.push_back(f.age);
+        model.push_back(fill_model(f, make_frame_state(scene, rs, f.index).view_proj, f.soft.accumulated, f.soft.pcss, fp));
+    });
+    Options d = o;
+    d.out += "_on";
+    d.channels.soft.fill_age = T;
+    d.channels.soft.fill_prior = 4.0f;
+    size_t t = 0, young = 0, differ = 0, near_model = 0, old = 0;
+    run_sample(d, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        ASSERT_LT(t, plain.size());
+        ASSERT_EQ(f.age, ages[t]) << "the fill is display-only: the ages are the same";
+        for (size_t i = 0; i < f.mask.size(); ++i) {
+            if (f.mask[i] & RRC_MASK_BACKGROUND) continue;
+            if (f.age[i] >= T) {
+                ++old;
+                ASSERT_EQ(f.soft.accumulated[i], plain[t][i]) << "frame " << t << " pixel " << i << ": an old pixel shows its history";
+                continue;
+            }
+            ++young;
+            differ += f.soft.accumulated[i] != plain[t][i];
+            near_model += std::fabs(f.soft.accumulated[i] - model[t][i]) <= 2e-3f;
+        }
+        ++t;
+    });
+    EXPECT_EQ(t, plain.size());
+    EXPECT_GT(old, 0u);
+    EXPECT_GT(young, 0u);
+    EXPECT_GT(differ, young / 2) << "young pixels show the fill, not their one or few samples";
+    EXPECT_GT(near_model, young * 9 / 10) << "the fill follows docs/CONVENTIONS.md (finish.h's model)";
 }
 
 // The oracle against a test that accepts nearly anything: a fixed epsilon of
@@ -285,8 +414,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* adaptive[] = {"rrc-sample", "--depth-test", "adaptive"};
     EXPECT_EQ(parse_options(3, adaptive).depth_test, (uint32_t)RRC_DEPTH_TEST_ADAPTIVE);
 
-    const char* channels[] = {"rrc-sample", "--lambda", "0.9", "--blend", "fixed", "--history-filter", "catmull_rom",
-                              "--pcf-pattern", "rotated", "--seed", "3", "--soft-age-cap", "32"};
+    const char* channels[] = {"rrc-sample",  "--lambda",      "0.9",     "--blend", "fixed", "--history-filter",
+                              "catmull_rom", "--pcf-pattern", "rotated", "--seed",  "3",     "--soft-age-cap",
+                              "32"};
     o = parse_options((int)(sizeof channels / sizeof *channels), channels);
     EXPECT_EQ(o.channels.pcf.lambda, 0.9f);
     EXPECT_EQ(o.channels.env.lambda, 0.9f);
@@ -297,6 +427,29 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.soft.age_cap, 32u);
     EXPECT_EQ(o.pcf_pattern, 1u);
     EXPECT_EQ(o.seed, 3u);
+
+    const char* finish[] = {
+        "rrc-sample",         "--soft-fill",  "8",   "--fill-radius",    "1",       "--fill-prior",    "2",   "--history-filter",
+        "gaussian",           "--blur-sigma", "0.6", "--pcf-smoothstep", "0.2,0.8", "--pcf-threshold", "0.5", "--pcf-confidence",
+        "--reference-frames", "4,7"};
+    o = parse_options((int)(sizeof finish / sizeof *finish), finish);
+    EXPECT_EQ(o.channels.soft.fill_age, 8u);
+    EXPECT_EQ(o.channels.soft.fill_radius, 1u);
+    EXPECT_EQ(o.channels.soft.fill_prior, 2.0f);
+    EXPECT_EQ(o.channels.pcf.filter, RRC_HISTORY_FILTER_GAUSSIAN);
+    EXPECT_EQ(o.channels.soft.filter, ChannelPresets{}.soft.filter) << "gaussian is pcf's";
+    EXPECT_EQ(o.channels.pcf.blur_sigma, 0.6f);
+    EXPECT_TRUE(o.pcf_smoothstep);
+    EXPECT_EQ(o.pcf_smooth_e1, 0.8f);
+    EXPECT_EQ(o.pcf_threshold, 0.5f);
+    EXPECT_EQ(o.channels.pcf.confidence, 1u);
+    EXPECT_TRUE(is_checkpoint(o, 4));
+    EXPECT_TRUE(is_checkpoint(o, 7));
+    const char* no_fill[] = {"rrc-sample", "--fill-radius", "3", "--fill-prior", "2"};
+    o = parse_options(5, no_fill);
+    EXPECT_EQ(o.channels.soft.fill_prior, 0.0f) << "without --soft-fill rrc gets no fill members (they set the CPU model)";
+    EXPECT_EQ(o.channels.soft.fill_radius, 0u);
+    EXPECT_EQ(o.fill_radius, 3u);
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.6f);
@@ -317,7 +470,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--bogus"},
                                                        {"rrc-sample", "--epsilon-scale", "-1"},
                                                        {"rrc-sample", "--depth-test", "exact"},
-                                                       {"rrc-sample", "--depth-test", "adaptive", "--epsilon-scale", "4"}};
+                                                       {"rrc-sample", "--depth-test", "adaptive", "--epsilon-scale", "4"},
+                                                       {"rrc-sample", "--blur-sigma", "0.5"},
+                                                       {"rrc-sample", "--pcf-smoothstep", "0.8,0.2"},
+                                                       {"rrc-sample", "--pcf-smoothstep", "0.5"},
+                                                       {"rrc-sample", "--fill-radius", "5"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

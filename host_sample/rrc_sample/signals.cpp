@@ -14,8 +14,8 @@ const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIP
                        IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
 
-struct SamplesPush {  // signal_pcf.comp and signal_env.comp
-    uint32_t samples, reference, seed, pattern;
+struct SamplesPush {  // signal_pcf.comp and signal_env.comp (which reads the first four)
+    uint32_t samples, reference, seed, pattern, confidence;
 };
 struct SoftPush {
     glm::mat4 light_vp;
@@ -59,9 +59,12 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
     brute_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf brute force");
     brute_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env brute force");
     brute_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft brute force");
-    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft});
+    const char* conf_names[3] = {"pcf confidence", "pcf weighted target", "pcf brute-force confidence"};
+    for (int s = 0; s < 3; ++s) conf_[s] = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, conf_names[s]);
+    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft,
+                             &conf_[0], &conf_[1], &conf_[2]});
 
-    pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG},
+    pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG, IMG},
                          sizeof(SamplesPush), 3);
     env_ = ComputeKernel(gpu, "signal_env", rrc_sample_signal_env_comp, sizeof rrc_sample_signal_env_comp, {UBO, TEX, IMG},
                          sizeof(SamplesPush), 3);
@@ -74,6 +77,7 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
         pcf_.bind_image(s, 2, g.normal.view, RO);
         pcf_.bind_image(s, 3, maps.sun.view, RO);
         pcf_.bind_image(s, 4, out.pcf.view, GEN);
+        pcf_.bind_image(s, 5, conf_[s].view, GEN);
         env_.bind_buffer(s, 0, scene.uniforms());
         env_.bind_image(s, 1, g.normal.view, RO);
         env_.bind_image(s, 2, out.env.view, GEN);
@@ -89,12 +93,13 @@ SignalPasses::~SignalPasses() {
     pcf_.release();
     env_.release();
     soft_.release();
-    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft})
+    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft, &conf_[0],
+                     &conf_[1], &conf_[2]})
         gpu_.destroy(*i);
 }
 
 void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling) {
-    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern};
+    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern, sampling.pcf_confidence ? 1u : 0u};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalSoft) {
@@ -111,7 +116,9 @@ void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameStat
 
 void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
                                const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows) {
-    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern};  // the set (1 reference, 2 brute force) picks the stream
+    // The set (1 reference, 2 brute force) picks the stream.  Brute force stays the plain mean; the
+    // reference writes the confidence-weighted target beside the exact one when asked.
+    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern, set == 1 && sampling.pcf_confidence ? 1u : 0u};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalSoft) {
@@ -130,18 +137,19 @@ void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t s
 }
 
 void SignalPasses::record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows,
-                                    uint32_t seed) {
+                                    uint32_t seed, bool pcf_confidence) {
     const uint32_t m = std::max(1u, (uint32_t)std::lround(std::sqrt((double)samples)));
     std::vector<glm::vec3> points;
     for (uint32_t j = 0; j < m * m; ++j) points.push_back(lamp_grid_point(scene.lamp, (int)j, (int)(m * m)));
-    record_many(cmd, signals, 1, samples, Sampling{seed, 0}, points, scene, shadows);
+    record_many(cmd, signals, 1, samples, Sampling{seed, 0, pcf_confidence}, points, scene, shadows);
 }
 
 void SignalPasses::record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Sampling& sampling,
                                       const Scene& scene, ShadowPass& shadows) {
     // Points of the light sequence no per-frame signal uses (offset 1000003), shifted by the seed.
     std::vector<glm::vec3> points;
-    for (uint32_t j = 0; j < taps; ++j) points.push_back(lamp_sequence_point(scene.lamp, 1000003 + (int)taps * frame + (int)j, sampling.seed));
+    for (uint32_t j = 0; j < taps; ++j)
+        points.push_back(lamp_sequence_point(scene.lamp, 1000003 + (int)taps * frame + (int)j, sampling.seed));
     record_many(cmd, signals, 2, taps, sampling, points, scene, shadows);
 }
 

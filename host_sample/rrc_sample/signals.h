@@ -32,7 +32,8 @@ struct SignalImages {
 /** The estimators' randomness: the ensemble member and the PCF pattern (RenderSettings). */
 struct Sampling {
     uint32_t seed = 0;
-    uint32_t pcf_pattern = 0;  // 0 uniform disk, 1 the paper's rotated Poisson disk
+    uint32_t pcf_pattern = 0;     // 0 uniform disk, 1 the paper's rotated Poisson disk
+    bool pcf_confidence = false;  // confidence-weighted taps, w written to confidence() (signal_pcf.comp)
 };
 
 class SignalPasses {
@@ -56,7 +57,7 @@ public:
      *  shadow maps from the points of an m x m grid on the light, m*m = samples
      *  rounded to a square. */
     void record_reference(VkCommandBuffer cmd, uint32_t signals, uint32_t samples, const Scene& scene, ShadowPass& shadows,
-                          uint32_t seed = 0);
+                          uint32_t seed = 0, bool pcf_confidence = false);
     /** Brute force, the per-frame estimator with `taps` samples: pcf and env
      *  taps, soft from `taps` points of the light sequence (one map each). */
     void record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Sampling& sampling, const Scene& scene,
@@ -65,6 +66,12 @@ public:
     const SignalImages& raw() const { return raw_; }
     const SignalImages& reference() const { return ref_; }
     const SignalImages& brute_force() const { return brute_; }
+    /** R32F, written by every pcf pass: the per-frame signal's confidence w (1 without
+     *  Sampling::pcf_confidence, and on the background); rrc's pcf confidence image. */
+    const Image& pcf_confidence() const { return conf_[0]; }
+    /** R32F, checkpoints with confidence: the confidence-weighted disk mean, what the pcf
+     *  channel converges to with confidence (signal_pcf.comp); 1 without. */
+    const Image& pcf_weighted_target() const { return conf_[1]; }
 
 private:
     Gpu& gpu_;
@@ -73,6 +80,7 @@ private:
     void record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
                      const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows);
     SignalImages raw_, ref_, brute_;
+    Image conf_[3];  // per set: confidence, weighted target, brute force's (unused)
     ComputeKernel pcf_, env_, soft_;
 };
 

@@ -145,9 +145,11 @@ void print_summary(const RunResult& run, std::ostream& os) {
                           s.rmse_brute, s.rmse_acc, s.psnr_raw, s.psnr_brute, s.psnr_acc, s.psnr_acc - s.psnr_raw);
             os << b;
             if (name == "soft") {
-                std::snprintf(b, sizeof b,
-                              "    %-6s %10s %10s %10.4f %10s %10s %7.2f dB   (displayed: accumulated + PCSS fallback; PCSS alone %.4f)\n",
-                              "shown", "", "", s.rmse_shown, "", "", s.psnr_shown, s.rmse_fallback);
+                const bool fill = run.options.channels.soft.fill_age != 0;  // then rrc's output (acc) is what is displayed
+                std::snprintf(b, sizeof b, "    %-6s %10s %10s %10.4f %10s %10s %7.2f dB   (%s; PCSS alone %.4f)\n",
+                              fill ? "prior" : "shown", "", "", s.rmse_shown, "", "", s.psnr_shown,
+                              fill ? "the --soft-prior blend; displayed: acc, rrc's fill" : "displayed: accumulated + PCSS fallback",
+                              s.rmse_fallback);
                 os << b;
             }
         }
@@ -187,17 +189,26 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
         open_or_throw(f, (fs::path(out_dir) / "errors.csv").string());
         f << "frame,signal,pixels,rmse_raw,rmse_brute_force_4x,rmse_accumulated,psnr_raw,psnr_brute_force_4x,psnr_accumulated,rmse_raw_"
              "hits,"
-             "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss\n";
+             "rmse_accumulated_hits,rmse_shown,psnr_shown,rmse_pcss,rmse_accumulated_vs_weighted,rmse_weighted_vs_target\n";
         for (const FrameRecord& r : run.frames)
             for (const SignalErrors& e : r.errors) {
                 f << r.index << "," << e.signal << "," << e.raw.pixels << "," << fmt("%.6f", e.raw.rmse) << ","
                   << fmt("%.6f", e.brute_force.rmse) << "," << fmt("%.6f", e.accumulated.rmse) << "," << fmt("%.3f", e.raw.psnr) << ","
                   << fmt("%.3f", e.brute_force.psnr) << "," << fmt("%.3f", e.accumulated.psnr) << "," << fmt("%.6f", e.raw_hits.rmse) << ","
                   << fmt("%.6f", e.accumulated_hits.rmse) << ",";
-                if (e.signal == "soft")
-                    f << fmt("%.6f", e.shown.rmse) << "," << fmt("%.3f", e.shown.psnr) << "," << fmt("%.6f", e.fallback.rmse);
+                // shown: soft's --soft-prior display; pcf's remapped display (--pcf-smoothstep/--pcf-threshold)
+                const bool pcf = e.signal == "pcf";
+                const ErrorStats& shown = pcf ? r.finish.pcf_display : e.shown;
+                if (shown.pixels)
+                    f << fmt("%.6f", shown.rmse) << "," << fmt("%.3f", shown.psnr) << ",";
                 else
                     f << ",,";
+                if (e.signal == "soft") f << fmt("%.6f", e.fallback.rmse);
+                f << ",";
+                if (pcf && r.finish.weighted_vs_target.pixels)
+                    f << fmt("%.6f", r.finish.pcf_vs_weighted.rmse) << "," << fmt("%.6f", r.finish.weighted_vs_target.rmse);
+                else
+                    f << ",";
                 f << "\n";
             }
     }
@@ -249,8 +260,10 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
               << " | " << fmt("%.2f", s.psnr_raw) << " dB | " << fmt("%.2f", s.psnr_brute) << " dB | " << fmt("%.2f", s.psnr_acc)
               << " dB | " << fmt("%+.2f", s.psnr_acc - s.psnr_raw) << " dB |\n";
             if (name == "soft")
-                f << "| soft, displayed (accumulated + PCSS fallback) | | | " << fmt("%.4f", s.rmse_shown) << " | | | "
-                  << fmt("%.2f", s.psnr_shown) << " dB | |\n| soft, PCSS alone | | | " << fmt("%.4f", s.rmse_fallback) << " | | | | |\n";
+                f << (o.channels.soft.fill_age ? "| soft, the --soft-prior blend (not displayed: --soft-fill shows rrc's output) | | | "
+                                               : "| soft, displayed (accumulated + PCSS fallback) | | | ")
+                  << fmt("%.4f", s.rmse_shown) << " | | | " << fmt("%.2f", s.psnr_shown) << " dB | |\n| soft, PCSS alone | | | "
+                  << fmt("%.4f", s.rmse_fallback) << " | | | | |\n";
         }
         f << "\nFor soft shadows \"k\" is one shadow map a frame and \"4k\" four shadow maps from random points of the light.\n";
         f << "\nPer checkpoint:\n\n| frame | signal | pixels | RMSE raw | RMSE accumulated | RMSE raw, hits | RMSE accumulated, hits | "
@@ -263,6 +276,8 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
                   << fmt("%.4f", e.accumulated_hits.rmse) << " | " << fmt("%.2f", e.raw.psnr) << " | " << fmt("%.2f", e.accumulated.psnr)
                   << " |\n";
     }
+    if (!run.finish_table.empty())
+        f << "\nYoung soft-shadow pixels (finish.h; young.csv has the ages):\n\n```\n" << run.finish_table << "```\n";
     f << "\nLimits of the theory: the (1 - lambda)/(1 + lambda) variance law holds for independent samples at a static pixel; "
          "bilinear resampling of the history under motion lowers the variance further but blurs, so the accumulated signals "
          "converge to a slightly blurred version of the reference; a stratified pattern such as a Poisson disk makes "

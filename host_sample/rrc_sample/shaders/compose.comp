@@ -15,7 +15,14 @@ layout(set = 0, binding = 3, r32f) uniform readonly image2D s_pcf;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D s_env;
 layout(set = 0, binding = 5, r32f) uniform readonly image2D s_soft;
 layout(set = 0, binding = 6, rgba8) uniform writeonly image2D o_colour;
-layout(push_constant) uniform Push { uint signals; } pc;  // bit 0 pcf, 1 env, 2 soft
+layout(push_constant) uniform Push {
+    uint signals;  // bit 0 pcf, 1 env, 2 soft
+    // Display-only PCF remaps (issue 13; the chapter's Figure 9 e, f), applied to what is
+    // shown, never to rrc's history: bit 0 smoothstep(e0, e1, pcf), bit 1 the threshold
+    // pcf >= x (after the smoothstep when both are on).  Only the accumulated frame (set 0).
+    uint pcf_remap;
+    float e0, e1, x;
+} pc;
 
 vec3 albedo(uint m, vec3 p) {
     if (m == MAT_GROUND) {
@@ -45,6 +52,8 @@ void main() {
     } else {
         vec3 p = texelFetch(g_position, px, 0).xyz, n = normalize(nm.xyz);
         float pcf = (pc.signals & 1u) != 0u ? imageLoad(s_pcf, px).r : 1.0;
+        if ((pc.pcf_remap & 1u) != 0u) pcf = smoothstep(pc.e0, pc.e1, pcf);
+        if ((pc.pcf_remap & 2u) != 0u) pcf = pcf >= pc.x ? 1.0 : 0.0;
         float soft = (pc.signals & 4u) != 0u ? imageLoad(s_soft, px).r : 1.0;
         vec3 to_lamp = u.lamp_centre.xyz - p;
         float d2 = dot(to_lamp, to_lamp);

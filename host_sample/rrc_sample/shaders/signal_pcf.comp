@@ -12,6 +12,17 @@
 //     tap on its own radius).
 // reference 1: the target itself, exactly (disk_area.glsl); 2: brute force,
 // `samples` taps of the pattern (pattern 1: samples/k stratified rotations).
+//
+// Confidence (issue 13, Scherzer et al. 2007): a tap at shadow-map position
+// (x, y) texels tests the texel whose centre is (cx, cy) = floor(x, y) + 1/2;
+// its confidence is c = 1 - 2 max(|x - cx|, |y - cy|) (1 at the centre, 0 on
+// the texel's border, where the nearest-texel test is least sure).  With
+// pc.confidence the k taps combine as s = sum(c_i t_i) / sum(c_i) (the plain
+// mean if every c_i is 0) and w = mean(c_i), written to o_confidence; rrc's
+// blend (lambda W H + (1 - lambda) w s) / W' then converges to E[w s] / E[w]
+// = the confidence-weighted disk mean  int c t / int c  over the disk, not the
+// disk mean.  The reference pass (reference 1) writes that weighted mean into
+// o_confidence (a 16 x 16 midpoint rule per texel) beside the exact disk mean.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "disk_area.glsl"
@@ -21,17 +32,46 @@ layout(set = 0, binding = 1) uniform sampler2D g_position;
 layout(set = 0, binding = 2) uniform sampler2D g_normal_material;
 layout(set = 0, binding = 3) uniform sampler2D sun_map;
 layout(set = 0, binding = 4, r32f) uniform writeonly image2D o_signal;
+layout(set = 0, binding = 5, r32f) uniform writeonly image2D o_confidence;
 layout(push_constant) uniform Push {
-    uint samples;    // brute force: taps
-    uint reference;  // 0 per frame, 1 the exact target, 2 brute force
-    uint seed;       // the ensemble member: moves every random stream
-    uint pattern;    // 0 uniform disk, 1 rotated Poisson
+    uint samples;     // brute force: taps
+    uint reference;   // 0 per frame, 1 the exact target, 2 brute force
+    uint seed;        // the ensemble member: moves every random stream
+    uint pattern;     // 0 uniform disk, 1 rotated Poisson
+    uint confidence;  // non-zero: confidence-weighted taps (above); w in o_confidence
 } pc;
 
 float sun_test(ivec2 c, float z, int size) {
     return z <= texelFetch(sun_map, clamp(c, ivec2(0), ivec2(size - 1)), 0).r ? 1.0 : 0.0;
 }
 float sun_test(vec2 texel, float z, int size) { return sun_test(ivec2(floor(texel)), z, size); }
+
+// The tap's confidence: 1 - 2 max(|x - cx|, |y - cy|), (cx, cy) its texel's centre.
+float tap_confidence(vec2 texel) {
+    vec2 d = abs(texel - (floor(texel) + 0.5));
+    return 1.0 - 2.0 * max(d.x, d.y);
+}
+
+// The confidence-weighted mean of the test over the disk, int c t / int c: a
+// 16 x 16 midpoint rule in each texel of the disk's bounding box.
+float weighted_disk_mean(vec2 centre, float radius, float z, int size) {
+    ivec2 lo = ivec2(floor(centre - radius)), hi = ivec2(floor(centre + radius));
+    float ct = 0.0, cs = 0.0;
+    const int N = 16;
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+            float t = sun_test(ivec2(x, y), z, size), c_sum = 0.0;
+            for (int j = 0; j < N; ++j)
+                for (int i = 0; i < N; ++i) {
+                    vec2 f = (vec2(i, j) + 0.5) / float(N);
+                    if (length(vec2(x, y) + f - centre) > radius) continue;
+                    c_sum += 1.0 - 2.0 * max(abs(f.x - 0.5), abs(f.y - 0.5));
+                }
+            ct += c_sum * t;
+            cs += c_sum;
+        }
+    return cs > 0.0 ? ct / cs : 1.0;
+}
 
 // The exact mean of the test over the disk: each texel weighted by the area
 // of the disk inside it (texel i covers [i, i+1); clamped fetches at the
@@ -54,6 +94,7 @@ void main() {
     vec4 nm = texelFetch(g_normal_material, px, 0);
     if (material_of(nm) == MAT_BACKGROUND) {
         imageStore(o_signal, px, vec4(1.0));
+        imageStore(o_confidence, px, vec4(1.0));
         return;
     }
     vec3 p = texelFetch(g_position, px, 0).xyz + nm.xyz * u.sun_dir.w;  // normal offset
@@ -64,20 +105,27 @@ void main() {
     float radius = u.sun_colour.w;
     if (pc.reference == 1u) {
         imageStore(o_signal, px, vec4(disk_mean(texel, radius, z, size)));
+        imageStore(o_confidence, px, vec4(pc.confidence != 0u ? weighted_disk_mean(texel, radius, z, size) : 1.0));
         return;
     }
     uint k = u.frame.y;
     uint n = pc.reference != 0u ? pc.samples : k;
     // Random streams: 1 per-frame signal, 0x5eed + 2 brute force; the seed moves them all.
     uint stream = (pc.reference != 0u ? 0x5eedu + pc.reference : 1u) + 0x10000u * pc.seed;
-    float lit = 0.0;
+    float lit = 0.0, c_lit = 0.0, c_sum = 0.0;  // plain sum; confidence-weighted sum and the weights
     if (pc.pattern == 1u) {
         uint rotations = max(n / k, 1u);
         float offset = rnd(uint(px.x), uint(px.y), u.frame.x, stream);
         for (uint r = 0u; r < rotations; ++r) {
             float a = 2.0 * PI * (float(r) + offset) / float(rotations);
             mat2 rot = mat2(cos(a), sin(a), -sin(a), cos(a));
-            for (uint i = 0u; i < k; ++i) lit += sun_test(texel + radius * (rot * u.poisson[i].xy), z, size);
+            for (uint i = 0u; i < k; ++i) {
+                vec2 q = texel + radius * (rot * u.poisson[i].xy);
+                float t = sun_test(q, z, size), c = tap_confidence(q);
+                lit += t;
+                c_lit += c * t;
+                c_sum += c;
+            }
         }
         n = rotations * k;
     } else {
@@ -85,8 +133,14 @@ void main() {
         for (uint j = 0u; j < n; ++j) {
             vec2 s = fract(vec2((float(j) + 0.5) / float(n), float(j) * 0.6180339887) + shift);
             float r = radius * sqrt(s.x), phi = 2.0 * PI * s.y;
-            lit += sun_test(texel + r * vec2(cos(phi), sin(phi)), z, size);
+            vec2 q = texel + r * vec2(cos(phi), sin(phi));
+            float t = sun_test(q, z, size), c = tap_confidence(q);
+            lit += t;
+            c_lit += c * t;
+            c_sum += c;
         }
     }
-    imageStore(o_signal, px, vec4(lit / float(n)));
+    bool weighted = pc.confidence != 0u && c_sum > 0.0;
+    imageStore(o_signal, px, vec4(weighted ? c_lit / c_sum : lit / float(n)));
+    imageStore(o_confidence, px, vec4(pc.confidence != 0u ? c_sum / float(n) : 1.0));
 }

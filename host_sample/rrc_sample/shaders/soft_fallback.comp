@@ -23,7 +23,10 @@ layout(set = 0, binding = 5, r8ui) uniform readonly uimage2D rrc_mask;
 layout(set = 0, binding = 6, r16ui) uniform readonly uimage2D age;
 layout(set = 0, binding = 7, r32f) uniform writeonly image2D o_shown;
 layout(set = 0, binding = 8, r32f) uniform writeonly image2D o_pcss;
-layout(push_constant) uniform Push { float prior; } pc;
+// mode 0: PCSS and the displayed blend (after rrc); mode 1: the PCSS estimate only,
+// before rrc, which takes it as the soft channel's fill fallback (--soft-fill).
+// Both modes compute the same estimate (the same per-frame random angle).
+layout(push_constant) uniform Push { float prior; uint mode; } pc;
 
 const uint SEARCH = 16u, FILTER = 24u;
 
@@ -70,6 +73,10 @@ void main() {
             }
             pcss = lit / float(FILTER);
         }
+    }
+    if (pc.mode == 1u) {
+        imageStore(o_pcss, px, vec4(pcss));
+        return;
     }
     uint mask = imageLoad(rrc_mask, px).r;
     float n = float(imageLoad(age, px).r);
