@@ -50,7 +50,8 @@ std::string enum_choices(const EnumName<T> (&table)[N]) {
 inline constexpr EnumName<rrc_blend> kBlendNames[] = {
     {"fixed", RRC_BLEND_FIXED}, {"age_aware", RRC_BLEND_AGE_AWARE}, {"running_mean", RRC_BLEND_RUNNING_MEAN}};
 inline constexpr EnumName<rrc_history_filter> kHistoryFilterNames[] = {
-    {"nearest", RRC_HISTORY_FILTER_NEAREST}, {"bilinear", RRC_HISTORY_FILTER_BILINEAR}, {"catmull_rom", RRC_HISTORY_FILTER_CATMULL_ROM}};
+    {"nearest", RRC_HISTORY_FILTER_NEAREST}, {"bilinear", RRC_HISTORY_FILTER_BILINEAR}, {"catmull_rom", RRC_HISTORY_FILTER_CATMULL_ROM},
+    {"gaussian", RRC_HISTORY_FILTER_GAUSSIAN}};
 inline constexpr EnumName<rrc_history_precision> kHistoryPrecisionNames[] = {{"fp16", RRC_HISTORY_FP16}, {"fp32", RRC_HISTORY_FP32}};
 inline constexpr EnumName<rrc_depth_mode> kDepthModeNames[] = {
     {"standard", RRC_DEPTH_MODE_STANDARD}, {"reversed", RRC_DEPTH_MODE_REVERSED}, {"linear", RRC_DEPTH_MODE_LINEAR}};

@@ -363,7 +363,7 @@ Signals:
   --signal NAME[:key=value,...]   accumulate EXR layer NAME (repeatable, at
                          most 4).  Keys: lambda=0.6 (history weight, [0,1)),
                          blend=fixed|age_aware|running_mean (fixed),
-                         filter=nearest|bilinear|catmull_rom (bilinear),
+                         filter=nearest|bilinear|catmull_rom|gaussian (bilinear),
                          history=fp16|fp32 (fp16), max_age=1..65535 (255).
                          Without --signal every layer of the first frame is
                          accumulated except the depth, motion, prevclip and

@@ -19,7 +19,7 @@ namespace rrc_sample {
 struct FillParams {
     uint32_t age = 8;         // T
     uint32_t radius = 2;      // r
-    float tolerance = 0.05f;  // tau
+    float tolerance = RRC_DEFAULT_FILL_DEPTH_TOLERANCE;  // tau
     float prior = 0.0f;       // P, the fallback's weight in samples (0: none)
 };
 

@@ -4,7 +4,7 @@
   python3 host_sample/rrc_sample/finish.py --sample build/host_sample/rrc_sample/rrc-sample --out out/finish --docs docs/finish
 
 Runs rrc-sample a few times (lavapipe: about 3 minutes in all), then writes the tables
-(finish.md) and the figures (PNG, matplotlib) into --docs:
+(tables.md) and the figures (PNG, matplotlib) into --docs:
   A  soft shadows: young (newly disoccluded) pixels' RMSE over their first 8 frames for the
      --soft-prior 4 display, the fill with the PCSS fallback and without it (young.csv of one
      run: the fill's CPU model of docs/CONVENTIONS.md; with --soft-fill, rrc's own fill);
@@ -96,18 +96,18 @@ def main():
     if "A" not in a.skip:
         # A1: young pixels on the default moving-camera scene, the soft reference on every frame.
         base = ["--frames", str(a.young_frames), "--reference-every", "1", "--signals", "soft"]
-        variants = [("T = %s, r = 2, tau = 0.05 (the library's defaults)" % T, "young", ["--model-fill-age", T]),
+        variants = [("T = %s, r = 2, tau = 0.005 (the library's defaults)" % T, "young", ["--model-fill-age", T]),
                     ("T = %s, r = 1, tau = 0.02" % T, "young_r1", ["--model-fill-age", T, "--fill-radius", "1", "--fill-depth-tolerance", "0.02"]),
-                    ("T = %s, r = 2, tau = 0.005" % T, "young_t005", ["--model-fill-age", T, "--fill-depth-tolerance", "0.005"])]
+                    ("T = %s, r = 2, tau = 0.05" % T, "young_t05", ["--model-fill-age", T, "--fill-depth-tolerance", "0.05"])]
         tables = []
         for lab, tag, extra in variants:
             d = os.path.join(a.out, tag)
             run(a.sample, d, base + extra, log)
             tables.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
         rr = []
-        tuned = ["--fill-depth-tolerance", "0.005"]
+        loose = ["--fill-depth-tolerance", "0.05"]
         for i, (lab, extra) in enumerate([("rrc's fill, PCSS fallback", ["--soft-fill", T]), ("rrc's fill, no fallback", ["--soft-fill", T, "--fill-prior", "0"]),
-                                          ("rrc's fill, PCSS fallback, tau = 0.005", ["--soft-fill", T] + tuned)]):
+                                          ("rrc's fill, PCSS fallback, tau = 0.05", ["--soft-fill", T] + loose)]):
             d = os.path.join(a.out, "young_rrc%d" % i)
             if run(a.sample, d, base + extra, log):
                 rr.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
@@ -138,7 +138,7 @@ def main():
             for col, what in [("rmse_accumulated", "rrc's value alone (no fill, no prior)"), ("rmse_pcss", "PCSS alone"), ("rmse_raw", "this frame's one sample")]:
                 v = num(pooled[col])
                 md.append("| %s | | %.4f | %.3f | |" % (what, v, v / shown))
-            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS | fill P=4 | fill P=0 | fill P=4, tau=0.005 |" +
+            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS | fill P=4 | fill P=0 | fill P=4, tau=0.05 |" +
                       "".join(" %s |" % lab for lab, _, _ in rr) + "\n|---|---|---|---|---|---|---|---|---|" + "---|" * len(rr))
             for g in sorted(k for k in y0[tracks] if k != "pooled"):
                 r = y0[tracks][g]
@@ -153,7 +153,7 @@ def main():
             for col, lab in [("rmse_shown", "--soft-prior 4"), ("rmse_fill_prior", "fill + PCSS (P=4)"), ("rmse_fill_none", "fill, no fallback"),
                              ("rmse_accumulated", "rrc alone"), ("rmse_pcss", "PCSS")]:
                 ax.plot(ages, [num(y[g][col]) for g in ages], "o-", label=lab)
-            ax.plot(ages, [num(tables[2][2][tracks][g]["rmse_fill_prior"]) for g in ages], "o:", label="fill + PCSS, tau=0.005")
+            ax.plot(ages, [num(tables[2][2][tracks][g]["rmse_fill_prior"]) for g in ages], "o:", label="fill + PCSS, tau=0.05")
             for lab, _, t in rr:
                 ax.plot(ages, [num(t[tracks][g]["rmse_accumulated"]) for g in ages], "s--", label=lab)
             ax.set_title("%s tracks" % tracks, fontsize=9)
@@ -273,7 +273,7 @@ def main():
     md.append("## Runs\n\n| command | exit | seconds |\n|---|---|---|")
     for c, rc, s in log:
         md.append("| `%s` | %d | %.1f |" % (c, rc, s))
-    with open(os.path.join(a.docs, "finish.md"), "w") as f:
+    with open(os.path.join(a.docs, "tables.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     print("\n".join(md))
 

@@ -104,7 +104,7 @@ std::string usage() {
            "  --soft-fill T            rrc's spatial fill on the soft channel for pixels younger than T frames (fill_age;\n"
            "                           default 0 = off); the display then shows rrc's output, not the --soft-prior blend\n"
            "  --fill-radius R          the fill's window half width (default 0: the library's, 2)\n"
-           "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.05)\n"
+           "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
            "                           fallback image (default 4; 0 = no fallback)\n"
            "  --blur-sigma S           the pcf channel's Gaussian blur (with --history-filter gaussian; default 0: the library's 0.5)\n"

@@ -213,7 +213,7 @@ TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     RenderSettings rs;
     rs.width = o.width, rs.height = o.height, rs.taps = o.taps, rs.fps = o.fps, rs.sun_map = o.sun_map, rs.lamp_map = o.lamp_map;
     FillParams fp;
-    fp.age = T, fp.prior = 4.0f;
+    fp.age = T, fp.prior = 4.0f, fp.tolerance = 0.05f;  // a loose tolerance: more neighbours, more of the formula exercised
     std::vector<std::vector<float>> plain, model;
     std::vector<std::vector<uint16_t>> ages;
     run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
@@ -225,6 +225,7 @@ TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     d.out += "_on";
     d.channels.soft.fill_age = T;
     d.channels.soft.fill_prior = 4.0f;
+    d.channels.soft.fill_depth_tolerance = fp.tolerance;
     size_t t = 0, young = 0, differ = 0, near_model = 0, old = 0;
     run_sample(d, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
         ASSERT_LT(t, plain.size());

@@ -27,6 +27,30 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                 if (app.signal == rrc_sample::kSignalSoft)
                     for (uint32_t cap : o.soft_caps) run.configs.push_back({app, {0.0f, RRC_BLEND_RUNNING_MEAN, f, cap}});
             }
+            // The finishing steps (docs/CONVENTIONS.md, "Finishing steps"), on the
+            // presets' blend: rectification (pcf, env; gamma 1), the Gaussian
+            // history (pcf, the chapter's blur), the spatial fill (soft, T = 8,
+            // no fallback: the sweep's frames carry none).
+            if (o.finishing)
+                for (float lambda : o.lambdas) {
+                    rrc_sample::ChannelSettings c{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+                    if (app.signal != rrc_sample::kSignalSoft) {
+                        rrc_sample::ChannelSettings r = c;
+                        r.rectify = 1;
+                        run.configs.push_back({app, r});
+                    }
+                    if (app.signal == rrc_sample::kSignalPcf) {
+                        rrc_sample::ChannelSettings g = c;
+                        g.filter = RRC_HISTORY_FILTER_GAUSSIAN;
+                        run.configs.push_back({app, g});
+                    }
+                    if (app.signal == rrc_sample::kSignalSoft) {
+                        rrc_sample::ChannelSettings fl = c;
+                        fl.age_cap = 64;  // the soft preset's cap
+                        fl.fill_age = 8;
+                        run.configs.push_back({app, fl});
+                    }
+                }
         }
         runs.push_back(run);
     }
@@ -55,7 +79,17 @@ const char* blend_label(rrc_blend b) {
     return b == RRC_BLEND_FIXED ? "fixed" : b == RRC_BLEND_AGE_AWARE ? "age-aware" : "running-mean";
 }
 const char* filter_label(rrc_history_filter f) {
-    return f == RRC_HISTORY_FILTER_BILINEAR ? "bilinear" : f == RRC_HISTORY_FILTER_CATMULL_ROM ? "catmull-rom" : "nearest";
+    return f == RRC_HISTORY_FILTER_BILINEAR      ? "bilinear"
+           : f == RRC_HISTORY_FILTER_CATMULL_ROM ? "catmull-rom"
+           : f == RRC_HISTORY_FILTER_GAUSSIAN    ? "gaussian"
+                                                 : "nearest";
+}
+
+std::string filter_label(const rrc_sample::ChannelSettings& c) {
+    std::string s = filter_label(c.filter);
+    if (c.rectify) s += "+rectify";
+    if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
+    return s;
 }
 
 }  // namespace rrc_sweep

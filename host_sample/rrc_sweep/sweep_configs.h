@@ -47,6 +47,8 @@ std::vector<BruteConfig> brute_configs(const SweepOptions& o, uint32_t signals);
 /** The CSV's spellings: fixed, age-aware, running-mean; bilinear, catmull-rom. */
 const char* blend_label(rrc_blend blend);
 const char* filter_label(rrc_history_filter filter);
+/** The filter with the finishing steps a row adds ("bilinear+rectify", "bilinear+fill8"): the sweep's filter column. */
+std::string filter_label(const rrc_sample::ChannelSettings& c);
 /** The taps the rotated pattern's fixed point set has (its brute force is rotations of it). */
 constexpr int kRotatedBaseTaps = 4;
 

@@ -50,6 +50,8 @@ std::string sweep_usage() {
            "  --soft-caps LIST         age caps of soft's running-mean rows (default 8,16,32,64,128,255)\n"
            "  --bilinear-only          no Catmull-Rom rows\n"
            "  --no-rotated             no rows for the paper's rotated PCF pattern\n"
+           "  --no-finishing           no rows for the finishing steps (age-aware: pcf rectified and Gaussian history,\n"
+           "                           env rectified, soft with the spatial fill, fill_age 8, no fallback)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -128,6 +130,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.catmull_rom = false;
         else if (a == "--no-rotated")
             o.rotated = false;
+        else if (a == "--no-finishing")
+            o.finishing = false;
         else if (a == "--signals") {
             o.signals = 0;
             for (const std::string& s : split(a, value())) {

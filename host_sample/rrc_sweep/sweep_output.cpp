@@ -51,7 +51,7 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
             const rrc_sample::ChannelSettings& c = row.config.channel;
             const bool mean = c.blend == RRC_BLEND_RUNNING_MEAN;
             f << "rrc," << (app.signal == 1u ? (row.pattern ? "rotated" : "disk") : "-") << "," << row.k << ","
-              << (mean ? std::string("-") : num(c.lambda, "%.4g")) << "," << blend_label(c.blend) << "," << filter_label(c.filter) << ","
+              << (mean ? std::string("-") : num(c.lambda, "%.4g")) << "," << blend_label(c.blend) << "," << filter_label(c) << ","
               << (c.age_cap ? std::to_string(c.age_cap) : std::string("-")) << ",";
             metrics_columns(f, row.signal_ms, row.rrc_ms, row.metrics, row.rrc_alone_ms);
         }

@@ -25,7 +25,7 @@ struct ChannelParams {
     double blur_g = 0.125;       // GAUSSIAN: g = blur_sigma^2 / 2 (the default sigma 0.5)
     unsigned fill_age = 0;       // T; 0 = no fill
     int fill_radius = 2;         // r
-    double fill_tau = 0.05;      // fill_depth_tolerance
+    double fill_tau = 0.005;     // fill_depth_tolerance
     double fill_prior = 0.0;     // P; 0 = no fallback
 };
 

@@ -264,6 +264,7 @@ struct FillCase {
         d.fill_age = T;
         d.fill_radius = r;
         d.fill_prior = P;
+        d.fill_depth_tolerance = 0.05f;  // the hand-computed cases' tolerance (not the library's default)
         channels.push_back(d);
         ctx = rrc_host::context_desc(w, h, channels);
         ctx.depth_mode = mode;
