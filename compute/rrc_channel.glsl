@@ -15,15 +15,17 @@
 #define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)
 #define REUSE_ (CH_(_BLEND) == RRC_BLEND_REUSE)
 
+// This frame's sample and confidence at texel t (the pixel, or a neighbour for rectification).
+#define LOAD_S(t) (SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], t, 0)        \
+                   : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
+                                            : imageLoad(u_sample4[RRC_CH], t))
+#define LOAD_C(t) (!CH_(_CONFIDENCE) ? 1.0 : SAMPLED_INPUTS ? texelFetch(s_confidence[RRC_CH], t, 0).r : imageLoad(u_confidence[RRC_CH], t).r)
+
 if (CHANNELS && RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
-    vec4 s = SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], px, 0)
-             : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], px).r, 0.0, 0.0, 0.0)
-                                      : imageLoad(u_sample4[RRC_CH], px);
+    vec4 s = LOAD_S(px);
     if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
-    float w = !CH_(_CONFIDENCE) ? 1.0
-              : SAMPLED_INPUTS  ? texelFetch(s_confidence[RRC_CH], px, 0).r
-                                : imageLoad(u_confidence[RRC_CH], px).r;
+    float w = LOAD_C(px);
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);
     w = w < RRC_FLT_MIN ? 0.0 : w;  // denormal weights count as 0 on every device (flushing or not)
@@ -98,13 +100,9 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         for (int b = -1; b <= 1; ++b)
             for (int a = -1; a <= 1; ++a) {
                 ivec2 t = clamp(px + ivec2(a, b), ivec2(0), hi);
-                vec4 q = SAMPLED_INPUTS            ? texelFetch(s_samples[RRC_CH], t, 0)
-                         : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0)
-                                                  : imageLoad(u_sample4[RRC_CH], t);
+                vec4 q = LOAD_S(t);
                 if (CH_(_COMPONENTS) == 1u) q = vec4(q.x, 0.0, 0.0, 0.0);
-                float wq = !CH_(_CONFIDENCE) ? 1.0
-                           : SAMPLED_INPUTS  ? texelFetch(s_confidence[RRC_CH], t, 0).r
-                                             : imageLoad(u_confidence[RRC_CH], t).r;
+                float wq = LOAD_C(t);
                 bool ok = rrc_finite4(q) && rrc_finite(wq);
                 vec4 dq = ok ? q - s : vec4(0.0);
                 sum += dq;
@@ -178,6 +176,8 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     }
 }
 
+#undef LOAD_S
+#undef LOAD_C
 #undef UNPACK_H
 #undef REUSE_
 #undef PACKED_

@@ -27,12 +27,17 @@ struct ChannelSettings {
 /** The sample's presets, one per application, chosen from rrc-sweep's fronts at the
  *  sample's own k (4 taps for pcf and env, one light point for soft) on its default
  *  moving-camera scene: the lowest RMSE against the fixed target (docs/PERFORMANCE.md,
- *  "Presets chosen from the fronts", where each value's figure is).  AGE_AWARE
- *  everywhere: the same as FIXED on old pixels, the running mean on new ones. */
+ *  "Presets chosen from the fronts", where each value's figure is), the finishing steps
+ *  of API 0.4 included: pcf rectified (0.0432 against 0.0463 without), soft with the
+ *  spatial fill (the sample passes its PCSS estimate as the fallback, --fill-prior);
+ *  env's rectified row was 0.2 % lower, within the ensemble's noise, and costs a
+ *  rectification: env stays without.  AGE_AWARE everywhere: the same as FIXED on old
+ *  pixels, the running mean on new ones. */
 struct ChannelPresets {
-    ChannelSettings pcf{0.6f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+    ChannelSettings pcf{0.7f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 1};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
-    ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64};
+    ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
+                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8};
 };
 
 }  // namespace rrc_sample

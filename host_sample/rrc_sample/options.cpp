@@ -102,7 +102,8 @@ std::string usage() {
            "  --soft-prior N           weight of the PCSS fallback on young soft-shadow pixels, in samples (default 4)\n"
            "  --soft-age-cap N         the soft channel's age cap (default 64)\n"
            "  --soft-fill T            rrc's spatial fill on the soft channel for pixels younger than T frames (fill_age;\n"
-           "                           default 0 = off); the display then shows rrc's output, not the --soft-prior blend\n"
+           "                           default 8, the preset; 0 = off); the display then shows rrc's output, not the\n"
+           "                           --soft-prior blend\n"
            "  --fill-radius R          the fill's window half width (default 0: the library's, 2)\n"
            "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
@@ -116,7 +117,9 @@ std::string usage() {
            "  --dump-soft              on checkpoints write finish/soft_<what>_NNNN.f32 (raw float images of soft's displays)\n"
            "  --young-ages N           the young-pixel table (young.csv): ages 1..N (default 8)\n"
            "  --model-fill-age T       T of the fill's CPU model, scored in young.csv without --soft-fill (default 8)\n"
-           "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.6, env 0.8)\n"
+           "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.7, env 0.8)\n"
+           "  --rectify G              pcf and env channels' history rectification with gamma G (0 = off; default: pcf 1,\n"
+           "                           env off: the presets, channel_presets.h)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
            "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
@@ -186,13 +189,20 @@ Options parse_options(int argc, const char* const* argv) {
             o.channels.soft.age_cap = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP);
         else if (a == "--lambda")
             o.channels.pcf.lambda = o.channels.env.lambda = to_float(a, value(), 0.0f, 0.9999f);
+        else if (a == "--rectify") {
+            const float g = to_float(a, value(), 0.0f, RRC_MAX_RECTIFY_GAMMA);
+            for (ChannelSettings* c : {&o.channels.pcf, &o.channels.env}) {
+                c->rectify = g > 0.0f ? 1u : 0u;
+                c->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
+            }
+        }
         else if (a == "--blend") {
             const std::string v = value();
             if (!rrc_host::enum_value(rrc_host::kBlendNames, v, o.channels.pcf.blend))
                 throw OptionError("--blend: expected " + rrc_host::enum_choices(rrc_host::kBlendNames) + ", got \"" + v + "\"");
             o.channels.env.blend = o.channels.pcf.blend;
         } else if (a == "--history-filter" && i + 1 < argc && std::string(argv[i + 1]) == "gaussian") {
-            // host_sample/common's table has no GAUSSIAN yet; it is the pcf channel's (the amortized-PCF chapter's blur).
+            // GAUSSIAN is the pcf channel's only (the amortized-PCF chapter's blur).
             ++i;
             o.channels.pcf.filter = RRC_HISTORY_FILTER_GAUSSIAN;
         } else if (a == "--history-filter") {

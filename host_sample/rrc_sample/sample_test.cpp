@@ -203,6 +203,8 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
 // Needs the library's fill kernel (API 0.4).
 TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     Options o = tiny("fill_off");
+    o.channels.soft.fill_age = 0;  // the preset fills: this run is the one without
+    o.channels.soft.fill_prior = 0.0f;
     o.validation = false;
     o.signals = kSignalSoft;
     o.reference_every = 0;
@@ -446,14 +448,17 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.pcf.confidence, 1u);
     EXPECT_TRUE(is_checkpoint(o, 4));
     EXPECT_TRUE(is_checkpoint(o, 7));
-    const char* no_fill[] = {"rrc-sample", "--fill-radius", "3", "--fill-prior", "2"};
-    o = parse_options(5, no_fill);
+    const char* no_fill[] = {"rrc-sample", "--soft-fill", "0", "--fill-radius", "3", "--fill-prior", "2"};
+    o = parse_options(7, no_fill);
     EXPECT_EQ(o.channels.soft.fill_prior, 0.0f) << "without --soft-fill rrc gets no fill members (they set the CPU model)";
     EXPECT_EQ(o.channels.soft.fill_radius, 0u);
     EXPECT_EQ(o.fill_radius, 3u);
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
-    EXPECT_EQ(p.pcf.lambda, 0.6f);
+    EXPECT_EQ(p.pcf.lambda, 0.7f);
+    EXPECT_EQ(p.pcf.rectify, 1u);
+    EXPECT_EQ(p.env.rectify, 0u);
+    EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.8f);
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);

@@ -50,43 +50,6 @@ void full_barrier(VkCommandBuffer c) {
                                VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
 }
 
-/** The targets of one frame (the sweep's: sweep_run.cpp, make_targets) and its materials. */
-struct FrameTarget {
-    std::vector<uint8_t> material;
-    std::vector<float> pcf, env, env_twin, soft;
-    const std::vector<float>& of(uint32_t signal) const { return signal == kSignalPcf ? pcf : signal == kSignalEnv ? env : soft; }
-};
-
-FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t samples) {
-    rrc_sample::Readback rb(e.gpu);
-    const rrc_sample::SignalImages& ref = e.signals.reference();
-    const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
-    const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    rb.allocate();
-    FrameTarget ft;
-    const FrameState state = e.begin_frame(f, 1, 0);
-    for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) ? 2u : 1u); ++twin) {
-        e.submit(0, [&](VkCommandBuffer c, auto&&) {
-            e.record_geometry(c, state, sigs);
-            // twin 1: env's second, independent estimate (the random stream of seed 1).
-            e.signals.record_reference(c, twin ? kSignalEnv : sigs, samples, e.scene, e.shadows, twin);
-            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
-        });
-        if (twin) {
-            ft.env_twin = floats_of(rb, s_env);
-            continue;
-        }
-        ft.pcf = floats_of(rb, s_pcf);
-        ft.env = floats_of(rb, s_env);
-        ft.soft = floats_of(rb, s_soft);
-        std::vector<uint16_t> nm(rb.bytes(s_normal) / 2);
-        std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
-        ft.material.resize(nm.size() / 4);
-        for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
-    }
-    return ft;
-}
-
 bool scored(uint32_t signal, uint8_t m) { return signal == kSignalEnv ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; }
 
 /** env's target noise per value, half the mean squared difference of the two estimates over `pixels`. */

@@ -64,43 +64,11 @@ void transfer_to_compute(VkCommandBuffer cmd) {
 /** Per application, per checkpoint: the pixels scored, the target, its noise, the static pixels. */
 using Targets = std::map<uint32_t, std::vector<CheckpointTarget>>;
 
-struct FrameTarget {
-    std::vector<uint8_t> material;
-    std::vector<float> pcf, env, env_twin, soft;
-};
-
 Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress) {
     std::map<int, FrameTarget> frames;
-    rrc_sample::Readback rb(e.gpu);
-    const rrc_sample::SignalImages& ref = e.signals.reference();
-    const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
-    const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    rb.allocate();
     const auto t0 = std::chrono::steady_clock::now();
     for (int t : o.checkpoints())
-        for (int f : {t - 1, t}) {
-            FrameTarget& ft = frames[f];
-            const FrameState state = e.begin_frame(f, 1, 0);
-            for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) ? 2u : 1u); ++twin) {
-                e.submit(0, [&](VkCommandBuffer c, auto&&) {
-                    e.record_geometry(c, state, sigs);
-                    // twin 1: env's second, independent estimate (its random stream of seed 1).
-                    e.signals.record_reference(c, twin ? kSignalEnv : sigs, (uint32_t)o.reference_samples, e.scene, e.shadows, twin);
-                    rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
-                });
-                if (twin) {
-                    ft.env_twin = floats_of(rb, s_env);
-                    continue;
-                }
-                ft.pcf = floats_of(rb, s_pcf);
-                ft.env = floats_of(rb, s_env);
-                ft.soft = floats_of(rb, s_soft);
-                std::vector<uint16_t> nm(rb.bytes(s_normal) / 2);
-                std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
-                ft.material.resize(nm.size() / 4);
-                for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
-            }
-        }
+        for (int f : {t - 1, t}) frames[f] = frame_target(e, f, sigs, (uint32_t)o.reference_samples);
     if (progress)
         *progress << "targets: " << frames.size() << " frames (checkpoints and the frames before them), "
                   << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s" << std::endl;
