@@ -68,6 +68,8 @@ std::vector<Config> full_sweep() {
         {"nocache", "nocache", [](Config& c) { c.nocache = true; }},
         {"rectify", "rectify", [](Config& c) { c.channels[0].rectify = true; }},
         {"fill", "fill", [](Config& c) { c.channels[0].fill_age = 8; }},
+        {"fill_r1", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 1; }},
+        {"fill_r4", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 4; }},
         {"object_id", "object_id", [](Config& c) { c.object_id = true; }},
         {"depth_fixed", "depth_test", [](Config& c) { c.depth_test = RRC_DEPTH_TEST_FIXED; }},
         {"sampled_inputs", "inputs", [](Config& c) { c.sampled_inputs = true; }},

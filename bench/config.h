@@ -19,6 +19,7 @@ struct ChannelConfig {
     bool confidence = false;
     bool rectify = false;   // 0.4: history rectification (reads 8 more samples; no byte the roof counts)
     uint32_t fill_age = 0;  // 0.4: the spatial fill, no fallback (a second dispatch; no byte the roof counts)
+    uint32_t fill_radius = 0;  // 0: the library's default
 };
 
 struct Config {

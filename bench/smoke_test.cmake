@@ -24,8 +24,9 @@ set(expect_src_camera "16;9")         # no per-pixel reprojection data
 set(expect_standalone "32;9")
 set(expect_rectify "32;9")          # rectification reads 8 more samples: no byte more the API implies
 set(expect_fill "32;9")             # the fill (no fallback) rereads what the frame wrote: no byte more
+set(expect_fill_r1 "32;9")
 set(expect_filter_gaussian "32;9")  # 16 history taps, the same unique bytes
-set(configs base ch_2x4 fp32 confidence nocache object_id src_motion src_motion_depth src_camera standalone rectify fill filter_gaussian)
+set(configs base ch_2x4 fp32 confidence nocache object_id src_motion src_motion_depth src_camera standalone rectify fill fill_r1 filter_gaussian)
 list(JOIN configs "," config_arg)
 
 file(REMOVE_RECURSE "${OUT}")
