@@ -227,7 +227,7 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_MAX_BLUR_SIGMA 0.8164966f          /* sqrt(2/3): the blur's 3 taps stay decreasing */
 #define RRC_DEFAULT_FILL_RADIUS 2u             /* rrc_channel_desc.fill_radius (0.4) */
 #define RRC_MAX_FILL_RADIUS 4u
-#define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill") */
+#define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
 
