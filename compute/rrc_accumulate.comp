@@ -163,21 +163,69 @@ void rrc_count(uint mask, bool geometry, bool samples) {
     if (samples && (mask & RRC_MASK_INVALID_SAMPLE) != 0u) atomicAdd(u_stats.counters[RRC_STAT_INVALID_SAMPLES], 1u);
 }
 
-// FUSED and RESOLVE: one invocation a pixel, every channel.
-void rrc_pixel() {
-    ivec2 size = rrc_size();
-    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-    rrc_store = all(lessThan(id, size));  // the dispatch rounds up: no early return (rrc_reproject.glsl says why)
-    ivec2 px = min(id, size - 1);
+// Which channel slots write the host's output image in this pass (interop,
+// and the standalone fill's displayed values): chosen by the frame plan.
+layout(constant_id = RRC_SPEC_HOST_OUT_MASK) const uint HOST_OUT_MASK = 0u;
+// LIST and COPY_OUT: also copy classify's mask into u_mask (the host's).
+layout(constant_id = RRC_SPEC_COPY_MASK) const bool COPY_MASK = false;
 
-    RrcGeometry g = rrc_reproject(px, size);
+// Every channel is REUSE: a shading cache.  Classify then writes the HITs'
+// channels (a HIT reuses the cached value, which needs no sample) and
+// resolve runs only on the listed quads (docs/PERFORMANCE.md, "The frame plan").
+// (One && or || a constant: glslang folds those into specialization-constant
+// operations, but turns a nested mix of them into run-time code.)
+const bool ACCUMULATES0 = CH_COUNT > 0u && CH0_BLEND != RRC_BLEND_REUSE;
+const bool ACCUMULATES1 = CH_COUNT > 1u && CH1_BLEND != RRC_BLEND_REUSE;
+const bool ACCUMULATES2 = CH_COUNT > 2u && CH2_BLEND != RRC_BLEND_REUSE;
+const bool ACCUMULATES3 = CH_COUNT > 3u && CH3_BLEND != RRC_BLEND_REUSE;
+const bool ALL_REUSE = !(ACCUMULATES0 || ACCUMULATES1 || ACCUMULATES2 || ACCUMULATES3);
+// Some channel has a spatial fill: the passes that write channels list its pixels.
+const bool FILL0 = CH_COUNT > 0u && CH0_FILL_AGE != 0u;
+const bool FILL1 = CH_COUNT > 1u && CH1_FILL_AGE != 0u;
+const bool FILL2 = CH_COUNT > 2u && CH2_FILL_AGE != 0u;
+const bool FILL3 = CH_COUNT > 3u && CH3_FILL_AGE != 0u;
+const bool FILL_ANY = FILL0 || FILL1 || FILL2 || FILL3;
+
+// The fill list (rrc_kernel_interface.h): the pixels the spatial fill runs on.
+layout(std430, set = 0, binding = RRC_BINDING_FILL_LIST) buffer FillList { uint words[]; } u_fill;
+
+// Appends px to the fill list; the indirect dispatch's x is the largest
+// group an entry falls in, + 1: raised only by the first entry of each group.
+void rrc_list_fill(ivec2 px) {
+    uint slot = atomicAdd(u_fill.words[RRC_FILL_LIST_COUNT], 1u);
+    u_fill.words[RRC_FILL_LIST_FIRST + slot] = uint(px.x) | (uint(px.y) << 16);
+    if (slot % RRC_FILL_LIST_PER_GROUP == 0u) atomicMax(u_fill.words[RRC_FILL_LIST_DISPATCH], slot / RRC_FILL_LIST_PER_GROUP + 1u);
+}
+
+// One pixel, every channel: FUSED, RESOLVE, CLASSIFY (the mask; with
+// ALL_REUSE the HITs' channels too) and RESOLVE_LISTED (the listed pixels
+// that are not HITs; they need no reprojection: a REUSE channel takes the
+// sample there).  `store`: the pixel is inside the frame (and, listed, in the list).
+void rrc_pixel_at(ivec2 px, bool store) {
+    ivec2 size = rrc_size();
+    rrc_store = store;
+    const bool LISTED = PHASE == RRC_PHASE_RESOLVE_LISTED;
+    RrcGeometry g;
+    uint mask;
     const uint kGeometryBits = RRC_MASK_HIT | RRC_MASK_REFRESHED | RRC_MASK_BACKGROUND | RRC_MASK_INVALID_GEOMETRY;
-    uint mask = PHASE == RRC_PHASE_RESOLVE ? texelFetch(s_classified, px, 0).r & kGeometryBits : rrc_cache_mask(px, size, g);
-    const bool CHANNELS = PHASE != RRC_PHASE_CLASSIFY;  // classify writes the mask only
+    if (LISTED) {
+        mask = texelFetch(s_classified, px, 0).r & kGeometryBits;
+        g.background = (mask & RRC_MASK_BACKGROUND) != 0u;
+        g.invalid = false, g.hit = false;
+        g.taps = rrc_taps(vec2(px) + 0.5, size);  // unused: folded away
+    } else {
+        g = rrc_reproject(px, size);
+        mask = PHASE == RRC_PHASE_RESOLVE ? texelFetch(s_classified, px, 0).r & kGeometryBits : rrc_cache_mask(px, size, g);
+    }
+    // Classify writes the mask only, unless every channel is REUSE.
+    const bool CHANNELS = PHASE != RRC_PHASE_CLASSIFY || ALL_REUSE;
     // Accumulating channels take the hit test's answer (a refresh is a hit to
     // them); REUSE channels reuse only on HIT.
     bool hit_any = (mask & (RRC_MASK_HIT | RRC_MASK_REFRESHED)) != 0u;
     bool hit_cached = (mask & RRC_MASK_HIT) != 0u;
+    // Which pass writes this pixel's channels: classify the HITs, resolve_listed the rest.
+    bool channel_store = PHASE == RRC_PHASE_CLASSIFY ? store && hit_cached : LISTED ? store && !hit_cached : store;
+    bool young = false;  // some channel with a fill has n < fill_age here (set by rrc_channel.glsl)
 
 #define RRC_CH 0
 #include "rrc_channel.glsl"
@@ -192,14 +240,40 @@ void rrc_pixel() {
 #include "rrc_channel.glsl"
 #undef RRC_CH
 
-    if (rrc_store) imageStore(u_mask, px, uvec4(mask));
-    rrc_count(mask, PHASE != RRC_PHASE_RESOLVE, PHASE != RRC_PHASE_CLASSIFY);
+    if (store) imageStore(u_mask, px, uvec4(mask));
+    if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px);
+    rrc_count(mask, PHASE != RRC_PHASE_RESOLVE && !LISTED, PHASE != RRC_PHASE_CLASSIFY);
+}
+
+// FUSED, CLASSIFY and RESOLVE: one invocation a pixel.
+void rrc_pixel() {
+    ivec2 size = rrc_size();
+    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    // The dispatch rounds up: no early return (rrc_reproject.glsl says why).
+    rrc_pixel_at(min(id, size - 1), all(lessThan(id, size)));
+}
+
+// RESOLVE_LISTED: dispatched indirectly from classify's quad list, groups
+// of RRC_QUADS_PER_GROUP quads; two invocations a quad, one a row of two pixels.
+void rrc_resolve_listed() {
+    ivec2 size = rrc_size();
+    uint id = gl_GlobalInvocationID.x;
+    uint count = u_quads.words[RRC_QUAD_LIST_COUNT];
+    uint slot = id >> 1;
+    bool listed = slot < count;
+    uint word = u_quads.words[RRC_QUAD_LIST_FIRST_QUAD + min(slot, max(count, 1u) - 1u)];
+    ivec2 row = 2 * ivec2(word & 0xFFFFu, word >> 16) + ivec2(0, int(id & 1u));
+    for (int k = 0; k < 2; ++k) {
+        ivec2 px = row + ivec2(k, 0);
+        rrc_pixel_at(min(px, size - 1), listed && all(lessThan(px, size)));
+    }
 }
 
 // LIST: one invocation a 2x2 quad, after CLASSIFY wrote the mask (a pass of
 // its own: one invocation a quad would run the reprojection of four pixels
 // in a row, about twice the time of one a pixel on lavapipe).  The quad is
-// listed when one of its pixels inside the frame is not a HIT.
+// listed when one of its pixels inside the frame is not a HIT.  COPY_MASK:
+// the host's mask image gets the classified mask (rrc_vulkan_frame_desc.split_outputs).
 void rrc_list_quads() {
     ivec2 size = textureSize(s_classified, 0);
     ivec2 quads = (size + 1) / 2;
@@ -211,19 +285,52 @@ void rrc_list_quads() {
         bool inside = all(lessThan(px, size));
         uint mask = texelFetch(s_classified, min(px, size - 1), 0).r;
         listed = listed || (inside && (mask & RRC_MASK_HIT) == 0u);
+        if (COPY_MASK && inside && all(lessThan(id, quads))) imageStore(u_mask, px, uvec4(mask));
     }
     if (listed && all(lessThan(id, quads))) rrc_list_quad(q);
 }
 
-// FILL: one invocation a pixel, after FUSED or RESOLVE, bound as the next
-// frame would be (its history inputs are this frame's results, its previous
-// depth this frame's depth): the displayed value of every channel with a
-// fill, into u_host_out (docs/CONVENTIONS.md, "The spatial fill").
-void rrc_fill() {
+// COPY_OUT: one invocation a pixel, after RESOLVE_LISTED, bound as the next
+// frame (its history inputs are this frame's results): the host's output and
+// age images, and with COPY_MASK its mask, get the library's results.
+#define RRC_COPY_OUT_SLOT(C)                                                                                            \
+    if (C < CH_COUNT) {                                                                                                 \
+        const bool PACKED = CH##C##_FP16 && CH##C##_COMPONENTS == 1u;                                                    \
+        uint word = PACKED ? imageLoad(u_hist_packed[C], px).r : 0u;                                                    \
+        vec4 v = PACKED ? vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)                                                  \
+                 : CH##C##_FP16 ? imageLoad(u_hist_rgba16f[C], px)                                                      \
+                 : (CH##C##_COMPONENTS == 1u ? imageLoad(u_hist_r32f[C], px) : imageLoad(u_hist_rgba32f[C], px));        \
+        if (CH##C##_COMPONENTS == 1u) v = vec4(v.x, 0.0, 0.0, 0.0);                                                     \
+        uint n = PACKED ? word >> 16 : imageLoad(u_age[C], px).r;                                                       \
+        if (rrc_store && (HOST_OUT_MASK & (1u << C)) != 0u) imageStore(u_host_out[C], px, v);                          \
+        if (rrc_store && (HOST_AGE_MASK & (1u << C)) != 0u) imageStore(u_host_age_out[C], px, uvec4(n));               \
+    }
+void rrc_copy_out() {
     ivec2 size = imageSize(u_prev_depth);
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
-    rrc_store = all(lessThan(id, size));  // no early return (rrc_reproject.glsl says why)
+    rrc_store = all(lessThan(id, size));
     ivec2 px = min(id, size - 1);
+    RRC_COPY_OUT_SLOT(0)
+    RRC_COPY_OUT_SLOT(1)
+    RRC_COPY_OUT_SLOT(2)
+    RRC_COPY_OUT_SLOT(3)
+    if (COPY_MASK && rrc_store) imageStore(u_mask, px, uvec4(texelFetch(s_classified, px, 0).r));
+}
+#undef RRC_COPY_OUT_SLOT
+
+// FILL: one invocation a listed pixel (the fill list, indirect), after the
+// frame's channels, bound as the next frame would be (its history inputs are
+// this frame's results, its previous depth this frame's depth): the
+// displayed value of every channel with a fill, into u_host_out
+// (docs/CONVENTIONS.md, "The spatial fill").  Every other pixel's displayed
+// value is its history value, which the frame's pass wrote there.
+void rrc_fill() {
+    ivec2 size = imageSize(u_prev_depth);
+    uint slot = gl_GlobalInvocationID.x;
+    uint count = u_fill.words[RRC_FILL_LIST_COUNT];
+    rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)
+    uint word = u_fill.words[RRC_FILL_LIST_FIRST + min(slot, max(count, 1u) - 1u)];
+    ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
     float d_p = imageLoad(u_prev_depth, px).r;
     bool fill_here = !rrc_is_background(d_p);
     bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
@@ -247,6 +354,10 @@ void main() {
         rrc_fill();
     else if (PHASE == RRC_PHASE_LIST)
         rrc_list_quads();
+    else if (PHASE == RRC_PHASE_RESOLVE_LISTED)
+        rrc_resolve_listed();
+    else if (PHASE == RRC_PHASE_COPY_OUT)
+        rrc_copy_out();
     else
         rrc_pixel();
 }

@@ -78,11 +78,13 @@ uint rrc_cache_mask(ivec2 px, ivec2 size, RrcGeometry g) {
 #undef RRC_AGE_RANGE
 
 // Appends quad q to classify's list and keeps the indirect dispatch's x
-// covering it: the largest slot / RRC_QUADS_PER_GROUP + 1 = ceil(count / per group).
+// covering it: the largest slot / RRC_QUADS_PER_GROUP + 1 = ceil(count / per
+// group).  Every slot below the count is taken, so only the first slot of
+// each group needs to raise it: one atomicMax a group, not one a quad.
 void rrc_list_quad(ivec2 q) {
     uint slot = atomicAdd(u_quads.words[RRC_QUAD_LIST_COUNT], 1u);
     u_quads.words[RRC_QUAD_LIST_FIRST_QUAD + slot] = uint(q.x) | (uint(q.y) << 16);
-    atomicMax(u_quads.words[RRC_QUAD_LIST_DISPATCH], slot / RRC_QUADS_PER_GROUP + 1u);
+    if (slot % RRC_QUADS_PER_GROUP == 0u) atomicMax(u_quads.words[RRC_QUAD_LIST_DISPATCH], slot / RRC_QUADS_PER_GROUP + 1u);
 }
 
 #endif

@@ -3,9 +3,13 @@
 // be indexed by constants, and per-slot specialization constants compile out
 // every format, filter and blend the channel does not use.
 //
-// Inputs from the enclosing rrc_pixel(): CHANNELS (false: classify), px, g (RrcGeometry: where to
-// resample), mask (uint, in/out), hit_any (the hit test passed: HIT or
-// REFRESHED) and hit_cached (HIT: a REUSE channel keeps its value).
+// Inputs from the enclosing rrc_pixel_at(): CHANNELS (false: a classify that
+// writes no channel), px, g (RrcGeometry: where to resample), mask (uint,
+// in/out), hit_any (the hit test passed: HIT or REFRESHED), hit_cached (HIT:
+// a REUSE channel keeps its value) and channel_store (this pass writes this
+// pixel's channels); out: young (a channel with a fill is younger than its
+// fill age here).  CLASSIFY (ALL_REUSE) writes only HITs, so it loads no
+// sample; RESOLVE_LISTED writes only the rest, so it resamples no history.
 
 #define CH_(name) ch##name(RRC_CH)
 // A 1-component fp16 channel keeps value and age in one R32_UINT word
@@ -23,9 +27,10 @@
 
 if (CHANNELS && RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
-    vec4 s = LOAD_S(px);
+    const bool SAMPLE_ = PHASE != RRC_PHASE_CLASSIFY;
+    vec4 s = SAMPLE_ ? LOAD_S(px) : vec4(0.0);
     if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
-    float w = LOAD_C(px);
+    float w = SAMPLE_ ? LOAD_C(px) : 1.0;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);
     w = w < RRC_FLT_MIN ? 0.0 : w;  // denormal weights count as 0 on every device (flushing or not)
@@ -38,7 +43,9 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     vec4 H;
     float Wh;
     uint n_prev;
-    if (CH_(_FILTER) == RRC_HISTORY_FILTER_NEAREST) {
+    if (PHASE == RRC_PHASE_RESOLVE_LISTED) {
+        H = vec4(0.0), Wh = 0.0, n_prev = 0u;  // only pixels that are not HITs are written: their history is not used
+    } else if (CH_(_FILTER) == RRC_HISTORY_FILTER_NEAREST) {
         uint word = PACKED_ ? LOAD_WORD(g.taps.nearest) : 0u;
         H = PACKED_ ? UNPACK_H(word) : LOAD_H(g.taps.nearest);
         Wh = LOAD_W(g.taps.nearest);
@@ -162,7 +169,8 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp
     // rounds to +-Inf; no history value may be infinite.
     out_v = CH_(_FP16) ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
-    if (rrc_store) {
+    young = young || (CH_(_FILL_AGE) != 0u && n_out < CH_(_FILL_AGE));
+    if (channel_store) {
         if (PACKED_) {
             // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
             imageStore(u_age_out[RRC_CH], px, uvec4(packHalf2x16(vec2(out_v.x, 0.0)) | (n_out << 16)));
@@ -170,7 +178,10 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
             imageStore(u_hist_out[RRC_CH], px, out_v);
             imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
         }
-        if (INTEROP && CH_(_FILL_AGE) == 0u) imageStore(u_host_out[RRC_CH], px, out_v);  // a fill writes it (rrc_fill)
+        // The host's output (with a fill, its value where the fill does not
+        // run: the fill shows a 1-component value as (v, 0, 0, 0)).
+        if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u)
+            imageStore(u_host_out[RRC_CH], px, CH_(_FILL_AGE) != 0u && CH_(_COMPONENTS) == 1u ? vec4(out_v.x, 0.0, 0.0, 0.0) : out_v);
         if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
         if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
     }

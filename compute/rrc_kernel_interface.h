@@ -20,8 +20,10 @@
 #define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
 #define RRC_SPEC_STORAGE_INPUTS 10  // bool: interop, the host's inputs read as storage images (rrc_vulkan_frame_desc.storage_inputs)
-#define RRC_SPEC_PHASE 11           // uint RRC_PHASE_* below: the fused frame, or one half of the shading cache's split
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_PHASE
+#define RRC_SPEC_PHASE 11           // uint RRC_PHASE_* below: the pass this pipeline runs
+#define RRC_SPEC_HOST_OUT_MASK 12   // uint: bit c = channel slot c writes RRC_BINDING_HOST_OUT in this pass (plugin/frame_plan.cpp decides)
+#define RRC_SPEC_COPY_MASK 13       // bool: LIST / COPY_OUT also copy the classified mask into RRC_BINDING_MASK (the host's)
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_COPY_MASK
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 
@@ -58,11 +60,15 @@
 #define RRC_SPEC_CHANNEL2(property, slot) (56 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
 
 // ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
+// Which passes a frame runs, in which order, over which grid, is decided in
+// one place: plugin/frame_plan.cpp (docs/PERFORMANCE.md, "The frame plan").
 #define RRC_PHASE_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
-#define RRC_PHASE_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels, channels untouched
+#define RRC_PHASE_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels; in a context of REUSE channels only, also every HIT's channels
 #define RRC_PHASE_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
 #define RRC_PHASE_RESOLVE 3u   // the channels with classify's mask: a dispatch over pixels, no hit test
-#define RRC_PHASE_FILL 4u      // the spatial fill: after FUSED or RESOLVE, over pixels, bound as the next frame (docs/CONVENTIONS.md)
+#define RRC_PHASE_FILL 4u      // the spatial fill: after the frame, indirect over the fill list, bound as the next frame (docs/CONVENTIONS.md)
+#define RRC_PHASE_RESOLVE_LISTED 5u  // resolve of a context of REUSE channels only: indirect over the quad list, the listed pixels that are not HITs
+#define RRC_PHASE_COPY_OUT 6u  // after RESOLVE_LISTED: the library's results into the host's output, age and mask images, over pixels, bound as the next frame
 
 // ---- Descriptor bindings (set 0) -------------------------------------------
 // Geometry (rrc_reproject.glsl) and the mask: one image each.
@@ -110,6 +116,15 @@
 // quad list (include/rrc/rrc_values.h layout).
 #define RRC_BINDING_STATS 30
 #define RRC_BINDING_QUADS 31
+// The fill list (library-owned): the pixels the spatial fill runs on,
+// appended by the pass that writes their channels (docs/CONVENTIONS.md,
+// "The spatial fill"): a count, a VkDispatchIndirectCommand of groups of
+// RRC_FILL_LIST_PER_GROUP pixels, then one word x | y << 16 a pixel.
+#define RRC_BINDING_FILL_LIST 32
+#define RRC_FILL_LIST_COUNT 0u
+#define RRC_FILL_LIST_DISPATCH 1u
+#define RRC_FILL_LIST_FIRST 4u
+#define RRC_FILL_LIST_PER_GROUP 128u  // the kernel's workgroup width (plugin/accumulate_pipeline.h kGroupX)
 // Counter indices in it (the member order of rrc_vulkan_frame_stats).
 #define RRC_STAT_HITS 0
 #define RRC_STAT_MISSES 1

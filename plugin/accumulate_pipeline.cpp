@@ -16,7 +16,8 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
 static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
-static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS > RRC_BINDING_LAST, "the buffers follow every image binding");
+static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS > RRC_BINDING_LAST && RRC_BINDING_FILL_LIST > RRC_BINDING_LAST,
+              "the buffers follow every image binding");
 static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) &&
                   RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X,
               "the shading cache's ids sit between the channel ids and the workgroup-size ids");
@@ -61,6 +62,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         }
         bindings.push_back({RRC_BINDING_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         bindings.push_back({RRC_BINDING_QUADS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        bindings.push_back({RRC_BINDING_FILL_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         lci.bindingCount = (uint32_t)bindings.size();
         lci.pBindings = bindings.data();
@@ -82,7 +84,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
                 (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
         VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
-                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * sets}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         dpi.maxSets = sets;
         dpi.poolSizeCount = 3;
@@ -119,6 +121,8 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
     spec.add(RRC_SPEC_STORAGE_INPUTS, variant.storage_inputs ? 1u : 0u);
     spec.add(RRC_SPEC_PHASE, variant.phase);
+    spec.add(RRC_SPEC_HOST_OUT_MASK, variant.host_out_mask);
+    spec.add(RRC_SPEC_COPY_MASK, variant.copy_mask ? 1u : 0u);
     spec.add(RRC_SPEC_REFRESH_POLICY, c.refresh_policy);
     spec.add(RRC_SPEC_REFRESH_PERIOD, c.refresh_period);
     spec.add(RRC_SPEC_REFRESH_TILES_X, c.refresh_tiles[0]);
@@ -217,6 +221,11 @@ void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v
     w.dstBinding = RRC_BINDING_QUADS;
     w.pBufferInfo = &quads;
     writes.push_back(w);
+    if (!v.fill_list) fail(RRC_ERROR_UNSUPPORTED, "internal: the fill list binding has no buffer");
+    const VkDescriptorBufferInfo fill{v.fill_list, 0, VK_WHOLE_SIZE};
+    w.dstBinding = RRC_BINDING_FILL_LIST;
+    w.pBufferInfo = &fill;
+    writes.push_back(w);
     dev_.vk.vkUpdateDescriptorSets(dev_.device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
 }
 
@@ -229,6 +238,15 @@ void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const 
     // Round up; the kernel bounds-checks.  The list runs one invocation a 2x2 quad.
     if (variant.phase == RRC_PHASE_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
     vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
+}
+
+void AccumulatePipeline::record_indirect(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc,
+                                         const KernelVariant& variant, VkBuffer buffer, VkDeviceSize offset) {
+    auto& vk = dev_.vk;
+    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
+    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
+    vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+    vk.vkCmdDispatchIndirect(cmd, buffer, offset);
 }
 
 }  // namespace rrc

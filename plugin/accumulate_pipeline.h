@@ -36,6 +36,7 @@ struct DescriptorViews {
     VkDeviceSize stats_offset = 0;
     VkBuffer quads = VK_NULL_HANDLE;  // RRC_BINDING_QUADS: classify's list (the host's, the library's, or a placeholder)
     VkDeviceSize quads_offset = 0, quads_range = VK_WHOLE_SIZE;
+    VkBuffer fill_list = VK_NULL_HANDLE;  // RRC_BINDING_FILL_LIST: the library's
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
@@ -46,8 +47,12 @@ struct KernelVariant {
     bool stats = false;
     bool storage_inputs = false;  // the host's inputs bound to the storage bindings (rrc_vulkan_frame_desc.storage_inputs)
     uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
-    uint32_t phase = RRC_PHASE_FUSED;  // RRC_PHASE_*: the fused frame, classify or resolve
-    uint32_t key() const { return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6; }
+    uint32_t phase = RRC_PHASE_FUSED;  // RRC_PHASE_*: the pass (plugin/frame_plan.cpp chooses)
+    uint32_t host_out_mask = 0;   // bit c: slot c writes RRC_BINDING_HOST_OUT
+    bool copy_mask = false;       // LIST, COPY_OUT: the classified mask into RRC_BINDING_MASK
+    uint32_t key() const {
+        return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13;
+    }
 };
 
 // Layout of `Frame` in compute/rrc_reproject.glsl, whose members sit at the
@@ -79,6 +84,9 @@ static_assert(RRC_PC_SIZE <= 128, "push constants must fit Vulkan's guaranteed 1
 class AccumulatePipeline {
 public:
     static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // wide groups win on lavapipe (128x1 ~2% over 64x1; 8x8 is ~1.45x slower)
+    // The indirect passes' groups: RESOLVE_LISTED runs two invocations a
+    // listed quad, FILL one a listed pixel (compute/rrc_accumulate.comp).
+    static_assert(2 * RRC_QUADS_PER_GROUP == kGroupX && RRC_FILL_LIST_PER_GROUP == kGroupX, "the lists' groups are the kernel's");
     AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
     AccumulatePipeline(const AccumulatePipeline&) = delete;
@@ -88,8 +96,12 @@ public:
     // ping-pong parity; interop: 2 x frames in flight).
     VkDescriptorSet allocate_set();
     void write_set(VkDescriptorSet set, const DescriptorViews& views) const;
+    // A dispatch over width x height invocations (LIST: over its 2x2 quads).
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height,
                 const KernelVariant& variant = {});
+    // An indirect dispatch: the VkDispatchIndirectCommand at `offset` of `buffer`.
+    void record_indirect(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, const KernelVariant& variant,
+                         VkBuffer buffer, VkDeviceSize offset);
     // Makes (once) and returns the variant's pipeline: call before recording
     // so that a failure leaves the command buffer untouched.
     VkPipeline pipeline(const KernelVariant& variant);

@@ -22,6 +22,10 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config_.width, config_.height);
     stats_placeholder_ = HostBuffer(*dev_, RRC_STAT_COUNT * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     quads_placeholder_ = HostBuffer(*dev_, (RRC_QUAD_LIST_FIRST_QUAD + 1) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const size_t fill_words = RRC_FILL_LIST_FIRST + (config_.fill_mask() ? (size_t)config_.width * config_.height : 1);
+    fill_list_ = HostBuffer(*dev_, fill_words * sizeof(uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            /*device_local=*/true);
 }
 
 AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
@@ -34,6 +38,7 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
     v.view[RRC_BINDING_CLASSIFIED][0] = mask_.view;  // resolve reads what classify wrote there
     v.stats = stats_placeholder_.buffer;
     v.quads = quads_placeholder_.buffer;
+    v.fill_list = fill_list_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *source.channels[s], sp, *view.channels[s], p);
     return v;
 }
@@ -53,25 +58,70 @@ void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStag
                                              VkAccessFlags extra_src_access) const {
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | extra_src_access;
-    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | extra_src_stages, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-                                  &b, 0, nullptr, 0, nullptr);
+    // The indirect read too: resolve dispatches from classify's list.
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | extra_src_stages,
+                                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
-void AccumulatorCore::record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid,
-                                      const KernelVariant& variant) {
+void AccumulatorCore::prepare(const FramePlan& plan, const KernelVariant& base) {
+    for (const PlanStep& step : plan.steps) {
+        if (step.op != PlanStep::Op::Dispatch) continue;
+        KernelVariant v = step.variant;
+        v.storage_inputs = base.storage_inputs;
+        pipeline_.pipeline(v);
+    }
+}
+
+void AccumulatorCore::record_plan(VkCommandBuffer cmd, const FramePlan& plan, const PlanBindings& sets, const KernelVariant& base,
+                                  const Frame& frame, bool prev_valid) {
+    auto& vk = dev_->vk;
     const FramePushConstants pc = make_frame_constants(config_, frame, prev_valid);
-    pipeline_.record(cmd, set, pc, config_.width, config_.height, variant);
-    if (variant.phase != RRC_PHASE_CLASSIFY) return;
-    // Classify's second dispatch lists the quads from the mask the first wrote.
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0,
-                                  nullptr);
-    KernelVariant list = variant;
-    list.phase = RRC_PHASE_LIST;
-    pipeline_.record(cmd, set, pc, config_.width, config_.height, list);
+    for (const PlanStep& step : plan.steps) {
+        switch (step.op) {
+            case PlanStep::Op::ClearFillList: {
+                // The previous frame's fill (its indirect read and its loads)
+                // finishes before the list starts again empty.
+                VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+                b.buffer = fill_list_.buffer;
+                b.size = RRC_FILL_LIST_FIRST * sizeof(uint32_t);
+                b.srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+                b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                                        VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
+                const uint32_t start[RRC_FILL_LIST_FIRST] = {0, 0, 1, 1};
+                vk.vkCmdUpdateBuffer(cmd, fill_list_.buffer, 0, sizeof start, start);
+                b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0,
+                                        nullptr);
+                break;
+            }
+            case PlanStep::Op::Barrier: {
+                VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+                b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                  (step.to_indirect ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0);
+                const VkPipelineStageFlags dst =
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (step.to_indirect ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0);
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
+                break;
+            }
+            case PlanStep::Op::Dispatch: {
+                KernelVariant v = step.variant;
+                v.storage_inputs = base.storage_inputs;
+                const VkDescriptorSet set = step.set == PlanSet::Frame ? sets.frame : step.set == PlanSet::List ? sets.list : sets.next;
+                if (step.grid == PlanGrid::QuadList)
+                    pipeline_.record_indirect(cmd, set, pc, v, sets.quad_list, sets.quad_list_offset + 4 * RRC_QUAD_LIST_DISPATCH);
+                else if (step.grid == PlanGrid::FillList)
+                    pipeline_.record_indirect(cmd, set, pc, v, fill_list_.buffer, 4 * RRC_FILL_LIST_DISPATCH);
+                else
+                    pipeline_.record(cmd, set, pc, config_.width, config_.height, v);
+                break;
+            }
+        }
+    }
 }
 
 void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_frame_index) {
@@ -81,7 +131,7 @@ void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_fra
 }
 
 size_t AccumulatorCore::memory_bytes() const {
-    size_t bytes = mask_.bytes();
+    size_t bytes = mask_.bytes() + (config_.fill_mask() ? fill_list_.size : 0);  // the fill list (a placeholder without a fill)
     for (const ViewState& v : views_) {
         bytes += v.depth[0].bytes() + v.depth[1].bytes() + v.object_id[0].bytes() + v.object_id[1].bytes();
         for (const auto& c : v.channels) bytes += c->bytes();

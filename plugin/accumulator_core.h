@@ -9,6 +9,7 @@
 #include "channel_history.h"
 #include "config.h"
 #include "frame.h"
+#include "frame_plan.h"
 #include "gpu_resources.h"
 #include "live_inputs.h"
 #include "vulkan_device.h"
@@ -63,9 +64,20 @@ public:
     // The previous frame's kernel wrote what this one reads and read what
     // this one overwrites: one global barrier, compute -> compute.
     void record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const;
-    // Push constants from the frame record and the dispatch (classify: its
-    // two dispatches, mask then list, with the barrier between them).
-    void record_dispatch(VkCommandBuffer cmd, VkDescriptorSet set, const Frame& frame, bool prev_valid, const KernelVariant& variant = {});
+    // The descriptor sets a plan's passes are bound with (PlanSet), and the
+    // quad list RESOLVE_LISTED is dispatched from.
+    struct PlanBindings {
+        VkDescriptorSet frame = VK_NULL_HANDLE, list = VK_NULL_HANDLE, next = VK_NULL_HANDLE;
+        VkBuffer quad_list = VK_NULL_HANDLE;
+        VkDeviceSize quad_list_offset = 0;
+    };
+    // Makes every pipeline the plan dispatches (base: the frame's own
+    // variant bits, e.g. storage_inputs): call before recording anything, so
+    // that a failure leaves the command buffer untouched.
+    void prepare(const FramePlan& plan, const KernelVariant& base);
+    // Records the plan's steps: push constants from the frame record.
+    void record_plan(VkCommandBuffer cmd, const FramePlan& plan, const PlanBindings& sets, const KernelVariant& base, const Frame& frame,
+                     bool prev_valid);
     // After `count` frames were recorded (standalone: and submitted).
     void advance(ViewState& view, uint32_t count, uint64_t last_frame_index);
     size_t memory_bytes() const;
@@ -82,6 +94,7 @@ private:
     GpuImage mask_;                 // standalone: always bound; interop: when the host gives no mask
     HostBuffer stats_placeholder_;  // bound when no frame statistics are asked for
     HostBuffer quads_placeholder_;  // bound where no quad list is written
+    HostBuffer fill_list_;          // the spatial fill's pixels (rrc_kernel_interface.h); a placeholder without a fill
 };
 
 }  // namespace rrc

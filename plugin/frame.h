@@ -52,6 +52,7 @@ struct Frame {
     VkBuffer stats_buffer = VK_NULL_HANDLE;
     VkDeviceSize stats_offset = 0;
     bool storage_inputs = false;  // the host's input images are read as storage images (rrc_vulkan_frame_desc)
+    bool split_outputs = false;   // classify and resolve share the host's outputs (rrc_vulkan_frame_desc, 0.5)
 };
 
 // Where a standalone frame's results go (rrc_frame_output read by the struct

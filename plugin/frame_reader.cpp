@@ -62,6 +62,7 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
     Frame f = read_common(caller, FramePath::Vulkan, d);
     std::tie(f.command_buffer, f.stats_buffer, f.stats_offset) = std::tie(d.command_buffer, d.stats_buffer, d.stats_offset);
     f.storage_inputs = d.storage_inputs != 0;
+    f.split_outputs = d.split_outputs != 0;
     std::tie(f.depth_image, f.reprojection_image, f.nocache_image, f.mask_image, f.object_id_image) =
         std::tie(d.depth, d.reprojection, d.nocache, d.mask, d.object_id);
     read_channels<rrc_vulkan_channel_images>(f, d, context_channels, [](FrameChannel& to, const rrc_vulkan_channel_images& from) {

@@ -91,7 +91,7 @@ void GpuImage::reset() {
     view = VK_NULL_HANDLE, image = VK_NULL_HANDLE, memory_ = VK_NULL_HANDLE;
 }
 
-HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage) : size(bytes), dev_(&dev) {
+HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage, bool device_local) : size(bytes), dev_(&dev) {
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = bytes;
     ci.usage = usage;
@@ -99,9 +99,11 @@ HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage
         VulkanDevice::check(dev.vk.vkCreateBuffer(dev.device, &ci, dev.allocator, &buffer), "vkCreateBuffer");
         VkMemoryRequirements req;
         dev.vk.vkGetBufferMemoryRequirements(dev.device, buffer, &req);
-        memory_ =
-            allocate(dev, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, "vkAllocateMemory (staging)");
+        memory_ = device_local ? allocate(dev, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "vkAllocateMemory (buffer)")
+                               : allocate(dev, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                          "vkAllocateMemory (staging)");
         VulkanDevice::check(dev.vk.vkBindBufferMemory(dev.device, buffer, memory_, 0), "vkBindBufferMemory");
+        if (device_local) return;
         void* p = nullptr;
         VulkanDevice::check(dev.vk.vkMapMemory(dev.device, memory_, 0, VK_WHOLE_SIZE, 0, &p), "vkMapMemory");
         data = static_cast<unsigned char*>(p);

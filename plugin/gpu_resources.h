@@ -42,11 +42,13 @@ private:
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
 };
 
-// Host-visible, coherent, persistently mapped: staging for uploads and readbacks.
+// Host-visible, coherent, persistently mapped: staging for uploads and
+// readbacks.  `device_local`: a buffer only kernels touch (the fill list):
+// device-local memory, not mapped (data stays NULL).
 class HostBuffer {
 public:
     HostBuffer() = default;
-    HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage);
+    HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage, bool device_local = false);
     RRC_MOVE_ONLY_RESOURCE(HostBuffer)
 
     VkBuffer buffer = VK_NULL_HANDLE;

@@ -52,9 +52,9 @@ HostDevice host_device(const rrc_vulkan_device_desc& d) {
 InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_device_desc& d) {
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(host_device(d), Log{config.log, config.log_user}));
     const uint32_t in_flight = d.max_frames_in_flight ? d.max_frames_in_flight : 2;
-    // A frame records one pass (fused) or two (classify, resolve), each with
-    // its own set, and with a fill one more (the fill's).
-    const uint32_t sets = (config.fill_mask() ? 3 : 2) * (in_flight + 1);
+    // A frame records one call (fused) or two (classify, resolve); a call
+    // binds at most two sets (the frame's, and the list's or the next one's).
+    const uint32_t sets = 4 * (in_flight + 1);
     core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, sets, d.pipeline_cache));
     for (uint32_t i = 0; i < sets; ++i) ring_.push_back(core_->pipeline().allocate_set());
     stats_alignment_ = core_->device().limits.minStorageBufferOffsetAlignment;
@@ -119,14 +119,14 @@ void InteropContext::record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDev
 
 void InteropContext::record_frame(const Frame& f) {
     pending_.valid = false;  // a classification not resolved is dropped
-    record_pass(f, RRC_PHASE_FUSED);
+    record_pass(f, PlanCall::Run);
     core_->advance(core_->view(f.view), 1, f.frame_index);
 }
 
 void InteropContext::record_classify(const Frame& f, VkBuffer list, VkDeviceSize list_offset) {
     pending_.valid = false;  // a classification not resolved is dropped
-    record_pass(f, RRC_PHASE_CLASSIFY, list, list_offset);
-    pending_ = {true, f.frame_index, f.view, f.reproject_from};
+    record_pass(f, PlanCall::Classify, list, list_offset);
+    pending_ = {true, f.frame_index, f.view, f.reproject_from, list, list_offset};
 }
 
 void InteropContext::record_resolve(const Frame& f) {
@@ -137,98 +137,128 @@ void InteropContext::record_resolve(const Frame& f) {
     if (pending_.view != f.view || pending_.reproject_from != f.reproject_from)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view/reproject_from is %u/%u but the classified frame's is %u/%u", f.view, f.reproject_from,
              pending_.view, pending_.reproject_from);
-    record_pass(f, RRC_PHASE_RESOLVE);
+    record_pass(f, PlanCall::Resolve, pending_.list, pending_.list_offset);  // a shading cache's resolve runs from classify's list
     pending_.valid = false;
     core_->advance(core_->view(f.view), 1, f.frame_index);
 }
 
-void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, VkDeviceSize list_offset) {
+void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, VkDeviceSize list_offset) {
     VulkanDevice& dev = core_->device();
     auto& vk = dev.vk;
     VkCommandBuffer cmd = f.command_buffer;
     ViewState& view = core_->view(f.view);
     const ViewState& source = core_->view(f.source());  // the frame reprojects into its latest
     const uint32_t p = view.parity;
-    const bool classify = phase == RRC_PHASE_CLASSIFY;
-    KernelVariant variant;
-    variant.phase = phase;
-    variant.stats = f.stats_buffer != VK_NULL_HANDLE;
-    variant.storage_inputs = f.storage_inputs;
-    for (uint32_t s = 0; s < f.channel_count && !classify; ++s)
-        if (f.channels[s].age_image.image) variant.host_age_mask |= 1u << s;
-    const bool fill = !classify && config().fill_mask() != 0;
-    KernelVariant fill_variant = variant;
-    fill_variant.phase = RRC_PHASE_FILL;
-    fill_variant.host_age_mask = 0;
-    fill_variant.stats = false;
-    core_->pipeline().pipeline(variant);  // made before anything is recorded: a failure records nothing
-    if (fill) core_->pipeline().pipeline(fill_variant);
-    if (classify) {
-        KernelVariant list = variant;
-        list.phase = RRC_PHASE_LIST;
-        core_->pipeline().pipeline(list);
-    }
+    const bool classify = call == PlanCall::Classify;
 
-    // Descriptors: the host's images of this frame over the library's own.
-    // Classify reads the geometry only and writes the library's mask.
-    DescriptorViews v = core_->library_views(view, p, source, AccumulatorCore::latest(source));
+    PlanRequest request;
+    request.call = call;
+    request.interop = true;
+    request.split_outputs = f.split_outputs;
+    request.host_mask = f.mask_image.image != VK_NULL_HANDLE;
+    request.stats = f.stats_buffer != VK_NULL_HANDLE;
+    for (uint32_t s = 0; s < f.channel_count; ++s)
+        if (f.channels[s].age_image.image) request.host_age_mask |= 1u << s;
+    const FramePlan plan = make_plan(config(), request);
+    KernelVariant base;
+    base.storage_inputs = f.storage_inputs;
+    core_->prepare(plan, base);  // every pipeline before anything is recorded: a failure records nothing
+
+    // Which host images each set needs: the outputs where a pass bound with
+    // it writes them, the mask where the plan puts it.
+    uint32_t outputs[3] = {}, ages[3] = {};
+    bool copies_mask[3] = {};
+    for (const PlanStep& s : plan.steps)
+        if (s.op == PlanStep::Op::Dispatch) {
+            const int i = (int)s.set;
+            outputs[i] |= s.variant.host_out_mask | (s.variant.phase == RRC_PHASE_FILL ? config().fill_mask() : 0u);
+            ages[i] |= s.variant.host_age_mask;
+            copies_mask[i] = copies_mask[i] || s.variant.copy_mask;
+        }
     HostBarriers hb;
+    std::vector<VkImage> barriered;
+    auto use = [&](const rrc_vulkan_image& img, bool write, bool storage) {
+        for (VkImage i : barriered)
+            if (i == img.image) return;
+        barriered.push_back(img.image);
+        hb.add(img, write, storage);
+    };
+    auto bind_outputs = [&](DescriptorViews& v, int set) {
+        for (uint32_t s = 0; s < f.channel_count; ++s) {
+            if (outputs[set] & (1u << s)) {
+                v.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
+                use(f.channels[s].output_image, true, false);
+            }
+            if ((ages[set] & (1u << s)) && f.channels[s].age_image.image) {
+                v.view[RRC_BINDING_HOST_AGE_OUT][s] = f.channels[s].age_image.view;
+                use(f.channels[s].age_image, true, false);
+            }
+        }
+    };
+    auto bind_mask = [&](DescriptorViews& v) {
+        v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
+        use(f.mask_image, true, false);
+    };
+
+    // The frame's set: the host's images of this frame over the library's
+    // own.  Classify reads the geometry only.
+    DescriptorViews v = core_->library_views(view, p, source, AccumulatorCore::latest(source));
     for (const LiveInput& in : core_->inputs()) {
         if (classify && is_channel_input(in.role)) continue;
+        if (in.role == InputRole::Fallback) continue;  // the fill's (the next set)
         const rrc_vulkan_image& img = host_image(f, in);
-        // storage_inputs: where the standalone path binds its own copy (ids and fallbacks are sampled either way)
-        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId && in.role != InputRole::Fallback;
+        // storage_inputs: where the standalone path binds its own copy (ids are sampled either way)
+        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId;
         const Binding b = storage ? in.own_binding : in.host_binding;
         v.view[b][in.slot] = img.view;
         v.layout[b][in.slot] = storage ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;
-        hb.add(img, false, storage);
+        use(img, false, storage);
     }
     v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
     if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
-    if (f.mask_image.image && !classify) {
-        v.view[RRC_BINDING_MASK][0] = f.mask_image.view;
-        hb.add(f.mask_image, true);
-    }
-    for (uint32_t s = 0; s < f.channel_count && !classify; ++s) {
-        v.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
-        hb.add(f.channels[s].output_image, true);
-        if (f.channels[s].age_image.image) {
-            v.view[RRC_BINDING_HOST_AGE_OUT][s] = f.channels[s].age_image.view;
-            hb.add(f.channels[s].age_image, true);
-        }
-    }
-    if (variant.stats) {
+    if (plan.frame_set_host_mask) bind_mask(v);
+    bind_outputs(v, (int)PlanSet::Frame);
+    if (request.stats) {
         v.stats = f.stats_buffer;
         v.stats_offset = f.stats_offset;
     }
-    if (classify) {
+    if (list) {
         v.quads = list;
         v.quads_offset = list_offset;
         v.quads_range = RRC_QUAD_LIST_BYTES(config().width, config().height);
     }
-    VkDescriptorSet set = ring_[next_set_];
-    core_->pipeline().write_set(set, v);
-    VkDescriptorSet fill_set = VK_NULL_HANDLE;
-    if (fill) {
-        // The fill reads this frame's results as the next frame would (its
-        // history inputs, its previous depth) and writes the host's outputs.
-        DescriptorViews fv = core_->library_views(view, 1 - p, view, p);
+    AccumulatorCore::PlanBindings sets;
+    sets.quad_list = list;
+    sets.quad_list_offset = list_offset;
+    sets.frame = next_set();
+    core_->pipeline().write_set(sets.frame, v);
+    sets.list = sets.frame;
+    if (plan.uses(PlanSet::List)) {
+        // Classify's list pass copying the mask into the host's image.
+        DescriptorViews lv = v;
+        bind_mask(lv);
+        sets.list = next_set();
+        core_->pipeline().write_set(sets.list, lv);
+    }
+    if (plan.uses(PlanSet::Next)) {
+        // Bound as the next frame would be: this frame's results as history
+        // inputs, its depth as the previous depth; the host's outputs.
+        DescriptorViews nv = core_->library_views(view, 1 - p, view, p);
         for (const LiveInput& in : core_->inputs())
             if (in.role == InputRole::Fallback) {
-                fv.view[RRC_BINDING_FALLBACK][in.slot] = host_image(f, in).view;
-                fv.layout[RRC_BINDING_FALLBACK][in.slot] = kReadLayout;
+                nv.view[RRC_BINDING_FALLBACK][in.slot] = host_image(f, in).view;
+                nv.layout[RRC_BINDING_FALLBACK][in.slot] = kReadLayout;
+                use(host_image(f, in), false, false);
             }
-        for (uint32_t s = 0; s < f.channel_count; ++s) fv.view[RRC_BINDING_HOST_OUT][s] = f.channels[s].output_image.view;
-        next_set_ = (next_set_ + 1) % (uint32_t)ring_.size();
-        fill_set = ring_[next_set_];
-        core_->pipeline().write_set(fill_set, fv);
+        if (copies_mask[(int)PlanSet::Next]) bind_mask(nv);
+        bind_outputs(nv, (int)PlanSet::Next);
+        sets.next = next_set();
+        core_->pipeline().write_set(sets.next, nv);
     }
 
     if (dev.fi.CmdBeginDebugUtilsLabelEXT) {
         VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-        label.pLabelName = classify                     ? "rrc: classify"
-                           : phase == RRC_PHASE_RESOLVE ? (fill ? "rrc: resolve + fill" : "rrc: resolve")
-                                                        : (fill ? "rrc: reproject + accumulate + fill" : "rrc: reproject + accumulate");
+        label.pLabelName = classify ? "rrc: classify" : call == PlanCall::Resolve ? "rrc: resolve" : "rrc: reproject + accumulate";
         dev.fi.CmdBeginDebugUtilsLabelEXT(cmd, &label);
     }
     if (!initialised_) record_initialisation(cmd);
@@ -239,13 +269,9 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.before.size(), hb.before.data());
     // Resolve adds its counts (invalid samples) to classify's.
-    if (variant.stats && phase != RRC_PHASE_RESOLVE) record_stats_clear(cmd, f);
+    if (request.stats && call != PlanCall::Resolve) record_stats_clear(cmd, f);
     if (classify) record_list_clear(cmd, list, list_offset);
-    core_->record_dispatch(cmd, set, f, source.have_previous, variant);
-    if (fill) {
-        core_->record_history_barrier(cmd, 0, 0);  // the frame's results to the fill
-        core_->record_dispatch(cmd, fill_set, f, source.have_previous, fill_variant);
-    }
+    core_->record_plan(cmd, plan, sets, base, f, source.have_previous);
     if (classify) {
         // The list to the host's indirect dispatch and its miss shader (rrc_vulkan.h).
         VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
@@ -260,7 +286,7 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
     }
     vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr,
                             (uint32_t)hb.after.size(), hb.after.data());
-    if (variant.stats) {
+    if (request.stats) {
         // The counters to the host (after its fence) and to any later command.
         VkBufferMemoryBarrier b =
             stats_barrier(f, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT | VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
@@ -268,9 +294,13 @@ void InteropContext::record_pass(const Frame& f, uint32_t phase, VkBuffer list, 
                                 0, 0, nullptr, 1, &b, 0, nullptr);
     }
     if (dev.fi.CmdEndDebugUtilsLabelEXT) dev.fi.CmdEndDebugUtilsLabelEXT(cmd);
-
     initialised_ = true;
+}
+
+VkDescriptorSet InteropContext::next_set() {
+    VkDescriptorSet set = ring_[next_set_];
     next_set_ = (next_set_ + 1) % (uint32_t)ring_.size();
+    return set;
 }
 
 }  // namespace rrc

@@ -35,15 +35,16 @@ public:
     uint64_t stats_alignment() const { return stats_alignment_; }
 
 private:
-    // One pass of `phase` (RRC_PHASE_*); list: classify's quad list.
-    void record_pass(const Frame& frame, uint32_t phase, VkBuffer list = VK_NULL_HANDLE, VkDeviceSize list_offset = 0);
+    // One call's frame plan; list: classify's quad list (resolve: the pending classify's).
+    void record_pass(const Frame& frame, PlanCall call, VkBuffer list = VK_NULL_HANDLE, VkDeviceSize list_offset = 0);
+    VkDescriptorSet next_set();  // the ring's next
     void record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDeviceSize offset);
     void record_initialisation(VkCommandBuffer cmd);
     void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
     VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;
 
     std::unique_ptr<AccumulatorCore> core_;
-    std::vector<VkDescriptorSet> ring_;  // two sets (classify, resolve) per frame in flight, plus two
+    std::vector<VkDescriptorSet> ring_;  // four sets (two calls, two sets each) per frame in flight, plus four
     uint32_t next_set_ = 0;
     uint64_t stats_alignment_ = 0;
     // The classify recorded last, until its resolve (any other frame drops it).
@@ -51,6 +52,8 @@ private:
         bool valid = false;
         uint64_t frame_index = 0;
         uint32_t view = 0, reproject_from = 0;
+        VkBuffer list = VK_NULL_HANDLE;  // its quad list: a shading cache's resolve is dispatched from it
+        VkDeviceSize list_offset = 0;
     } pending_;
     bool initialised_ = false;  // images cleared and in GENERAL (recorded with the first frame)
 };

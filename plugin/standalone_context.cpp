@@ -36,7 +36,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         }
         readback_bytes_ = readback_bytes();
         reserve_batch(1);
-        quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pci.queueFamilyIndex = d.queue_family;
@@ -130,8 +130,8 @@ const GpuImage& StandaloneContext::own_input(const ViewState& view, size_t input
     }
 }
 
-VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp, bool fill) {
-    const uint32_t key = (((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp) * 2 + (fill ? 1 : 0);
+VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp) {
+    const uint32_t key = ((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp;
     auto found = sets_.find(key);
     if (found != sets_.end()) return found->second;
     const ViewState& v = core_->view(view);
@@ -141,9 +141,10 @@ VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t s
         const LiveInput& in = core_->inputs()[i];
         d.view[in.own_binding][in.slot] = own_input(v, i, p).view;
     }
-    if (fill)  // the fill writes the displayed values (rrc_accumulate.comp, rrc_fill)
-        for (uint32_t s = 0; s < display_.size(); ++s)
-            if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;
+    // A fill's displayed values: the frame's passes write them where the
+    // fill does not run, the fill where it does (docs/PERFORMANCE.md, "The frame plan").
+    for (uint32_t s = 0; s < display_.size(); ++s)
+        if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;
     VkDescriptorSet set = core_->pipeline().allocate_set();
     core_->pipeline().write_set(set, d);
     sets_[key] = set;
@@ -236,15 +237,16 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     // 2. Uploaded inputs to the kernel.
     transition(uploaded, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    KernelVariant variant;
-    variant.phase = phase;
-    core_->record_dispatch(cmd_, set, f, prev_valid, variant);
-    if (phase != RRC_PHASE_CLASSIFY && config().fill_mask()) {
-        // The fill reads this frame's results as the next frame would.
-        core_->record_history_barrier(cmd_, 0, 0);
-        variant.phase = RRC_PHASE_FILL;
-        core_->record_dispatch(cmd_, set_for(f.view, 1 - parity, f.view, parity, true), f, prev_valid, variant);
-    }
+    // The passes: the frame plan's (plugin/frame_plan.cpp).
+    PlanRequest request;
+    request.call = phase == RRC_PHASE_CLASSIFY ? PlanCall::Classify : phase == RRC_PHASE_RESOLVE ? PlanCall::Resolve : PlanCall::Run;
+    const FramePlan plan = make_plan(config(), request);
+    AccumulatorCore::PlanBindings sets;
+    sets.frame = set;
+    sets.list = set;
+    if (plan.uses(PlanSet::Next)) sets.next = set_for(f.view, 1 - parity, f.view, parity);  // this frame's results as history inputs
+    sets.quad_list = quads_.buffer;
+    core_->record_plan(cmd_, plan, sets, KernelVariant{}, f, prev_valid);
     // 3. Requested outputs (and the mask, for the statistics) to the copy,
     //    then back to GENERAL: next frame's kernel reads them as history.
     transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -361,12 +363,12 @@ void StandaloneContext::begin() {
     VulkanDevice::check(core_->device().vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
 }
 
-void StandaloneContext::classify(const Frame& f, const Classified& out) {
+// Classify of frame f, its geometry already in staging slot 0: the list
+// (from empty), the mask and the HITs' channels of a shading cache.
+void StandaloneContext::run_classify(const Frame& f) {
     auto& vk = core_->device().vk;
     ViewState& view = core_->view(f.view);
     const ViewState& source = core_->view(f.source());
-    pending_ = false;  // a classification not resolved is dropped
-    upload(f, 0, RRC_PHASE_CLASSIFY);
     // The list starts empty, dispatch {0, 1, 1}: host-coherent memory written
     // before the submission is visible to it.
     uint32_t* words = reinterpret_cast<uint32_t*>(quads_.data);
@@ -382,13 +384,29 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
     vk.vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
     VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
+}
 
+void StandaloneContext::classify(const Frame& f, const Classified& out) {
+    // A classification still pending is kept if this one fails: its staged
+    // geometry, to classify it again (the GPU state resolve reads: the mask,
+    // the list, the uploaded inputs and the HITs' channels).
+    std::vector<unsigned char> pending_geometry;
+    if (pending_) pending_geometry.assign(upload_.data, upload_.data + upload_bytes_);
+    upload(f, 0, RRC_PHASE_CLASSIFY);
+    run_classify(f);
+
+    const uint32_t* words = reinterpret_cast<const uint32_t*>(quads_.data);
     const uint32_t count = words[RRC_QUAD_LIST_COUNT];
     const uint8_t* mask = readback_.data;  // slot 0 starts with the mask
+    if (out.caller && out.quads && count > out.quad_capacity) {
+        if (pending_) {
+            std::memcpy(upload_.data, pending_geometry.data(), pending_geometry.size());
+            run_classify(classified_);
+        }
+        fail(RRC_ERROR_SIZE_MISMATCH, "output.quad_capacity is %u but %u quads are listed (RRC_QUAD_LIST_BYTES sizes a full list)",
+             out.quad_capacity, count);
+    }
     if (out.caller) {
-        if (out.quads && count > out.quad_capacity)
-            fail(RRC_ERROR_SIZE_MISMATCH, "output.quad_capacity is %u but %u quads are listed (RRC_QUAD_LIST_BYTES sizes a full list)",
-                 out.quad_capacity, count);
         if (out.mask) std::memcpy(out.mask, mask, (size_t)config().width * config().height);
         if (out.quads) std::memcpy(out.quads, words + RRC_QUAD_LIST_FIRST_QUAD, (size_t)count * sizeof(uint32_t));
         write_member(out.caller, offsetof(rrc_classify_output, quad_count), count);
@@ -396,7 +414,7 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
         write_member(out.caller, offsetof(rrc_classify_output, stats), stats.counts);
         write_member(out.caller, offsetof(rrc_classify_output, refreshed), stats.refreshed);
     }
-    classified_ = f;
+    classified_ = f;  // a classification not resolved is dropped
     pending_ = true;
 }
 

@@ -56,8 +56,10 @@ private:
     const GpuImage& own_input(const ViewState& view, size_t input, uint32_t parity) const;
     // The set of a frame that writes `parity` of `view` and reads `source`'s
     // set `source_parity`: made and written the first time it is needed.
-    // fill: the FILL phase's set (bound as the next frame, the displayed values as its host outputs).
-    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity, bool fill = false);
+    // A fill's displayed values are its host outputs.
+    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity);
+    // Classify's submission for a frame whose geometry is staged in slot 0.
+    void run_classify(const Frame& frame);
     void initialise_images();
     void reserve_batch(uint32_t frames);
     // Which inputs a pass uploads: all (FUSED), the geometry (CLASSIFY) or the channels' (RESOLVE).

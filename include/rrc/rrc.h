@@ -111,7 +111,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 4, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 5, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);

@@ -140,6 +140,19 @@ typedef struct rrc_vulkan_frame_desc {
     /* ---- 0.3 ---- */
     uint32_t view;           /* as rrc_frame_desc.view */
     uint32_t reproject_from; /* as rrc_frame_desc.reproject_from */
+    /* ---- 0.5 ---- */
+    /* The shading cache's split frame (below).  Zero: classify writes none of
+     * the host's images (read right after classify, the mask image still
+     * holds what the last resolve or frame wrote); resolve writes the output,
+     * age and mask images at every pixel.  Non-zero: classify also writes the
+     * mask image at every pixel (every bit but INVALID_SAMPLE, which resolve
+     * adds at the listed quads' pixels) and, when every channel is REUSE, the
+     * output and age images at every HIT; resolve then writes them only at
+     * the listed quads' pixels, so the images are complete after resolve
+     * without a full-frame copy (docs/INTEGRATION.md, "The shading cache").
+     * Classify then moves the output, age and mask images as resolve does.
+     * rrc_vulkan_record_frame ignores it. */
+    uint32_t split_outputs;
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */
