@@ -92,6 +92,22 @@ std::vector<Config> full_sweep() {
         sw.set(c);
         all.push_back(c);
     }
+    // The fill at a stated young fraction: the fill works on young pixels
+    // only, so its cost is set against its twin without the fill at the same
+    // nocache share (young12), round by round (docs/PERFORMANCE.md, "Targets").
+    const struct {
+        const char* name;
+        uint32_t fill_age, fill_radius;
+    } young[] = {{"young12", 0, 0}, {"young12_fill", kYoungAge, 0}, {"young12_fill_r1", kYoungAge, 1}, {"young12_fill_r4", kYoungAge, 4}};
+    for (const auto& y : young) {
+        Config c = vary(y.name, "young");
+        c.nocache = true;
+        c.nocache_share = kYoungNocacheShare;
+        c.young = true;
+        c.channels[0].fill_age = y.fill_age;
+        c.channels[0].fill_radius = y.fill_radius;
+        all.push_back(c);
+    }
     return all;
 }
 
