@@ -38,6 +38,9 @@ std::vector<Config> selected(const Options& o) {
         for (const std::string& n : names) take |= n == c.name;
         if (take) out.push_back(c);
     }
+    if (o.nocache_share >= 0)
+        for (Config& c : out)
+            if (c.young) c.nocache_share = o.nocache_share;
     if (o.width)
         for (Config& c : out) {
             c.width = o.width;
