@@ -112,7 +112,10 @@ std::vector<Config> full_sweep() {
 }
 
 std::vector<std::string> short_sweep_names() {
-    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused"};
+    // depth_fixed, cache_1x4_fused and young12 are the denominators of the
+    // ADAPTIVE, shading cache and fill targets (docs/PERFORMANCE.md, "Targets").
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs",
+            "standalone", "depth_fixed", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused", "young12", "young12_fill"};
 }
 
 std::string channels_text(const Config& c) {
