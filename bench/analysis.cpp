@@ -40,6 +40,8 @@ size_t rounds(const std::vector<const Row*>& rows) {
     return n;
 }
 
+bool at_1080p(const Row* r) { return r && r->config.width == 1920 && r->config.height == 1080; }
+
 double paired_ratio(const Row& a, const Row& b) {
     std::vector<double> q;
     for (size_t i = 0; i < rounds({&a, &b}); ++i) q.push_back(a.interop.kernel_ms[i] / b.interop.kernel_ms[i]);
@@ -174,6 +176,49 @@ std::vector<Target> evaluate_targets(const std::vector<Row>& rows, const Lineari
         t.push_back(upper_bound("shading cache", cache_goal, cache->ratio().median, 1.6, measured));
     } else {
         t.push_back(absent("shading cache", cache_goal, "cache_1x4 at 1920x1080"));
+    }
+
+    // Splitting the frame in two (classify + resolve) against the fused
+    // frame on the same channel, with the share classify lists beside it.
+    const Row* fused = find(rows, "cache_1x4_fused");
+    const std::string split_goal = "classify + resolve time <= 1.10x the fused frame's (1080p, one REUSE rgba16f channel)";
+    if (at_1080p(cache) && at_1080p(fused)) {
+        const double q = paired_ratio(*cache, *fused);
+        t.push_back(upper_bound("cache split", split_goal, q, 1.10,
+                                fmt("%.3f of fused, round by round (medians %.2f vs %.2f ms)", q, cache->kernel().median, fused->kernel().median) +
+                                    fmt("; listed %.1f%% of pixels", 100.0 * cache->listed_fraction())));
+    } else {
+        t.push_back(absent("cache split", split_goal, "cache_1x4 and cache_1x4_fused at 1920x1080"));
+    }
+
+    // The fill at a stated young fraction (docs/PERFORMANCE.md, "What is
+    // timed"): young12_fill against its twin without the fill.
+    const Row* young = find(rows, "young12");
+    const Row* fill = find(rows, "young12_fill");
+    const std::string fill_goal = "fill (fill_age 8) time <= 1.20x its twin's without it, ~12% of pixels young (1080p)";
+    if (at_1080p(young) && at_1080p(fill)) {
+        const double q = paired_ratio(*fill, *young);
+        std::string measured = fmt("%.3f of young12, round by round (medians %.2f vs %.2f ms)", q, fill->kernel().median, young->kernel().median) +
+                               fmt("; young %.1f%% of pixels (%.1f%% of surface)", 100.0 * fill->young_fraction(),
+                                   100.0 * fill->young_surface_fraction());
+        for (const char* other : {"young12_fill_r1", "young12_fill_r4"}) {
+            const Row* r = find(rows, other);
+            if (at_1080p(r)) measured += "; " + std::string(other) + fmt(" %.3f", paired_ratio(*r, *young));
+        }
+        t.push_back(upper_bound("fill (young)", fill_goal, q, 1.20, measured));
+    } else {
+        t.push_back(absent("fill (young)", fill_goal, "young12 and young12_fill at 1920x1080"));
+    }
+
+    // ADAPTIVE (base's default depth test) against FIXED.
+    const Row* fixed = find(rows, "depth_fixed");
+    const std::string adaptive_goal = "ADAPTIVE depth test (base) time <= 1.15x FIXED's (depth_fixed), 1080p";
+    if (at_1080p(base) && at_1080p(fixed)) {
+        const double q = paired_ratio(*base, *fixed);
+        t.push_back(upper_bound("ADAPTIVE", adaptive_goal, q, 1.15,
+                                fmt("%.3f of FIXED's, round by round (medians %.2f vs %.2f ms)", q, base->kernel().median, fixed->kernel().median)));
+    } else {
+        t.push_back(absent("ADAPTIVE", adaptive_goal, "base and depth_fixed at 1920x1080"));
     }
     return t;
 }

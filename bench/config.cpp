@@ -92,11 +92,30 @@ std::vector<Config> full_sweep() {
         sw.set(c);
         all.push_back(c);
     }
+    // The fill at a stated young fraction: the fill works on young pixels
+    // only, so its cost is set against its twin without the fill at the same
+    // nocache share (young12), round by round (docs/PERFORMANCE.md, "Targets").
+    const struct {
+        const char* name;
+        uint32_t fill_age, fill_radius;
+    } young[] = {{"young12", 0, 0}, {"young12_fill", kYoungAge, 0}, {"young12_fill_r1", kYoungAge, 1}, {"young12_fill_r4", kYoungAge, 4}};
+    for (const auto& y : young) {
+        Config c = vary(y.name, "young");
+        c.nocache = true;
+        c.nocache_share = kYoungNocacheShare;
+        c.young = true;
+        c.channels[0].fill_age = y.fill_age;
+        c.channels[0].fill_radius = y.fill_radius;
+        all.push_back(c);
+    }
     return all;
 }
 
 std::vector<std::string> short_sweep_names() {
-    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs", "standalone", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused"};
+    // depth_fixed, cache_1x4_fused and young12 are the denominators of the
+    // ADAPTIVE, shading cache and fill targets (docs/PERFORMANCE.md, "Targets").
+    return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs",
+            "standalone", "depth_fixed", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused", "young12", "young12_fill"};
 }
 
 std::string channels_text(const Config& c) {

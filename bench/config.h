@@ -29,6 +29,14 @@ struct Config {
     std::vector<ChannelConfig> channels{ChannelConfig{}};
     rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
     bool nocache = false;
+    // The share of pixels the nocache mask marks (with nocache): 1 % by
+    // default.  Those pixels miss every frame (age 1), so the share sets how
+    // many pixels are young (age < fill_age): the fill rows' workload
+    // (docs/PERFORMANCE.md, "What is timed").
+    float nocache_share = 0.01f;
+    // A row of the fill's cost at a stated young fraction: --nocache-share
+    // sets its nocache_share.
+    bool young = false;
     bool object_id = false;
     rrc_depth_test depth_test = 0;  // 0: the library's default (ADAPTIVE)
     bool standalone = false;        // also time the standalone path (CPU arrays)
@@ -47,6 +55,14 @@ struct Config {
     // cost is this row's time less Fused's; classify alone never advances history).
     enum class Cache { Off, Fused, Split, ClassifyFused } shading_cache = Cache::Off;
 };
+
+/** The age below which a pixel is young: the fill rows' fill_age; the
+ *  bench counts young pixels against it in every row. */
+constexpr uint32_t kYoungAge = 8;
+/** The young rows' nocache share: chosen so that about 12 % of all pixels
+ *  (surface pixels of age < kYoungAge over the frame's pixels) are young at
+ *  1080p (docs/PERFORMANCE.md, "What is timed"). */
+constexpr float kYoungNocacheShare = 0.08f;
 
 /** Every configuration of --full, base first. */
 std::vector<Config> full_sweep();

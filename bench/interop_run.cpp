@@ -198,6 +198,10 @@ double InteropBench::roof_pass(int pose) {
     return timer_->enabled() ? timer_->elapsed_ms(2) : wall;
 }
 
+void InteropBench::prime(int frames) {
+    for (int i = 0; i < frames; ++i) kernel(false);
+}
+
 void InteropBench::step(bool record) {
     const int pose = (int)(frame_ % 2);  // the roof reads what this pair's kernel frame reads
     double k, w, t;
@@ -215,10 +219,28 @@ void InteropBench::step(bool record) {
     res_.ratio.push_back(k / t);
 }
 
+// Young pixels of the statistics frame: not background (mask) and age <
+// kYoungAge in channel 0's age output, the pixels the fill works on
+// (docs/CONVENTIONS.md, "The spatial fill").  Read back before the roof
+// check rewrites both images.
+uint64_t InteropBench::count_young() {
+    const VkImageLayout g = VK_IMAGE_LAYOUT_GENERAL;
+    const auto age = vk_.download(img_.age_out[0], image_bytes(img_.age_out[0]), g);
+    const auto mask = vk_.download(img_.mask, image_bytes(img_.mask), g);
+    uint64_t n = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+        uint16_t a;
+        std::memcpy(&a, &age[2 * i], sizeof a);
+        n += !(mask[i] & RRC_MASK_BACKGROUND) && a < kYoungAge;
+    }
+    return n;
+}
+
 InteropResult InteropBench::finish(bool check_roof) {
     kernel(true);
     std::memcpy(&res_.stats, stats_.mapped, sizeof res_.stats);
     if (quads_.mapped) std::memcpy(&res_.listed_quads, quads_.mapped, sizeof res_.listed_quads);
+    res_.young = count_young();
     if (check_roof) {
         roof_pass(0);  // the roof is the last writer of the outputs it checks
         res_.roof_check = roof_->check(0);

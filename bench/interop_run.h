@@ -25,6 +25,7 @@ struct InteropResult {
     uint64_t memory_bytes = 0;                      // rrc_context_memory_usage
     rrc_vulkan_frame_stats stats{};                 // of one untimed frame after the timed ones
     uint32_t listed_quads = 0;                      // Config::Cache::Split: the quads that frame listed
+    uint64_t young = 0;                             // that frame's surface pixels of age < kYoungAge (channel 0)
     std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
@@ -47,12 +48,15 @@ public:
      *  `record` false: warm-up (lavapipe compiles at the first dispatch, and
      *  the first frames have no history), not kept. */
     void step(bool record);
+    /** `frames` untimed kernel frames (no roof): history to reach a steady state before the warm-up rounds. */
+    void prime(int frames);
     /** An untimed frame with statistics, the roof check if asked; the result. */
     InteropResult finish(bool check_roof);
 
 private:
     std::pair<double, double> kernel(bool with_stats);
     double roof_pass(int pose);
+    uint64_t count_young();
     void release();
     VulkanBootstrap& vk_;
     const Config& config_;

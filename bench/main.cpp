@@ -38,12 +38,21 @@ std::vector<Config> selected(const Options& o) {
         for (const std::string& n : names) take |= n == c.name;
         if (take) out.push_back(c);
     }
+    if (o.nocache_share >= 0)
+        for (Config& c : out)
+            if (c.young) c.nocache_share = o.nocache_share;
     if (o.width)
         for (Config& c : out) {
             c.width = o.width;
             c.height = o.height;
         }
     return out;
+}
+
+bool young_sensitive(const Config& c) {
+    bool fill = false;
+    for (const ChannelConfig& ch : c.channels) fill |= ch.fill_age != 0;
+    return fill || c.young;
 }
 
 // One configuration's inputs, images and contexts, alive for the whole run.
@@ -93,6 +102,10 @@ std::vector<Row> measure_all(VulkanBootstrap& vk, const std::vector<Config>& con
             if (j.config.standalone) j.standalone = std::make_unique<StandaloneBench>(j.config, *j.scene, log, opt.device, opt.validation);
             j.images = create_images(vk, j.config, *j.scene);
             j.interop = std::make_unique<InteropBench>(vk, j.config, *j.scene, j.images, log);
+            // A pixel is young until kYoungAge frames of history: before that the
+            // fill works on every surface pixel, so rows whose cost depends on the
+            // young fraction start from a steady state (docs/PERFORMANCE.md, "What is timed").
+            if (young_sensitive(j.config)) j.interop->prime((int)kYoungAge);
             if (!j.standalone) drop_arrays(*j.scene);  // on the device now; the interop frames need only the matrices
         }
         for (int r = -opt.warmup; r < reps; ++r) {

@@ -14,11 +14,15 @@ namespace {
 [[noreturn]] void usage(int code) {
     std::fprintf(code ? stderr : stdout,
                  "usage: rrc-bench [--full] [--list] [--config NAME[,NAME...]] [--size WxH] [--reps N] [--warmup N]\n"
-                 "                 [--device TEXT] [--validation] [--check-roof] [--out DIR] [--no-plot] [--plot-script PATH]\n"
+                 "                 [--nocache-share S] [--device TEXT] [--validation] [--check-roof] [--out DIR] [--no-plot]\n"
+                 "                 [--plot-script PATH]\n"
                  "Times rrc's kernel (interop path) against its roof, a copy kernel moving the bytes the API implies,\n"
                  "and the standalone round trip against kernel + memcpy.  Default: a short sweep (under 2 minutes on\n"
                  "2 cores); --full: every factor around the base (1920x1080, one fp16 channel, PREV_CLIP).\n"
-                 "--config takes names printed by `rrc-bench --list`.  Results: DIR/bench.csv, bench.json, report.md, bench.png.\n");
+                 "--config takes names printed by `rrc-bench --list`.  Results: DIR/bench.csv, bench.json, report.md, bench.png.\n"
+                 "--nocache-share S: the share of pixels (0 to 1) the nocache mask marks in the young* rows, the fill's\n"
+                 "workload at a stated young fraction (default 0.08: about 12 %% of the pixels young at 1080p); every row\n"
+                 "reports the young fraction it measured (surface pixels of age < 8 over all pixels).\n");
     std::exit(code);
 }
 
@@ -58,7 +62,15 @@ Options parse_options(int argc, char** argv) {
             }
         } else if (a == "--reps") o.reps = std::atoi(value().c_str());
         else if (a == "--warmup") o.warmup = std::atoi(value().c_str());
-        else if (a == "--device") o.device = value();
+        else if (a == "--nocache-share") {
+            const std::string v = value();
+            char* end = nullptr;
+            o.nocache_share = std::strtof(v.c_str(), &end);
+            if (end == v.c_str() || *end || !(o.nocache_share >= 0.0f && o.nocache_share <= 1.0f)) {
+                std::fprintf(stderr, "rrc-bench: --nocache-share wants a share in [0, 1], got %s\n", v.c_str());
+                usage(2);
+            }
+        } else if (a == "--device") o.device = value();
         else if (a == "--validation") o.validation = true;
         else if (a == "--check-roof") o.check_roof = true;
         else if (a == "--out") o.out = value();

@@ -13,6 +13,7 @@ struct Options {
     uint32_t width = 0, height = 0;     // --size WxH: every configuration at this size
     int reps = 0;                       // --reps N: timed repetitions (0: 9 short run, 15 full)
     int warmup = 3;                     // --warmup N: untimed frames first
+    float nocache_share = -1;           // --nocache-share S: the young rows' nocache share (< 0: kYoungNocacheShare)
     std::string device;                 // --device TEXT: substring of the device name
     bool validation = false;            // --validation: Khronos validation + sync validation, fail on any message
     bool check_roof = false;            // --check-roof: read the roof's outputs back, fail unless exact copies

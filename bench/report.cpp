@@ -80,6 +80,11 @@ std::vector<Field> fields(const Row& r) {
         {"wall_ms_max", num(w.max), false},
         {"hit_fraction", num(r.hit_fraction()), false},
         {"background_fraction", num(r.interop.stats.pixels ? (double)r.interop.stats.background / r.interop.stats.pixels : 0.0), false},
+        {"nocache_share", c.nocache ? num(c.nocache_share) : "", false},
+        {"young_fraction", num(r.young_fraction()), false},
+        {"young_surface_fraction", num(r.young_surface_fraction()), false},
+        {"listed_quads", c.shading_cache == Config::Cache::Split ? std::to_string(r.interop.listed_quads) : "", false},
+        {"listed_fraction", c.shading_cache == Config::Cache::Split ? num(r.listed_fraction()) : "", false},
         {"reps", std::to_string(r.interop.kernel_ms.size()), false},
         {"timer", r.interop.timestamps ? "timestamps" : "wall", true},
         {"roof_check", r.interop.roof_check == "skipped" ? "skipped" : r.interop.roof_check.empty() ? "exact" : r.interop.roof_check, true},
@@ -111,19 +116,19 @@ void write_file(const std::string& path, const std::string& text) {
 }  // namespace
 
 void print_table(const std::vector<Row>& rows) {
-    std::printf("\n%-18s %9s %-9s %22s %9s %19s %7s %7s %8s %8s %5s\n", "config", "size", "channels", "kernel ms (min-max)", "roof ms",
-                "ratio (IQR)", "roof", "kernel", "memory", "wall ms", "hits");
-    std::printf("%-18s %9s %-9s %22s %9s %19s %7s %7s %8s %8s %5s\n", "", "", "", "median", "median", "median", "GB/s", "GB/s", "MB",
-                "median", "%");
+    std::printf("\n%-18s %9s %-9s %22s %9s %19s %7s %7s %8s %8s %5s %5s\n", "config", "size", "channels", "kernel ms (min-max)", "roof ms",
+                "ratio (IQR)", "roof", "kernel", "memory", "wall ms", "hits", "young");
+    std::printf("%-18s %9s %-9s %22s %9s %19s %7s %7s %8s %8s %5s %5s\n", "", "", "", "median", "median", "median", "GB/s", "GB/s", "MB",
+                "median", "%", "%");
     for (const Row& r : rows) {
         const Summary k = r.kernel(), t = r.roof(), q = r.ratio();
         char size[32], kern[64], ratio[64];
         std::snprintf(size, sizeof size, "%ux%u", r.config.width, r.config.height);
         std::snprintf(kern, sizeof kern, "%.2f (%.2f-%.2f)", k.median, k.min, k.max);
         std::snprintf(ratio, sizeof ratio, "%.3f (%.2f-%.2f)", q.median, q.q1, q.q3);
-        std::printf("%-18s %9s %-9s %22s %9.2f %19s %7.2f %7.2f %8.1f %8.2f %5.1f\n", r.config.name.c_str(), size,
+        std::printf("%-18s %9s %-9s %22s %9.2f %19s %7.2f %7.2f %8.1f %8.2f %5.1f %5.1f\n", r.config.name.c_str(), size,
                     channels_text(r.config).c_str(), kern, t.median, ratio, r.roof_gbps(), r.kernel_gbps(), mb(r.interop.memory_bytes),
-                    r.wall().median, 100.0 * r.hit_fraction());
+                    r.wall().median, 100.0 * r.hit_fraction(), 100.0 * r.young_fraction());
     }
     for (const Row& r : rows)
         if (r.has_standalone) {
@@ -190,18 +195,31 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
       << "Command: `" << info.command << "` (" << info.reps << " timed repetitions after " << info.warmup << " warm-up frames"
       << (info.validation ? ", under validation: timings not representative" : "") << ").\n\n";
     o << "| config | size | channels | source | kernel ms median (min–max) | roof ms median (min–max) | kernel/roof median (IQR; min–max) | roof GB/s | "
-         "kernel GB/s | roof MB/frame | memory MB | wall ms/frame | hits % |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "kernel GB/s | roof MB/frame | memory MB | wall ms/frame | hits % | young % |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     char line[1024];
     for (const Row& r : rows) {
         const Summary k = r.kernel(), t = r.roof(), q = r.ratio();
         std::snprintf(line, sizeof line,
-                      "| %s | %ux%u | %s | %s | %.2f (%.2f–%.2f) | %.2f (%.2f–%.2f) | %.3f (%.2f–%.2f; %.2f–%.2f) | %.2f | %.2f | %.1f | %.1f | %.2f | %.1f |\n",
+                      "| %s | %ux%u | %s | %s | %.2f (%.2f–%.2f) | %.2f (%.2f–%.2f) | %.3f (%.2f–%.2f; %.2f–%.2f) | %.2f | %.2f | %.1f | %.1f | %.2f | %.1f | %.1f |\n",
                       r.config.name.c_str(), r.config.width, r.config.height, channels_text(r.config).c_str(), source_name(r.config.source),
                       k.median, k.min, k.max, t.median, t.min, t.max, q.median, q.q1, q.q3, q.min, q.max, r.roof_gbps(), r.kernel_gbps(),
-                      mb(r.api_bytes.total()), mb(r.interop.memory_bytes), r.wall().median, 100.0 * r.hit_fraction());
+                      mb(r.api_bytes.total()), mb(r.interop.memory_bytes), r.wall().median, 100.0 * r.hit_fraction(),
+                      100.0 * r.young_fraction());
         o << line;
     }
+    // What the young column counts (docs/PERFORMANCE.md, "What is timed"): the fill's workload.
+    o << "\nyoung %: surface pixels of age < " << kYoungAge << " (channel 0; the fill's pixels at fill_age " << kYoungAge
+      << ") over all pixels of the untimed statistics frame.";
+    for (const Row& r : rows)
+        if (r.config.young)
+            o << " " << r.config.name << ": nocache share " << num(100.0 * r.config.nocache_share, 1) << " %, young " << num(100.0 * r.young_fraction(), 1)
+              << " % of pixels (" << num(100.0 * r.young_surface_fraction(), 1) << " % of surface pixels).";
+    for (const Row& r : rows)
+        if (r.config.shading_cache == Config::Cache::Split)
+            o << " " << r.config.name << ": " << r.interop.listed_quads << " quads listed, " << num(100.0 * r.listed_fraction(), 1)
+              << " % of pixels.";
+    o << "\n";
     for (const Row& r : rows)
         if (r.has_standalone) {
             const Summary s = summarize(r.standalone.frame_ms), m = summarize(r.standalone.memcpy_ms);

@@ -27,6 +27,15 @@ struct Row {
     Summary wall() const { return summarize(interop.wall_ms); }
     double megapixels() const { return (double)config.width * config.height * 1e-6; }
     double hit_fraction() const { return interop.stats.pixels ? (double)interop.stats.hits / interop.stats.pixels : 0.0; }
+    /** Young pixels (surface, age < kYoungAge) over all pixels of the statistics frame. */
+    double young_fraction() const { return interop.stats.pixels ? (double)interop.young / interop.stats.pixels : 0.0; }
+    /** The same over the surface (non-background) pixels. */
+    double young_surface_fraction() const {
+        const double surface = (double)interop.stats.pixels - interop.stats.background;
+        return surface > 0 ? (double)interop.young / surface : 0.0;
+    }
+    /** Split shading cache: listed quads x 4 over the pixels (the share classify asks the host to shade). */
+    double listed_fraction() const { return interop.stats.pixels ? 4.0 * interop.listed_quads / interop.stats.pixels : 0.0; }
     /** Bytes of the roof / its median time, in GB/s (1e9 bytes). */
     double roof_gbps() const { return (double)api_bytes.total() / (roof().median * 1e6); }
     /** The same bytes over the kernel's median time: the kernel's effective bandwidth. */

@@ -138,7 +138,7 @@ SceneInputs make_scene(const Config& cfg) {
     }
     if (cfg.nocache) {
         s.nocache.resize(px);
-        for (size_t i = 0; i < px; ++i) s.nocache[i] = unit((uint32_t)i, 99u) < 0.01f ? 1 : 0;
+        for (size_t i = 0; i < px; ++i) s.nocache[i] = unit((uint32_t)i, 99u) < cfg.nocache_share ? 1 : 0;
     }
     return s;
 }

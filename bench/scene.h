@@ -29,7 +29,7 @@ struct SceneInputs {
     PoseFrame poses[2];
     std::vector<std::vector<float>> samples;     // per channel, W*H*components, uniform noise in [0,1)
     std::vector<std::vector<float>> confidence;  // per channel (empty without confidence), W*H in [0,1)
-    std::vector<uint8_t> nocache;                // W*H, ~1% set (only with nocache)
+    std::vector<uint8_t> nocache;                // W*H, ~nocache_share set (only with nocache)
 };
 
 /** Floats per pixel of the standalone API's reprojection array: 4, 2, 3 or 0 (CAMERA). */

@@ -26,7 +26,10 @@ set(expect_rectify "32;9")          # rectification reads 8 more samples: no byt
 set(expect_fill "32;9")             # the fill (no fallback) rereads what the frame wrote: no byte more
 set(expect_fill_r1 "32;9")
 set(expect_filter_gaussian "32;9")  # 16 history taps, the same unique bytes
-set(configs base ch_2x4 fp32 confidence nocache object_id src_motion src_motion_depth src_camera standalone rectify fill fill_r1 filter_gaussian)
+set(expect_young12 "33;9")          # nocache on a larger share: the same bytes as nocache
+set(expect_young12_fill "33;9")
+set(configs base ch_2x4 fp32 confidence nocache object_id src_motion src_motion_depth src_camera standalone rectify fill fill_r1 filter_gaussian
+            young12 young12_fill)
 list(JOIN configs "," config_arg)
 
 file(REMOVE_RECURSE "${OUT}")
@@ -63,6 +66,11 @@ foreach(i RANGE ${last})
       message(FATAL_ERROR "${name}: ${key} = ${v}, not positive")
     endif()
   endforeach()
+  # The young fraction is read back from the statistics frame: a share of the pixels.
+  string(JSON young GET "${json}" rows ${i} young_fraction)
+  if(young LESS 0 OR young GREATER 1)
+    message(FATAL_ERROR "${name}: young_fraction ${young} outside [0, 1]")
+  endif()
   string(JSON check GET "${json}" rows ${i} roof_check)
   if(NOT check STREQUAL "exact")
     message(FATAL_ERROR "${name}: roof outputs are not exact copies: ${check}")
