@@ -1,9 +1,11 @@
 #include "cache_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 namespace rrc_cache {
@@ -56,18 +58,29 @@ std::vector<Figures> figures(const std::vector<RunResult>& runs) {
     };
     for (size_t i = 0; i < runs.size(); ++i) {
         Figures& f = out[i];
-        if (f.full_ms > 0 && f.total_ms > 0) {  // the paired baseline: the same frames, timed beside them
-            f.p = f.full_shade_ms / f.full_ms;
-            f.c = runs[i].config.cache ? f.rrc_ms / f.full_ms : 0.0;
-            f.bound = 1.0 / ((1.0 - f.p) + f.p * f.shaded_fraction + f.c);
-            f.speedup = f.full_ms / f.total_ms;
-            f.of_bound = f.bound > 0 ? f.speedup / f.bound : 0.0;
-        }
+        apply_time_model(f, runs[i].config.cache);  // against the paired baseline: the same frames, timed beside them
         const Figures* b = baseline(runs[i].config);
-        if (b && b->total_ms > 0 && f.total_ms > 0) f.speedup_separate = b->total_ms / f.total_ms;
+        if (b) f.speedup_separate = speedup_against(b->total_ms, f.total_ms);
     }
     return out;
 }
+
+double amdahl_bound(double p, double f, double c) {
+    const double rest = (1.0 - p) + p * f + c;
+    return rest > 0.0 ? 1.0 / rest : std::numeric_limits<double>::infinity();
+}
+
+void apply_time_model(Figures& f, bool cache) {
+    f.p = f.c = f.bound = f.speedup = f.of_bound = 0.0;
+    if (!(f.full_ms > 0.0 && f.total_ms > 0.0)) return;
+    f.p = f.full_shade_ms / f.full_ms;
+    f.c = cache ? f.rrc_ms / f.full_ms : 0.0;
+    f.bound = amdahl_bound(f.p, f.shaded_fraction, f.c);
+    f.speedup = f.full_ms / f.total_ms;
+    f.of_bound = std::isfinite(f.bound) && f.bound > 0.0 ? f.speedup / f.bound : 0.0;
+}
+
+double speedup_against(double baseline_ms, double frame_ms) { return baseline_ms > 0.0 && frame_ms > 0.0 ? baseline_ms / frame_ms : 0.0; }
 
 void write_csv(const std::string& path, const std::vector<Figures>& fs) {
     std::ofstream o(path);
