@@ -16,6 +16,7 @@ namespace rrc_cache {
 
 struct Figures {
     std::string name;
+    CacheConfig config;  // the run's (policy, n, eyes, sub-frames, octaves)
     double raster_ms = 0, shade_ms = 0, rrc_ms = 0, total_ms = 0;                    // medians
     double shaded_fraction = 0, rmse = 0, hit_fraction = 0, refreshed_fraction = 0;  // means
     // The paired baseline: the same frames shaded everywhere, timed beside each cached frame (medians).
@@ -44,7 +45,10 @@ void apply_time_model(Figures& f, bool cache);
 /** baseline_ms / frame_ms; 0 when either is not positive (not measured). */
 double speedup_against(double baseline_ms, double frame_ms);
 
+/** runs.csv: one row a run (README.md, Output). */
 void write_csv(const std::string& path, const std::vector<Figures>& f);
+/** speedup_vs_cost.csv: one row an octave count, TILED n = 4 against the same frames shaded everywhere. */
+void write_cost_csv(const std::string& path, const std::vector<Figures>& f);
 void write_report(const std::string& path, const std::vector<Figures>& f, const std::string& command, const std::string& device,
                   const Settings& settings);
 
