@@ -106,8 +106,8 @@ void write_cost_csv(const std::string& path, const std::vector<Figures>& fs) {
     if (!o) throw std::runtime_error("rrc-cache: cannot write " + path);
     o << "octaves,run,full_shade_ms,full_ms,speedup,amdahl_bound,of_bound,c,shaded_fraction,rmse\n";
     for (const CostPoint& p : cost_curve(fs)) {
-        char line[256];
-        std::snprintf(line, sizeof line, "%u,%s,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.5f,%.6f\n", p.octaves, p.run.c_str(), p.shade_ms,
+        char line[320];  // full precision: plot_cost.py interpolates the break-even from these
+        std::snprintf(line, sizeof line, "%u,%s,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", p.octaves, p.run.c_str(), p.shade_ms,
                       p.full_ms, p.speedup, p.bound, p.of_bound, p.c, p.shaded_fraction, p.rmse);
         o << line;
     }

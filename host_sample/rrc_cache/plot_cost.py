@@ -45,14 +45,15 @@ def main(csv_path, png_path):
         if be:
             octaves, x, kind = be
             ax.axvline(x, color="tab:red", lw=0.8, ls=":")
+            where = "at or below " if kind == "at or below" else ""
             ax.plot([x], [1.0], "D", color="tab:red",
-                    label="break-even %s %.1f octaves (%.1f ms)" % (kind, octaves, x))
+                    label="break-even: %s%.1f octaves, %.1f ms (linear between points)" % (where, octaves, x))
         else:
             ax.text(0.02, 0.04, "break-even not reached up to %d octaves" % pts[-1][0], transform=ax.transAxes, color="tab:red")
     ax.set_xlabel("shader cost: full shading pass a frame (ms)")
     ax.set_ylabel("speed-up over shading every pixel")
     ax.set_ylim(0, max([PAPER[1] + 0.2] + [p[3] * 1.05 for p in pts if p[3] < 100]))
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="lower right")
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)
 
