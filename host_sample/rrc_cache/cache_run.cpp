@@ -9,6 +9,7 @@
 #include "rrc_descs.h"
 #include "rrc_interop.h"
 #include "scene.h"
+#include "spec_constant.h"
 
 #include <rrc/rrc_vulkan.h>
 
@@ -20,6 +21,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace rrc_cache {
@@ -72,23 +74,6 @@ struct Bench::Impl {
             RRC_QUAD_LIST_BYTES(s.width, s.height),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "quad list");
         counter = gpu.create_buffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, "shaded quads");
-        const VkDescriptorType TEX = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                               BUF = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        full = rrc_sample::ComputeKernel(gpu, "shade every pixel", rrc_cache_shade_full_comp, sizeof rrc_cache_shade_full_comp,
-                                         {TEX, TEX, IMG}, 8, 2);
-        miss = rrc_sample::ComputeKernel(gpu, "miss shader", rrc_cache_shade_miss_comp, sizeof rrc_cache_shade_miss_comp,
-                                         {TEX, TEX, IMG, BUF, BUF}, 8, 1);
-        const rrc_sample::GBuffer& g = gbuffer.images();
-        for (uint32_t set = 0; set < 2; ++set) {
-            full.bind_image(set, 0, g.position.view, kRO);
-            full.bind_image(set, 1, g.normal.view, kRO);
-            full.bind_image(set, 2, set == 0 ? shaded.view : truth.view, kGeneral);
-        }
-        miss.bind_image(0, 0, g.position.view, kRO);
-        miss.bind_image(0, 1, g.normal.view, kRO);
-        miss.bind_image(0, 2, shaded.view, kGeneral);
-        miss.bind_buffer(0, 3, list.buffer);
-        miss.bind_buffer(0, 4, counter.buffer);
         VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         ai.commandPool = gpu.pool;
         ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -101,12 +86,42 @@ struct Bench::Impl {
         vkDeviceWaitIdle(gpu.device);
         vkDestroyFence(gpu.device, fence, nullptr);
         vkFreeCommandBuffers(gpu.device, gpu.pool, 1, &cmd);
-        full.release();
-        miss.release();
+        shaders.clear();
         gpu.destroy(list);
         gpu.destroy(counter);
         for (Image* i : {&shaded, &truth, &out, &mask}) gpu.destroy(*i);
     }
+    // The shader at `octaves` octaves (perlin.glsl's kOctaves), both ways: every pixel and the miss
+    // shader; made on first use and kept, so a run's frames do not pay for pipeline creation.
+    struct Shaders {
+        rrc_sample::ComputeKernel full, miss;
+    };
+    Shaders& shaders_for(uint32_t octaves) {
+        auto it = shaders.find(octaves);
+        if (it != shaders.end()) return it->second;
+        const VkDescriptorType TEX = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                               BUF = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        const std::vector<uint32_t> full_spv =
+            with_spec_constant(rrc_cache_shade_full_comp, sizeof rrc_cache_shade_full_comp, kOctavesSpecId, octaves);
+        const std::vector<uint32_t> miss_spv =
+            with_spec_constant(rrc_cache_shade_miss_comp, sizeof rrc_cache_shade_miss_comp, kOctavesSpecId, octaves);
+        Shaders& k = shaders[octaves];
+        k.full = rrc_sample::ComputeKernel(gpu, "shade every pixel", full_spv.data(), 4 * full_spv.size(), {TEX, TEX, IMG}, 8, 2);
+        k.miss = rrc_sample::ComputeKernel(gpu, "miss shader", miss_spv.data(), 4 * miss_spv.size(), {TEX, TEX, IMG, BUF, BUF}, 8, 1);
+        const rrc_sample::GBuffer& g = gbuffer.images();
+        for (uint32_t set = 0; set < 2; ++set) {
+            k.full.bind_image(set, 0, g.position.view, kRO);
+            k.full.bind_image(set, 1, g.normal.view, kRO);
+            k.full.bind_image(set, 2, set == 0 ? shaded.view : truth.view, kGeneral);
+        }
+        k.miss.bind_image(0, 0, g.position.view, kRO);
+        k.miss.bind_image(0, 1, g.normal.view, kRO);
+        k.miss.bind_image(0, 2, shaded.view, kGeneral);
+        k.miss.bind_buffer(0, 3, list.buffer);
+        k.miss.bind_buffer(0, 4, counter.buffer);
+        return k;
+    }
+
     static rrc_sample::RenderSettings make_render(const Settings& s) {
         rrc_sample::RenderSettings r;
         r.width = s.width;
@@ -159,9 +174,9 @@ struct Bench::Impl {
     rrc_sample::GBufferPass gbuffer;
     Image shaded, truth, out, mask;
     rrc_host::Buffer list, counter;
-    rrc_sample::ComputeKernel full, miss;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
+    std::map<uint32_t, Shaders> shaders;  // by octave count
     double empty_floor = std::numeric_limits<double>::infinity();
 };
 
@@ -178,6 +193,9 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
     const uint64_t messages_before = m.gpu.message_count();
     RunResult result;
     result.config = config;
+    if (config.octaves < 1 || config.octaves > kMaxOctaves)
+        throw std::invalid_argument("rrc-cache: octaves must be in 1.." + std::to_string(kMaxOctaves));
+    Impl::Shaders& k = m.shaders_for(config.octaves);
 
     // The cache: one 4-component REUSE channel (fp16 history, bilinear, as the paper).
     std::vector<rrc_channel_desc> channels{rrc_host::channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE)};
@@ -214,7 +232,7 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
                 m.gpu_scene.update(state);
                 rec.raster_ms += m.timed([&](VkCommandBuffer c) { m.gbuffer.record(c); });
                 if (!config.cache) {
-                    rec.shade_ms += m.timed([&](VkCommandBuffer c) { m.full.dispatch(c, 0, push, s.width, s.height); });
+                    rec.shade_ms += m.timed([&](VkCommandBuffer c) { k.full.dispatch(c, 0, push, s.width, s.height); });
                     rec.full_shade_ms = rec.shade_ms;
                     rec.shaded_fraction += 1.0;
                     rec.pixels += n;
@@ -243,7 +261,7 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
                 rec.classify_ms += m.timed([&](VkCommandBuffer c) { record(c, true); });
                 std::memset(m.counter.mapped, 0, 16);  // host-coherent, written before the submission
                 rec.shade_ms +=
-                    m.timed([&](VkCommandBuffer c) { m.miss.dispatch_indirect(c, 0, push, m.list.buffer, 4 * RRC_QUAD_LIST_DISPATCH); });
+                    m.timed([&](VkCommandBuffer c) { k.miss.dispatch_indirect(c, 0, push, m.list.buffer, 4 * RRC_QUAD_LIST_DISPATCH); });
                 rec.resolve_ms += m.timed([&](VkCommandBuffer c) { record(c, false); });
                 const uint32_t* words = static_cast<const uint32_t*>(m.list.mapped);
                 const uint32_t listed = words[RRC_QUAD_LIST_COUNT], shaded_quads = *static_cast<const uint32_t*>(m.counter.mapped);
@@ -257,7 +275,7 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
                 }
                 rec.shaded_fraction += (double)shaded_pixels / (double)n;
                 // The target: this frame shaded everywhere; timed, the paired baseline of this frame.
-                rec.full_shade_ms += m.timed([&](VkCommandBuffer c) { m.full.dispatch(c, 1, push, s.width, s.height); });
+                rec.full_shade_ms += m.timed([&](VkCommandBuffer c) { k.full.dispatch(c, 1, push, s.width, s.height); });
                 const std::vector<float> img = m.read_rgba(m.out), tru = m.read_rgba(m.truth);
                 const std::vector<unsigned char> mk = m.gpu.download(m.mask, n, kGeneral);
                 if (S > 1) {  // the blurred frame's error, after its last sub-frame

@@ -16,6 +16,9 @@
 
 namespace rrc_cache {
 
+// perlin.glsl's octave count: its specialization constant kOctaves (SpecId 0).
+constexpr uint32_t kOctavesSpecId = 0, kDefaultOctaves = 8, kMaxOctaves = 256;
+
 struct CacheConfig {
     std::string name;
     bool cache = true;  // false: shade every pixel (the baseline)
@@ -25,6 +28,7 @@ struct CacheConfig {
     bool stereo = false;     // a second eye (view 1) reusing the first eye's shading
     uint32_t subframes = 1;  // > 1: motion blur, the mean of this many sub-frames within the
                              // frame's time, each reusing the one before (the cache at that rate)
+    uint32_t octaves = kDefaultOctaves;  // of the shader (perlin.glsl), its cost
 };
 
 struct FrameRecord {

@@ -2,9 +2,11 @@
 // rrc-sample's temple scene with an 8-octave Perlin shader: frame time and
 // error against shading every pixel every frame, for each refresh policy and
 // period, with and without a maximum lifetime, and a stereo pair whose second
-// eye reuses the first eye's shading.  host_sample/rrc_cache/README.md.
+// eye reuses the first eye's shading; with --octaves, the speed-up of TILED
+// n = 4 against the shader's cost.  host_sample/rrc_cache/README.md.
 #include "cache_report.h"
 #include "cache_run.h"
+#include "cache_targets.h"
 #include "output.h"  // rrc_sample::coherence_map
 #include "png_io.h"
 
@@ -25,18 +27,22 @@ namespace {
 
 const char* kUsage =
     "usage: rrc-cache [--size WxH] [--frames N] [--periods N,N,...] [--policies tiled,random] [--no-stereo]\n"
-    "                 [--validation] [--out DIR] [--no-plot]\n"
+    "                 [--octaves N,N,...] [--validation] [--out DIR] [--no-plot]\n"
     "Runs the temple scene with an 8-octave Perlin shader: every pixel shaded each frame (the baseline), rrc's\n"
     "shading cache without refresh, with each policy at each period n, with and without a maximum lifetime of\n"
     "2n frames, a stereo pair (second eye reusing the first's shading) against shading both eyes, and motion blur\n"
     "(4 sub-frames a frame, each reusing the one before) against shading every sub-frame.\n"
-    "Defaults: --size 320x180 --frames 24 --periods 1,2,4,8 --policies tiled,random --out out/cache.\n"
-    "Writes DIR/report.md, runs.csv, speedup.png (matplotlib), and cached/full/coherence/anaglyph PNGs.\n";
+    "--octaves: the shader's octave counts (its cost); all of the above at the first, and at each further one\n"
+    "full and TILED n = 4 (runs named _oN), for the speed-up against shader cost and the break-even shader.\n"
+    "Defaults: --size 320x180 --frames 24 --periods 1,2,4,8 --policies tiled,random --octaves 8 --out out/cache.\n"
+    "Writes DIR/report.md, runs.csv, speedup_vs_cost.csv, speedup.png and speedup_vs_cost.png (matplotlib), and\n"
+    "cached/full/coherence/anaglyph PNGs.\n";
 
 struct Options {
     Settings settings;
     std::vector<uint32_t> periods{1, 2, 4, 8};
     std::vector<rrc_refresh_policy> policies{RRC_REFRESH_TILED, RRC_REFRESH_RANDOM};
+    std::vector<uint32_t> octaves{kDefaultOctaves};  // the first: every run; the others: full and TILED n = 4
     bool stereo = true, plot = true;
     std::string out = "out/cache";
 };
@@ -84,6 +90,15 @@ Options parse(int argc, char** argv) {
                 else
                     throw std::invalid_argument("--policies takes tiled and/or random, not \"" + p + "\"");
             }
+        } else if (a == "--octaves") {
+            o.octaves.clear();
+            std::stringstream ss(value());
+            for (std::string p; std::getline(ss, p, ',');) {
+                const uint32_t n = positive(p, "--octaves");
+                if (n > kMaxOctaves) throw std::invalid_argument("--octaves must be at most " + std::to_string(kMaxOctaves));
+                if (std::find(o.octaves.begin(), o.octaves.end(), n) == o.octaves.end()) o.octaves.push_back(n);
+            }
+            if (o.octaves.empty()) throw std::invalid_argument("--octaves needs at least one count");
         } else if (a == "--no-stereo") {
             o.stereo = false;
         } else if (a == "--no-plot") {
@@ -97,6 +112,16 @@ Options parse(int argc, char** argv) {
         }
     }
     return o;
+}
+
+// TILED n = 4 without a lifetime: the paper's setting, the speed-up against shader cost is measured with it.
+CacheConfig tiled_4(uint32_t octaves, const std::string& suffix) {
+    CacheConfig k;
+    k.name = "tiled_" + std::to_string(kCostPeriod) + suffix;
+    k.policy = RRC_REFRESH_TILED;
+    k.period = kCostPeriod;
+    k.octaves = octaves;
+    return k;
 }
 
 std::vector<CacheConfig> configs(const Options& o) {
@@ -126,6 +151,20 @@ std::vector<CacheConfig> configs(const Options& o) {
         cache.stereo = true;
         c.push_back(full);
         c.push_back(cache);
+    }
+    const uint32_t first = o.octaves.front();
+    for (CacheConfig& k : c) k.octaves = first;
+    const bool has_tiled_4 = std::any_of(c.begin(), c.end(), [](const CacheConfig& k) {
+        return k.cache && k.policy == RRC_REFRESH_TILED && k.period == kCostPeriod && !k.lifetime && !k.stereo && k.subframes == 1;
+    });
+    if (!has_tiled_4) c.push_back(tiled_4(first, ""));  // the cost curve's first point
+    // Each further octave count: the shader's cost moves, the cache's does not.
+    for (size_t i = 1; i < o.octaves.size(); ++i) {
+        const std::string suffix = "_o" + std::to_string(o.octaves[i]);
+        CacheConfig full{"full" + suffix, false};
+        full.octaves = o.octaves[i];
+        c.push_back(full);
+        c.push_back(tiled_4(o.octaves[i], suffix));
     }
     return c;
 }
@@ -187,11 +226,12 @@ int main(int argc, char** argv) {
         }
         const std::vector<Figures> f = figures(runs);
         write_csv((fs::path(o.out) / "runs.csv").string(), f);
+        write_cost_csv((fs::path(o.out) / "speedup_vs_cost.csv").string(), f);
         write_report((fs::path(o.out) / "report.md").string(), f, command, bench.device_name(), o.settings);
         for (const RunResult& r : runs) {
             if (r.config.name == "full") rrc_png::write_png((fs::path(o.out) / "full.png").string(), picture(r.image, o.settings));
             if (r.config.name == "tiled_4" || (r.config.cache && r.config.policy == RRC_REFRESH_TILED && !r.config.lifetime &&
-                                               !fs::exists(fs::path(o.out) / "cached.png"))) {
+                                               r.config.octaves == o.octaves.front() && !fs::exists(fs::path(o.out) / "cached.png"))) {
                 rrc_png::write_png((fs::path(o.out) / "cached.png").string(), picture(r.image, o.settings));
                 rrc_png::write_png((fs::path(o.out) / "coherence.png").string(), coherence(r.mask, o.settings));
             }
@@ -201,9 +241,12 @@ int main(int argc, char** argv) {
             }
         }
         if (o.plot) {
-            const std::string cmd = std::string(RRC_CACHE_PYTHON) + " " + RRC_CACHE_PLOT_PY + " " +
-                                    (fs::path(o.out) / "runs.csv").string() + " " + (fs::path(o.out) / "speedup.png").string();
-            if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rrc-cache: the plot was not drawn (%s)\n", cmd.c_str());
+            const std::string py = std::string(RRC_CACHE_PYTHON) + " ";
+            for (const std::string& cmd :
+                 {py + RRC_CACHE_PLOT_PY + " " + (fs::path(o.out) / "runs.csv").string() + " " + (fs::path(o.out) / "speedup.png").string(),
+                  py + RRC_CACHE_PLOT_COST_PY + " " + (fs::path(o.out) / "speedup_vs_cost.csv").string() + " " +
+                      (fs::path(o.out) / "speedup_vs_cost.png").string()})
+                if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rrc-cache: the plot was not drawn (%s)\n", cmd.c_str());
         }
         std::FILE* rep = std::fopen((fs::path(o.out) / "report.md").string().c_str(), "r");
         if (rep) {

@@ -15,7 +15,11 @@ def main(csv_path, png_path):
     for policy, colour in (("tiled", "tab:blue"), ("random", "tab:orange")):
         for lifetime, style in ((False, "-"), (True, "--")):
             pts = []
+            # The runs at the first octave count only (named without _oN; runs.csv's octaves column).
+            base = rows[0].get("octaves") if rows else None
             for r in rows:
+                if base is not None and r.get("octaves") != base:
+                    continue
                 parts = r["name"].split("_")
                 if parts[0] != policy or (len(parts) == 3) != lifetime:
                     continue

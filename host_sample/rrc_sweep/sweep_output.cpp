@@ -1,5 +1,7 @@
 #include "sweep_output.h"
 
+#include "sweep_time.h"
+
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -28,7 +30,7 @@ const char* kHeader =
     "seeds,checkpoints,rrc_alone_ms\n";
 
 void metrics_columns(std::ofstream& f, double signal_ms, double rrc_ms, const Metrics& m, double rrc_alone_ms) {
-    f << num(signal_ms) << "," << num(rrc_ms) << "," << num(signal_ms + rrc_ms) << "," << num(m.rmse) << "," << num(m.psnr) << ","
+    f << num(signal_ms) << "," << num(rrc_ms) << "," << num(row_time_ms(signal_ms, rrc_ms)) << "," << num(m.rmse) << "," << num(m.psnr) << ","
       << num(m.bias2) << "," << num(m.variance) << "," << num(m.flicker) << "," << num(m.mse_measured) << "," << num(m.reference_noise)
       << "," << m.seeds << "," << m.checkpoints << "," << num(rrc_alone_ms) << "\n";
 }

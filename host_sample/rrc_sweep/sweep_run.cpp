@@ -1,6 +1,7 @@
 #include "sweep_run.h"
 
 #include "sweep_engine.h"
+#include "sweep_time.h"
 
 #include "frame_state.h"
 #include "gpu.h"
@@ -28,29 +29,17 @@
 namespace rrc_sweep {
 namespace {
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/** One isolated submission: its timestamps' interval and its wall clock. */
-struct Timing {
-    double stamps_ms = 0.0, wall_ms = 0.0;
-};
-
 /** Which clock a pass's time is read from: timestamps on a GPU, the wall clock (less an empty
  *  submission's) on a CPU device, whose timestamps are wrong after graphics work (above). Also
  *  keeps how far the two disagree, for sweep.md. */
 struct Clock {
     bool wall = false;
     std::vector<double> ratio;  // timestamps / (wall - empty) of signal passes and rrc, per frame
-    double ms(const Timing& t, const Timing& empty) const { return wall ? std::max(t.wall_ms - empty.wall_ms, 0.0) : t.stamps_ms; }
+    double ms(const Timing& t, const Timing& empty) const { return pass_ms(t, empty, wall); }
     void compare(const std::vector<Timing>& a, const std::vector<Timing>& b, const Timing& empty) {
         double stamps = 0.0, wall = 0.0;
         for (const auto* v : {&a, &b})
-            for (const Timing& t : *v) stamps += t.stamps_ms, wall += std::max(t.wall_ms - empty.wall_ms, 0.0);
+            for (const Timing& t : *v) stamps += t.stamps_ms, wall += pass_ms(t, empty, true);
         if (wall > 0.0) ratio.push_back(stamps / wall);
     }
 };
@@ -217,7 +206,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (int seed = 0; seed < o.seeds; ++seed) {
                 const Sampling sampling{kFirstSeed + (uint32_t)seed, run.pattern};
                 std::vector<std::vector<float>> previous(stages.size());
-                Timing empty_floor{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+                Timing floor{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
                 for (int f = 0; f <= last; ++f) {
                     const FrameState state = e.begin_frame(f, run.k, sampling.seed);
                     const bool read = evaluated.count(f) != 0;
@@ -242,9 +231,8 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     // The submission overhead is the fastest empty submission so far: one
                     // slow empty submission (a load spike) must not eat a pass's time.
                     Timing empty = timed_pass([](VkCommandBuffer) {});
-                    empty_floor.wall_ms = std::min(empty_floor.wall_ms, empty.wall_ms);
-                    empty_floor.stamps_ms = std::min(empty_floor.stamps_ms, empty.stamps_ms);
-                    empty = empty_floor;
+                    floor = empty_floor(floor, empty);
+                    empty = floor;
                     std::vector<Timing> app_t, stage_t, probe_t;
                     for (const App& a : run_apps)
                         app_t.push_back(timed_pass([&](VkCommandBuffer c) {
@@ -316,13 +304,13 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         }
 
         // Each application's share of rrc: its channel alone, less a third of what one context for all
-        // three saves (docs/PERFORMANCE.md, "Error against run time").
+        // three saves (docs/PERFORMANCE.md, "Error against run time"; the arithmetic: sweep_time.h).
         result.rrc_together_ms = median(together_ms);
         result.rrc_alone_sum_ms = median(alone_sum_ms);
-        const double saving = together_ms.empty() ? 0.0 : (result.rrc_alone_sum_ms - result.rrc_together_ms) / (double)apps_of(sigs).size();
+        const double saving = sharing_saving_ms(alone_sum_ms, together_ms, apps_of(sigs).size());
         for (RrcRow& row : result.rrc) {
             row.rrc_alone_ms = median(pooled_rrc_ms[channel_key(row.config)]);
-            row.rrc_ms = std::max(row.rrc_alone_ms - saving, 0.0);
+            row.rrc_ms = rrc_share_ms(row.rrc_alone_ms, saving);
         }
 
         // ---- Brute force: the per-frame estimator with k samples, on the frames that are scored.
