@@ -78,6 +78,11 @@ std::vector<Config> full_sweep() {
              c.shading_cache = Config::Cache::Split;
              c.channels[0].components = 4;
          }},
+        {"cache_1x4_copy", "shading_cache", [](Config& c) {
+             c.shading_cache = Config::Cache::Split;
+             c.split_outputs = false;
+             c.channels[0].components = 4;
+         }},
         {"cache_1x4_fused", "shading_cache", [](Config& c) {
              c.shading_cache = Config::Cache::Fused;
              c.channels[0].components = 4;

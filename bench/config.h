@@ -54,6 +54,9 @@ struct Config {
     // ClassifyFused: classify, then the fused frame (a diagnostic: classify's
     // cost is this row's time less Fused's; classify alone never advances history).
     enum class Cache { Off, Fused, Split, ClassifyFused } shading_cache = Cache::Off;
+    // Split: classify and resolve share the host's outputs (rrc_vulkan_frame_desc.split_outputs);
+    // false: resolve copies every pixel into them (the 0.3/0.4 behaviour).
+    bool split_outputs = true;
 };
 
 /** The age below which a pixel is young: the fill rows' fill_age; the

@@ -170,6 +170,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
         auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
         list.buffer = quads_.buffer;
         const bool split = config_.shading_cache == Config::Cache::Split;
+        f.split_outputs = split && config_.split_outputs ? 1u : 0u;
         if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS ||
             (split ? rrc_vulkan_record_resolve(ctx_, &f) : rrc_vulkan_record_frame(ctx_, &f)) != RRC_SUCCESS)
             throw std::runtime_error(std::string("rrc_vulkan_record_classify/resolve: ") + rrc_context_last_error(ctx_));

@@ -251,6 +251,8 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
                 f.channels = &ci;
                 f.view = (uint32_t)eye;
                 f.reproject_from = eye == 1 ? 1u : 0u;  // the second eye: the first eye's frame just made
+                // Classify writes the HITs' outputs, resolve the listed quads': no full-frame copy (rrc_vulkan.h).
+                f.split_outputs = 1;
                 rrc_vulkan_quad_list list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
                 list.buffer = m.list.buffer;
                 auto record = [&](VkCommandBuffer c, bool classify) {
