@@ -21,6 +21,7 @@
 #include "support/cache_policy.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
+#include "support/static_clip.h"
 #include "support/tolerance.h"
 
 #include <cmath>
@@ -101,13 +102,30 @@ std::vector<rrc_channel_desc> variant_channels() {
             channel("accum4_fp16_age_aware", 4, 0.8f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR)};
 }
 
+// A context of REUSE channels only: classify writes the HITs' channels and
+// resolve runs on the listed quads only (docs/PERFORMANCE.md, "The frame plan").
+std::vector<rrc_channel_desc> reuse_only_channels(bool fill) {
+    std::vector<rrc_channel_desc> c = variant_channels();
+    c.pop_back();
+    if (fill) c[0].fill_age = 4, c[1].fill_age = 3;  // the shading cache's holes filled from cached neighbours
+    return c;
+}
+
+// `reference`: also check the fused frames against the reference (without a fill: the finishing tests check the fill's).
+void split_vs_fused(const Policy& pol, std::vector<rrc_channel_desc> channels, bool reference);
+
 class SplitVsFused : public ::testing::TestWithParam<Policy> {};
 
-TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
-    const Policy& pol = GetParam();
+TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) { split_vs_fused(GetParam(), variant_channels(), true); }
+
+class SplitVsFusedReuseOnly : public ::testing::TestWithParam<Policy> {};
+
+TEST_P(SplitVsFusedReuseOnly, BitIdenticalAndMatchingTheReference) { split_vs_fused(GetParam(), reuse_only_channels(false), true); }
+TEST_P(SplitVsFusedReuseOnly, WithAFillBitIdentical) { split_vs_fused(GetParam(), reuse_only_channels(true), false); }
+
+void split_vs_fused(const Policy& pol, std::vector<rrc_channel_desc> channels, bool check_reference) {
     const int W = 64, H = 48, frames = 8;
     const size_t n = (size_t)W * H;
-    std::vector<rrc_channel_desc> channels = variant_channels();
     rrc_scene::SceneConfig sc = scene_config(W, H, RRC_DEPTH_MODE_REVERSED);
     sc.jitter = true;
     rrc_scene::Scene scene(sc);
@@ -209,7 +227,7 @@ TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
 
         // ---- the fused kernel against the reference
         const rrc_ref::FrameResult r = rrc_ref::run_frame(fused.desc(), prev, in.desc);
-        for (size_t i = 0; i < n; ++i) {
+        for (size_t i = 0; i < n && check_reference; ++i) {
             if (r.near_threshold[i] || r.near_nearest_edge[i]) continue;
             ++compared;
             refreshed += (r.mask[i] & RRC_MASK_REFRESHED) ? 1 : 0;
@@ -238,6 +256,7 @@ TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
             prev.channels[ch].age = k.r.age[ch];
         }
     }
+    if (!check_reference) return;
     EXPECT_GT(refreshed, 0) << "the comparison must cover refreshes";
     EXPECT_GT(reused, 0) << "the comparison must cover reused values";
     EXPECT_GT(compared, (int64_t)n * frames * 8 / 10);
@@ -245,6 +264,97 @@ TEST_P(SplitVsFused, BitIdenticalAndMatchingTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Policies, SplitVsFused, ::testing::ValuesIn(kPolicies),
                          [](const ::testing::TestParamInfo<Policy>& i) { return std::string(i.param.name); });
+INSTANTIATE_TEST_SUITE_P(Policies, SplitVsFusedReuseOnly, ::testing::ValuesIn(kPolicies),
+                         [](const ::testing::TestParamInfo<Policy>& i) { return std::string(i.param.name); });
+
+// A classify that fails (quad_capacity too small) leaves the classification
+// pending before it as it was: rrc.h, "on any error the context is left as
+// it was".  The failing classify is a different frame (other geometry, some
+// HITs resampled elsewhere, some misses), so that a classify that kept any
+// of its work (mask, uploads, HITs' channels, list) would show in resolve.
+TEST(ShadingCacheClassify, AFailedClassifyKeepsThePendingClassification) {
+    const uint32_t W = 8, H = 4, n = W * H;
+    std::vector<rrc_channel_desc> channels = {channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR)};
+    rrc_context_desc d = context_desc(W, H, channels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    Context fused(d), split(d);
+    ASSERT_TRUE(fused);
+    ASSERT_TRUE(split);
+    std::vector<float> depth(n, 0.5f), clip = static_prev_clip(W, H, 0.5f), shade(4 * n);
+    for (uint32_t i = 0; i < 4 * n; ++i) shade[i] = (float)((i * 37) % 101) / 101.0f;
+    rrc_channel_input in = channel_input(shade.data());
+    auto frame = [&](uint64_t index, const std::vector<float>& z, const std::vector<float>& c) {
+        rrc_frame_desc f = frame_desc();
+        f.frame_index = index;
+        f.depth = z.data();
+        f.reprojection = c.data();
+        f.channel_count = 1;
+        f.channels = &in;
+        return f;
+    };
+    auto classify = [&](const rrc_frame_desc& f, uint32_t capacity, uint32_t* count) {
+        std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(W, H) / 4);
+        rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+        co.quads = quads.data();
+        co.quad_capacity = capacity;
+        co.quad_count = 0xDEADu;
+        const rrc_result r = rrc_frame_classify(split.get(), &f, &co);
+        if (count) *count = co.quad_count;
+        return r;
+    };
+    auto resolve = [&]() {
+        rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+        rd.channel_count = 1;
+        rd.channels = &in;
+        FrameResult r;
+        r.mask.assign(n, 0xAA);
+        r.values = {std::vector<float>(4 * n, -1.0f)};
+        r.age = {std::vector<uint16_t>(n, 0xBEEF)};
+        rrc_channel_output co = rrc_host::channel_output();
+        co.values = r.values[0].data();
+        co.age = r.age[0].data();
+        rrc_frame_output o = rrc_host::frame_output();
+        o.mask = r.mask.data();
+        o.channel_count = 1;
+        o.channels = &co;
+        EXPECT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
+        return r;
+    };
+    auto expect_equal = [&](const FrameResult& a, const FrameResult& b, const char* what) {
+        EXPECT_EQ(a.mask, b.mask) << what;
+        EXPECT_EQ(a.age[0], b.age[0]) << what;
+        EXPECT_EQ(std::memcmp(a.values[0].data(), b.values[0].data(), 4 * n * sizeof(float)), 0) << what << ": values bit for bit";
+    };
+
+    // Frame 0: every pixel misses (8 quads).
+    uint32_t count = 0;
+    const rrc_frame_desc f0 = frame(0, depth, clip);
+    ASSERT_EQ(classify(f0, 8, &count), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(count, 8u);
+    expect_equal(resolve(), fused.run(f0), "frame 0");
+
+    // Frame 1: static, every pixel a HIT (nothing listed).  Then a different
+    // frame whose classify fails: the right half resampled half a pixel
+    // away (HITs with other values), the left half at another depth (misses: 4 quads).
+    for (uint32_t i = 0; i < 4 * n; ++i) shade[i] = 1.0f - shade[i];
+    const rrc_frame_desc f1 = frame(1, depth, clip);
+    ASSERT_EQ(classify(f1, 8, &count), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(count, 0u);
+    std::vector<float> depth_b = depth, clip_b = clip;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (i % W < W / 2) depth_b[i] = clip_b[4 * i + 2] = 0.25f;  // expected 0.25, previous 0.5
+        else clip_b[4 * i] += 1.0f / W;  // half a pixel in x
+    }
+    const rrc_frame_desc b = frame(1, depth_b, clip_b);
+    EXPECT_EQ(classify(b, 3, &count), RRC_ERROR_SIZE_MISMATCH);
+    EXPECT_EQ(count, 0xDEADu) << "a failed classify writes nothing";
+    // Resolve completes frame 1 as classified first.
+    expect_equal(resolve(), fused.run(f1), "frame 1 after a failed classify");
+    // And history is frame 1's: frame 2 (static) still agrees.
+    const rrc_frame_desc f2 = frame(2, depth, clip);
+    ASSERT_EQ(classify(f2, 8, &count), RRC_SUCCESS) << rrc_last_error();
+    expect_equal(resolve(), fused.run(f2), "frame 2");
+}
 
 // ---- A flat plane under CAMERA reprojection (depth 0.5, identity-like matrices).
 
