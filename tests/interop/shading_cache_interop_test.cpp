@@ -3,7 +3,12 @@
 // pending in one submission, each with its own quad list and statistics,
 // give what the standalone classify + resolve gives (mask, listed quads as a
 // set, the indirect dispatch, values, ages, counts), under the validation
-// layer with synchronization validation.
+// layer with synchronization validation.  Both for a context with an
+// accumulating channel (resolve runs over every pixel) and for one of REUSE
+// channels only (resolve runs on the listed quads, classify writes the
+// HITs), with and without rrc_vulkan_frame_desc.split_outputs; and what the
+// host's mask image holds right after classify (rrc_vulkan.h: unchanged, or
+// with split_outputs this frame's classification).
 #include "interop/vulkan_host.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
@@ -21,9 +26,11 @@ namespace {
 const int W = 48, H = 32, N = 5;
 const uint32_t kListWords = RRC_QUAD_LIST_BYTES(W, H) / 4;
 
-std::vector<rrc_channel_desc> cache_channels() {
+// reuse_only: the pcf channel is a second REUSE channel (fp32 nearest), so the whole context is a shading cache.
+std::vector<rrc_channel_desc> cache_channels(bool reuse_only) {
     return {channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR),
-            channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR)};
+            reuse_only ? channel("pcf", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)
+                       : channel("pcf", 1, 0.6f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR)};
 }
 
 rrc_scene::SceneConfig cache_scene() { return scene_config(W, H, RRC_DEPTH_MODE_REVERSED); }
@@ -45,6 +52,15 @@ struct Split {
     std::vector<float> shade, pcf;
     std::vector<uint16_t> shade_age, pcf_age;
 };
+
+// Standalone classify of one frame: its mask.
+std::vector<uint8_t> run_classify(Context& ctx, SceneFrameInputs& in) {
+    std::vector<uint8_t> mask((size_t)W * H);
+    rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+    co.mask = mask.data();
+    EXPECT_EQ(rrc_frame_classify(ctx.get(), &in.desc, &co), RRC_SUCCESS) << rrc_last_error();
+    return mask;
+}
 
 // Standalone classify + resolve of one frame, every sample given.
 Split run_split(Context& ctx, SceneFrameInputs& in) {
@@ -90,20 +106,22 @@ std::vector<T> as(const std::vector<unsigned char>& bytes) {
     return v;
 }
 
-TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
-    std::vector<rrc_channel_desc> channels = cache_channels();
+void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) {
+    std::vector<rrc_channel_desc> channels = cache_channels(reuse_only);
     rrc_scene::Scene scene(cache_scene());
-    std::vector<SceneFrameInputs> inputs(N);
+    std::vector<SceneFrameInputs> inputs(N + 1);
     std::vector<Split> expected;
+    std::vector<uint8_t> classified;  // frame N's mask after its classify alone
     {
         Context ctx(cache_desc(channels));
         ASSERT_TRUE(ctx);
-        for (int t = 0; t < N; ++t) {
+        for (int t = 0; t <= N; ++t) {
             inputs[t].frame = scene.render(t);
             make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {4, 1}, {false, false});
             inputs[t].desc.frame_index = 100 + t;
-            expected.push_back(run_split(ctx, inputs[t]));
+            if (t < N) expected.push_back(run_split(ctx, inputs[t]));
         }
+        classified = run_classify(ctx, inputs[N]);
     }
     uint64_t refreshed = 0, hits = 0;
     for (const Split& e : expected) refreshed += e.refreshed, hits += e.stats.hits;
@@ -128,9 +146,9 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
     struct PerFrame {
         HostImage depth, clip, shade_in, pcf_in, shade_out, pcf_out, mask, shade_age, pcf_age;
     };
-    std::vector<PerFrame> fr(N);
+    std::vector<PerFrame> fr(N + 1);
     std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
-    for (int t = 0; t < N; ++t) {
+    for (int t = 0; t <= N; ++t) {
         PerFrame& p = fr[t];
         p.depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
         p.clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
@@ -150,10 +168,15 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
     }
 
     VkCommandBuffer cmd = host.begin();
-    for (int t = 0; t < N; ++t) {
+    auto list_at = [&](int t) {
+        auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
+        list.buffer = lists.buffer;
+        list.offset = list_stride * (t % N);
+        return list;
+    };
+    auto frame_at = [&](int t, rrc_vulkan_channel_images* ch) {
         PerFrame& p = fr[t];
-        rrc_vulkan_channel_images ch[2];
-        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
+        for (int c = 0; c < 2; ++c) ch[c] = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         ch[0].samples = view_of(p.shade_in, ro);
         ch[0].output = view_of(p.shade_out, gen);
         ch[0].age = view_of(p.shade_age, gen);
@@ -170,11 +193,15 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
         f.channel_count = 2;
         f.channels = ch;
         f.stats_buffer = stats.buffer;
-        f.stats_offset = stats_stride * t;
+        f.stats_offset = stats_stride * (t % N);
         f.command_buffer = cmd;
-        auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
-        list.buffer = lists.buffer;
-        list.offset = list_stride * t;
+        f.split_outputs = split_outputs;
+        return f;
+    };
+    for (int t = 0; t < N; ++t) {
+        rrc_vulkan_channel_images ch[2];
+        auto f = frame_at(t, ch);
+        auto list = list_at(t);
         if (t == 0) EXPECT_EQ(rrc_vulkan_record_resolve(ctx, &f), RRC_ERROR_INVALID_ARGUMENT) << "resolve before any classify";
         ASSERT_EQ(rrc_vulkan_record_classify(ctx, &f, &list), RRC_SUCCESS) << rrc_last_error();
         auto wrong = f;
@@ -210,6 +237,22 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
         EXPECT_EQ(as<uint16_t>(host.download(p.shade_age, gen)), e.shade_age);
         EXPECT_EQ(as<uint16_t>(host.download(p.pcf_age, gen)), e.pcf_age);
     }
+
+    // Frame N's classify alone, into the last frame's mask image: with
+    // split_outputs the host has this frame's classification, without it the
+    // image still holds what the last resolve wrote (rrc_vulkan.h).
+    {
+        cmd = host.begin();
+        rrc_vulkan_channel_images ch[2];
+        auto f = frame_at(N, ch);
+        f.mask = view_of(fr[N - 1].mask, gen);
+        auto list = list_at(N);
+        ASSERT_EQ(rrc_vulkan_record_classify(ctx, &f, &list), RRC_SUCCESS) << rrc_last_error();
+        host.submit_and_wait(cmd);
+        const std::vector<uint8_t> after = as<uint8_t>(host.download(fr[N - 1].mask, gen));
+        EXPECT_EQ(after, split_outputs ? classified : expected[N - 1].mask) << "the host's mask right after classify";
+        EXPECT_NE(classified, expected[N - 1].mask) << "the two frames' masks must differ for this to tell";
+    }
     rrc_context_destroy(ctx);
     for (PerFrame& p : fr)
         for (HostImage* img : {&p.depth, &p.clip, &p.shade_in, &p.pcf_in, &p.shade_out, &p.pcf_out, &p.mask, &p.shade_age, &p.pcf_age})
@@ -219,5 +262,10 @@ TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) {
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
 }
+
+TEST(InteropShadingCache, FramesInFlightMatchStandaloneClassifyAndResolve) { frames_in_flight_match_standalone(false, 0); }
+TEST(InteropShadingCache, SplitOutputsGiveTheSameBitsAndTheMaskAfterClassify) { frames_in_flight_match_standalone(false, 1); }
+TEST(InteropShadingCache, ReuseOnlyResolveOnTheListGivesTheSameBits) { frames_in_flight_match_standalone(true, 0); }
+TEST(InteropShadingCache, ReuseOnlySplitOutputsGiveTheSameBits) { frames_in_flight_match_standalone(true, 1); }
 
 }  // namespace
