@@ -116,12 +116,13 @@ float rrc_linearize(float z) {
     return z;
 }
 
-// ulp of an fp32 value: 2^(floor(log2|e|) - 23), 2^-149 in the denormal range.
-float rrc_ulp(float e) {
-    uint ebits = (floatBitsToUint(e) >> 23) & 0xFFu;
-    if (ebits > 23u) return uintBitsToFloat((ebits - 23u) << 23);
-    return uintBitsToFloat(ebits == 0u ? 1u : (1u << (ebits - 1u)));
+// ulp of an fp32 value whose exponent field, in place (bits & 0x7F800000),
+// is `exponent`: 2^(floor(log2|e|) - 23), 2^-149 in the denormal range.
+float rrc_ulp_of_exponent(uint exponent) {
+    const uint k23 = 23u << 23;
+    return uintBitsToFloat(exponent > k23 ? exponent - k23 : (exponent == 0u ? 1u : (1u << ((exponent >> 23) - 1u))));
 }
+float rrc_ulp(float e) { return rrc_ulp_of_exponent(floatBitsToUint(e) & 0x7F800000u); }
 
 // The four bilinear taps at the previous frame's sample coordinate q.  The
 // same taps and weights serve the depth test and the history fetch.
@@ -165,14 +166,28 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // creases keep one sign).  y: the slope, for the clamped fetch beyond the
 // outermost texel centres and the fp32 position term (the smaller one-sided
 // difference; at the image edge, the one that exists).
+//
+// Written for lavapipe, which pays every operation (docs/PERFORMANCE.md,
+// "Inside the kernel"); each shortcut gives the same bits as the plain
+// formula.  Finite s, s-, s+ imply finite a, c, b (a non-finite tap makes s
+// inf or NaN), and the result is 0 otherwise, so finiteness is |x| < inf on
+// the magnitudes the step test needs anyway, and ulp(max(|a|, |b|, |c|))
+// takes the largest of their exponent fields (an integer max).  At the
+// image's first or last column/row one one-sided difference is exactly 0
+// (the clamped neighbour is c itself), so the larger one is their sum.
 vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float step) {
     float dp = b - c, dm = c - a, s = dp - dm;
     float sm = dm - (a - a2), sp = (b2 - b) - dp;  // the neighbours' second differences
-    float noise = RRC_ADAPTIVE_NOISE_ULPS * rrc_ulp(max(max(abs(a), abs(b)), abs(c))) + RRC_ADAPTIVE_NOISE_STEPS * step;
-    bool opposite = (sm * s < 0.0 && abs(sm) >= RRC_ADAPTIVE_STEP_RATIO * abs(s)) || (sp * s < 0.0 && abs(sp) >= RRC_ADAPTIVE_STEP_RATIO * abs(s));
-    bool finite = rrc_finite4(vec4(s, sm, sp, 0.0));
-    float slope = edge ? max(abs(dp), abs(dm)) : min(abs(dp), abs(dm));
-    return finite ? vec2(edge || opposite ? 0.0 : max(abs(s) - noise, 0.0), slope) : vec2(0.0);
+    float a_s = abs(s), a_sm = abs(sm), a_sp = abs(sp), adp = abs(dp), adm = abs(dm);
+    const uint kExp = 0x7F800000u;
+    uint exponent = max(max(floatBitsToUint(a) & kExp, floatBitsToUint(b) & kExp), floatBitsToUint(c) & kExp);
+    float noise = RRC_ADAPTIVE_NOISE_ULPS * rrc_ulp_of_exponent(exponent) + RRC_ADAPTIVE_NOISE_STEPS * step;
+    float ratio_s = RRC_ADAPTIVE_STEP_RATIO * a_s;
+    bool opposite = (sm * s < 0.0 && a_sm >= ratio_s) || (sp * s < 0.0 && a_sp >= ratio_s);
+    const float kInf = uintBitsToFloat(kExp);
+    bool finite = a_s < kInf && a_sm < kInf && a_sp < kInf;
+    float slope = edge ? adp + adm : min(adp, adm);
+    return finite ? vec2(edge || opposite ? 0.0 : max(a_s - noise, 0.0), slope) : vec2(0.0);
 }
 
 // This frame's depth at px and its eight cross neighbours, clamped to the
