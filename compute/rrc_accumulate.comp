@@ -97,7 +97,8 @@ RRC_SLOT_SELECT(uint, FILL_RADIUS)
 RRC_SLOT_SELECT(float, FILL_TOLERANCE)
 RRC_SLOT_SELECT(float, FILL_PRIOR)
 
-layout(set = 0, binding = RRC_BINDING_MASK, r8ui) uniform writeonly uimage2D u_mask;
+// Read too: resolve and the list read classify's mask where classify wrote it (MASK_IN_PLACE).
+layout(set = 0, binding = RRC_BINDING_MASK, r8ui) uniform uimage2D u_mask;
 
 // Per-channel images, arrays indexed by slot.  Slots and format variants a
 // configuration does not use are bound to 1x1 placeholders and never touched.
@@ -166,8 +167,12 @@ void rrc_count(uint mask, bool geometry, bool samples) {
 // Which channel slots write the host's output image in this pass (interop,
 // and the standalone fill's displayed values): chosen by the frame plan.
 layout(constant_id = RRC_SPEC_HOST_OUT_MASK) const uint HOST_OUT_MASK = 0u;
-// LIST and COPY_OUT: also copy classify's mask into u_mask (the host's).
+// COPY_OUT: also copy classify's mask into u_mask (the host's).
 layout(constant_id = RRC_SPEC_COPY_MASK) const bool COPY_MASK = false;
+// Classify's mask is in u_mask (the image classify wrote: storage loads,
+// cheaper than the sampler of s_classified on lavapipe), else in s_classified.
+layout(constant_id = RRC_SPEC_MASK_IN_PLACE) const bool MASK_IN_PLACE = false;
+uint rrc_classified(ivec2 px) { return MASK_IN_PLACE ? imageLoad(u_mask, px).r : texelFetch(s_classified, px, 0).r; }
 
 // Every channel is REUSE: a shading cache.  Classify then writes the HITs'
 // channels (a HIT reuses the cached value, which needs no sample) and
@@ -209,13 +214,13 @@ void rrc_pixel_at(ivec2 px, bool store) {
     uint mask;
     const uint kGeometryBits = RRC_MASK_HIT | RRC_MASK_REFRESHED | RRC_MASK_BACKGROUND | RRC_MASK_INVALID_GEOMETRY;
     if (LISTED) {
-        mask = texelFetch(s_classified, px, 0).r & kGeometryBits;
+        mask = rrc_classified(px) & kGeometryBits;
         g.background = (mask & RRC_MASK_BACKGROUND) != 0u;
         g.invalid = false, g.hit = false;
         g.taps = rrc_taps(vec2(px) + 0.5, size);  // unused: folded away
     } else {
         g = rrc_reproject(px, size);
-        mask = PHASE == RRC_PHASE_RESOLVE ? texelFetch(s_classified, px, 0).r & kGeometryBits : rrc_cache_mask(px, size, g);
+        mask = PHASE == RRC_PHASE_RESOLVE ? rrc_classified(px) & kGeometryBits : rrc_cache_mask(px, size, g);
     }
     // Classify writes the mask only, unless every channel is REUSE.
     const bool CHANNELS = PHASE != RRC_PHASE_CLASSIFY || ALL_REUSE;
@@ -272,10 +277,9 @@ void rrc_resolve_listed() {
 // LIST: one invocation a 2x2 quad, after CLASSIFY wrote the mask (a pass of
 // its own: one invocation a quad would run the reprojection of four pixels
 // in a row, about twice the time of one a pixel on lavapipe).  The quad is
-// listed when one of its pixels inside the frame is not a HIT.  COPY_MASK:
-// the host's mask image gets the classified mask (rrc_vulkan_frame_desc.split_outputs).
+// listed when one of its pixels inside the frame is not a HIT.
 void rrc_list_quads() {
-    ivec2 size = textureSize(s_classified, 0);
+    ivec2 size = imageSize(u_mask);
     ivec2 quads = (size + 1) / 2;
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
     ivec2 q = min(id, quads - 1);
@@ -283,9 +287,8 @@ void rrc_list_quads() {
     for (int k = 0; k < 4; ++k) {
         ivec2 px = 2 * q + ivec2(k & 1, k >> 1);
         bool inside = all(lessThan(px, size));
-        uint mask = texelFetch(s_classified, min(px, size - 1), 0).r;
+        uint mask = rrc_classified(min(px, size - 1));
         listed = listed || (inside && (mask & RRC_MASK_HIT) == 0u);
-        if (COPY_MASK && inside && all(lessThan(id, quads))) imageStore(u_mask, px, uvec4(mask));
     }
     if (listed && all(lessThan(id, quads))) rrc_list_quad(q);
 }

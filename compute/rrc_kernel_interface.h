@@ -22,8 +22,9 @@
 #define RRC_SPEC_STORAGE_INPUTS 10  // bool: interop, the host's inputs read as storage images (rrc_vulkan_frame_desc.storage_inputs)
 #define RRC_SPEC_PHASE 11           // uint RRC_PHASE_* below: the pass this pipeline runs
 #define RRC_SPEC_HOST_OUT_MASK 12   // uint: bit c = channel slot c writes RRC_BINDING_HOST_OUT in this pass (plugin/frame_plan.cpp decides)
-#define RRC_SPEC_COPY_MASK 13       // bool: LIST / COPY_OUT also copy the classified mask into RRC_BINDING_MASK (the host's)
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_COPY_MASK
+#define RRC_SPEC_COPY_MASK 13       // bool: COPY_OUT also copies the classified mask into RRC_BINDING_MASK (the host's)
+#define RRC_SPEC_MASK_IN_PLACE 14   // bool: LIST / RESOLVE / RESOLVE_LISTED read classify's mask from RRC_BINDING_MASK (the image classify wrote), not RRC_BINDING_CLASSIFIED
+#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_MASK_IN_PLACE
 #define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 

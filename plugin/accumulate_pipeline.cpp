@@ -123,6 +123,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_PHASE, variant.phase);
     spec.add(RRC_SPEC_HOST_OUT_MASK, variant.host_out_mask);
     spec.add(RRC_SPEC_COPY_MASK, variant.copy_mask ? 1u : 0u);
+    spec.add(RRC_SPEC_MASK_IN_PLACE, variant.mask_in_place ? 1u : 0u);
     spec.add(RRC_SPEC_REFRESH_POLICY, c.refresh_policy);
     spec.add(RRC_SPEC_REFRESH_PERIOD, c.refresh_period);
     spec.add(RRC_SPEC_REFRESH_TILES_X, c.refresh_tiles[0]);

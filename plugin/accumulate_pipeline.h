@@ -49,9 +49,11 @@ struct KernelVariant {
     uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
     uint32_t phase = RRC_PHASE_FUSED;  // RRC_PHASE_*: the pass (plugin/frame_plan.cpp chooses)
     uint32_t host_out_mask = 0;   // bit c: slot c writes RRC_BINDING_HOST_OUT
-    bool copy_mask = false;       // LIST, COPY_OUT: the classified mask into RRC_BINDING_MASK
+    bool copy_mask = false;       // COPY_OUT: the classified mask into RRC_BINDING_MASK
+    bool mask_in_place = false;   // LIST, RESOLVE, RESOLVE_LISTED: classify's mask is the image bound at RRC_BINDING_MASK
     uint32_t key() const {
-        return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13;
+        return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13 |
+               (mask_in_place ? 1u : 0u) << 14;
     }
 };
 

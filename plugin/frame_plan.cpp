@@ -54,7 +54,7 @@ const char* phase_bindings(uint32_t phase, bool all_reuse) {
                                "[depth and id copies]; at HITs history, age, [weight, host outputs, fill list]"
                              : "reads depth, reprojection, [nocache, ids], previous depth, [history ages for refresh, previous ids]; "
                                "writes mask, [depth and id copies]";
-        case RRC_PHASE_LIST: return "reads mask; writes quad list, [host mask]";
+        case RRC_PHASE_LIST: return "reads mask; writes quad list";
         case RRC_PHASE_RESOLVE:
             return "reads mask, samples, [confidence], history, age, [weight]; writes history, age, [weight], mask, [host outputs, fill list]";
         case RRC_PHASE_RESOLVE_LISTED:
@@ -97,12 +97,14 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
         s.variant.stats = r.stats;
         return s;
     };
-    // The list pass copies the mask into the host's image when the host asks for it after classify.
+    // Classify writes its mask into the host's image when the host asks for
+    // it after classify (split_outputs), else into the library's; the list
+    // pass reads it there.
+    const bool host_classified = r.interop && r.split_outputs && r.host_mask;
     auto add_list = [&]() {
         steps.push_back(barrier(false));
-        const bool copy = r.interop && r.split_outputs && r.host_mask;
-        PlanStep list = dispatch(RRC_PHASE_LIST, copy ? PlanSet::List : PlanSet::Frame, PlanGrid::Quads);
-        list.variant.copy_mask = copy;
+        PlanStep list = dispatch(RRC_PHASE_LIST, PlanSet::Frame, PlanGrid::Quads);
+        list.variant.mask_in_place = true;
         steps.push_back(list);
     };
 
@@ -118,7 +120,7 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
             break;
         }
         case PlanCall::Classify: {
-            // The Frame set binds the library's mask: resolve reads it.
+            plan.frame_set_host_mask = host_classified;
             if (reuse && fill) steps.push_back(clear_fill_list());
             PlanStep s = counted(dispatch(RRC_PHASE_CLASSIFY, PlanSet::Frame, PlanGrid::Pixels));
             if (reuse) s.variant.host_out_mask = split_outputs, s.variant.host_age_mask = split_ages;
@@ -131,6 +133,7 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
                 plan.frame_set_host_mask = r.host_mask;
                 if (fill) steps.push_back(clear_fill_list());
                 PlanStep s = counted(dispatch(RRC_PHASE_RESOLVE, PlanSet::Frame, PlanGrid::Pixels));
+                s.variant.mask_in_place = !r.host_mask || host_classified;  // else classify's mask is the library's, read through a sampler
                 s.variant.host_out_mask = outputs;
                 s.variant.host_age_mask = r.host_age_mask;
                 steps.push_back(s);
@@ -138,8 +141,9 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
                 break;
             }
             // Only the listed pixels that are not HITs (classify wrote the HITs).
-            plan.frame_set_host_mask = r.interop && r.split_outputs && r.host_mask;
+            plan.frame_set_host_mask = host_classified;
             PlanStep s = counted(dispatch(RRC_PHASE_RESOLVE_LISTED, PlanSet::Frame, PlanGrid::QuadList));
+            s.variant.mask_in_place = true;
             s.variant.host_out_mask = split_outputs;
             s.variant.host_age_mask = split_ages;
             steps.push_back(s);
@@ -181,11 +185,12 @@ std::string describe_plan(const FramePlan& plan, const ContextConfig& c) {
                     grid = "indirect (quad list, " + std::to_string(RRC_QUADS_PER_GROUP) + " quads a group)";
                 else
                     grid = "indirect (fill list, " + std::to_string(RRC_FILL_LIST_PER_GROUP) + " pixels a group)";
-                const char* set = s.set == PlanSet::Frame ? "frame" : s.set == PlanSet::List ? "list" : "next";
-                std::snprintf(line, sizeof line, "  %s over %s; set %s%s; host outputs 0x%x, host ages 0x%x%s%s\n    %s\n",
+                const char* set = s.set == PlanSet::Frame ? "frame" : "next";
+                std::snprintf(line, sizeof line, "  %s over %s; set %s%s; host outputs 0x%x, host ages 0x%x%s%s%s\n    %s\n",
                               phase_name(v.phase), grid.c_str(), set,
                               s.set == PlanSet::Frame ? (plan.frame_set_host_mask ? " (mask: host's)" : " (mask: library's)") : "",
                               v.host_out_mask, v.host_age_mask, v.stats ? "; statistics" : "", v.copy_mask ? "; copies the mask" : "",
+                              v.mask_in_place ? "; reads the mask in place" : "",
                               phase_bindings(v.phase, all_reuse(c)));
                 out += line;
                 break;

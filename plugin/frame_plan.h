@@ -28,7 +28,6 @@ struct PlanRequest {
 // Which descriptor set a pass is bound with.
 enum class PlanSet {
     Frame,  // the frame's: its inputs, the history it reads and writes
-    List,   // classify's list pass when it copies the mask into the host's image
     Next,   // bound as the next frame would be: this frame's results as history inputs
 };
 
@@ -50,7 +49,9 @@ struct PlanStep {
 
 struct FramePlan {
     std::vector<PlanStep> steps;
-    // Where the Frame set binds the mask: the host's image (true) or the library's own.
+    // Where the Frame set binds the mask: the host's image (true) or the
+    // library's own.  Classify writes its mask there, and the passes after
+    // it read it in place (KernelVariant::mask_in_place) where resolve's set binds the same image.
     bool frame_set_host_mask = false;
     bool uses(PlanSet set) const;
 };

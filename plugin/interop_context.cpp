@@ -28,7 +28,8 @@ struct HostBarriers {
         b.subresourceRange = {aspects(img.format), 0, 1, 0, 1};
         // Whatever the host did before (any stage) is made visible to the kernel...
         b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-        b.dstAccessMask = write ? VK_ACCESS_SHADER_WRITE_BIT : VK_ACCESS_SHADER_READ_BIT;
+        // (an image the kernel writes may be read too: resolve reads the mask classify wrote in place)
+        b.dstAccessMask = write ? VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT : VK_ACCESS_SHADER_READ_BIT;
         b.oldLayout = img.layout;  // UNDEFINED from the host discards, as it would for any pass
         b.newLayout = use;
         before.push_back(b);
@@ -166,8 +167,8 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
 
     // Which host images each set needs: the outputs where a pass bound with
     // it writes them, the mask where the plan puts it.
-    uint32_t outputs[3] = {}, ages[3] = {};
-    bool copies_mask[3] = {};
+    uint32_t outputs[2] = {}, ages[2] = {};
+    bool copies_mask[2] = {};
     for (const PlanStep& s : plan.steps)
         if (s.op == PlanStep::Op::Dispatch) {
             const int i = (int)s.set;
@@ -232,14 +233,6 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
     sets.quad_list_offset = list_offset;
     sets.frame = next_set();
     core_->pipeline().write_set(sets.frame, v);
-    sets.list = sets.frame;
-    if (plan.uses(PlanSet::List)) {
-        // Classify's list pass copying the mask into the host's image.
-        DescriptorViews lv = v;
-        bind_mask(lv);
-        sets.list = next_set();
-        core_->pipeline().write_set(sets.list, lv);
-    }
     if (plan.uses(PlanSet::Next)) {
         // Bound as the next frame would be: this frame's results as history
         // inputs, its depth as the previous depth; the host's outputs.

@@ -243,7 +243,6 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
     const FramePlan plan = make_plan(config(), request);
     AccumulatorCore::PlanBindings sets;
     sets.frame = set;
-    sets.list = set;
     if (plan.uses(PlanSet::Next)) sets.next = set_for(f.view, 1 - parity, f.view, parity);  // this frame's results as history inputs
     sets.quad_list = quads_.buffer;
     core_->record_plan(cmd_, plan, sets, KernelVariant{}, f, prev_valid);
