@@ -259,15 +259,17 @@ void rrc_pixel() {
 }
 
 // RESOLVE_LISTED: dispatched indirectly from classify's quad list, groups
-// of RRC_QUADS_PER_GROUP quads; two invocations a quad, one a row of two pixels.
+// of RRC_QUADS_PER_GROUP quads; two invocations a quad, one a row of two
+// pixels: the group's first half takes the quads' top rows, the second half
+// their bottom rows, so neighbouring invocations touch neighbouring quads.
 void rrc_resolve_listed() {
     ivec2 size = rrc_size();
-    uint id = gl_GlobalInvocationID.x;
+    uint lane = gl_LocalInvocationID.x;
     uint count = u_quads.words[RRC_QUAD_LIST_COUNT];
-    uint slot = id >> 1;
+    uint slot = gl_WorkGroupID.x * RRC_QUADS_PER_GROUP + lane % RRC_QUADS_PER_GROUP;
     bool listed = slot < count;
     uint word = u_quads.words[RRC_QUAD_LIST_FIRST_QUAD + min(slot, max(count, 1u) - 1u)];
-    ivec2 row = 2 * ivec2(word & 0xFFFFu, word >> 16) + ivec2(0, int(id & 1u));
+    ivec2 row = 2 * ivec2(word & 0xFFFFu, word >> 16) + ivec2(0, int(lane / RRC_QUADS_PER_GROUP));
     for (int k = 0; k < 2; ++k) {
         ivec2 px = row + ivec2(k, 0);
         rrc_pixel_at(min(px, size - 1), listed && all(lessThan(px, size)));
