@@ -1,7 +1,6 @@
 #include "frame_plan.h"
 
 #include <cstdio>
-#include <cstdlib>
 
 namespace rrc {
 namespace {
@@ -147,7 +146,7 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
             s.variant.mask_in_place = true;
             s.variant.host_out_mask = split_outputs;
             s.variant.host_age_mask = split_ages;
-            if (!getenv("RRC_NORESOLVE")) steps.push_back(s);
+            steps.push_back(s);
             if (r.interop && !r.split_outputs) {
                 // The host's images get every pixel: a copy of the library's results.
                 steps.push_back(barrier(false));
