@@ -14,43 +14,41 @@
 layout(constant_id = RRC_SPEC_SOURCE) const uint SOURCE = RRC_REPROJECTION_PREV_CLIP;
 layout(constant_id = RRC_SPEC_DEPTH_MODE) const uint DEPTH_MODE = RRC_DEPTH_MODE_STANDARD;
 layout(constant_id = RRC_SPEC_EPS_KIND) const uint EPS_KIND = RRC_EPS_ULP;  // RRC_EPS_ABSOLUTE, _ULP, _RELATIVE
-#ifdef RRC_WITHOUT_NOCACHE
-const bool HAS_NOCACHE = false;  // the feature's code removed (tests/spirv)
-#else
-layout(constant_id = RRC_SPEC_HAS_NOCACHE) const bool HAS_NOCACHE = false;
+// An optional feature's constant: built with -DRRC_WITHOUT_<FEATURE>
+// (tests/spirv), its layout qualifier goes and it is a plain `false`.
+#ifndef RRC_WITHOUT_NOCACHE
+layout(constant_id = RRC_SPEC_HAS_NOCACHE)
 #endif
+const bool HAS_NOCACHE = false;
 // Interop: the host's images are read through samplers (any format, depth
 // formats included), the library keeps its own copy of depth for the next
 // frame and writes each channel to the host's output image too.
-#ifdef RRC_WITHOUT_INTEROP
-const bool INTEROP = false;  // the feature's code removed (tests/spirv)
-#else
-layout(constant_id = RRC_SPEC_INTEROP) const bool INTEROP = false;
+#ifndef RRC_WITHOUT_INTEROP
+layout(constant_id = RRC_SPEC_INTEROP)
 #endif
-// The ADAPTIVE test (docs/CONVENTIONS.md): every source but plain MOTION.
+const bool INTEROP = false;
 // Interop with rrc_vulkan_frame_desc.storage_inputs: the host's input
 // images are bound where the standalone path binds its own copies and read
 // with storage loads (a sampler fetch costs several of them on lavapipe).
 layout(constant_id = RRC_SPEC_STORAGE_INPUTS) const bool STORAGE_INPUTS = false;
 const bool SAMPLED_INPUTS = INTEROP && !STORAGE_INPUTS;  // the inputs come through samplers
-#ifdef RRC_WITHOUT_ADAPTIVE
-const bool ADAPTIVE = false;  // the feature's code removed (tests/spirv)
-#else
-layout(constant_id = RRC_SPEC_ADAPTIVE) const bool ADAPTIVE = false;
+// The ADAPTIVE test (docs/CONVENTIONS.md): every source but plain MOTION.
+#ifndef RRC_WITHOUT_ADAPTIVE
+layout(constant_id = RRC_SPEC_ADAPTIVE)
 #endif
-// Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
-// previous-depth tap with a non-zero weight to carry the pixel's id.
-#ifdef RRC_WITHOUT_OBJECT_ID
-const bool OBJECT_ID = false;  // the feature's code removed (tests/spirv)
-#else
-layout(constant_id = RRC_SPEC_OBJECT_ID) const bool OBJECT_ID = false;
-#endif
+const bool ADAPTIVE = false;
 
 // The frame's phase (RRC_PHASE_*): resolve takes hit and miss from the mask
 // classify wrote, so it skips the hit test (and the copies kept for the next
 // frame, which classify made) and computes only where to resample history.
 layout(constant_id = RRC_SPEC_PHASE) const uint PHASE = RRC_PHASE_FUSED;
 const bool RRC_TEST = PHASE != RRC_PHASE_RESOLVE;
+// Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
+// previous-depth tap with a non-zero weight to carry the pixel's id.
+#ifndef RRC_WITHOUT_OBJECT_ID
+layout(constant_id = RRC_SPEC_OBJECT_ID)
+#endif
+const bool OBJECT_ID = false;
 
 // ---- Per-frame parameters (RRC_PC_SIZE = 128 bytes: the guaranteed minimum)
 // Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430

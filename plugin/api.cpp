@@ -104,6 +104,31 @@ rrc::StandaloneContext& standalone(rrc_context* c) {
     return *c->standalone;
 }
 
+// An entry point's frame: the live context or NULL, errors caught and
+// logged (guarded), a NULL or dead handle refused; then `body(context)`.
+template <typename Body>
+rrc_result with_context(const rrc_context* context, Body&& body) {
+    rrc_context* c = live_or_null(context);
+    return guarded(c, log_of(c), log_user_of(c), [&] {
+        checked(const_cast<rrc_context*>(context));
+        body(c);
+    });
+}
+
+// rrc_vulkan_record_frame and rrc_vulkan_record_resolve: a whole frame
+// read and checked, then handed to `record` (standalone_call: the call a
+// standalone context takes instead).
+template <typename Record>
+rrc_result record_vulkan_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame, const char* standalone_call, Record record) {
+    return with_context(context, [&](rrc_context* c) {
+        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
+        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use %s", standalone_call);
+        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
+        rrc::validate_frame(c->config(), f, nullptr, c->interop->stats_alignment());
+        record(*c->interop, f);
+    });
+}
+
 }  // namespace
 
 extern "C" {
@@ -199,21 +224,11 @@ rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* frame, rrc_
 }
 
 rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulkan_frame_desc* frame) {
-    rrc_context* c = context && is_live(context) ? context : nullptr;
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
-        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
-        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_run");
-        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
-        rrc::validate_frame(c->config(), f, nullptr, c->interop->stats_alignment());
-        c->interop->record_frame(f);
-    });
+    return record_vulkan_frame(context, frame, "rrc_frame_run", [](rrc::InteropContext& ctx, const rrc::Frame& f) { ctx.record_frame(f); });
 }
 
 rrc_result rrc_frame_classify(rrc_context* context, const rrc_frame_desc* frame, rrc_classify_output* output) {
-    rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
+    return with_context(context, [&](rrc_context* c) {
         rrc::StandaloneContext& s = standalone(c);
         if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
         const rrc::Frame f = rrc::read_frame(frame, 0);  // channels are not read
@@ -229,9 +244,7 @@ rrc_result rrc_frame_classify(rrc_context* context, const rrc_frame_desc* frame,
 }
 
 rrc_result rrc_frame_resolve(rrc_context* context, const rrc_resolve_desc* resolve, rrc_frame_output* output) {
-    rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
+    return with_context(context, [&](rrc_context* c) {
         rrc::StandaloneContext& s = standalone(c);
         if (!resolve) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "resolve is NULL");
         const rrc::Frame f = rrc::read_resolve(resolve, c->config().channels.size());
@@ -243,13 +256,13 @@ rrc_result rrc_frame_resolve(rrc_context* context, const rrc_resolve_desc* resol
 }
 
 rrc_result rrc_vulkan_record_classify(rrc_context* context, const rrc_vulkan_frame_desc* frame, const rrc_vulkan_quad_list* list) {
-    rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
+    return with_context(context, [&](rrc_context* c) {
         if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
         if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_classify");
         const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
         rrc::validate_geometry(c->config(), f, c->interop->stats_alignment());
+        // With split_outputs a shading cache's classify writes the host's outputs at the HITs.
+        if (f.split_outputs && rrc::all_reuse(c->config())) rrc::validate_channels(c->config(), f);
         const rrc_vulkan_quad_list l = rrc::read_struct<rrc_vulkan_quad_list>(list, "list");
         if (!l.buffer) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "list.buffer is VK_NULL_HANDLE");
         if (c->interop->stats_alignment() && l.offset % c->interop->stats_alignment() != 0)
@@ -260,15 +273,8 @@ rrc_result rrc_vulkan_record_classify(rrc_context* context, const rrc_vulkan_fra
 }
 
 rrc_result rrc_vulkan_record_resolve(rrc_context* context, const rrc_vulkan_frame_desc* frame) {
-    rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
-        checked(context);
-        if (!frame) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "frame is NULL");
-        if (!c->interop) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context runs standalone: use rrc_frame_resolve");
-        const rrc::Frame f = rrc::read_frame(frame, c->config().channels.size());
-        rrc::validate_frame(c->config(), f, nullptr, c->interop->stats_alignment());
-        c->interop->record_resolve(f);
-    });
+    return record_vulkan_frame(context, frame, "rrc_frame_resolve",
+                               [](rrc::InteropContext& ctx, const rrc::Frame& f) { ctx.record_resolve(f); });
 }
 
 rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t* out_bytes) {

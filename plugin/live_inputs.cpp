@@ -37,30 +37,26 @@ std::vector<LiveInput> live_inputs(const ContextConfig& c) {
     return in;
 }
 
-const void* host_array(const Frame& f, const LiveInput& in) {
+// Where input `in` of frame f lives on either path: one table.
+struct HostSource {
+    const void* array;
+    const rrc_vulkan_image* image;
+};
+static HostSource host_source(const Frame& f, const LiveInput& in) {
+    const FrameChannel& c = f.channels[in.slot];
     switch (in.role) {
-        case InputRole::Depth: return f.depth;
-        case InputRole::Reprojection: return f.reprojection;
-        case InputRole::Nocache: return f.nocache;
-        case InputRole::ObjectId: return f.object_id;
-        case InputRole::Samples: return f.channels[in.slot].samples;
-        case InputRole::Confidence: return f.channels[in.slot].confidence;
-        case InputRole::Fallback: return f.channels[in.slot].fallback;
+        case InputRole::Depth: return {f.depth, &f.depth_image};
+        case InputRole::Reprojection: return {f.reprojection, &f.reprojection_image};
+        case InputRole::Nocache: return {f.nocache, &f.nocache_image};
+        case InputRole::ObjectId: return {f.object_id, &f.object_id_image};
+        case InputRole::Samples: return {c.samples, &c.samples_image};
+        case InputRole::Confidence: return {c.confidence, &c.confidence_image};
+        case InputRole::Fallback: break;
     }
-    return nullptr;
+    return {c.fallback, &c.fallback_image};
 }
 
-const rrc_vulkan_image& host_image(const Frame& f, const LiveInput& in) {
-    switch (in.role) {
-        case InputRole::Depth: return f.depth_image;
-        case InputRole::Reprojection: return f.reprojection_image;
-        case InputRole::Nocache: return f.nocache_image;
-        case InputRole::ObjectId: return f.object_id_image;
-        case InputRole::Samples: return f.channels[in.slot].samples_image;
-        case InputRole::Fallback: return f.channels[in.slot].fallback_image;
-        case InputRole::Confidence: break;
-    }
-    return f.channels[in.slot].confidence_image;
-}
+const void* host_array(const Frame& f, const LiveInput& in) { return host_source(f, in).array; }
+const rrc_vulkan_image& host_image(const Frame& f, const LiveInput& in) { return *host_source(f, in).image; }
 
 }  // namespace rrc
