@@ -516,8 +516,11 @@ typedef struct rrc_resolve_desc {
 /** Classifies one frame: `frame` as for rrc_frame_run, except that its
  *  channels are not read (channel_count may be 0 and channels NULL).
  *  Writes the mask, the listed quads and the statistics, and keeps the
- *  classification for rrc_frame_resolve.  History does not change.  A second
- *  classify, or rrc_frame_run, drops a classification not yet resolved.
+ *  classification for rrc_frame_resolve.  The history the next frame reads
+ *  does not change until resolve (a context of REUSE channels only already
+ *  computes its HITs' values here, into the image resolve completes).  A
+ *  second classify, or rrc_frame_run, drops a classification not yet
+ *  resolved; a classify that fails leaves the pending one as it was.
  *  quad_capacity = RRC_QUAD_LIST_BYTES(w, h) / 4 - RRC_QUAD_LIST_FIRST_QUAD
  *  always suffices. */
 RRC_API rrc_result rrc_frame_classify(rrc_context* context, const rrc_frame_desc* frame, rrc_classify_output* output);

@@ -181,10 +181,15 @@ RRC_API rrc_result rrc_vulkan_record_frame(rrc_context* context, const rrc_vulka
  * (SHADER_READ), so a compute miss shader may read it at once; a graphics
  * miss pass adds its own barrier from COMPUTE_SHADER / SHADER_WRITE to its
  * stages.  Resolve's barriers make the host's writes to the samples images
- * (any stage) visible to it, as rrc_vulkan_record_frame's do.  A list must
- * not be overwritten (by the next frame's classify) before the host's
- * dispatch that reads it has run: one list per frame in flight, or the
- * same one, since recorded commands run in order on one queue. */
+ * (any stage) visible to it, as rrc_vulkan_record_frame's do.  Resolve
+ * reads the list too: in a context of REUSE channels only it runs on the
+ * listed quads alone (an indirect dispatch from the list; classify computed
+ * the HITs), so neither the host's shader nor anything else may write the
+ * list between classify and resolve.  A list must not be overwritten (by
+ * the next frame's classify) before the host's dispatch and resolve that
+ * read it have run: one list per frame in flight, or the same one, since
+ * recorded commands run in order on one queue.  What each call writes of the
+ * host's images: rrc_vulkan_frame_desc.split_outputs. */
 
 typedef struct rrc_vulkan_quad_list {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_QUAD_LIST */
