@@ -1,7 +1,10 @@
 #include "accumulate_pipeline.h"
 
 #include "error.h"
-#include "rrc_accumulate_spv.h"
+#include "rrc_pass_copy_out_spv.h"
+#include "rrc_pass_fill_spv.h"
+#include "rrc_pass_frame_spv.h"
+#include "rrc_pass_list_spv.h"
 
 #include <cstring>
 #include <vector>
@@ -26,6 +29,23 @@ static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_
 static_assert(RRC_SPEC_CHANNEL2(0, 0) > RRC_SPEC_MAX_LIFETIME &&
                   RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "the second channel range sits between the shading cache's ids and the workgroup-size ids");
+
+// Each pass is its own module (compute/rrc_pass_*.comp); the per-pixel
+// passes (FUSED, CLASSIFY, RESOLVE, RESOLVE_LISTED) are one body that the
+// PHASE constant specialises (docs/PERFORMANCE.md, "The frame plan").
+// Constants a module does not declare are ignored by vkCreateComputePipelines.
+struct PassModule {
+    const uint32_t* code;
+    size_t size;
+};
+PassModule pass_module(uint32_t phase) {
+    switch (phase) {
+        case RRC_PHASE_LIST: return {rrc_pass_list_spv, sizeof(rrc_pass_list_spv)};
+        case RRC_PHASE_COPY_OUT: return {rrc_pass_copy_out_spv, sizeof(rrc_pass_copy_out_spv)};
+        case RRC_PHASE_FILL: return {rrc_pass_fill_spv, sizeof(rrc_pass_fill_spv)};
+        default: return {rrc_pass_frame_spv, sizeof(rrc_pass_frame_spv)};
+    }
+}
 
 struct SpecBuilder {
     std::vector<VkSpecializationMapEntry> entries;
@@ -103,8 +123,9 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     VulkanDevice& dev = dev_;
     const ContextConfig& c = config_;
     VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    smi.codeSize = sizeof(rrc_accumulate_spv);
-    smi.pCode = rrc_accumulate_spv;
+    const PassModule code = pass_module(variant.phase);
+    smi.codeSize = code.size;
+    smi.pCode = code.code;
     VkShaderModule module = VK_NULL_HANDLE;
     VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
 

@@ -1,4 +1,4 @@
-// The fused kernel's pipeline: descriptor layout, specialization constants
+// The kernels' pipelines (one module a pass, compute/rrc_pass_*.comp): descriptor layout, specialization constants
 // chosen from the context's configuration (so a scene pays only for what it
 // enables) and the dispatch.  Binding numbers, constant ids and push-constant
 // offsets come from compute/rrc_kernel_interface.h, which the kernels read too.
@@ -87,7 +87,7 @@ class AccumulatePipeline {
 public:
     static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // wide groups win on lavapipe (128x1 ~2% over 64x1; 8x8 is ~1.45x slower)
     // The indirect passes' groups: RESOLVE_LISTED runs two invocations a
-    // listed quad, FILL one a listed pixel (compute/rrc_accumulate.comp).
+    // listed quad, FILL one a listed pixel (compute/rrc_pass_frame.comp, rrc_pass_fill.comp).
     static_assert(2 * RRC_QUADS_PER_GROUP == kGroupX && RRC_FILL_LIST_PER_GROUP == kGroupX, "the lists' groups are the kernel's");
     AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
