@@ -1,8 +1,9 @@
 // The channel slots, shared by every pass that reads or writes channels
 // (compute/rrc_pass_frame.comp, rrc_pass_copy_out.comp, rrc_pass_fill.comp):
-// each slot's specialization constants, their selectors and the per-channel
-// images.  Slots and format variants a configuration does not use are bound
-// to 1x1 placeholders and never touched.
+// each slot's specialization constants and their selectors.  The per-channel
+// images (rrc_bindings.glsl) are arrays indexed by slot; slots and format
+// variants a configuration does not use are bound to 1x1 placeholders and
+// never touched.
 #ifndef RRC_CHANNEL_SLOTS_GLSL
 #define RRC_CHANNEL_SLOTS_GLSL
 
@@ -89,26 +90,6 @@ RRC_SLOT_SELECT(uint, FILL_AGE)
 RRC_SLOT_SELECT(uint, FILL_RADIUS)
 RRC_SLOT_SELECT(float, FILL_TOLERANCE)
 RRC_SLOT_SELECT(float, FILL_PRIOR)
-
-// Per-channel images, arrays indexed by slot.
-layout(set = 0, binding = RRC_BINDING_SAMPLE1, r32f) uniform readonly image2D u_sample1[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_SAMPLE4, rgba32f) uniform readonly image2D u_sample4[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_CONFIDENCE, r32f) uniform readonly image2D u_confidence[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_PACKED, r32ui) uniform readonly uimage2D u_hist_packed[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_RGBA16F, rgba16f) uniform readonly image2D u_hist_rgba16f[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_R32F, r32f) uniform readonly image2D u_hist_r32f[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_RGBA32F, rgba32f) uniform readonly image2D u_hist_rgba32f[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_AGE, r16ui) uniform readonly uimage2D u_age[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_WEIGHT, r32f) uniform readonly image2D u_weight[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HIST_OUT) uniform writeonly image2D u_hist_out[RRC_MAX_CHANNELS];  // any float format
-// R16_UINT ages, or for packed channels their R32_UINT value|age words (so declared without a format).
-layout(set = 0, binding = RRC_BINDING_AGE_OUT) uniform writeonly uimage2D u_age_out[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_WEIGHT_OUT, r32f) uniform writeonly image2D u_weight_out[RRC_MAX_CHANNELS];
-layout(set = 0, binding = RRC_BINDING_HOST_SAMPLES) uniform sampler2D s_samples[RRC_MAX_CHANNELS];     // INTEROP
-layout(set = 0, binding = RRC_BINDING_HOST_CONFIDENCE) uniform sampler2D s_confidence[RRC_MAX_CHANNELS];  // INTEROP
-layout(set = 0, binding = RRC_BINDING_HOST_OUT) uniform writeonly image2D u_host_out[RRC_MAX_CHANNELS];  // INTEROP: any float format
-layout(set = 0, binding = RRC_BINDING_HOST_AGE_OUT, r16ui) uniform writeonly uimage2D u_host_age_out[RRC_MAX_CHANNELS];  // INTEROP, optional
-layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];  // FILL: the host's fallback estimate
 
 // Which channel slots write the host's output and age images in this pass
 // (interop, and the standalone fill's displayed values): chosen by the frame

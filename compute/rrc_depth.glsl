@@ -26,8 +26,6 @@ layout(push_constant) uniform Frame {
     layout(offset = RRC_PC_OFFSET_REFRESH_PHASE) uint refresh_phase;  // frame_index mod refresh_period (rrc_cache.glsl)
 } pc;
 
-layout(set = 0, binding = RRC_BINDING_PREV_DEPTH, r32f) uniform readonly image2D u_prev_depth;
-
 // False for the invocations beyond the image (the dispatch rounds up): they
 // run on a clamped pixel and store nothing.  A kernel guards its stores with
 // it instead of returning early, because lavapipe runs everything after a

@@ -6,8 +6,6 @@
 
 #include "rrc_values.glsl"  // bindings, RRC_FILL_LIST_*
 
-layout(std430, set = 0, binding = RRC_BINDING_FILL_LIST) buffer FillList { uint words[]; } u_fill;
-
 // Appends px to the fill list; the indirect dispatch's x is the largest
 // group an entry falls in, + 1: raised only by the first entry of each group.
 void rrc_list_fill(ivec2 px) {

@@ -7,8 +7,6 @@
 
 #include "rrc_values.glsl"  // bindings, spec ids
 
-layout(set = 0, binding = RRC_BINDING_MASK, r8ui) uniform uimage2D u_mask;
-layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
 // Classify's mask is in u_mask (the image classify wrote: storage loads,
 // cheaper than the sampler of s_classified on lavapipe), else in s_classified.
 layout(constant_id = RRC_SPEC_MASK_IN_PLACE) const bool MASK_IN_PLACE = false;

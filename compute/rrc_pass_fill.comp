@@ -7,6 +7,10 @@
 
 layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP_SIZE_Y) in;
 
+// This pass's bindings, exactly (rrc_pass_bindings.h; the library's layout is made from the same list).
+#include "rrc_bindings.glsl"
+RRC_PASS_FILL_BINDINGS(RRC_DECLARE)
+
 #include "rrc_depth.glsl"
 #include "rrc_channel_slots.glsl"
 #include "rrc_fill_list.glsl"

@@ -15,6 +15,10 @@
 
 layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP_SIZE_Y) in;
 
+// This pass's bindings, exactly (rrc_pass_bindings.h; the library's layout is made from the same list).
+#include "rrc_bindings.glsl"
+RRC_PASS_FRAME_BINDINGS(RRC_DECLARE)
+
 #include "rrc_reproject.glsl"
 #include "rrc_filter.glsl"
 #include "rrc_channel_slots.glsl"
@@ -30,8 +34,6 @@ const bool STATS = false;  // the feature's code removed (tests/spirv)
 #else
 layout(constant_id = RRC_SPEC_STATS) const bool STATS = false;
 #endif
-// rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch.
-layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 
 // The frame's statistics (interop, STATS): `geometry` counts what the hit
 // test decides, `samples` the invalid samples (classify and resolve split them).

@@ -6,8 +6,6 @@
 
 #include "rrc_values.glsl"  // bindings, RRC_QUAD_LIST_*
 
-layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
-
 // Appends quad q to classify's list and keeps the indirect dispatch's x
 // covering it: the largest slot / RRC_QUADS_PER_GROUP + 1 = ceil(count / per
 // group).  Every slot below the count is taken, so only the first slot of

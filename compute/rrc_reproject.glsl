@@ -1,9 +1,10 @@
 // Reverse reprojection and the epsilon-depth hit test (docs/CONVENTIONS.md).
 // A function library of the per-pixel passes (compute/rrc_pass_frame.comp):
-// it declares the geometry inputs (set 0, RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE
-// and the interop bindings) and the specialization constants that select the
-// source, so a configuration compiles only the path it uses; the depth mode,
-// the push constants and the previous depth are rrc_depth.glsl's.  Built with
+// it reads the geometry inputs (RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and
+// the interop bindings, declared by the pass: rrc_bindings.glsl) and declares
+// the specialization constants that select the source, so a configuration
+// compiles only the path it uses; the depth mode and the push constants are
+// rrc_depth.glsl's.  Built with
 // -DRRC_WITHOUT_<FEATURE>, a feature's constant is a plain `false` instead:
 // tests/spirv compares that build with the specialised one (docs/PERFORMANCE.md).
 #ifndef RRC_REPROJECT_GLSL
@@ -50,17 +51,6 @@ const bool RRC_TEST = PHASE != RRC_PHASE_RESOLVE;
 layout(constant_id = RRC_SPEC_OBJECT_ID)
 #endif
 const bool OBJECT_ID = false;
-
-layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
-layout(set = 0, binding = RRC_BINDING_REPROJ, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION (.xy), MOTION_DEPTH
-layout(set = 0, binding = RRC_BINDING_NOCACHE, r8ui) uniform readonly uimage2D u_nocache;
-layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;        // INTEROP: the host's depth
-layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
-layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
-layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
-layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage2D u_object_id_out;  // INTEROP: next frame's previous ids
-layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
-layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
 
 ivec2 rrc_size() { return SAMPLED_INPUTS ? textureSize(s_depth, 0) : imageSize(u_depth); }
 float rrc_load_depth(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }

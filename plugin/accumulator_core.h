@@ -67,7 +67,7 @@ public:
     // The descriptor sets a plan's passes are bound with (PlanSet), and the
     // quad list RESOLVE_LISTED is dispatched from.
     struct PlanBindings {
-        VkDescriptorSet frame = VK_NULL_HANDLE, next = VK_NULL_HANDLE;
+        DescriptorSets frame, next;
         VkBuffer quad_list = VK_NULL_HANDLE;
         VkDeviceSize quad_list_offset = 0;
     };
