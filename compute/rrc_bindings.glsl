@@ -64,9 +64,9 @@
 #define RRC_DECLARE_FALLBACK layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];
 // STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch
 #define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
-// QUADS: classify's quad list (rrc_quad_list.glsl)
+// QUADS: classify's quad list (rrc_list.glsl)
 #define RRC_DECLARE_QUADS layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
-// FILL_LIST: the fill list (rrc_fill_list.glsl)
+// FILL_LIST: the fill list (rrc_list.glsl)
 #define RRC_DECLARE_FILL_LIST layout(std430, set = 0, binding = RRC_BINDING_FILL_LIST) buffer FillList { uint words[]; } u_fill;
 
 #endif

@@ -13,7 +13,7 @@ RRC_PASS_FILL_BINDINGS(RRC_DECLARE)
 
 #include "rrc_depth.glsl"
 #include "rrc_channel_slots.glsl"
-#include "rrc_fill_list.glsl"
+#include "rrc_list.glsl"
 
 // The spatial fill's depth test |delta_q - delta_p| <= tau delta_p on the
 // proxy delta (docs/CONVENTIONS.md, "The spatial fill": d, 1/(1 - z), 1/z),

@@ -24,8 +24,7 @@ RRC_PASS_FRAME_BINDINGS(RRC_DECLARE)
 #include "rrc_channel_slots.glsl"
 #include "rrc_mask.glsl"
 #include "rrc_cache.glsl"
-#include "rrc_quad_list.glsl"
-#include "rrc_fill_list.glsl"
+#include "rrc_list.glsl"
 
 // The frame's statistics: an optional interop output, its own pipeline
 // variant (plugin/accumulate_pipeline.h, KernelVariant): off, its code is compiled out.

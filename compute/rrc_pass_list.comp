@@ -12,7 +12,7 @@ layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP
 RRC_PASS_LIST_BINDINGS(RRC_DECLARE)
 
 #include "rrc_mask.glsl"
-#include "rrc_quad_list.glsl"
+#include "rrc_list.glsl"
 
 // LIST: one invocation a 2x2 quad, after CLASSIFY wrote the mask (a pass of
 // its own: one invocation a quad would run the reprojection of four pixels
