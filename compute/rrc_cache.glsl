@@ -1,9 +1,12 @@
 // The shading cache (docs/CONVENTIONS.md, "The shading cache"): which hits
-// of REUSE channels are refreshed, the mask bits of a pixel, and classify's
-// quad list.  Included by rrc_accumulate.comp after the channel constants
-// and history images it reads the ages from.
+// of REUSE channels are refreshed and the mask bits of a pixel (classify's
+// quad list: rrc_list.glsl).  A function library of the per-pixel
+// passes (rrc_pass_frame.comp): it reads the ages from rrc_channel_slots.glsl's images.
 #ifndef RRC_CACHE_GLSL
 #define RRC_CACHE_GLSL
+
+#include "rrc_depth.glsl"          // pc.refresh_phase
+#include "rrc_channel_slots.glsl"  // CH*_BLEND, the history and age images
 
 layout(constant_id = RRC_SPEC_REFRESH_POLICY) const uint REFRESH_POLICY = RRC_REFRESH_NONE;
 layout(constant_id = RRC_SPEC_REFRESH_PERIOD) const uint REFRESH_PERIOD = 1u;
@@ -18,11 +21,6 @@ const bool REUSE1 = CH_COUNT > 1u && CH1_BLEND == RRC_BLEND_REUSE;
 const bool REUSE2 = CH_COUNT > 2u && CH2_BLEND == RRC_BLEND_REUSE;
 const bool REUSE3 = CH_COUNT > 3u && CH3_BLEND == RRC_BLEND_REUSE;
 const bool HAS_REUSE = REUSE0 || REUSE1 || REUSE2 || REUSE3;
-
-// classify's list (include/rrc/rrc_values.h): count, VkDispatchIndirectCommand, quads.
-layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
-// resolve: the mask classify wrote (sampled: the storage images are at lavapipe's 64 a stage).
-layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
 
 // The 32-bit integer hash of CONVENTIONS.md (RANDOM's per-block offset).
 uint rrc_hash(uint x) {
@@ -76,15 +74,5 @@ uint rrc_cache_mask(ivec2 px, ivec2 size, RrcGeometry g) {
     return mask | (g.hit ? (refresh ? RRC_MASK_REFRESHED : RRC_MASK_HIT) : 0u);
 }
 #undef RRC_AGE_RANGE
-
-// Appends quad q to classify's list and keeps the indirect dispatch's x
-// covering it: the largest slot / RRC_QUADS_PER_GROUP + 1 = ceil(count / per
-// group).  Every slot below the count is taken, so only the first slot of
-// each group needs to raise it: one atomicMax a group, not one a quad.
-void rrc_list_quad(ivec2 q) {
-    uint slot = atomicAdd(u_quads.words[RRC_QUAD_LIST_COUNT], 1u);
-    u_quads.words[RRC_QUAD_LIST_FIRST_QUAD + slot] = uint(q.x) | (uint(q.y) << 16);
-    if (slot % RRC_QUADS_PER_GROUP == 0u) atomicMax(u_quads.words[RRC_QUAD_LIST_DISPATCH], slot / RRC_QUADS_PER_GROUP + 1u);
-}
 
 #endif

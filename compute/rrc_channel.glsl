@@ -1,4 +1,4 @@
-// One channel slot of the fused kernel.  Included once per slot with RRC_CH
+// One channel slot of the per-pixel passes (rrc_pass_frame.comp).  Included once per slot with RRC_CH
 // defined to a literal (0..RRC_MAX_CHANNELS-1): storage-image arrays may only
 // be indexed by constants, and per-slot specialization constants compile out
 // every format, filter and blend the channel does not use.

@@ -1,5 +1,5 @@
 // One channel slot of the spatial fill (the FILL phase of
-// rrc_accumulate.comp, docs/CONVENTIONS.md "The spatial fill").  Included once
+// rrc_pass_fill.comp, docs/CONVENTIONS.md "The spatial fill").  Included once
 // per slot with RRC_CH defined to a literal, as rrc_channel.glsl.  The
 // dispatch is bound as the next frame: the history inputs (u_hist_*, u_age)
 // hold this frame's results, u_prev_depth this frame's depth.

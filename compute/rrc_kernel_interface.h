@@ -1,4 +1,4 @@
-// The interface between the fused kernel (compute/rrc_accumulate.comp and its
+// The interface between the kernels (compute/rrc_pass_*.comp and their
 // includes) and the library (plugin/accumulate_pipeline.h/.cpp,
 // plugin/config.h), written once: specialization-constant ids, descriptor
 // binding numbers, epsilon kinds and the push-constant layout.  Preprocessor
@@ -8,7 +8,7 @@
 #define RRC_KERNEL_INTERFACE_H
 
 // ---- Specialization constant ids -------------------------------------------
-// Whole-dispatch constants (rrc_reproject.glsl, rrc_accumulate.comp).
+// Whole-dispatch constants (rrc_depth.glsl, rrc_reproject.glsl, the passes).
 #define RRC_SPEC_SOURCE 0         // uint rrc_reprojection
 #define RRC_SPEC_DEPTH_MODE 1     // uint rrc_depth_mode
 #define RRC_SPEC_EPS_KIND 2       // uint RRC_EPS_* below
@@ -29,7 +29,7 @@
 #define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
 
 // Per-channel constants: property k of channel slot c has id 16 + 4*k + c
-// (4 slots: CH0_..CH3_ in rrc_accumulate.comp).
+// (4 slots: CH0_..CH3_ in rrc_channel_slots.glsl).
 #define RRC_CHANNEL_PROPERTY_COMPONENTS 0  // uint 1 or 4
 #define RRC_CHANNEL_PROPERTY_FP16 1        // bool: fp16 history
 #define RRC_CHANNEL_PROPERTY_BLEND 2       // uint rrc_blend
@@ -83,7 +83,7 @@
 #define RRC_BINDING_HOST_REPROJ 7   // interop: sampler
 #define RRC_BINDING_HOST_NOCACHE 8  // interop: sampler
 #define RRC_BINDING_DEPTH_OUT 9     // interop: next frame's previous depth
-// Per channel (rrc_accumulate.comp): arrays of RRC_MAX_CHANNELS, indexed by slot.
+// Per channel (rrc_channel_slots.glsl): arrays of RRC_MAX_CHANNELS, indexed by slot.
 #define RRC_BINDING_SAMPLE1 10
 #define RRC_BINDING_SAMPLE4 11
 #define RRC_BINDING_CONFIDENCE 12

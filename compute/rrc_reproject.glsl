@@ -1,18 +1,20 @@
 // Reverse reprojection and the epsilon-depth hit test (docs/CONVENTIONS.md).
-// Shared by every kernel that classifies pixels: it declares the geometry
-// inputs (set 0, RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and the interop bindings), the frame's push constants and the
-// specialization constants that select the source and depth mode, so a
-// configuration compiles only the path it uses.  Built with
+// A function library of the per-pixel passes (compute/rrc_pass_frame.comp):
+// it reads the geometry inputs (RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and
+// the interop bindings, declared by the pass: rrc_bindings.glsl) and declares
+// the specialization constants that select the source, so a configuration
+// compiles only the path it uses; the depth mode and the push constants are
+// rrc_depth.glsl's.  Built with
 // -DRRC_WITHOUT_<FEATURE>, a feature's constant is a plain `false` instead:
 // tests/spirv compares that build with the specialised one (docs/PERFORMANCE.md).
 #ifndef RRC_REPROJECT_GLSL
 #define RRC_REPROJECT_GLSL
 
 #include "rrc_values.glsl"  // rrc_reprojection, rrc_depth_mode, RRC_EPS_*, ids
+#include "rrc_depth.glsl"   // DEPTH_MODE, pc, u_prev_depth, rrc_store, background and invalid depth
 
 // ---- Specialization constants (ids: rrc_kernel_interface.h) ---------------
 layout(constant_id = RRC_SPEC_SOURCE) const uint SOURCE = RRC_REPROJECTION_PREV_CLIP;
-layout(constant_id = RRC_SPEC_DEPTH_MODE) const uint DEPTH_MODE = RRC_DEPTH_MODE_STANDARD;
 layout(constant_id = RRC_SPEC_EPS_KIND) const uint EPS_KIND = RRC_EPS_ULP;  // RRC_EPS_ABSOLUTE, _ULP, _RELATIVE
 // An optional feature's constant: built with -DRRC_WITHOUT_<FEATURE>
 // (tests/spirv), its layout qualifier goes and it is a plain `false`.
@@ -50,69 +52,10 @@ layout(constant_id = RRC_SPEC_OBJECT_ID)
 #endif
 const bool OBJECT_ID = false;
 
-// ---- Per-frame parameters (RRC_PC_SIZE = 128 bytes: the guaranteed minimum)
-// Each member at its RRC_PC_OFFSET_* (rrc_kernel_interface.h): the std430
-// offsets, asserted against plugin/accumulate_pipeline.h's FramePushConstants.
-layout(push_constant) uniform Frame {
-    layout(offset = RRC_PC_OFFSET_M) mat4 M;                    // CAMERA: VP_prev * inverse(VP_cur), formed in double on the CPU
-    layout(offset = RRC_PC_OFFSET_INV_ROW3) vec4 inv_row3;      // CAMERA + LINEAR: row 3 of inverse(VP_cur)
-    layout(offset = RRC_PC_OFFSET_JITTER) vec4 jitter;          // xy: this frame's sample offset (pixels), zw: the previous frame's
-    layout(offset = RRC_PC_OFFSET_MOTION_SCALE) vec2 motion_scale;  // multiplies motion vectors into uv units
-    layout(offset = RRC_PC_OFFSET_EPS) float eps;               // see EPS_KIND
-    layout(offset = RRC_PC_OFFSET_NEAR_PLANE) float near_plane; // plain MOTION on NDC depth: linearisation
-    layout(offset = RRC_PC_OFFSET_FAR_PLANE) float far_plane;   //   (may be +inf for REVERSED)
-    layout(offset = RRC_PC_OFFSET_BG_THRESHOLD) float bg_threshold;  // LINEAR: d >= this is background
-    layout(offset = RRC_PC_OFFSET_PREV_VALID) uint prev_valid;  // 0 on the first frame, after reset or resize
-    layout(offset = RRC_PC_OFFSET_REFRESH_PHASE) uint refresh_phase;  // frame_index mod refresh_period (rrc_cache.glsl)
-} pc;
-
-layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
-layout(set = 0, binding = RRC_BINDING_PREV_DEPTH, r32f) uniform readonly image2D u_prev_depth;
-layout(set = 0, binding = RRC_BINDING_REPROJ, rgba32f) uniform readonly image2D u_reproj;  // PREV_CLIP, MOTION (.xy), MOTION_DEPTH
-layout(set = 0, binding = RRC_BINDING_NOCACHE, r8ui) uniform readonly uimage2D u_nocache;
-layout(set = 0, binding = RRC_BINDING_HOST_DEPTH) uniform sampler2D s_depth;        // INTEROP: the host's depth
-layout(set = 0, binding = RRC_BINDING_HOST_REPROJ) uniform sampler2D s_reproj;       // INTEROP: the host's reprojection data
-layout(set = 0, binding = RRC_BINDING_HOST_NOCACHE) uniform usampler2D s_nocache;     // INTEROP: the host's do-not-cache mask
-layout(set = 0, binding = RRC_BINDING_DEPTH_OUT, r32f) uniform writeonly image2D u_depth_out;  // INTEROP: next frame's previous depth
-layout(set = 0, binding = RRC_BINDING_OBJECT_ID, r32ui) uniform writeonly uimage2D u_object_id_out;  // INTEROP: next frame's previous ids
-layout(set = 0, binding = RRC_BINDING_PREV_OBJECT_ID, r32ui) uniform readonly uimage2D u_prev_object_id;  // the previous frame's ids
-layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;                    // this frame's ids
-
-// False for the invocations beyond the image (the dispatch rounds up): they
-// run on a clamped pixel and store nothing.  A kernel guards its stores with
-// it instead of returning early, because lavapipe runs everything after a
-// divergent return lane by lane, push-constant loads included (CAMERA's
-// matrix: docs/PERFORMANCE.md, "Inside the kernel").
-bool rrc_store = true;
-
 ivec2 rrc_size() { return SAMPLED_INPUTS ? textureSize(s_depth, 0) : imageSize(u_depth); }
 float rrc_load_depth(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
 vec4 rrc_load_reprojection(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
 bool rrc_load_nocache(ivec2 px) { return (SAMPLED_INPUTS ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
-
-bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }
-bool rrc_finite4(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
-
-bool rrc_is_background(float d) {
-    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return d >= 1.0;
-    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return d <= 0.0;
-    return d >= pc.bg_threshold;  // +inf included
-}
-
-// Non-finite depth, or depth outside its mode's range (NaN compares false).
-bool rrc_is_invalid_depth(float d) {
-    if (isnan(d)) return true;
-    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return !(d >= 0.0) || isinf(d);
-    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return !(d <= 1.0) || isinf(d);
-    return !(d > 0.0);  // LINEAR: +inf is background, not invalid
-}
-
-float rrc_linearize(float z) {
-    float n = pc.near_plane, f = pc.far_plane;
-    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return n * f / (f - z * (f - n));
-    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return isinf(f) ? n / z : n * f / (n + z * (f - n));
-    return z;
-}
 
 // ulp of an fp32 value whose exponent field, in place (bits & 0x7F800000),
 // is `exponent`: 2^(floor(log2|e|) - 23), 2^-149 in the denormal range.

@@ -1,7 +1,10 @@
 #include "accumulate_pipeline.h"
 
 #include "error.h"
-#include "rrc_accumulate_spv.h"
+#include "rrc_pass_copy_out_spv.h"
+#include "rrc_pass_fill_spv.h"
+#include "rrc_pass_frame_spv.h"
+#include "rrc_pass_list_spv.h"
 
 #include <cstring>
 #include <vector>
@@ -16,8 +19,8 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
 static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
-static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS > RRC_BINDING_LAST && RRC_BINDING_FILL_LIST > RRC_BINDING_LAST,
-              "the buffers follow every image binding");
+static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_BINDING_STATS + 1 && RRC_BINDING_FILL_LIST == RRC_BINDING_QUADS + 1,
+              "the buffers follow every image binding, in a row");
 static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) &&
                   RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X,
               "the shading cache's ids sit between the channel ids and the workgroup-size ids");
@@ -26,6 +29,42 @@ static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_
 static_assert(RRC_SPEC_CHANNEL2(0, 0) > RRC_SPEC_MAX_LIFETIME &&
                   RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
               "the second channel range sits between the shading cache's ids and the workgroup-size ids");
+
+// Each pass is its own module (compute/rrc_pass_*.comp) with its own
+// bindings (compute/rrc_pass_bindings.h); the per-pixel passes (FUSED,
+// CLASSIFY, RESOLVE, RESOLVE_LISTED) are one body that the PHASE constant
+// specialises (docs/PERFORMANCE.md, "The frame plan").  Constants a module
+// does not declare are ignored by vkCreateComputePipelines.
+struct PassModule {
+    const uint32_t* code;
+    size_t size;
+    const Binding* bindings;
+    uint32_t binding_count;
+};
+#define RRC_BINDING_ID(name) RRC_BINDING_##name,
+constexpr Binding kFrameBindings[] = {RRC_PASS_FRAME_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kListBindings[] = {RRC_PASS_LIST_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kCopyOutBindings[] = {RRC_PASS_COPY_OUT_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kFillBindings[] = {RRC_PASS_FILL_BINDINGS(RRC_BINDING_ID)};
+#undef RRC_BINDING_ID
+#define RRC_PASS_MODULE(code, bindings) PassModule{code, sizeof(code), bindings, (uint32_t)(sizeof(bindings) / sizeof(Binding))}
+PassModule pass_module(uint32_t pass) {
+    switch (pass) {
+        case RRC_PASS_LIST: return RRC_PASS_MODULE(rrc_pass_list_spv, kListBindings);
+        case RRC_PASS_COPY_OUT: return RRC_PASS_MODULE(rrc_pass_copy_out_spv, kCopyOutBindings);
+        case RRC_PASS_FILL: return RRC_PASS_MODULE(rrc_pass_fill_spv, kFillBindings);
+        default: return RRC_PASS_MODULE(rrc_pass_frame_spv, kFrameBindings);
+    }
+}
+#undef RRC_PASS_MODULE
+
+bool is_buffer_binding(Binding b) { return b == RRC_BINDING_STATS || b == RRC_BINDING_QUADS || b == RRC_BINDING_FILL_LIST; }
+VkDescriptorType descriptor_type(Binding b) {
+    return is_buffer_binding(b)    ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+           : is_sampled_binding(b) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                   : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
+uint32_t descriptor_count(Binding b) { return is_buffer_binding(b) ? 1 : binding_count(b); }
 
 struct SpecBuilder {
     std::vector<VkSpecializationMapEntry> entries;
@@ -53,40 +92,41 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         VulkanDevice::check(vk.vkCreateSampler(dev.device, &sci, dev.allocator, &sampler_), "vkCreateSampler");
         const VkSampler immutable[RRC_MAX_CHANNELS] = {sampler_, sampler_, sampler_, sampler_};
-        std::vector<VkDescriptorSetLayoutBinding> bindings;
-        for (uint32_t b = 0; b < kBindingCount; ++b) {
-            if (b > RRC_BINDING_DEPTH_OUT && b < kFirstChannelBinding) continue;
-            bool sampled = is_sampled_binding(b);
-            bindings.push_back({b, sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, binding_count(b),
-                                VK_SHADER_STAGE_COMPUTE_BIT, sampled ? immutable : nullptr});
-        }
-        bindings.push_back({RRC_BINDING_STATS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-        bindings.push_back({RRC_BINDING_QUADS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-        bindings.push_back({RRC_BINDING_FILL_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-        VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        lci.bindingCount = (uint32_t)bindings.size();
-        lci.pBindings = bindings.data();
-        VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, dev.allocator, &set_layout_), "vkCreateDescriptorSetLayout");
+        // Each pass's layout from its list; the pool holds `sets` of each.
+        uint32_t storage = 0, sampled = 0, buffers = 0;
+        for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
+            const PassModule m = pass_module(pass);
+            std::vector<VkDescriptorSetLayoutBinding> bindings;
+            for (uint32_t i = 0; i < m.binding_count; ++i) {
+                const Binding b = m.bindings[i];
+                const VkDescriptorType type = descriptor_type(b);
+                bindings.push_back({b, type, descriptor_count(b), VK_SHADER_STAGE_COMPUTE_BIT,
+                                    type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ? immutable : nullptr});
+                (type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ? buffers : type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) +=
+                    descriptor_count(b);
+            }
+            VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+            lci.bindingCount = (uint32_t)bindings.size();
+            lci.pBindings = bindings.data();
+            VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, dev.allocator, &set_layouts_[pass]),
+                                "vkCreateDescriptorSetLayout");
 
-        VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FramePushConstants)};
-        VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-        pli.setLayoutCount = 1;
-        pli.pSetLayouts = &set_layout_;
-        pli.pushConstantRangeCount = 1;
-        pli.pPushConstantRanges = &range;
-        VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layout_), "vkCreatePipelineLayout");
+            VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FramePushConstants)};
+            VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+            pli.setLayoutCount = 1;
+            pli.pSetLayouts = &set_layouts_[pass];
+            pli.pushConstantRangeCount = 1;
+            pli.pPushConstantRanges = &range;
+            VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layouts_[pass]), "vkCreatePipelineLayout");
+        }
 
         pipeline(KernelVariant{});  // the plain variant now: a broken device fails at creation, not mid-frame
 
-        uint32_t storage = 0, sampled = 0;
-        for (const auto& b : bindings)
-            if (b.descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
-                (b.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) += b.descriptorCount;
         VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
-                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * sets}};
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets * buffers}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        dpi.maxSets = sets;
+        dpi.maxSets = sets * RRC_PASS_COUNT;
         dpi.poolSizeCount = 3;
         dpi.pPoolSizes = sizes;
         VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, dev.allocator, &pool_), "vkCreateDescriptorPool");
@@ -103,8 +143,9 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     VulkanDevice& dev = dev_;
     const ContextConfig& c = config_;
     VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    smi.codeSize = sizeof(rrc_accumulate_spv);
-    smi.pCode = rrc_accumulate_spv;
+    const PassModule code = pass_module(pass_of(variant.phase));
+    smi.codeSize = code.size;
+    smi.pCode = code.code;
     VkShaderModule module = VK_NULL_HANDLE;
     VulkanDevice::check(vk.vkCreateShaderModule(dev.device, &smi, dev.allocator, &module), "vkCreateShaderModule");
 
@@ -155,7 +196,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     pci.stage.module = module;
     pci.stage.pName = "main";
     pci.stage.pSpecializationInfo = &si;
-    pci.layout = layout_;
+    pci.layout = layouts_[pass_of(variant.phase)];
     VkPipeline created = VK_NULL_HANDLE;
     VkResult r = vk.vkCreateComputePipelines(dev.device, cache_, 1, &pci, dev.allocator, &created);
     vk.vkDestroyShaderModule(dev.device, module, dev.allocator);
@@ -171,83 +212,87 @@ void AccumulatePipeline::release() {
     if (pool_) vk.vkDestroyDescriptorPool(dev_.device, pool_, dev_.allocator);
     for (auto& p : pipelines_) vk.vkDestroyPipeline(dev_.device, p.second, dev_.allocator);
     pipelines_.clear();
-    if (layout_) vk.vkDestroyPipelineLayout(dev_.device, layout_, dev_.allocator);
-    if (set_layout_) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layout_, dev_.allocator);
+    for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
+        if (layouts_[pass]) vk.vkDestroyPipelineLayout(dev_.device, layouts_[pass], dev_.allocator);
+        if (set_layouts_[pass]) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layouts_[pass], dev_.allocator);
+        layouts_[pass] = VK_NULL_HANDLE;
+        set_layouts_[pass] = VK_NULL_HANDLE;
+    }
     if (sampler_) vk.vkDestroySampler(dev_.device, sampler_, dev_.allocator);
     sampler_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
-    layout_ = VK_NULL_HANDLE;
-    set_layout_ = VK_NULL_HANDLE;
 }
 
-VkDescriptorSet AccumulatePipeline::allocate_set() {
+DescriptorSets AccumulatePipeline::allocate_set() {
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = pool_;
-    ai.descriptorSetCount = 1;
-    ai.pSetLayouts = &set_layout_;
-    VkDescriptorSet set = VK_NULL_HANDLE;
-    VulkanDevice::check(dev_.vk.vkAllocateDescriptorSets(dev_.device, &ai, &set), "vkAllocateDescriptorSets");
-    return set;
+    ai.descriptorSetCount = RRC_PASS_COUNT;
+    ai.pSetLayouts = set_layouts_;
+    DescriptorSets sets;
+    VulkanDevice::check(dev_.vk.vkAllocateDescriptorSets(dev_.device, &ai, sets.pass), "vkAllocateDescriptorSets");
+    return sets;
 }
 
-void AccumulatePipeline::write_set(VkDescriptorSet set, const DescriptorViews& v) const {
-    VkDescriptorImageInfo infos[kBindingCount][RRC_MAX_CHANNELS];
+void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorViews& v) const {
+    VkDescriptorImageInfo infos[RRC_PASS_COUNT][kBindingCount][RRC_MAX_CHANNELS];
+    VkDescriptorBufferInfo buffers[RRC_PASS_COUNT][3];
     std::vector<VkWriteDescriptorSet> writes;
-    for (uint32_t b = 0; b < kBindingCount; ++b) {
-        if (b > RRC_BINDING_DEPTH_OUT && b < kFirstChannelBinding) continue;
-        for (uint32_t s = 0; s < binding_count(b); ++s) {
-            if (!v.view[b][s]) fail(RRC_ERROR_UNSUPPORTED, "internal: binding %u slot %u has no view", b, s);
-            VkImageLayout layout = v.layout[b][s] ? v.layout[b][s] : VK_IMAGE_LAYOUT_GENERAL;
-            infos[b][s] = {VK_NULL_HANDLE, v.view[b][s], layout};
+    for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
+        const PassModule m = pass_module(pass);
+        for (uint32_t i = 0; i < m.binding_count; ++i) {
+            const Binding b = m.bindings[i];
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = sets.pass[pass];
+            w.dstBinding = b;
+            w.descriptorCount = descriptor_count(b);
+            w.descriptorType = descriptor_type(b);
+            if (is_buffer_binding(b)) {
+                VkDescriptorBufferInfo& info = buffers[pass][b - RRC_BINDING_STATS];
+                if (b == RRC_BINDING_STATS) {
+                    if (!v.stats) fail(RRC_ERROR_UNSUPPORTED, "internal: the stats binding has no buffer");
+                    info = {v.stats, v.stats_offset, RRC_STAT_COUNT * sizeof(uint32_t)};
+                } else if (b == RRC_BINDING_QUADS) {
+                    if (!v.quads) fail(RRC_ERROR_UNSUPPORTED, "internal: the quad list binding has no buffer");
+                    info = {v.quads, v.quads_offset, v.quads_range};
+                } else {
+                    if (!v.fill_list) fail(RRC_ERROR_UNSUPPORTED, "internal: the fill list binding has no buffer");
+                    info = {v.fill_list, 0, VK_WHOLE_SIZE};
+                }
+                w.pBufferInfo = &info;
+            } else {
+                for (uint32_t s = 0; s < binding_count(b); ++s) {
+                    if (!v.view[b][s]) fail(RRC_ERROR_UNSUPPORTED, "internal: binding %u slot %u has no view", b, s);
+                    VkImageLayout layout = v.layout[b][s] ? v.layout[b][s] : VK_IMAGE_LAYOUT_GENERAL;
+                    infos[pass][b][s] = {VK_NULL_HANDLE, v.view[b][s], layout};
+                }
+                w.pImageInfo = infos[pass][b];
+            }
+            writes.push_back(w);
         }
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = set;
-        w.dstBinding = b;
-        w.descriptorCount = binding_count(b);
-        w.descriptorType = is_sampled_binding(b) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        w.pImageInfo = infos[b];
-        writes.push_back(w);
     }
-    if (!v.stats) fail(RRC_ERROR_UNSUPPORTED, "internal: the stats binding has no buffer");
-    const VkDescriptorBufferInfo stats{v.stats, v.stats_offset, RRC_STAT_COUNT * sizeof(uint32_t)};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = set;
-    w.dstBinding = RRC_BINDING_STATS;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &stats;
-    writes.push_back(w);
-    if (!v.quads) fail(RRC_ERROR_UNSUPPORTED, "internal: the quad list binding has no buffer");
-    const VkDescriptorBufferInfo quads{v.quads, v.quads_offset, v.quads_range};
-    w.dstBinding = RRC_BINDING_QUADS;
-    w.pBufferInfo = &quads;
-    writes.push_back(w);
-    if (!v.fill_list) fail(RRC_ERROR_UNSUPPORTED, "internal: the fill list binding has no buffer");
-    const VkDescriptorBufferInfo fill{v.fill_list, 0, VK_WHOLE_SIZE};
-    w.dstBinding = RRC_BINDING_FILL_LIST;
-    w.pBufferInfo = &fill;
-    writes.push_back(w);
     dev_.vk.vkUpdateDescriptorSets(dev_.device, (uint32_t)writes.size(), writes.data(), 0, nullptr);
 }
 
-void AccumulatePipeline::record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height,
-                                const KernelVariant& variant) {
+void AccumulatePipeline::bind(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, const KernelVariant& variant) {
     auto& vk = dev_.vk;
+    const uint32_t pass = pass_of(variant.phase);
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
-    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-    vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    // Round up; the kernel bounds-checks.  The list runs one invocation a 2x2 quad.
-    if (variant.phase == RRC_PHASE_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
-    vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
+    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layouts_[pass], 0, 1, &sets.pass[pass], 0, nullptr);
+    vk.vkCmdPushConstants(cmd, layouts_[pass], VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
 }
 
-void AccumulatePipeline::record_indirect(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc,
+void AccumulatePipeline::record(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, uint32_t width, uint32_t height,
+                                const KernelVariant& variant) {
+    bind(cmd, sets, pc, variant);
+    // Round up; the kernel bounds-checks.  The list runs one invocation a 2x2 quad.
+    if (variant.phase == RRC_PHASE_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
+    dev_.vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
+}
+
+void AccumulatePipeline::record_indirect(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc,
                                          const KernelVariant& variant, VkBuffer buffer, VkDeviceSize offset) {
-    auto& vk = dev_.vk;
-    vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
-    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
-    vk.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    vk.vkCmdDispatchIndirect(cmd, buffer, offset);
+    bind(cmd, sets, pc, variant);
+    dev_.vk.vkCmdDispatchIndirect(cmd, buffer, offset);
 }
 
 }  // namespace rrc

@@ -1,4 +1,4 @@
-// The fused kernel's pipeline: descriptor layout, specialization constants
+// The kernels' pipelines (one module a pass, compute/rrc_pass_*.comp): descriptor layout, specialization constants
 // chosen from the context's configuration (so a scene pays only for what it
 // enables) and the dispatch.  Binding numbers, constant ids and push-constant
 // offsets come from compute/rrc_kernel_interface.h, which the kernels read too.
@@ -8,6 +8,7 @@
 #include "vulkan_device.h"
 
 #include <rrc_kernel_interface.h>
+#include <rrc_pass_bindings.h>
 
 #include <cstddef>
 #include <map>
@@ -27,8 +28,10 @@ inline uint32_t binding_count(uint32_t b) {
     return (b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL) || b == RRC_BINDING_FALLBACK ? RRC_MAX_CHANNELS : 1;
 }
 
-// The image view bound at [binding][slot]; every entry must be filled
-// (placeholders where a configuration does not use a binding).
+// The image view bound at [binding][slot], for every binding of every pass:
+// each pass's set takes the bindings of its list (compute/rrc_pass_bindings.h),
+// and each of those entries must be filled (placeholders where a
+// configuration does not use a binding).
 struct DescriptorViews {
     VkImageView view[kBindingCount][RRC_MAX_CHANNELS] = {};
     VkImageLayout layout[kBindingCount][RRC_MAX_CHANNELS] = {};  // 0 = GENERAL
@@ -37,6 +40,17 @@ struct DescriptorViews {
     VkBuffer quads = VK_NULL_HANDLE;  // RRC_BINDING_QUADS: classify's list (the host's, the library's, or a placeholder)
     VkDeviceSize quads_offset = 0, quads_range = VK_WHOLE_SIZE;
     VkBuffer fill_list = VK_NULL_HANDLE;  // RRC_BINDING_FILL_LIST: the library's
+};
+
+// The pass module (RRC_PASS_*) that runs a phase (RRC_PHASE_*).
+inline uint32_t pass_of(uint32_t phase) {
+    return phase == RRC_PHASE_LIST ? RRC_PASS_LIST : phase == RRC_PHASE_COPY_OUT ? RRC_PASS_COPY_OUT : phase == RRC_PHASE_FILL ? RRC_PASS_FILL : RRC_PASS_FRAME;
+}
+
+// A binding of the library's descriptor sets: one set a pass module, each
+// with its own layout, written from the same DescriptorViews.
+struct DescriptorSets {
+    VkDescriptorSet pass[RRC_PASS_COUNT] = {};
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
@@ -87,22 +101,23 @@ class AccumulatePipeline {
 public:
     static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // wide groups win on lavapipe (128x1 ~2% over 64x1; 8x8 is ~1.45x slower)
     // The indirect passes' groups: RESOLVE_LISTED runs two invocations a
-    // listed quad, FILL one a listed pixel (compute/rrc_accumulate.comp).
+    // listed quad, FILL one a listed pixel (compute/rrc_pass_frame.comp, rrc_pass_fill.comp).
     static_assert(2 * RRC_QUADS_PER_GROUP == kGroupX && RRC_FILL_LIST_PER_GROUP == kGroupX, "the lists' groups are the kernel's");
     AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
     AccumulatePipeline(const AccumulatePipeline&) = delete;
     AccumulatePipeline& operator=(const AccumulatePipeline&) = delete;
 
-    // sets: how many descriptor sets the pool holds (2 standalone: the
+    // sets: how many DescriptorSets the pool holds (2 standalone: the
     // ping-pong parity; interop: 2 x frames in flight).
-    VkDescriptorSet allocate_set();
-    void write_set(VkDescriptorSet set, const DescriptorViews& views) const;
+    DescriptorSets allocate_set();
+    // Writes each pass's set with the bindings of its list only.
+    void write_set(const DescriptorSets& sets, const DescriptorViews& views) const;
     // A dispatch over width x height invocations (LIST: over its 2x2 quads).
-    void record(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, uint32_t width, uint32_t height,
+    void record(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, uint32_t width, uint32_t height,
                 const KernelVariant& variant = {});
     // An indirect dispatch: the VkDispatchIndirectCommand at `offset` of `buffer`.
-    void record_indirect(VkCommandBuffer cmd, VkDescriptorSet set, const FramePushConstants& pc, const KernelVariant& variant,
+    void record_indirect(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, const KernelVariant& variant,
                          VkBuffer buffer, VkDeviceSize offset);
     // Makes (once) and returns the variant's pipeline: call before recording
     // so that a failure leaves the command buffer untouched.
@@ -110,12 +125,14 @@ public:
 
 private:
     void release();
+    // Binds the variant's pipeline, its pass's set and the push constants.
+    void bind(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, const KernelVariant& variant);
     VulkanDevice& dev_;
     ContextConfig config_;
     bool interop_;
     VkPipelineCache cache_;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layouts_[RRC_PASS_COUNT] = {};  // by RRC_PASS_*: its bindings only
+    VkPipelineLayout layouts_[RRC_PASS_COUNT] = {};
     std::map<uint32_t, VkPipeline> pipelines_;  // by KernelVariant::key()
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;  // nearest, clamp: texelFetch ignores it, the layout needs one

@@ -111,7 +111,7 @@ void AccumulatorCore::record_plan(VkCommandBuffer cmd, const FramePlan& plan, co
             case PlanStep::Op::Dispatch: {
                 KernelVariant v = step.variant;
                 v.storage_inputs = base.storage_inputs;
-                const VkDescriptorSet set = step.set == PlanSet::Frame ? sets.frame : sets.next;
+                const DescriptorSets& set = step.set == PlanSet::Frame ? sets.frame : sets.next;
                 if (step.grid == PlanGrid::QuadList)
                     pipeline_.record_indirect(cmd, set, pc, v, sets.quad_list, sets.quad_list_offset + 4 * RRC_QUAD_LIST_DISPATCH);
                 else if (step.grid == PlanGrid::FillList)

@@ -1,5 +1,5 @@
 // The state and the recording both contexts share: the device wrapper, the
-// fused kernel's pipeline, the placeholders, the library-owned mask, and per
+// passes' pipelines, the placeholders, the library-owned mask, and per
 // view the previous depth, each channel's history and the ping-pong parity.
 // A context differs from another only in where its input images come from
 // (its own uploads, or the host's images) and how work is submitted.
@@ -67,7 +67,7 @@ public:
     // The descriptor sets a plan's passes are bound with (PlanSet), and the
     // quad list RESOLVE_LISTED is dispatched from.
     struct PlanBindings {
-        VkDescriptorSet frame = VK_NULL_HANDLE, next = VK_NULL_HANDLE;
+        DescriptorSets frame, next;
         VkBuffer quad_list = VK_NULL_HANDLE;
         VkDeviceSize quad_list_offset = 0;
     };

@@ -42,7 +42,7 @@ const char* phase_name(uint32_t phase) {
     return "?";
 }
 
-// What each pass reads and writes (compute/rrc_accumulate.comp); brackets:
+// What each pass reads and writes (compute/rrc_pass_*.comp); brackets:
 // only when the configuration or the frame has it.
 const char* phase_bindings(uint32_t phase, bool all_reuse) {
     switch (phase) {

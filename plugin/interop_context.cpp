@@ -290,8 +290,8 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
     initialised_ = true;
 }
 
-VkDescriptorSet InteropContext::next_set() {
-    VkDescriptorSet set = ring_[next_set_];
+DescriptorSets InteropContext::next_set() {
+    DescriptorSets set = ring_[next_set_];
     next_set_ = (next_set_ + 1) % (uint32_t)ring_.size();
     return set;
 }

@@ -37,14 +37,14 @@ public:
 private:
     // One call's frame plan; list: classify's quad list (resolve: the pending classify's).
     void record_pass(const Frame& frame, PlanCall call, VkBuffer list = VK_NULL_HANDLE, VkDeviceSize list_offset = 0);
-    VkDescriptorSet next_set();  // the ring's next
+    DescriptorSets next_set();  // the ring's next
     void record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDeviceSize offset);
     void record_initialisation(VkCommandBuffer cmd);
     void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
     VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;
 
     std::unique_ptr<AccumulatorCore> core_;
-    std::vector<VkDescriptorSet> ring_;  // four sets (two calls, two sets each) per frame in flight, plus four
+    std::vector<DescriptorSets> ring_;  // four sets (two calls, two sets each) per frame in flight, plus four
     uint32_t next_set_ = 0;
     uint64_t stats_alignment_ = 0;
     // The classify recorded last, until its resolve (any other frame drops it).

@@ -130,7 +130,7 @@ const GpuImage& StandaloneContext::own_input(const ViewState& view, size_t input
     }
 }
 
-VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp) {
+DescriptorSets StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t source, uint32_t sp) {
     const uint32_t key = ((view * RRC_MAX_VIEWS + source) * 2 + p) * 2 + sp;
     auto found = sets_.find(key);
     if (found != sets_.end()) return found->second;
@@ -145,7 +145,7 @@ VkDescriptorSet StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t s
     // fill does not run, the fill where it does (docs/PERFORMANCE.md, "The frame plan").
     for (uint32_t s = 0; s < display_.size(); ++s)
         if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;
-    VkDescriptorSet set = core_->pipeline().allocate_set();
+    DescriptorSets set = core_->pipeline().allocate_set();
     core_->pipeline().write_set(set, d);
     sets_[key] = set;
     return set;
@@ -201,7 +201,7 @@ void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t
                                bool prev_valid, uint32_t phase) {
     auto& vk = core_->device().vk;
     const ViewState& view = core_->view(f.view);
-    const VkDescriptorSet set = set_for(f.view, parity, f.source(), source_parity);
+    const DescriptorSets set = set_for(f.view, parity, f.source(), source_parity);
     std::vector<const GpuImage*> inputs;  // uploaded by this pass (null entries keep the staging offsets)
     for (size_t i = 0; i < core_->inputs().size(); ++i)
         inputs.push_back(uploads(core_->inputs()[i], phase) ? &own_input(view, i, parity) : nullptr);

@@ -57,7 +57,7 @@ private:
     // The set of a frame that writes `parity` of `view` and reads `source`'s
     // set `source_parity`: made and written the first time it is needed.
     // A fill's displayed values are its host outputs.
-    VkDescriptorSet set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity);
+    DescriptorSets set_for(uint32_t view, uint32_t parity, uint32_t source, uint32_t source_parity);
     // Classify's submission for a frame whose geometry is staged in slot 0.
     void run_classify(const Frame& frame);
     void initialise_images();
@@ -89,7 +89,7 @@ private:
     bool pending_ = false;          // classified_ awaits its resolve (any other frame drops it)
     size_t upload_bytes_ = 0, readback_bytes_ = 0;
     uint32_t batch_capacity_ = 0;
-    std::map<uint32_t, VkDescriptorSet> sets_;  // by (view, parity, source, source parity)
+    std::map<uint32_t, DescriptorSets> sets_;  // by (view, parity, source, source parity)
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;

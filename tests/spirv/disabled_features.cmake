@@ -1,8 +1,8 @@
 # A disabled feature costs nothing (docs/PERFORMANCE.md): for each optional
-# feature of the fused kernel (compute/rrc_accumulate.comp), the specialised
-# SPIR-V of a configuration without it must equal the SPIR-V built with the
-# feature's code removed (-DRRC_WITHOUT_<F>: its specialization constant
-# becomes a plain `const false` / `0u`).
+# feature of the kernels (compute/rrc_pass_*.comp, one module a pass), the
+# specialised SPIR-V of a configuration without it must equal, module by
+# module, the SPIR-V built with the feature's code removed (-DRRC_WITHOUT_<F>:
+# its specialization constant becomes a plain `const false` / `0u`).
 #
 #   cmake -DGLSLANG=glslangValidator -DSPIRV_OPT=spirv-opt -DSPIRV_REMAP=spirv-remap
 #         -DSPIRV_DIS=spirv-dis -DKERNEL_DIR=compute -DINCLUDE_DIR=include
@@ -25,13 +25,14 @@
 # step can hide code: both run on both sides, and the compared modules keep
 # every instruction, in order.
 #
-# A new feature: add its -DRRC_WITHOUT_<F> to the kernel and <F> to
+# A new feature: add its -DRRC_WITHOUT_<F> to the kernels and <F> to
 # `features` with its ids (F_<F>_IDS) and "on" value below.
 #
-# Every base is checked three ways per feature: the built module really has
-# (or, built without the feature, lacks) the feature's SpecId, the two "off"
-# modules are equal, and the instruction counts with the feature on are
-# reported (where "on" equals "off", the feature has no code in that base).
+# Every base is checked three ways per feature: some module really has (and,
+# built without the feature, none has) the feature's SpecId, the two "off"
+# builds of every module are equal, and the instruction counts with the
+# feature on are reported (where "on" equals "off", the feature has no code
+# in that base and module).
 cmake_minimum_required(VERSION 3.16)
 
 foreach(var GLSLANG SPIRV_OPT SPIRV_REMAP SPIRV_DIS KERNEL_DIR INCLUDE_DIR WORK_DIR)
@@ -39,7 +40,8 @@ foreach(var GLSLANG SPIRV_OPT SPIRV_REMAP SPIRV_DIS KERNEL_DIR INCLUDE_DIR WORK_
     message(FATAL_ERROR "disabled_features.cmake: -D${var}=... is required")
   endif()
 endforeach()
-set(kernel ${KERNEL_DIR}/rrc_accumulate.comp)
+# The passes' modules (compute/CMakeLists.txt builds the same list).
+set(modules frame list copy_out fill)
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/remap)
 
@@ -124,20 +126,27 @@ function(rrc_run)
   endif()
 endfunction()
 
-# Front end: <name>.spv with the given -D defines, as the library builds it
-# (cmake/SPIRV.cmake: --target-env vulkan1.1).
+# Front end: <name>_<module>.spv for every module with the given -D defines,
+# as the library builds them (cmake/SPIRV.cmake: --target-env vulkan1.1).
 function(rrc_compile name)
-  rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} ${ARGN} ${kernel} -o ${WORK_DIR}/${name}.spv)
+  foreach(m IN LISTS modules)
+    rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} ${ARGN}
+            ${KERNEL_DIR}/rrc_pass_${m}.comp -o ${WORK_DIR}/${name}_${m}.spv)
+  endforeach()
 endfunction()
 
-# The SpecIds a module declares.
+# The SpecIds the modules of <name> declare, all together.
 function(rrc_spec_ids name out)
-  execute_process(COMMAND ${SPIRV_DIS} ${WORK_DIR}/${name}.spv OUTPUT_VARIABLE dis RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "spirv-dis failed on ${name}.spv")
-  endif()
-  string(REGEX MATCHALL "SpecId [0-9]+" decorations "${dis}")
-  string(REPLACE "SpecId " "" ids "${decorations}")
+  set(ids "")
+  foreach(m IN LISTS modules)
+    execute_process(COMMAND ${SPIRV_DIS} ${WORK_DIR}/${name}_${m}.spv OUTPUT_VARIABLE dis RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "spirv-dis failed on ${name}_${m}.spv")
+    endif()
+    string(REGEX MATCHALL "SpecId [0-9]+" decorations "${dis}")
+    string(REPLACE "SpecId " "" module_ids "${decorations}")
+    list(APPEND ids ${module_ids})
+  endforeach()
   set(${out} ${ids} PARENT_SCOPE)
 endfunction()
 
@@ -171,10 +180,10 @@ foreach(f IN LISTS features)
   foreach(id IN LISTS F_${f}_IDS)
     # Else the check would compare a build with itself, or miss the feature.
     if(NOT id IN_LIST spec_ids)
-      message(FATAL_ERROR "${f}: the kernel declares no SpecId ${id}")
+      message(FATAL_ERROR "${f}: no kernel declares SpecId ${id}")
     endif()
     if(id IN_LIST without_ids)
-      message(FATAL_ERROR "${f}: built with -DRRC_WITHOUT_${f}, the kernel still declares SpecId ${id}")
+      message(FATAL_ERROR "${f}: built with -DRRC_WITHOUT_${f}, a kernel still declares SpecId ${id}")
     endif()
   endforeach()
 endforeach()
@@ -203,28 +212,30 @@ foreach(base IN LISTS base_names)
     foreach(id IN LISTS F_${f}_IDS)
       list(APPEND on ${id}:${F_${f}_ON})
     endforeach()
-    rrc_specialise(spec ${base}_${f}_spec "${off}" n_spec)
-    rrc_specialise(without_${f} ${base}_${f}_removed "${off}" n_removed)
-    string(MD5 key "${on}")
-    if(NOT DEFINED on_count_${key})  # all_on: one "every feature on" module
-      rrc_specialise(spec ${base}_${f}_on "${on}" on_count_${key})
-    endif()
-    set(n_on ${on_count_${key}})
-    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
-                    ${WORK_DIR}/${base}_${f}_spec.spv ${WORK_DIR}/${base}_${f}_removed.spv RESULT_VARIABLE differ)
-    if(differ)
-      set(verdict DIFFERENT)
-      list(APPEND failures "${base}/${f}: ${WORK_DIR}/${base}_${f}_spec.dis vs ${WORK_DIR}/${base}_${f}_removed.dis")
-    else()
-      set(verdict equal)
-    endif()
-    string(APPEND table "| ${base} | ${f} | ${n_spec} | ${n_removed} | ${verdict} | ${n_on} |\n")
+    foreach(m IN LISTS modules)
+      rrc_specialise(spec_${m} ${base}_${f}_${m}_spec "${off}" n_spec)
+      rrc_specialise(without_${f}_${m} ${base}_${f}_${m}_removed "${off}" n_removed)
+      string(MD5 key "${m} ${on}")
+      if(NOT DEFINED on_count_${key})  # all_on: one "every feature on" module a pass
+        rrc_specialise(spec_${m} ${base}_${f}_${m}_on "${on}" on_count_${key})
+      endif()
+      set(n_on ${on_count_${key}})
+      execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+                      ${WORK_DIR}/${base}_${f}_${m}_spec.spv ${WORK_DIR}/${base}_${f}_${m}_removed.spv RESULT_VARIABLE differ)
+      if(differ)
+        set(verdict DIFFERENT)
+        list(APPEND failures "${base}/${f}/${m}: ${WORK_DIR}/${base}_${f}_${m}_spec.dis vs ${WORK_DIR}/${base}_${f}_${m}_removed.dis")
+      else()
+        set(verdict equal)
+      endif()
+      string(APPEND table "| ${base} | ${f} | ${m} | ${n_spec} | ${n_removed} | ${verdict} | ${n_on} |\n")
+    endforeach()
   endforeach()
 endforeach()
 
 message(STATUS "SPIR-V instructions after specialisation (tests/spirv/disabled_features.cmake):\n\n"
-        "| base | feature | spec constant off | code removed | comparison | feature on |\n"
-        "|---|---|---:|---:|---|---:|\n${table}")
+        "| base | feature | pass | spec constant off | code removed | comparison | feature on |\n"
+        "|---|---|---|---:|---:|---|---:|\n${table}")
 if(failures)
   string(REPLACE ";" "\n  " failures "${failures}")
   message(FATAL_ERROR "A disabled feature costs something: the specialised SPIR-V differs from the build "

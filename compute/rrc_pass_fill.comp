@@ -1,0 +1,59 @@
+// The spatial fill pass (docs/CONVENTIONS.md, "The spatial fill"): the
+// displayed value of every channel with a fill, at the pixels of the fill list.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "rrc_values.glsl"  // RRC_MAX_CHANNELS, RRC_MASK_*, spec ids, bindings
+
+layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP_SIZE_Y) in;
+
+// This pass's bindings, exactly (rrc_pass_bindings.h; the library's layout is made from the same list).
+#include "rrc_bindings.glsl"
+RRC_PASS_FILL_BINDINGS(RRC_DECLARE)
+
+#include "rrc_depth.glsl"
+#include "rrc_channel_slots.glsl"
+#include "rrc_list.glsl"
+
+// The spatial fill's depth test |delta_q - delta_p| <= tau delta_p on the
+// proxy delta (docs/CONVENTIONS.md, "The spatial fill": d, 1/(1 - z), 1/z),
+// multiplied out so that no tap divides: STANDARD |z_q - z_p| <= tau (1 - z_q),
+// REVERSED |z_p - z_q| <= tau z_q (both denominators positive off background).
+bool rrc_fill_similar(float d_q, float d_p, float tau) {
+    if (DEPTH_MODE == RRC_DEPTH_MODE_STANDARD) return abs(d_q - d_p) <= tau * (1.0 - d_q);
+    if (DEPTH_MODE == RRC_DEPTH_MODE_REVERSED) return abs(d_p - d_q) <= tau * d_q;
+    return abs(d_q - d_p) <= tau * d_p;
+}
+
+// FILL: one invocation a listed pixel (the fill list, indirect), after the
+// frame's channels, bound as the next frame would be (its history inputs are
+// this frame's results, its previous depth this frame's depth): the
+// displayed value of every channel with a fill, into u_host_out
+// (docs/CONVENTIONS.md, "The spatial fill").  Every other pixel's displayed
+// value is its history value, which the frame's pass wrote there.
+void rrc_fill() {
+    ivec2 size = imageSize(u_prev_depth);
+    uint slot = gl_GlobalInvocationID.x;
+    uint count = u_fill.words[RRC_FILL_LIST_COUNT];
+    rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)
+    uint word = u_fill.words[RRC_FILL_LIST_FIRST + min(slot, max(count, 1u) - 1u)];
+    ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
+    float d_p = imageLoad(u_prev_depth, px).r;
+    bool fill_here = !rrc_is_background(d_p);
+    bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
+
+#define RRC_CH 0
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 1
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 2
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+#define RRC_CH 3
+#include "rrc_fill_channel.glsl"
+#undef RRC_CH
+}
+
+void main() { rrc_fill(); }
