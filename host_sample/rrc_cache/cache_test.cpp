@@ -23,13 +23,18 @@ namespace {
 
 using namespace rrc_cache;
 
-TEST(RrcCache, MissShaderCoversTheListAndRefreshTradesErrorForWork) {
+// The tests' runs: 96x64 under the validation layer.
+Settings tiny(uint32_t frames) {
     Settings s;
     s.width = 96;
     s.height = 64;
-    s.frames = 6;
+    s.frames = frames;
     s.validation = true;
-    Bench bench(s);
+    return s;
+}
+
+TEST(RrcCache, MissShaderCoversTheListAndRefreshTradesErrorForWork) {
+    Bench bench(tiny(6));
     std::vector<CacheConfig> cs = {{"full", false}, {"cache_no_refresh", true}};
     for (uint32_t n : {1u, 4u}) {
         CacheConfig c;
@@ -108,11 +113,7 @@ std::string read_text(const std::string& path) {
 // adds detail at half the amplitude of the one before), and 64 octaves, whose lattice coordinates leave
 // int's range without perlin_cell's wrap, give finite values; the report and CSVs carry the octaves.
 TEST(RrcCache, OctavesChangeTheShadingAndStayFiniteAt64) {
-    Settings s;
-    s.width = 96;
-    s.height = 64;
-    s.frames = 4;
-    s.validation = true;
+    const Settings s = tiny(4);
     Bench bench(s);
     std::vector<RunResult> runs;
     for (uint32_t octaves : {8u, 16u, 64u}) {
