@@ -178,48 +178,40 @@ std::vector<Target> evaluate_targets(const std::vector<Row>& rows, const Lineari
         t.push_back(absent("shading cache", cache_goal, "cache_1x4 at 1920x1080"));
     }
 
+    // A row's time against another's, round by round, both at 1080p:
+    // "<q> of <label>, round by round (medians ...)" and `extra`.
+    auto paired_target = [&](const char* name, const std::string& goal, const Row* row, const Row* against, const char* label, double limit,
+                             const std::string& extra, const char* needs) {
+        if (!at_1080p(row) || !at_1080p(against)) return t.push_back(absent(name, goal, needs));
+        const double q = paired_ratio(*row, *against);
+        t.push_back(upper_bound(name, goal, q, limit,
+                                fmt("%.3f of ", q) + label +
+                                    fmt(", round by round (medians %.2f vs %.2f ms)", row->kernel().median, against->kernel().median) + extra));
+    };
+
     // Splitting the frame in two (classify + resolve) against the fused
     // frame on the same channel, with the share classify lists beside it.
     const Row* fused = find(rows, "cache_1x4_fused");
-    const std::string split_goal = "classify + resolve time <= 1.10x the fused frame's (1080p, one REUSE rgba16f channel)";
-    if (at_1080p(cache) && at_1080p(fused)) {
-        const double q = paired_ratio(*cache, *fused);
-        t.push_back(upper_bound("cache split", split_goal, q, 1.10,
-                                fmt("%.3f of fused, round by round (medians %.2f vs %.2f ms)", q, cache->kernel().median, fused->kernel().median) +
-                                    fmt("; listed %.1f%% of pixels", 100.0 * cache->listed_fraction())));
-    } else {
-        t.push_back(absent("cache split", split_goal, "cache_1x4 and cache_1x4_fused at 1920x1080"));
-    }
+    paired_target("cache split", "classify + resolve time <= 1.10x the fused frame's (1080p, one REUSE rgba16f channel)", cache, fused,
+                  "fused", 1.10, cache ? fmt("; listed %.1f%% of pixels", 100.0 * cache->listed_fraction()) : "",
+                  "cache_1x4 and cache_1x4_fused at 1920x1080");
 
     // The fill at a stated young fraction (docs/PERFORMANCE.md, "What is
     // timed"): young12_fill against its twin without the fill.
     const Row* young = find(rows, "young12");
     const Row* fill = find(rows, "young12_fill");
-    const std::string fill_goal = "fill (fill_age 8) time <= 1.20x its twin's without it, ~12% of pixels young (1080p)";
-    if (at_1080p(young) && at_1080p(fill)) {
-        const double q = paired_ratio(*fill, *young);
-        std::string measured = fmt("%.3f of young12, round by round (medians %.2f vs %.2f ms)", q, fill->kernel().median, young->kernel().median) +
-                               fmt("; young %.1f%% of pixels (%.1f%% of surface)", 100.0 * fill->young_fraction(),
-                                   100.0 * fill->young_surface_fraction());
-        for (const char* other : {"young12_fill_r1", "young12_fill_r4"}) {
-            const Row* r = find(rows, other);
-            if (at_1080p(r)) measured += "; " + std::string(other) + fmt(" %.3f", paired_ratio(*r, *young));
-        }
-        t.push_back(upper_bound("fill (young)", fill_goal, q, 1.20, measured));
-    } else {
-        t.push_back(absent("fill (young)", fill_goal, "young12 and young12_fill at 1920x1080"));
+    std::string young_text;
+    if (fill) young_text = fmt("; young %.1f%% of pixels (%.1f%% of surface)", 100.0 * fill->young_fraction(), 100.0 * fill->young_surface_fraction());
+    for (const char* other : {"young12_fill_r1", "young12_fill_r4"}) {
+        const Row* r = find(rows, other);
+        if (at_1080p(r) && at_1080p(young)) young_text += "; " + std::string(other) + fmt(" %.3f", paired_ratio(*r, *young));
     }
+    paired_target("fill (young)", "fill (fill_age 8) time <= 1.20x its twin's without it, ~12% of pixels young (1080p)", fill, young, "young12",
+                  1.20, young_text, "young12 and young12_fill at 1920x1080");
 
     // ADAPTIVE (base's default depth test) against FIXED.
-    const Row* fixed = find(rows, "depth_fixed");
-    const std::string adaptive_goal = "ADAPTIVE depth test (base) time <= 1.15x FIXED's (depth_fixed), 1080p";
-    if (at_1080p(base) && at_1080p(fixed)) {
-        const double q = paired_ratio(*base, *fixed);
-        t.push_back(upper_bound("ADAPTIVE", adaptive_goal, q, 1.15,
-                                fmt("%.3f of FIXED's, round by round (medians %.2f vs %.2f ms)", q, base->kernel().median, fixed->kernel().median)));
-    } else {
-        t.push_back(absent("ADAPTIVE", adaptive_goal, "base and depth_fixed at 1920x1080"));
-    }
+    paired_target("ADAPTIVE", "ADAPTIVE depth test (base) time <= 1.15x FIXED's (depth_fixed), 1080p", base, find(rows, "depth_fixed"),
+                  "FIXED's", 1.15, "", "base and depth_fixed at 1920x1080");
     return t;
 }
 
