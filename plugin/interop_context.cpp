@@ -54,7 +54,7 @@ InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_dev
     std::unique_ptr<VulkanDevice> dev(new VulkanDevice(host_device(d), Log{config.log, config.log_user}));
     const uint32_t in_flight = d.max_frames_in_flight ? d.max_frames_in_flight : 2;
     // A frame records one call (fused) or two (classify, resolve); a call
-    // binds at most two sets (the frame's, and the list's or the next one's).
+    // binds at most two sets (the frame's, and the one bound as the next frame).
     const uint32_t sets = 4 * (in_flight + 1);
     core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, sets, d.pipeline_cache));
     for (uint32_t i = 0; i < sets; ++i) ring_.push_back(core_->pipeline().allocate_set());
