@@ -85,8 +85,8 @@ void expect_mask_list(const char* file, const char* anchor) {
     }
 }
 
-const char* const kAccumulateHelp = "host_sample/rrc_accumulate/options.cpp";  // usage_text()
-const char* const kSampleHelp = "host_sample/rrc_sample/options.cpp";          // usage()
+const char* const kAccumulateHelp = "host_sample/tools/accumulate/options.cpp";  // usage_text()
+const char* const kSampleHelp = "host_sample/testbed/options.cpp";          // usage()
 
 }  // namespace
 

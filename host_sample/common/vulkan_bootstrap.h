@@ -1,5 +1,5 @@
 // One Vulkan bootstrap for every program outside the library that plays the
-// engine's part: rrc-sample (host_sample/rrc_sample/gpu.h) and the interop
+// engine's part: rrc-sample (host_sample/testbed/gpu.h) and the interop
 // tests' host (tests/interop/vulkan_host.h).  Both used to make their own
 // instance, pick their own device (the tests took the first one and ignored
 // RRC_DEVICE) and repeat the same image, buffer, staging and one-time-command

@@ -4,7 +4,7 @@
 // the listed quads only (vkCmdDispatchIndirect), resolve.  Each pass runs in
 // a submission of its own and is timed by the wall clock less the fastest
 // empty submission (lavapipe's timestamps are unreliable after a render;
-// host_sample/rrc_sweep/README.md).  Only rrc's public headers are used.
+// host_sample/studies/sweep/README.md).  Only rrc's public headers are used.
 #pragma once
 
 #include <rrc/rrc.h>

@@ -1,6 +1,6 @@
 // The exact area of a disk intersected with an axis-aligned rectangle: the
 // PCF signal's target is the disk's area mean of the nearest-texel shadow
-// test (host_sample/rrc_sample/README.md, "The three signals"), so each
+// test (host_sample/testbed/README.md, "The three signals"), so each
 // texel's test is weighted by the area of the disk that falls in it.
 // Written in the subset GLSL shares with C++ so that a test can compile
 // this very file in double (disk_area_test.cpp) and check it against direct

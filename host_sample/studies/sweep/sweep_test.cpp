@@ -31,7 +31,7 @@ using glm::max;
 using glm::min;
 using glm::sqrt;
 #define float double
-#include "../rrc_sample/shaders/disk_area.glsl"
+#include "disk_area.glsl"
 #undef float
 }  // namespace disk_area_in_double
 

@@ -2,7 +2,7 @@
 // against the sample's own triangle meshes, at the model transforms the
 // renderer used, decide for every pixel whether the surface point it shows
 // was visible in the previous frame -- the ground truth rrc's hit test is
-// judged against (recall and false hits, host_sample/rrc_sample/README.md).
+// judged against (recall and false hits, host_sample/testbed/README.md).
 #pragma once
 
 #include "frame_state.h"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Issue 13's measurements of the finishing steps, from rrc-sample runs.
 
-  python3 host_sample/rrc_sample/finish.py --sample build/host_sample/rrc_sample/rrc-sample --out out/finish --docs docs/finish
+  python3 host_sample/studies/finish/finish.py --sample build/release/bin/rrc-sample --out out/finish --docs docs/finish
 
 Runs rrc-sample a few times (lavapipe: about 3 minutes in all), then writes the tables
 (tables.md) and the figures (PNG, matplotlib) into --docs:
@@ -76,7 +76,7 @@ def load(d, name, frame, size):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--sample", default="build/host_sample/rrc_sample/rrc-sample")
+    ap.add_argument("--sample", default="build/release/bin/rrc-sample")
     ap.add_argument("--out", default="out/finish")
     ap.add_argument("--docs", default="docs/finish")
     ap.add_argument("--young-frames", type=int, default=24)

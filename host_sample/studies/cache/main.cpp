@@ -3,7 +3,7 @@
 // error against shading every pixel every frame, for each refresh policy and
 // period, with and without a maximum lifetime, and a stereo pair whose second
 // eye reuses the first eye's shading; with --octaves, the speed-up of TILED
-// n = 4 against the shader's cost.  host_sample/rrc_cache/README.md.
+// n = 4 against the shader's cost.  host_sample/studies/cache/README.md.
 #include "cache_report.h"
 #include "cache_run.h"
 #include "cache_targets.h"

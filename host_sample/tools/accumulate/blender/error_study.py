@@ -4,7 +4,7 @@
 Development script (no test runs it; CI has no Blender).  docs/OFFLINE.md,
 section 7, gives the results and how the preset's defaults follow from them.
 
-    python3 host_sample/rrc_accumulate/blender/error_study.py WORK_DIR \\
+    python3 host_sample/tools/accumulate/blender/error_study.py WORK_DIR \\
         [--tool build/.../rrc-accumulate] [--size 96x64] [--frames 24] [--ref-spp 1024] [--seeds 4] \\
         [--decompose BLEND,VALUE,FILTER ...]
 
@@ -354,7 +354,7 @@ def decompose(args, work, spp, cfg, seeds_dirs):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("work")
-    ap.add_argument("--tool", default=os.path.join(os.getcwd(), "build/offline/host_sample/rrc_accumulate/rrc-accumulate"))
+    ap.add_argument("--tool", default=os.path.join(os.getcwd(), "build/offline/bin/rrc-accumulate"))
     ap.add_argument("--size", default="96x64")
     ap.add_argument("--frames", type=int, default=24)
     ap.add_argument("--ref-spp", type=int, default=1024)
