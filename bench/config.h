@@ -1,5 +1,5 @@
 // One benchmark configuration and the sweep around the base: every factor of
-// the issue is varied alone, so a row's change against `base` is that
+// the sweep (docs/PERFORMANCE.md, "Full sweep") is varied alone, so a row's change against `base` is that
 // factor's cost.  The short default run is a subset that still covers the
 // targets of docs/PERFORMANCE.md (channels, sources, linearity, standalone).
 #pragma once

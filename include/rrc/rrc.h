@@ -15,6 +15,8 @@
  * filter) are in docs/CONVENTIONS.md; every choice this header leaves to the
  * library is written down there.
  *
+ * Every member and function by concept: docs/INTEGRATION.md, "The API by concept".
+ *
  * Lifetime
  * --------
  *   rrc_validate_context_desc()  check a descriptor; no Vulkan object made

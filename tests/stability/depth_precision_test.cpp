@@ -1,4 +1,5 @@
-// Depth precision (issue 4): the analytic scene (tests/scenes) with static
+// Depth precision (docs/STABILITY.md, "Depth precision: FIXED and the ADAPTIVE default side by side"):
+// the analytic scene (tests/scenes) with static
 // geometry and a moving camera, PREV_CLIP reprojection, 96x64, 8 frames,
 // across near/far ratios 1e2 .. 1e9 in standard-Z float depth (precision
 // collapses far away: z = 1 - n/d rounds to 1, i.e. to background), reversed-Z

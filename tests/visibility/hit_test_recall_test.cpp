@@ -1,4 +1,4 @@
-// The hit test against true visibility (issue 9).  Each case renders an
+// The hit test against true visibility (docs/ACCURACY.md, "Hit test against true visibility").  Each case renders an
 // analytic scene (tests/scenes), scores the library's hit mask with the
 // oracle of tests/scenes/visibility.h and runs twice on the same frames:
 //   default  the context desc with no epsilon, epsilon_scale or tau and
@@ -67,7 +67,7 @@ struct RecallCase {
     int width, height, frames;
 };
 
-// The depth setups of the issue: FLOAT32 STANDARD up to far/near 1e4,
+// The depth setups scored (docs/ACCURACY.md, "Hit test against true visibility"): FLOAT32 STANDARD up to far/near 1e4,
 // REVERSED finite and infinite up to 1e9, UNORM16 up to 1e3 STANDARD and 1e4
 // REVERSED, UNORM24, LINEAR.
 const Depth kDepths[] = {
