@@ -34,7 +34,7 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
-    // Issue 13's finishing steps (README.md, "Finishing steps"): display-only PCF remaps (never fed back to rrc).
+    // The finishing steps (README.md, "Finishing steps"): display-only PCF remaps (never fed back to rrc).
     bool pcf_smoothstep = false;
     float pcf_smooth_e0 = 0.0f, pcf_smooth_e1 = 1.0f;  // --pcf-smoothstep E0,E1
     float pcf_threshold = -1.0f;                       // --pcf-threshold X; < 0: off

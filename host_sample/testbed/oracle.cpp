@@ -14,10 +14,10 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kLeafSize = 4;
 constexpr size_t kMaxObjects = 64;  // the scenes have 17 objects
-// The issue's visibility tolerance: the previous ray must meet the point's own
+// The oracle's visibility tolerance (README.md, "Recall and false hits"): the previous ray must meet the point's own
 // object within 1e-4 of the point's distance (t is in units of that distance).
 constexpr double kVisibleTolerance = 1e-4;
-// Issue 9's straddling bound: a previous-depth tap counts when its bilinear
+// The straddling bound (docs/ACCURACY.md, "Hit test against true visibility"): a previous-depth tap counts when its bilinear
 // weight exceeds this (docs/ACCURACY.md's strict false hits use the same bound).
 constexpr double kTapWeight = 1e-3;
 

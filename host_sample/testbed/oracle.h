@@ -1,4 +1,4 @@
-// The oracle of true visibility (issue 9): ray casts in double precision
+// The oracle of true visibility (README.md, "Recall and false hits"): ray casts in double precision
 // against the sample's own triangle meshes, at the model transforms the
 // renderer used, decide for every pixel whether the surface point it shows
 // was visible in the previous frame -- the ground truth rrc's hit test is

@@ -358,7 +358,7 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
               : vr <= 1.5    ? "PASS"
                              : "FAIL")
           << "); static RMSE " << num(off->still.rmse, "%.4f") << " -> " << num(row.still.rmse, "%.4f")
-          << (soft ? " (soft: outside the issue's targets, shown to say what happens)" : "") << "\n";
+          << (soft ? " (soft: outside the study's targets, shown to say what happens)" : "") << "\n";
     }
     if (!any) f << "- no lambda = 0.9 rows\n";
 }

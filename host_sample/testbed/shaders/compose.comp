@@ -17,7 +17,7 @@ layout(set = 0, binding = 5, r32f) uniform readonly image2D s_soft;
 layout(set = 0, binding = 6, rgba8) uniform writeonly image2D o_colour;
 layout(push_constant) uniform Push {
     uint signals;  // bit 0 pcf, 1 env, 2 soft
-    // Display-only PCF remaps (issue 13; the chapter's Figure 9 e, f), applied to what is
+    // Display-only PCF remaps (README.md, "Finishing steps"; the chapter's Figure 9 e, f), applied to what is
     // shown, never to rrc's history: bit 0 smoothstep(e0, e1, pcf), bit 1 the threshold
     // pcf >= x (after the smoothstep when both are on).  Only the accumulated frame (set 0).
     uint pcf_remap;

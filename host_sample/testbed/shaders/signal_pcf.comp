@@ -13,7 +13,7 @@
 // reference 1: the target itself, exactly (disk_area.glsl); 2: brute force,
 // `samples` taps of the pattern (pattern 1: samples/k stratified rotations).
 //
-// Confidence (issue 13, Scherzer et al. 2007): a tap at shadow-map position
+// Confidence (README.md, "Finishing steps"; Scherzer et al. 2007): a tap at shadow-map position
 // (x, y) texels tests the texel whose centre is (cx, cy) = floor(x, y) + 1/2;
 // its confidence is c = 1 - 2 max(|x - cx|, |y - cy|) (1 at the centre, 0 on
 // the texel's border, where the nearest-texel test is least sure).  With

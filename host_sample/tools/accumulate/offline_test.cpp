@@ -947,7 +947,7 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention) {
         << counted.nearest_foreign << " of " << counted.hits << " hits from another object";
 }
 
-// Object ids (issue 9): the preset reads ViewLayer.IndexOB.X when the file
+// Object ids (docs/OFFLINE.md): the preset reads ViewLayer.IndexOB.X when the file
 // has it.  A hit then needs every previous depth tap of non-zero bilinear
 // weight on the pixel's object (rrc.h, use_object_id), so no hit is an
 // object-index false hit; the id rule only removes hits, and only those
