@@ -15,12 +15,6 @@
 namespace rrc_sample {
 namespace {
 
-std::string fmt(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
-
 void dump(const std::string& dir, const char* what, int frame, const std::vector<float>& v) {
     if (v.empty()) return;
     char name[128];
@@ -30,48 +24,6 @@ void dump(const std::string& dir, const char* what, int frame, const std::vector
 }
 
 }  // namespace
-
-std::vector<float> fill_model(const FrameOutput& fr, const glm::dmat4& vp, const std::vector<float>& v, const std::vector<float>& fb,
-                              const FillParams& p) {
-    const size_t n = fr.mask.size();
-    std::vector<float> shown(v);
-    const int width = fr.width, height = fr.height;
-    std::vector<double> delta(n, 0.0);
-    for (size_t i = 0; i < n; ++i) {
-        if (fr.mask[i] & RRC_MASK_BACKGROUND) continue;
-        const glm::dvec4 c = vp * glm::dvec4(fr.position[i * 4], fr.position[i * 4 + 1], fr.position[i * 4 + 2], 1.0);
-        delta[i] = c.w / c.z;  // reversed z: delta = 1/z
-    }
-    const double T = (double)p.age;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const size_t i = (size_t)y * width + x;
-            if (fr.mask[i] & RRC_MASK_BACKGROUND) continue;
-            const double np = (double)fr.age[i];
-            if (np >= T) continue;
-            const double phi = (T - np) / T;
-            double num = 0.0, den = 0.0;
-            const int r = (int)p.radius;
-            for (int b = -r; b <= r; ++b)
-                for (int a = -r; a <= r; ++a) {
-                    const int qx = x + a, qy = y + b;
-                    if ((a == 0 && b == 0) || qx < 0 || qy < 0 || qx >= width || qy >= height) continue;
-                    const size_t q = (size_t)qy * width + qx;
-                    if ((fr.mask[q] & RRC_MASK_BACKGROUND) || fr.age[q] < 1 || !std::isfinite(v[q])) continue;
-                    if (std::fabs(delta[q] - delta[i]) > (double)p.tolerance * delta[i]) continue;
-                    const double wq = std::min((double)fr.age[q], T);
-                    num += wq * v[q];
-                    den += wq;
-                }
-            if (p.prior > 0.0f && std::isfinite(fb[i])) {
-                num += (double)p.prior * fb[i];
-                den += (double)p.prior;
-            }
-            const double d = np + phi * den;
-            if (d > 0.0) shown[i] = (float)((np * v[i] + phi * num) / d);
-        }
-    return shown;
-}
 
 FinishErrors finish_errors(const FrameOutput& f) {
     FinishErrors e;
@@ -87,7 +39,7 @@ FinishErrors finish_errors(const FrameOutput& f) {
 }
 
 const char* FinishReport::name(Display d) {
-    static const char* names[kDisplayCount] = {"raw", "accumulated", "shown", "pcss", "fill_prior", "fill_none"};
+    static const char* names[kDisplayCount] = {"raw", "accumulated", "shown", "pcss"};
     return names[d];
 }
 
@@ -95,21 +47,12 @@ double FinishReport::Sum::rmse() const { return n ? std::sqrt(sq / (double)n) : 
 
 FinishReport::FinishReport(const Options& o, uint32_t signals) : o_(o) {
     enabled_ = (signals & kSignalSoft) != 0;
-    // The model needs the history: with rrc's own fill on, the output is the filled display.
-    model_ = o.channels.soft.fill_age == 0;
-    const ChannelSettings& s = o.channels.soft;
-    prior_.age = s.fill_age ? s.fill_age : o.model_fill_age;
-    prior_.radius = o.fill_radius ? o.fill_radius : RRC_DEFAULT_FILL_RADIUS;
-    prior_.tolerance = o.fill_depth_tolerance > 0.0f ? o.fill_depth_tolerance : RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
-    prior_.prior = o.fill_prior;
-    none_ = prior_;
-    none_.prior = 0.0f;
     by_age_[0].resize(o.young_ages);
     by_age_[1].resize(o.young_ages);
     if (o.dump_soft && enabled_) std::filesystem::create_directories(std::filesystem::path(o.out) / "finish");
 }
 
-void FinishReport::add(const FrameOutput& f, const FrameState& state, const std::vector<uint8_t>& verdict) {
+void FinishReport::add(const FrameOutput& f, const std::vector<uint8_t>& verdict) {
     if (o_.dump_soft && f.checkpoint && !f.pcf.reference.empty()) {
         const std::string dir = (std::filesystem::path(o_.out) / "finish").string();
         std::filesystem::create_directories(dir);
@@ -145,12 +88,7 @@ void FinishReport::add(const FrameOutput& f, const FrameState& state, const std:
     }
     if (!f.checkpoint || f.soft.reference.empty()) return;
     const SignalData& s = f.soft;
-    std::vector<float> fp, f0;
-    if (model_) {
-        fp = fill_model(f, state.view_proj, s.accumulated, s.pcss, prior_);
-        f0 = fill_model(f, state.view_proj, s.accumulated, s.pcss, none_);
-    }
-    const std::vector<float>* d[kDisplayCount] = {&s.raw, &s.accumulated, &s.shown, &s.pcss, &fp, &f0};
+    const std::vector<float>* d[kDisplayCount] = {&s.raw, &s.accumulated, &s.shown, &s.pcss};
     std::array<Sum, kDisplayCount> all{};
     for (size_t i = 0; i < f.mask.size(); ++i) {
         if (f.mask[i] & RRC_MASK_BACKGROUND) continue;
@@ -221,10 +159,6 @@ std::string FinishReport::table() const {
           << " pixel-frames), RMSE against the reference:";
         for (int k = 0; k < kDisplayCount; ++k)
             if (y[k].n) s << " " << name((Display)k) << " " << fmt("%.4f", y[k].rmse());
-        if (model_ && y[kShown].n)
-            s << "; fill (prior " << prior_.prior << ") / shown (--soft-prior " << o_.soft_prior << ") "
-              << fmt("%.3f", y[kFillPrior].rmse() / y[kShown].rmse()) << ", no fallback / shown "
-              << fmt("%.3f", y[kFillNone].rmse() / y[kShown].rmse());
         s << "\n";
     }
     return s.str();

@@ -4,8 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace rrc_sample {
+
+std::string fmt(const char* format, double value) {
+    char b[64];
+    std::snprintf(b, sizeof b, format, value);
+    return b;
+}
 
 HitStats hit_stats(const std::vector<uint8_t>& mask) {
     HitStats s;

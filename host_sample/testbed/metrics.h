@@ -34,6 +34,9 @@ struct SignalErrors {
     ErrorStats raw_hits, accumulated_hits;  // over cache hits only
 };
 
+/** printf-formats one number (the tables' and CSVs' cells). */
+std::string fmt(const char* format, double value);
+
 /** The errors of every enabled signal of a checkpoint frame (empty otherwise). */
 std::vector<SignalErrors> frame_errors(const FrameOutput& frame);
 

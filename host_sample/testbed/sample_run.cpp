@@ -138,7 +138,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
             if (writer) writer->write(out);
             run.oracle_seconds += oracle_done.get();
             if (writer) writer->write_oracle(t, verdict);
-            finish.add(out, make_frame_state(scene, rs.render, t), verdict);
+            finish.add(out, verdict);
             if (on_frame) on_frame(out, rec);
             if (progress) *progress << progress_line(rec, o.frames) << std::flush;
             run.frames.push_back(std::move(rec));

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""Issue 13's measurements of the finishing steps, from rrc-sample runs.
+"""The finishing steps' figures (docs/finish/), from rrc-sample runs.
 
   python3 host_sample/studies/finish/finish.py --sample build/release/bin/rrc-sample --out out/finish --docs docs/finish
 
 Runs rrc-sample a few times (lavapipe: about 3 minutes in all), then writes the tables
 (tables.md) and the figures (PNG, matplotlib) into --docs:
   A  soft shadows: young (newly disoccluded) pixels' RMSE over their first 8 frames for the
-     --soft-prior 4 display, the fill with the PCSS fallback and without it (young.csv of one
-     run: the fill's CPU model of docs/CONVENTIONS.md; with --soft-fill, rrc's own fill);
+     --soft-prior 4 display, and rrc's own fill (--soft-fill) with the PCSS fallback and
+     without it, for three windows and tolerances (young.csv of each run);
      Figure-9-like convergence after a reset (frames 1, 3, 7, 20, 256) and its error curve.
   B  PCF finishing: plain, Gaussian-blurred history, + smoothstep, + threshold (display only).
   C  PCF confidence: RMSE against frames with and without confidence.
@@ -95,108 +95,108 @@ def main():
 
     if "A" not in a.skip:
         # A1: young pixels on the default moving-camera scene, the soft reference on every frame.
+        # One run without a fill (rrc's history, the --soft-prior blend, PCSS), then rrc's own fill
+        # for each window and tolerance, with the PCSS fallback (P = 4) and without it (P = 0): the
+        # fill is display-only, so every run has the same ages and the same young tracks.
         base = ["--frames", str(a.young_frames), "--reference-every", "1", "--signals", "soft"]
-        variants = [("T = %s, r = 2, tau = 0.005 (the library's defaults)" % T, "young", ["--model-fill-age", T]),
-                    ("T = %s, r = 1, tau = 0.02" % T, "young_r1", ["--model-fill-age", T, "--fill-radius", "1", "--fill-depth-tolerance", "0.02"]),
-                    ("T = %s, r = 2, tau = 0.05" % T, "young_t05", ["--model-fill-age", T, "--fill-depth-tolerance", "0.05"])]
-        tables = []
-        for lab, tag, extra in variants:
-            d = os.path.join(a.out, tag)
-            run(a.sample, d, base + extra, log)
-            tables.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
-        rr = []
-        loose = ["--fill-depth-tolerance", "0.05"]
-        for i, (lab, extra) in enumerate([("rrc's fill, PCSS fallback", ["--soft-fill", T]), ("rrc's fill, no fallback", ["--soft-fill", T, "--fill-prior", "0"]),
-                                          ("rrc's fill, PCSS fallback, tau = 0.05", ["--soft-fill", T] + loose)]):
-            d = os.path.join(a.out, "young_rrc%d" % i)
-            if run(a.sample, d, base + extra, log):
-                rr.append((lab, base + extra, read_young(os.path.join(d, "young.csv"))))
+        d0 = os.path.join(a.out, "young")
+        cmd0 = base + ["--soft-fill", "0"]
+        run(a.sample, d0, cmd0, log)
+        y0 = read_young(os.path.join(d0, "young.csv"))
+        windows = [("r = 2, tau = 0.005 (the library's defaults)", "", []),
+                   ("r = 1, tau = 0.02", "_r1", ["--fill-radius", "1", "--fill-depth-tolerance", "0.02"]),
+                   ("r = 2, tau = 0.05", "_t05", ["--fill-depth-tolerance", "0.05"])]
+        fills = []  # (label, short label, command, young.csv)
+        for wlab, wtag, wopts in windows:
+            for prior in ("4", "0"):
+                cmd = base + ["--soft-fill", T, "--fill-prior", prior] + wopts
+                d = os.path.join(a.out, "young_fill%s_p%s" % (wtag, prior))
+                if run(a.sample, d, cmd, log):
+                    what = "rrc's fill, %s, T = %s, %s" % ("PCSS fallback (P = 4)" if prior == "4" else "no fallback", T, wlab)
+                    fills.append((what, "fill P=%s%s" % (prior, wtag.replace("_", ", ")), cmd, read_young(os.path.join(d, "young.csv"))))
         md.append("## A. Young soft-shadow pixels: RMSE over their first 8 frames against the 16x16-grid reference\n")
         md.append("Moving camera, 256x160, %d frames, the reference on every frame. A track starts at a miss on a surface "
                   "(age 1) after frame 0 and follows the pixel as rrc's age does (nearest at the previous position) while it hits; "
                   "*disoccluded* tracks start on a point the oracle says was not visible in the previous frame, the others at a "
-                  "miss of the depth test on a visible point (silhouettes).\n" % a.young_frames)
+                  "miss of the depth test on a visible point (silhouettes). The fill's rows are rrc's own fill (its output, "
+                  "`rmse_accumulated` of a `--soft-fill` run).\n" % a.young_frames)
         for tracks in ("disoccluded", "all"):
             md.append("### %s tracks\n" % ("Disoccluded" if tracks == "disoccluded" else "All young"))
-            lab0, cmd0, y0 = tables[0]
             pooled = y0[tracks]["pooled"]
             shown = num(pooled["rmse_shown"])
             md.append("%s pixel-frames. Target: RMSE at least 30%% below the `--soft-prior 4` display (ratio <= 0.70).\n" % pooled["pixels"])
             md.append("| display | command | RMSE | / `--soft-prior 4` | target |\n|---|---|---|---|---|")
             md.append("| current display, `--soft-prior 4` | `%s` | %.4f | 1 | |" % (" ".join(cmd0), shown))
-            for lab, cmd, y in tables:
-                p = y[tracks]["pooled"]
-                for col, what in [("rmse_fill_prior", "fill with the PCSS fallback (P = 4)"), ("rmse_fill_none", "fill without fallback")]:
-                    v = num(p[col])
-                    md.append("| %s, %s; CPU model | `%s` | %.4f | %.3f | %s |" % (what, lab, " ".join(cmd), v, v / shown, "met" if v / shown <= 0.70 else "not met"))
-            for lab, cmd, y in rr:
+            for what, _, cmd, y in fills:
                 v = num(y[tracks]["pooled"]["rmse_accumulated"])
-                if v == num(pooled["rmse_accumulated"]):  # the output is the history: this library build has no fill kernel
-                    md.append("| %s (rrc's output) | `%s` | %.4f | | no fill in this library build (the output equals the history) |" % (lab, " ".join(cmd), v))
-                    continue
-                md.append("| %s (rrc's output) | `%s` | %.4f | %.3f | %s |" % (lab, " ".join(cmd), v, v / shown, "met" if v / shown <= 0.70 else "not met"))
+                md.append("| %s | `%s` | %.4f | %.3f | %s |" % (what, " ".join(cmd), v, v / shown, "met" if v / shown <= 0.70 else "not met"))
             for col, what in [("rmse_accumulated", "rrc's value alone (no fill, no prior)"), ("rmse_pcss", "PCSS alone"), ("rmse_raw", "this frame's one sample")]:
                 v = num(pooled[col])
                 md.append("| %s | | %.4f | %.3f | |" % (what, v, v / shown))
-            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS | fill P=4 | fill P=0 | fill P=4, tau=0.05 |" +
-                      "".join(" %s |" % lab for lab, _, _ in rr) + "\n|---|---|---|---|---|---|---|---|---|" + "---|" * len(rr))
+            md.append("\nPer age (RMSE):\n\n| age | pixels | one sample | rrc alone | `--soft-prior 4` | PCSS |" +
+                      "".join(" %s |" % short for _, short, _, _ in fills) + "\n|---|---|---|---|---|---|" + "---|" * len(fills))
             for g in sorted(k for k in y0[tracks] if k != "pooled"):
                 r = y0[tracks][g]
-                md.append("| %d | %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (g, r["pixels"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
-                          num(r["rmse_shown"]), num(r["rmse_pcss"]), num(r["rmse_fill_prior"]), num(r["rmse_fill_none"]),
-                          num(tables[2][2][tracks][g]["rmse_fill_prior"])) + "".join(" %.4f |" % num(y[tracks][g]["rmse_accumulated"]) for _, _, y in rr))
+                md.append("| %d | %s | %.4f | %.4f | %.4f | %.4f |" % (g, r["pixels"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
+                          num(r["rmse_shown"]), num(r["rmse_pcss"])) + "".join(" %.4f |" % num(y[tracks][g]["rmse_accumulated"]) for _, _, _, y in fills))
             md.append("")
         fig, axs = plt.subplots(1, 2, figsize=(11, 4))
         for ax, tracks in zip(axs, ("disoccluded", "all")):
-            y = tables[0][2][tracks]
+            y = y0[tracks]
             ages = sorted(k for k in y if k != "pooled")
-            for col, lab in [("rmse_shown", "--soft-prior 4"), ("rmse_fill_prior", "fill + PCSS (P=4)"), ("rmse_fill_none", "fill, no fallback"),
-                             ("rmse_accumulated", "rrc alone"), ("rmse_pcss", "PCSS")]:
+            for col, lab in [("rmse_shown", "--soft-prior 4"), ("rmse_accumulated", "rrc alone"), ("rmse_pcss", "PCSS")]:
                 ax.plot(ages, [num(y[g][col]) for g in ages], "o-", label=lab)
-            ax.plot(ages, [num(tables[2][2][tracks][g]["rmse_fill_prior"]) for g in ages], "o:", label="fill + PCSS, tau=0.05")
-            for lab, _, t in rr:
-                ax.plot(ages, [num(t[tracks][g]["rmse_accumulated"]) for g in ages], "s--", label=lab)
+            for _, short, _, t in fills:
+                ax.plot(ages, [num(t[tracks][g]["rmse_accumulated"]) for g in ages], "s--", label="rrc's " + short)
             ax.set_title("%s tracks" % tracks, fontsize=9)
             ax.set_xlabel("frames since the miss (age)"); ax.set_ylabel("RMSE"); ax.legend(fontsize=7); ax.grid(alpha=0.3)
         fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_young.png"), dpi=110); plt.close(fig)
 
-        # A2: Figure 9: a reset at frame 0, still camera (the torus still moves), 256 frames.
+        # A2: Figure 9: a reset at frame 0, still camera (the torus still moves), 256 frames; without
+        # a fill, and rrc's fill with and without the PCSS fallback.
         frames = [0, 1, 2, 3, 4, 6, 9, 14, 19, 31, 49, 79, 127, 199, 255]
         fig9 = ["--static-camera", "--frames", "256", "--reference-every", "0", "--reference-frames", ",".join(map(str, frames)),
                 "--signals", "soft", "--size", "128x80", "--dump-soft", "--fill-depth-tolerance", "0.005"]
+        runs9 = [("fig9", ["--soft-fill", "0"]), ("fig9_fill_p4", ["--soft-fill", T, "--fill-prior", "4"]),
+                 ("fig9_fill_p0", ["--soft-fill", T, "--fill-prior", "0"])]
+        for tag, extra in runs9:
+            run(a.sample, os.path.join(a.out, tag), fig9 + extra, log)
         d9 = os.path.join(a.out, "fig9")
-        run(a.sample, d9, fig9, log)
         c = rows(os.path.join(d9, "curve.csv"))
+        cp4 = rows(os.path.join(a.out, "fig9_fill_p4", "curve.csv"))
+        cp0 = rows(os.path.join(a.out, "fig9_fill_p0", "curve.csv"))
         size = tuple(int(v) for v in open(os.path.join(d9, "finish", "size.txt")).read().split())
         show = [0, 2, 6, 19, 255]
-        kinds = [("soft_raw", "one sample"), ("soft_accumulated", "rrc (no fill)"), ("soft_shown", "--soft-prior 4"),
-                 ("soft_fill_prior", "fill + PCSS\n(tau=0.005)"), ("soft_fill_none", "fill, no fallback")]
+        kinds = [(d9, "soft_raw", "one sample"), (d9, "soft_accumulated", "rrc (no fill)"), (d9, "soft_shown", "--soft-prior 4"),
+                 (os.path.join(a.out, "fig9_fill_p4"), "soft_accumulated", "rrc's fill + PCSS\n(tau=0.005)"),
+                 (os.path.join(a.out, "fig9_fill_p0"), "soft_accumulated", "rrc's fill,\nno fallback")]
         fig, ax = plt.subplots(len(kinds) + 1, len(show), figsize=(2.2 * len(show), 1.5 * (len(kinds) + 1)))
         for j, f in enumerate(show):
             ref = load(d9, "soft_reference", f, size)
             surface = load(d9, "age", f, size) > 0
             ax[0, j].imshow(ref, cmap="gray", vmin=0, vmax=1); ax[0, j].set_title("frame %d" % (f + 1), fontsize=8)
-            for i, (k, lab) in enumerate(kinds):
-                im = load(d9, k, f, size)
+            for i, (d, k, lab) in enumerate(kinds):
+                im = load(d, k, f, size)
                 ax[i + 1, j].imshow(im, cmap="gray", vmin=0, vmax=1)
                 ax[i + 1, j].set_xlabel("RMSE %.3f" % rmse_on(im, ref, surface), fontsize=7)
         ax[0, 0].set_ylabel("reference", fontsize=8)
-        for i, (k, lab) in enumerate(kinds): ax[i + 1, 0].set_ylabel(lab, fontsize=8)
+        for i, (_, k, lab) in enumerate(kinds): ax[i + 1, 0].set_ylabel(lab, fontsize=8)
         for q in ax.flat: q.set_xticks([]); q.set_yticks([])
         fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_fig9.png"), dpi=110); plt.close(fig)
         fig, ax = plt.subplots(figsize=(6, 4))
         xs = [int(r["frames_since_reset"]) for r in c]
-        for col, lab in [("rmse_raw", "one sample"), ("rmse_accumulated", "rrc (no fill)"), ("rmse_shown", "--soft-prior 4"),
-                         ("rmse_fill_prior", "fill + PCSS (tau=0.005)"), ("rmse_fill_none", "fill, no fallback (tau=0.005)"), ("rmse_pcss", "PCSS")]:
-            ax.plot(xs, [num(r[col]) for r in c], "o-", ms=3, label=lab)
+        for rs, col, lab in [(c, "rmse_raw", "one sample"), (c, "rmse_accumulated", "rrc (no fill)"), (c, "rmse_shown", "--soft-prior 4"),
+                             (cp4, "rmse_accumulated", "rrc's fill + PCSS (tau=0.005)"), (cp0, "rmse_accumulated", "rrc's fill, no fallback (tau=0.005)"),
+                             (c, "rmse_pcss", "PCSS")]:
+            ax.plot(xs, [num(r[col]) for r in rs], "o-", ms=3, label=lab)
         ax.set_xscale("log"); ax.set_xlabel("frames since the reset"); ax.set_ylabel("RMSE (every surface pixel)")
         ax.legend(fontsize=7); ax.grid(alpha=0.3, which="both")
         fig.tight_layout(); fig.savefig(os.path.join(a.docs, "soft_fig9_curve.png"), dpi=110); plt.close(fig)
-        md.append("## A. Figure 9: convergence after a reset\n\n`rrc-sample %s`\n" % " ".join(fig9))
-        md.append("| frames since reset | one sample | rrc | --soft-prior 4 | fill + PCSS | fill, no fallback | PCSS |\n|---|---|---|---|---|---|---|")
-        for r in c:
+        md.append("## A. Figure 9: convergence after a reset\n\n`rrc-sample %s` with `%s`\n" % (" ".join(fig9), "`, `".join(" ".join(e) for _, e in runs9)))
+        md.append("| frames since reset | one sample | rrc | --soft-prior 4 | rrc's fill + PCSS | rrc's fill, no fallback | PCSS |\n|---|---|---|---|---|---|---|")
+        for r, p4, p0 in zip(c, cp4, cp0):
             md.append("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f |" % (r["frames_since_reset"], num(r["rmse_raw"]), num(r["rmse_accumulated"]),
-                      num(r["rmse_shown"]), num(r["rmse_fill_prior"]), num(r["rmse_fill_none"]), num(r["rmse_pcss"])))
+                      num(r["rmse_shown"]), num(p4["rmse_accumulated"]), num(p0["rmse_accumulated"]), num(r["rmse_pcss"])))
         md.append("\n![Figure 9](soft_fig9.png) ![curve](soft_fig9_curve.png) ![young](soft_young.png)\n")
 
     if "B" not in a.skip:
