@@ -214,6 +214,14 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
         std::function<void(rrc_frame_desc&, rrc_channel_input&)> mutate;
     };
     rrc_channel_input bad_in;
+    // A case on the channel's input: the good one, edited, in place of it.
+    auto on_input = [&](std::function<void(rrc_channel_input&)> edit) {
+        return [&in, edit](rrc_frame_desc& f, rrc_channel_input& i) {
+            i = in;
+            edit(i);
+            f.channels = &i;
+        };
+    };
     std::vector<FrameCase> cases = {
         {"frame.type", RRC_ERROR_INVALID_STRUCT, [](rrc_frame_desc& f, rrc_channel_input&) { f.type = 0; }},
         {"frame.size", RRC_ERROR_INVALID_STRUCT, [](rrc_frame_desc& f, rrc_channel_input&) { f.size = 3; }},
@@ -224,30 +232,10 @@ TEST(Api, BadFramesLeaveOutputsUntouched) {
         {"frame.channels", RRC_ERROR_MISSING_INPUT, [](rrc_frame_desc& f, rrc_channel_input&) { f.channels = nullptr; }},
         {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.jitter[1] = kNaN; }},
         {"frame.jitter", RRC_ERROR_INVALID_ARGUMENT, [](rrc_frame_desc& f, rrc_channel_input&) { f.prev_jitter[0] = 3.0f; }},
-        {"samples", RRC_ERROR_MISSING_INPUT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) {
-             i = in;
-             i.samples = nullptr;
-             f.channels = &i;
-         }},
-        {"confidence", RRC_ERROR_MISSING_INPUT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) {
-             i = in;
-             i.confidence = nullptr;
-             f.channels = &i;
-         }},
-        {"fallback", RRC_ERROR_MISSING_INPUT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) {
-             i = in;
-             i.fallback = nullptr;
-             f.channels = &i;
-         }},
-        {"frame.channels[0].type", RRC_ERROR_INVALID_STRUCT,
-         [&](rrc_frame_desc& f, rrc_channel_input& i) {
-             i = in;
-             i.type = 1;
-             f.channels = &i;
-         }},
+        {"samples", RRC_ERROR_MISSING_INPUT, on_input([](rrc_channel_input& i) { i.samples = nullptr; })},
+        {"confidence", RRC_ERROR_MISSING_INPUT, on_input([](rrc_channel_input& i) { i.confidence = nullptr; })},
+        {"fallback", RRC_ERROR_MISSING_INPUT, on_input([](rrc_channel_input& i) { i.fallback = nullptr; })},
+        {"frame.channels[0].type", RRC_ERROR_INVALID_STRUCT, on_input([](rrc_channel_input& i) { i.type = 1; })},
     };
     // A first good frame, so a later failure has history to preserve.
     FrameResult before = ctx.run(good());

@@ -14,8 +14,11 @@
 #include "reference/cache.h"
 #include "reference/rrc_reference.h"
 #include "support/cache_policy.h"
+#include "support/flat_plane.h"
+#include "support/kernel_state.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
+#include "support/split_frame.h"
 #include "support/tolerance.h"
 
 #include <cmath>
@@ -49,61 +52,18 @@ struct SplitResult {
 
 SplitResult run_split(Context& ctx, const std::vector<rrc_channel_desc>& channels, SceneFrameInputs& in, int W, int H) {
     SplitResult s;
-    const size_t n = (size_t)W * H;
-    s.classified.resize(n);
-    std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(W, H) / 4);
-    rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
-    co.mask = s.classified.data();
-    co.quads = quads.data();
-    co.quad_capacity = (uint32_t)quads.size();
-    rrc_frame_desc geometry = in.desc;
-    geometry.channel_count = 0;  // classify reads no channel
-    geometry.channels = nullptr;
-    EXPECT_EQ(rrc_frame_classify(ctx.get(), &geometry, &co), RRC_SUCCESS) << rrc_last_error();
-    s.quads.insert(quads.begin(), quads.begin() + co.quad_count);
-    EXPECT_EQ(s.quads.size(), co.quad_count) << "a quad listed twice";
-    s.classify_stats = co.stats;
-    s.refreshed = co.refreshed;
+    Classification cl((uint32_t)W, (uint32_t)H);
+    EXPECT_EQ(cl.run(ctx.get(), geometry_of(in.desc)), RRC_SUCCESS) << rrc_last_error();
+    s.classified = cl.mask;
+    s.quads = cl.listed();
+    EXPECT_EQ(s.quads.size(), cl.out.quad_count) << "a quad listed twice";
+    s.classify_stats = cl.out.stats;
+    s.refreshed = cl.out.refreshed;
 
-    std::vector<std::vector<float>> samples(channels.size());
-    std::vector<rrc_channel_input> inputs(channels.size());
-    for (size_t c = 0; c < channels.size(); ++c) {
-        const uint32_t m = channels[c].components;
-        const float* full = in.desc.channels[c].samples;
-        samples[c].assign(full, full + n * m);
-        if (channels[c].blend == RRC_BLEND_REUSE) {
-            std::vector<float> host(n * m, NAN);  // what the host never shaded
-            for (uint32_t q : s.quads)
-                for (int k = 0; k < 4; ++k) {
-                    const int x = 2 * (int)(q & 0xFFFF) + (k & 1), y = 2 * (int)(q >> 16) + (k >> 1);
-                    if (x >= W || y >= H) continue;
-                    for (uint32_t j = 0; j < m; ++j) host[m * ((size_t)y * W + x) + j] = full[m * ((size_t)y * W + x) + j];
-                }
-            samples[c] = host;
-        }
-        inputs[c] = channel_input(samples[c].data());
-    }
-    rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
-    rd.channel_count = (uint32_t)inputs.size();
-    rd.channels = inputs.data();
-    FrameResult& r = s.out;
-    r.mask.resize(n);
-    r.values.resize(channels.size());
-    r.age.resize(channels.size());
-    std::vector<rrc_channel_output> outs(channels.size());
-    for (size_t c = 0; c < channels.size(); ++c) {
-        r.values[c].resize(n * channels[c].components);
-        r.age[c].resize(n);
-        outs[c] = rrc_host::channel_output();
-        outs[c].values = r.values[c].data();
-        outs[c].age = r.age[c].data();
-    }
-    rrc_frame_output o = rrc_host::frame_output();
-    o.mask = r.mask.data();
-    o.channel_count = (uint32_t)outs.size();
-    o.channels = outs.data();
-    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
-    r.stats = o.stats;
+    HostSamples host(channels, in.desc, s.quads, W, H);
+    BoundOutput o(s.out, channels, (size_t)W * H);
+    EXPECT_EQ(rrc_frame_resolve(ctx.get(), &host.desc, &o.frame), RRC_SUCCESS) << rrc_last_error();
+    s.out.stats = o.frame.stats;
     return s;
 }
 
@@ -182,13 +142,7 @@ TEST_P(CacheVsReference, OneFrameAtATime) {
             for (uint32_t q : got)
                 if (!flagged_quads.count(q)) EXPECT_TRUE(want.count(q)) << "frame " << t << " quad " << (q & 0xFFFF) << "," << (q >> 16);
         }
-        prev.valid = true;
-        prev.depth = in.frame.depth;
-        prev.channels.resize(channels.size());
-        for (size_t ch = 0; ch < channels.size(); ++ch) {
-            prev.channels[ch].history = k.values[ch];
-            prev.channels[ch].age = k.age[ch];
-        }
+        prev = kernel_state(in.frame.depth, k);
     }
     std::printf("%s %s: compared %lld flagged %lld hits %lld refreshed %lld reused %lld\n", pol.name, split ? "split" : "fused",
                 (long long)compared, (long long)flagged, (long long)hits, (long long)refreshed, (long long)reused);
@@ -206,77 +160,39 @@ INSTANTIATE_TEST_SUITE_P(Policies, CacheVsReference, ::testing::Combine(::testin
 
 constexpr int kW = 21, kH = 13, kN = kW * kH;  // odd: half quads at the right and bottom
 
-// Clip = ndc shifted by `shift` pixels in x: the camera pans.
-void pan(double shift, double m[16]) {
-    for (int i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0 : 0.0;
-    m[12] = 2.0 * shift / kW;
-}
-
-struct Flat {
-    std::vector<float> depth = std::vector<float>(kN, 0.5f), shade = std::vector<float>(kN);
-    rrc_channel_input in{};
-    rrc_frame_desc frame(uint64_t index, double shift, double prev_shift) {
-        in = channel_input(shade.data());
-        rrc_frame_desc f = frame_desc();
-        f.frame_index = index;
-        f.depth = depth.data();
-        f.channel_count = 1;
-        f.channels = &in;
-        pan(shift, f.view_proj);
-        pan(prev_shift, f.prev_view_proj);
-        return f;
-    }
-};
-
-rrc_context_desc flat_desc(std::vector<rrc_channel_desc>& channels) {
-    rrc_context_desc d = context_desc(kW, kH, channels);
-    d.reprojection = RRC_REPROJECTION_CAMERA;
-    return d;
-}
-
 TEST(CacheRefresh, EveryPixelOnceEveryNFramesOnAStaticScene) {
-    for (rrc_refresh_policy policy : {RRC_REFRESH_TILED, RRC_REFRESH_RANDOM})
-        for (uint32_t n : {1u, 2u, 4u, 8u})
-            for (uint64_t stride : {uint64_t(1), uint64_t(3)}) {
-                SCOPED_TRACE("policy " + std::to_string(policy) + " n " + std::to_string(n) + " stride " + std::to_string(stride));
-                std::vector<rrc_channel_desc> channels{
-                    channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
-                rrc_context_desc d = flat_desc(channels);
-                d.refresh_policy = policy;
-                d.refresh_period = n;
-                Context ctx(d);
-                ASSERT_TRUE(ctx);
-                Flat flat;
-                const uint64_t t0 = (1ull << 32) - 2;    // indices cross 2^32
-                ctx.run(flat.frame(t0 - stride, 0, 0));  // fills the cache
-                const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
-                std::vector<int> count(kN, 0);
-                for (uint32_t k = 0; k < 2 * n; ++k) {
-                    const uint64_t t = t0 + k * stride;
-                    for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * k + i);
-                    const FrameResult r = ctx.run(flat.frame(t, 0, 0));
-                    for (int i = 0; i < kN; ++i) {
-                        const bool refreshed = (r.mask[i] & RRC_MASK_REFRESHED) != 0;
-                        ASSERT_EQ(refreshed, rrc_ref::refresh_due(ref, i % kW, i / kW, t)) << "pixel " << i << " frame " << t;
-                        ASSERT_EQ(refreshed || (r.mask[i] & RRC_MASK_HIT), true) << "a static scene hits everywhere";
-                        if (refreshed) {
-                            ++count[i];
-                            EXPECT_EQ(r.values[0][i], flat.shade[i]) << "a refresh takes the new value";
-                            EXPECT_EQ(r.age[0][i], 1u);
-                        }
-                    }
-                    if (k + 1 == n || k + 1 == 2 * n) {
-                        for (int i = 0; i < kN; ++i) ASSERT_EQ(count[i], 1) << "pixel " << i << " in the " << n << " frames to " << t;
-                        std::fill(count.begin(), count.end(), 0);
-                    }
+    const std::vector<rrc_channel_desc> channels = one_reuse();
+    for_each_refresh_case(kW, kH, channels, [](const rrc_context_desc& d, FlatPlane& flat, uint32_t n, uint64_t stride) {
+        Context ctx(d);
+        ASSERT_TRUE(ctx);
+        const uint64_t t0 = (1ull << 32) - 2;    // indices cross 2^32
+        ctx.run(flat.frame(t0 - stride, 0, 0));  // fills the cache
+        const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
+        OncePerPeriod periods(kN, n);
+        for (uint32_t k = 0; k < 2 * n; ++k) {
+            const uint64_t t = t0 + k * stride;
+            for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * k + i);
+            const FrameResult r = ctx.run(flat.frame(t, 0, 0));
+            for (int i = 0; i < kN; ++i) {
+                const bool refreshed = (r.mask[i] & RRC_MASK_REFRESHED) != 0;
+                ASSERT_EQ(refreshed, rrc_ref::refresh_due(ref, i % kW, i / kW, t)) << "pixel " << i << " frame " << t;
+                ASSERT_EQ(refreshed || (r.mask[i] & RRC_MASK_HIT), true) << "a static scene hits everywhere";
+                if (refreshed) {
+                    periods.refreshed(i);
+                    EXPECT_EQ(r.values[0][i], flat.shade[i]) << "a refresh takes the new value";
+                    EXPECT_EQ(r.age[0][i], 1u);
                 }
             }
+            ASSERT_NO_FATAL_FAILURE(periods.end_frame(k, t));
+        }
+    });
 }
 
 TEST(CacheRefresh, MaxLifetimeRefreshesAtTheStatedAgeUnderACameraPan) {
     const uint32_t L = 3;
-    std::vector<rrc_channel_desc> channels{channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
-    rrc_context_desc d = flat_desc(channels);
+    std::vector<rrc_channel_desc> channels = one_reuse();
+    FlatPlane flat(kW, kH);
+    rrc_context_desc d = flat.context(channels);
     d.max_lifetime = L;
     // A TILED policy that aliases with the pan: the surface moves one tile
     // (kW / 7 = 3 pixels) to the left a frame while the tiles' turn moves one
@@ -286,7 +202,6 @@ TEST(CacheRefresh, MaxLifetimeRefreshesAtTheStatedAgeUnderACameraPan) {
     d.refresh_period = 7;
     Context ctx(d);
     ASSERT_TRUE(ctx);
-    Flat flat;
     rrc_ref::PreviousFrame prev;
     int lifetime_refreshes = 0, flagged = 0;
     std::vector<float> previous_values;

@@ -21,8 +21,10 @@
 #include "reference/rrc_reference.h"
 #include "reference/selftest_scene.h"
 #include "support/cache_policy.h"
+#include "support/kernel_state.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
+#include "support/split_frame.h"
 #include "support/tolerance.h"
 
 #include <algorithm>
@@ -194,14 +196,7 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
                 st.caught[mu] += caught;
             }
         }
-        prev.valid = true;
-        prev.depth = in.frame.depth;
-        prev.channels.resize(channels.size());
-        for (size_t ch = 0; ch < channels.size(); ++ch) {
-            prev.channels[ch].history = k.values[ch];
-            prev.channels[ch].age = k.age[ch];
-            prev.channels[ch].weight = k.weight[ch];
-        }
+        prev = kernel_state(in.frame.depth, k);
     }
     std::printf(
         "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n",
@@ -572,46 +567,14 @@ TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
         in.inputs[0].fallback = fallback.data();
         FrameResult a = fused.run(in.desc);
 
-        std::vector<uint8_t> classified(n);
-        std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(kW, kH) / 4);
-        rrc_classify_output co = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
-        co.mask = classified.data();
-        co.quads = quads.data();
-        co.quad_capacity = (uint32_t)quads.size();
-        rrc_frame_desc geometry = in.desc;
-        geometry.channel_count = 0;
-        geometry.channels = nullptr;
-        ASSERT_EQ(rrc_frame_classify(split.get(), &geometry, &co), RRC_SUCCESS) << rrc_last_error();
-        listed += co.quad_count;
-        std::vector<float> host(n * 4, NAN);  // the REUSE samples the host shaded: the listed quads only
-        for (uint32_t k = 0; k < co.quad_count; ++k) {
-            const uint32_t q = quads[k];
-            for (int p = 0; p < 4; ++p) {
-                const int x = 2 * (int)(q & 0xFFFF) + (p & 1), y = 2 * (int)(q >> 16) + (p >> 1);
-                if (x >= kW || y >= kH) continue;
-                for (int j = 0; j < 4; ++j) host[4 * ((size_t)y * kW + x) + j] = in.frame.signal4[4 * ((size_t)y * kW + x) + j];
-            }
-        }
-        std::vector<rrc_channel_input> inputs = {channel_input(host.data()), channel_input(in.frame.signal1.data())};
-        inputs[0].fallback = fallback.data();
-        rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
-        rd.channel_count = (uint32_t)inputs.size();
-        rd.channels = inputs.data();
+        Classification cl(kW, kH);
+        ASSERT_EQ(cl.run(split.get(), geometry_of(in.desc)), RRC_SUCCESS) << rrc_last_error();
+        listed += cl.out.quad_count;
+        // The fallback stays on the REUSE channel's input (in.inputs[0]).
+        HostSamples host(chs, in.desc, cl.listed(), kW, kH);
         FrameResult b;
-        b.mask.resize(n);
-        b.values = {std::vector<float>(n * 4), std::vector<float>(n)};
-        b.age = {std::vector<uint16_t>(n), std::vector<uint16_t>(n)};
-        std::vector<rrc_channel_output> outs(2);
-        for (size_t c = 0; c < 2; ++c) {
-            outs[c] = rrc_host::channel_output();
-            outs[c].values = b.values[c].data();
-            outs[c].age = b.age[c].data();
-        }
-        rrc_frame_output o = rrc_host::frame_output();
-        o.mask = b.mask.data();
-        o.channel_count = 2;
-        o.channels = outs.data();
-        ASSERT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
+        BoundOutput o(b, chs, n);
+        ASSERT_EQ(rrc_frame_resolve(split.get(), &host.desc, &o.frame), RRC_SUCCESS) << rrc_last_error();
         EXPECT_EQ(b.mask, a.mask) << "frame " << t;
         for (size_t c = 0; c < 2; ++c) {
             EXPECT_EQ(b.age[c], a.age[c]) << "frame " << t << " channel " << c;

@@ -5,6 +5,7 @@
 // shifted by exactly two pixels, so every reprojected texel centre lands on
 // a texel centre and the expected values are exact.
 #include "support/rrc_test_context.h"
+#include "support/split_frame.h"
 
 #include <cmath>
 #include <set>
@@ -52,12 +53,20 @@ struct Inputs {
 
 float value0(uint32_t x, uint32_t y) { return 10.0f * x + y; }
 
-TEST(Views, AnEyeReusesTheOtherEyesShadingAndLeavesItsStateAlone) {
+// The stereo pair's context, and view 0's first shading (value0) in the inputs.
+class Views : public ::testing::Test {
+protected:
+    void SetUp() override { ASSERT_TRUE(ctx); }
+    void shade_view0() {
+        for (uint32_t i = 0; i < N; ++i) in.shade[i] = value0(i % W, i / W), in.avg[i] = 1.0f;
+    }
     Pair pair;
-    rrc_test::Context ctx(pair.desc());
-    ASSERT_TRUE(ctx);
+    rrc_test::Context ctx{pair.desc()};
     Inputs in;
-    for (uint32_t i = 0; i < N; ++i) in.shade[i] = value0(i % W, i / W), in.avg[i] = 1.0f;
+};
+
+TEST_F(Views, AnEyeReusesTheOtherEyesShadingAndLeavesItsStateAlone) {
+    shade_view0();
     const auto a = ctx.run(in.frame(0, 0, 0, 0));  // view 0, no history: all misses
     for (uint32_t i = 0; i < N; ++i) ASSERT_EQ(a.mask[i] & RRC_MASK_HIT, 0u);
 
@@ -90,32 +99,19 @@ TEST(Views, AnEyeReusesTheOtherEyesShadingAndLeavesItsStateAlone) {
         }
 }
 
-TEST(Views, ClassifyListsOnlyWhatTheOtherEyeCannotGive) {
-    Pair pair;
-    rrc_test::Context ctx(pair.desc());
-    ASSERT_TRUE(ctx);
-    Inputs in;
-    for (uint32_t i = 0; i < N; ++i) in.shade[i] = value0(i % W, i / W), in.avg[i] = 1.0f;
+TEST_F(Views, ClassifyListsOnlyWhatTheOtherEyeCannotGive) {
+    shade_view0();
     ctx.run(in.frame(0, 0, 0, 7));
     rrc_frame_desc f = in.frame(1, 1, 0, 7);
-    std::vector<uint8_t> mask(N);
-    std::vector<uint32_t> quads(RRC_QUAD_LIST_BYTES(W, H) / 4);
-    rrc_classify_output out = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
-    out.mask = mask.data();
-    out.quads = quads.data();
-    out.quad_capacity = (uint32_t)quads.size();
-    ASSERT_EQ(rrc_frame_classify(ctx.get(), &f, &out), RRC_SUCCESS) << rrc_last_error();
-    std::set<uint32_t> listed(quads.begin(), quads.begin() + out.quad_count), expected;
+    rrc_test::Classification cl(W, H);
+    ASSERT_EQ(cl.run(ctx.get(), f), RRC_SUCCESS) << rrc_last_error();
+    std::set<uint32_t> expected;
     for (uint32_t qy = 0; qy < H / 2; ++qy) expected.insert(0u | qy << 16);  // the quad column x = 0..1
-    EXPECT_EQ(listed, expected);
-    EXPECT_EQ(out.stats.hits, (uint64_t)(W - kShift) * H);
+    EXPECT_EQ(cl.listed(), expected);
+    EXPECT_EQ(cl.out.stats.hits, (uint64_t)(W - kShift) * H);
 }
 
-TEST(Views, AViewWithoutAFrameGivesNothingAndBadViewsAreRefused) {
-    Pair pair;
-    rrc_test::Context ctx(pair.desc());
-    ASSERT_TRUE(ctx);
-    Inputs in;
+TEST_F(Views, AViewWithoutAFrameGivesNothingAndBadViewsAreRefused) {
     const auto r = ctx.run(in.frame(1, 1, 0, 0));  // view 0 has no frame yet
     for (uint32_t i = 0; i < N; ++i) ASSERT_EQ(r.mask[i] & RRC_MASK_HIT, 0u);
     for (auto bad : {std::make_pair(2u, 0u), std::make_pair(0u, 3u)}) {

@@ -330,6 +330,21 @@ struct FrameStruct {
     std::function<void(Plain&, const void* next)> set_next;  // on the struct (arrays: element 1)
 };
 
+// An array struct's entry: the elements strided by shape.size with per-element
+// sizes, `guard` bytes of `guard_fill` after the array; the chain goes on element 1.
+template <typename T>
+FrameStruct array_struct(const char* name, const char* struct_name, const char* prefix,
+                         std::function<Blob(const std::vector<T>&)> Hooks::*hook, std::vector<T> Plain::*elements,
+                         size_t guard, unsigned char guard_fill) {
+    return {name, struct_name, prefix, sizeof(T), true,
+            [=](const Shape& s, const std::vector<uint32_t>& sizes, long nz) {
+                Hooks h;
+                h.*hook = [=](const std::vector<T>& v) { return pack_array(v, s.size, sizes, guard, guard_fill, nz); };
+                return h;
+            },
+            [=](Plain& p, const void* next) { (p.*elements)[1].next = next; }};
+}
+
 std::vector<FrameStruct> frame_structs() {
     return {
         {"frame_desc", "rrc_frame_desc", "frame", sizeof(rrc_frame_desc), false,
@@ -352,20 +367,9 @@ std::vector<FrameStruct> frame_structs() {
              return h;
          },
          [](Plain& p, const void* next) { p.output.next = next; }},
-        {"channel_input", "rrc_channel_input", "frame.channels", sizeof(rrc_channel_input), true,
-         [](const Shape& s, const std::vector<uint32_t>& sizes, long nz) {
-             Hooks h;
-             h.inputs = [s, sizes, nz](const std::vector<rrc_channel_input>& v) { return pack_array(v, s.size, sizes, 0, 0, nz); };
-             return h;
-         },
-         [](Plain& p, const void* next) { p.inputs[1].next = next; }},
-        {"channel_output", "rrc_channel_output", "output.channels", sizeof(rrc_channel_output), true,
-         [](const Shape& s, const std::vector<uint32_t>& sizes, long nz) {
-             Hooks h;
-             h.outputs = [s, sizes, nz](const std::vector<rrc_channel_output>& v) { return pack_array(v, s.size, sizes, 32, 0xCD, nz); };
-             return h;
-         },
-         [](Plain& p, const void* next) { p.outputs[1].next = next; }},
+        // Inputs are only read: no guard bytes.  Outputs get 0xCD guards after the caller's array.
+        array_struct("channel_input", "rrc_channel_input", "frame.channels", &Hooks::inputs, &Plain::inputs, 0, 0),
+        array_struct("channel_output", "rrc_channel_output", "output.channels", &Hooks::outputs, &Plain::outputs, 32, 0xCD),
     };
 }
 

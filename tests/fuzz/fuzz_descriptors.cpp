@@ -81,6 +81,29 @@ const void* fuzz_next(FuzzedDataProvider& in) {
     return in.ConsumeIntegralInRange<int>(0, 15) ? nullptr : targets[in.ConsumeIntegralInRange<int>(0, 2)];
 }
 
+// s zeroed, then its header fuzzed: the tag (mostly `tag`), the size (mostly
+// sizeof s) and the chain, in that order (the corpus's bytes depend on it).
+template <typename T>
+void fuzz_header(FuzzedDataProvider& in, T& s, uint32_t tag) {
+    std::memset(&s, 0, sizeof s);
+    s.type = fuzz_tag(in, tag);
+    s.size = fuzz_size(in, sizeof s);
+    s.next = fuzz_next(in);
+}
+
+// An array that holds exactly min(count, max) entries (plus one, so that an
+// empty array is still memory), each with its header fuzzed, then `body(entry)`.
+template <typename T, typename Body>
+std::unique_ptr<T[]> fuzz_array(FuzzedDataProvider& in, uint32_t count, uint32_t max, uint32_t tag, Body body) {
+    const uint32_t stored = std::min<uint32_t>(count, max);
+    std::unique_ptr<T[]> a(new T[stored + 1]);
+    for (uint32_t i = 0; i < stored; ++i) {
+        fuzz_header(in, a[i], tag);
+        body(a[i]);
+    }
+    return a;
+}
+
 void check_error(const rrc::Error& e) {
     const rrc_result known[] = {RRC_ERROR_INVALID_ARGUMENT, RRC_ERROR_INVALID_STRUCT, RRC_ERROR_INCOMPATIBLE_VERSION,
                                 RRC_ERROR_UNSUPPORTED,      RRC_ERROR_MISSING_INPUT,  RRC_ERROR_SIZE_MISMATCH};
@@ -96,10 +119,7 @@ void fuzz_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
     std::vector<uint16_t> age(n);
 
     rrc_frame_desc f;
-    std::memset(&f, 0, sizeof f);
-    f.type = fuzz_tag(in, RRC_STRUCT_TYPE_FRAME_DESC);
-    f.size = fuzz_size(in, sizeof f);
-    f.next = fuzz_next(in);
+    fuzz_header(in, f, RRC_STRUCT_TYPE_FRAME_DESC);
     f.frame_index = in.ConsumeIntegral<uint64_t>();
     f.reset = in.ConsumeIntegral<uint32_t>();
     f.depth = in.ConsumeIntegralInRange<int>(0, 7) ? depth.data() : nullptr;
@@ -121,36 +141,21 @@ void fuzz_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
     // channel_count may exceed the array: validation must compare it with the
     // context first.  The array holds min(count, 8) entries, exactly.
     f.channel_count = in.ConsumeBool() ? (uint32_t)config.channels.size() : fuzz_small(in, 8);
-    std::unique_ptr<rrc_channel_input[]> inputs(new rrc_channel_input[std::min<uint32_t>(f.channel_count, 8) + 1]);
-    for (uint32_t i = 0; i < std::min<uint32_t>(f.channel_count, 8); ++i) {
-        rrc_channel_input& c = inputs[i];
-        std::memset(&c, 0, sizeof c);
-        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_INPUT);
-        c.size = fuzz_size(in, sizeof c);
-        c.next = fuzz_next(in);
+    auto inputs = fuzz_array<rrc_channel_input>(in, f.channel_count, 8, RRC_STRUCT_TYPE_CHANNEL_INPUT, [&](rrc_channel_input& c) {
         c.samples = in.ConsumeIntegralInRange<int>(0, 7) ? samples.data() : nullptr;
         c.confidence = in.ConsumeBool() ? confidence.data() : nullptr;
-    }
+    });
     f.channels = f.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? inputs.get() : nullptr;
 
     rrc_frame_output o;
-    std::memset(&o, 0, sizeof o);
-    o.type = fuzz_tag(in, RRC_STRUCT_TYPE_FRAME_OUTPUT);
-    o.size = fuzz_size(in, sizeof o);
-    o.next = fuzz_next(in);
+    fuzz_header(in, o, RRC_STRUCT_TYPE_FRAME_OUTPUT);
     o.mask = in.ConsumeBool() ? mask.data() : nullptr;
     o.channel_count = in.ConsumeBool() ? (uint32_t)config.channels.size() : fuzz_small(in, 8);
-    std::unique_ptr<rrc_channel_output[]> outs(new rrc_channel_output[std::min<uint32_t>(o.channel_count, 8) + 1]);
-    for (uint32_t i = 0; i < std::min<uint32_t>(o.channel_count, 8); ++i) {
-        rrc_channel_output& c = outs[i];
-        std::memset(&c, 0, sizeof c);
-        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
-        c.size = fuzz_size(in, sizeof c);
-        c.next = fuzz_next(in);
+    auto outs = fuzz_array<rrc_channel_output>(in, o.channel_count, 8, RRC_STRUCT_TYPE_CHANNEL_OUTPUT, [&](rrc_channel_output& c) {
         c.values = in.ConsumeBool() ? values.data() : nullptr;
         c.age = in.ConsumeBool() ? age.data() : nullptr;
         c.weight = in.ConsumeBool() ? weight.data() : nullptr;
-    }
+    });
     o.channels = o.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? outs.get() : nullptr;
     try {
         rrc::validate_frame(config, &f, in.ConsumeIntegralInRange<int>(0, 3) ? &o : nullptr);
@@ -161,10 +166,7 @@ void fuzz_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
 
 void fuzz_vulkan_device(FuzzedDataProvider& in) {
     rrc_vulkan_device_desc d;
-    std::memset(&d, 0, sizeof d);
-    d.type = fuzz_tag(in, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC);
-    d.size = fuzz_size(in, sizeof d);
-    d.next = fuzz_next(in);
+    fuzz_header(in, d, RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC);
     // Handles are opaque to validation: non-NULL values it must never use.
     if (in.ConsumeBool()) d.instance = reinterpret_cast<VkInstance>(uintptr_t(0x1000));
     if (in.ConsumeBool()) d.physical_device = reinterpret_cast<VkPhysicalDevice>(uintptr_t(0x2000));
@@ -184,10 +186,7 @@ void fuzz_vulkan_device(FuzzedDataProvider& in) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     FuzzedDataProvider in(data, size);
     rrc_context_desc d;
-    std::memset(&d, 0, sizeof d);
-    d.type = fuzz_tag(in, RRC_STRUCT_TYPE_CONTEXT_DESC);
-    d.size = fuzz_size(in, sizeof d);
-    d.next = fuzz_next(in);
+    fuzz_header(in, d, RRC_STRUCT_TYPE_CONTEXT_DESC);
     d.api_version = in.ConsumeIntegralInRange<int>(0, 7) ? RRC_API_VERSION : in.ConsumeIntegral<uint32_t>();
     d.width = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 64) : in.ConsumeIntegral<uint32_t>();
     d.height = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 64) : in.ConsumeIntegral<uint32_t>();
@@ -207,14 +206,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // The channel array holds exactly min(count, RRC_MAX_CHANNELS + 2)
     // entries: a count beyond RRC_MAX_CHANNELS must be refused unread.
     d.channel_count = fuzz_small(in, RRC_MAX_CHANNELS + 2);
-    const uint32_t stored = std::min<uint32_t>(d.channel_count, RRC_MAX_CHANNELS + 2);
-    std::unique_ptr<rrc_channel_desc[]> channels(new rrc_channel_desc[stored + 1]);
-    for (uint32_t i = 0; i < stored; ++i) {
-        rrc_channel_desc& c = channels[i];
-        std::memset(&c, 0, sizeof c);
-        c.type = fuzz_tag(in, RRC_STRUCT_TYPE_CHANNEL_DESC);
-        c.size = fuzz_size(in, sizeof c);
-        c.next = fuzz_next(in);
+    auto channels = fuzz_array<rrc_channel_desc>(in, d.channel_count, RRC_MAX_CHANNELS + 2, RRC_STRUCT_TYPE_CHANNEL_DESC, [&](rrc_channel_desc& c) {
         if (in.ConsumeIntegralInRange<int>(0, 7)) {
             std::string name = in.ConsumeRandomLengthString(RRC_MAX_NAME - 1);
             std::memcpy(c.name, name.data(), name.size());  // NUL-terminated (zeroed), may hold NULs inside
@@ -228,7 +220,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         c.filter = fuzz_small(in, 3);
         c.age_cap = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 300) : in.ConsumeIntegral<uint32_t>();
         c.confidence = in.ConsumeIntegral<uint8_t>() % 3;
-    }
+    });
     d.channels = in.ConsumeIntegralInRange<int>(0, 15) ? channels.get() : nullptr;
     d.use_nocache_mask = in.ConsumeBool();
     std::string device = in.ConsumeRandomLengthString(32);

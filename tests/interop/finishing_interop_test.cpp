@@ -5,6 +5,7 @@
 // synchronization validation.  The fill is a second dispatch writing the
 // host's output image: the test also checks that it really changed the
 // young pixels (else a fill that never ran would pass) and left the others.
+#include "interop/scene_images.h"
 #include "interop/vulkan_host.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
@@ -95,40 +96,29 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
     rrc_context_desc cd = scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
     rrc_context* ctx = nullptr;
     ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
-    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
-    HostImage depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-    HostImage fb = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-    HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
-    HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
-    HostImage age1 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
-    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
-    for (HostImage* img : {&out1, &out4, &age1}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
+    SceneImages in_img(host, W, H, true);
+    HostImage fb = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_USAGE_SAMPLED_BIT);
+    HostImage out1 = zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H);
+    HostImage out4 = zeroed_output(host, VK_FORMAT_R32G32B32A32_SFLOAT, W, H);
+    HostImage age1 = zeroed_output(host, VK_FORMAT_R16_UINT, W, H);
     const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, dro = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     for (int t = 0; t < kFrames; ++t) {
         const SceneFrameInputs& in = inputs[t];
-        host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
-        host.upload(clip, in.reprojection.data(), W * H * 16, ro);
-        host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
-        host.upload(s4, in.frame.signal4.data(), W * H * 16, ro);
-        host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
+        in_img.upload(host, in, dro, ro);
         host.upload(fb, fallbacks[t].data(), W * H * 4, ro);
         rrc_vulkan_channel_images ch[2];
         for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = rrc_host::vulkan_image(s1, ro);
+        ch[0].samples = rrc_host::vulkan_image(in_img.s1, ro);
         ch[0].output = rrc_host::vulkan_image(out1, VK_IMAGE_LAYOUT_GENERAL);
         ch[0].age = rrc_host::vulkan_image(age1, VK_IMAGE_LAYOUT_GENERAL);
         ch[0].fallback = rrc_host::vulkan_image(fb, ro);
-        ch[1].samples = rrc_host::vulkan_image(s4, ro);
-        ch[1].confidence = rrc_host::vulkan_image(conf, ro);
+        ch[1].samples = rrc_host::vulkan_image(in_img.s4, ro);
+        ch[1].confidence = rrc_host::vulkan_image(in_img.conf, ro);
         ch[1].output = rrc_host::vulkan_image(out4, VK_IMAGE_LAYOUT_GENERAL);
         auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
         f.frame_index = t;
-        f.depth = rrc_host::vulkan_image(depth, dro);
-        f.reprojection = rrc_host::vulkan_image(clip, ro);
+        f.depth = rrc_host::vulkan_image(in_img.depth, dro);
+        f.reprojection = rrc_host::vulkan_image(in_img.clip, ro);
         std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
         std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
         f.channel_count = 2;
@@ -144,7 +134,8 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
         EXPECT_EQ(ages, expected[t].age[0]) << "frame " << t;
     }
     rrc_context_destroy(ctx);
-    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &fb, &out1, &out4, &age1}) host.destroy(*img);
+    in_img.destroy(host);
+    for (HostImage* img : {&fb, &out1, &out4, &age1}) host.destroy(*img);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << (host.messages().empty() ? "" : host.messages().front());
 }

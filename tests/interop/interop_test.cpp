@@ -2,6 +2,7 @@
 // command buffers: the same frames give bit-identical outputs through the
 // standalone and the interop paths, with zero validation messages (the host
 // runs the layer with synchronization validation, teardown included).
+#include "interop/scene_images.h"
 #include "interop/vulkan_host.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
@@ -85,20 +86,11 @@ void interop_matches_standalone(bool storage) {
     // fp32 rgba history + age + weight 2 x (16 + 2 + 4) B, mask 1 B.
     EXPECT_EQ(bytes, (uint64_t)W * H * (8 + 8 + 8 + 44 + 1));
 
-    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
-    const VkImageUsageFlags in_usage = sampled | (storage ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
-    HostImage depth = storage ? host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage)
-                              : host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-    HostImage clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, in_usage);
-    HostImage s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage);
-    HostImage s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, in_usage);
-    HostImage conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, in_usage);
-    HostImage out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
-    HostImage out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
-    HostImage mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
-    HostImage ids = host.create_image(VK_FORMAT_R16_UINT, W, H, sampled);
-    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
-    for (HostImage* img : {&out1, &out4, &mask}) host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, VK_IMAGE_LAYOUT_GENERAL);
+    SceneImages in_img(host, W, H, true, storage);
+    HostImage out1 = zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H);
+    HostImage out4 = zeroed_output(host, VK_FORMAT_R32G32B32A32_SFLOAT, W, H);
+    HostImage mask = zeroed_output(host, VK_FORMAT_R8_UINT, W, H);
+    HostImage ids = host.create_image(VK_FORMAT_R16_UINT, W, H, VK_IMAGE_USAGE_SAMPLED_BIT);
 
     // The depth is handed over as a depth attachment would leave it; storage
     // inputs as a compute pass that wrote them would.
@@ -107,26 +99,22 @@ void interop_matches_standalone(bool storage) {
     const VkImageLayout id_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;  // ids are sampled either way
     for (int t = 0; t < kFrames; ++t) {
         const SceneFrameInputs& in = inputs[t];
-        host.upload(depth, in.frame.depth.data(), W * H * 4, dro);
-        host.upload(clip, in.reprojection.data(), W * H * 16, ro);
-        host.upload(s1, in.frame.signal1.data(), W * H * 4, ro);
-        host.upload(s4, in.frame.signal4.data(), W * H * 16, ro);
-        host.upload(conf, in.confidence[1].data(), W * H * 4, ro);
+        in_img.upload(host, in, dro, ro);
         const std::vector<uint16_t> ids16(in.object_id.begin(),
                                           in.object_id.end());  // the sky's 0xFFFFFFFF is 0xFFFF here: still its own id
         host.upload(ids, ids16.data(), W * H * 2, id_layout);
 
         rrc_vulkan_channel_images ch[2];
         for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = view_of(s1, ro);
+        ch[0].samples = view_of(in_img.s1, ro);
         ch[0].output = view_of(out1, VK_IMAGE_LAYOUT_GENERAL);
-        ch[1].samples = view_of(s4, ro);
-        ch[1].confidence = view_of(conf, ro);
+        ch[1].samples = view_of(in_img.s4, ro);
+        ch[1].confidence = view_of(in_img.conf, ro);
         ch[1].output = view_of(out4, VK_IMAGE_LAYOUT_GENERAL);
         auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
         f.frame_index = t;
-        f.depth = view_of(depth, dro);
-        f.reprojection = view_of(clip, ro);
+        f.depth = view_of(in_img.depth, dro);
+        f.reprojection = view_of(in_img.clip, ro);
         f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
         f.object_id = view_of(ids, id_layout);
         f.storage_inputs = storage ? 1u : 0u;
@@ -147,7 +135,8 @@ void interop_matches_standalone(bool storage) {
         if (t > 0) EXPECT_GT(expected[t].stats.hits, (uint64_t)W * H / 3) << "the comparison must cover hits";
     }
     rrc_context_destroy(ctx);
-    for (HostImage* img : {&depth, &clip, &s1, &s4, &conf, &out1, &out4, &mask, &ids}) host.destroy(*img);
+    in_img.destroy(host);
+    for (HostImage* img : {&out1, &out4, &mask, &ids}) host.destroy(*img);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
 }
@@ -225,35 +214,20 @@ TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
     rrc_context* ctx = nullptr;
     ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
 
-    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
     const VkDeviceSize stride = 256;  // a multiple of every device's minStorageBufferOffsetAlignment
     rrc_host::Buffer stats = host.create_buffer(stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     std::memset(stats.mapped, 0xAB, stride * N);
     struct PerFrame {
-        HostImage depth, clip, s1, s4, conf, out1, out4, mask, age1, age4;
+        SceneImages in;
+        HostImage out1, out4, mask, age1, age4;
     };
-    std::vector<PerFrame> fr(N);
-    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    std::vector<PerFrame> fr;
     for (int t = 0; t < N; ++t) {
-        PerFrame& p = fr[t];
-        p.depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-        p.clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-        p.s1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-        p.s4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-        p.conf = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-        p.out1 = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
-        p.out4 = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
-        p.mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
-        p.age1 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
-        p.age4 = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
-        host.upload(p.depth, inputs[t].frame.depth.data(), W * H * 4, ro);
-        host.upload(p.clip, inputs[t].reprojection.data(), W * H * 16, ro);
-        host.upload(p.s1, inputs[t].frame.signal1.data(), W * H * 4, ro);
-        host.upload(p.s4, inputs[t].frame.signal4.data(), W * H * 16, ro);
-        host.upload(p.conf, inputs[t].confidence[1].data(), W * H * 4, ro);
-        for (HostImage* img : {&p.out1, &p.out4, &p.mask, &p.age1, &p.age4})
-            host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, gen);
+        fr.push_back({SceneImages(host, W, H, true), zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H),
+                      zeroed_output(host, VK_FORMAT_R32G32B32A32_SFLOAT, W, H), zeroed_output(host, VK_FORMAT_R8_UINT, W, H),
+                      zeroed_output(host, VK_FORMAT_R16_UINT, W, H), zeroed_output(host, VK_FORMAT_R16_UINT, W, H)});
+        fr.back().in.upload(host, inputs[t], ro, ro);
     }
 
     VkCommandBuffer cmd = host.begin();
@@ -261,17 +235,17 @@ TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
         PerFrame& p = fr[t];
         rrc_vulkan_channel_images ch[2];
         for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = view_of(p.s1, ro);
+        ch[0].samples = view_of(p.in.s1, ro);
         ch[0].output = view_of(p.out1, gen);
         ch[0].age = view_of(p.age1, gen);
-        ch[1].samples = view_of(p.s4, ro);
-        ch[1].confidence = view_of(p.conf, ro);
+        ch[1].samples = view_of(p.in.s4, ro);
+        ch[1].confidence = view_of(p.in.conf, ro);
         ch[1].output = view_of(p.out4, gen);
         ch[1].age = view_of(p.age4, gen);
         auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
         f.frame_index = t;
-        f.depth = view_of(p.depth, ro);
-        f.reprojection = view_of(p.clip, ro);
+        f.depth = view_of(p.in.depth, ro);
+        f.reprojection = view_of(p.in.clip, ro);
         f.mask = view_of(p.mask, gen);
         std::memcpy(f.jitter, inputs[t].desc.jitter, sizeof f.jitter);
         std::memcpy(f.prev_jitter, inputs[t].desc.prev_jitter, sizeof f.prev_jitter);
@@ -310,8 +284,10 @@ TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
         }
     }
     rrc_context_destroy(ctx);
-    for (PerFrame& p : fr)
-        for (HostImage* img : {&p.depth, &p.clip, &p.s1, &p.s4, &p.conf, &p.out1, &p.out4, &p.mask, &p.age1, &p.age4}) host.destroy(*img);
+    for (PerFrame& p : fr) {
+        p.in.destroy(host);
+        for (HostImage* img : {&p.out1, &p.out4, &p.mask, &p.age1, &p.age4}) host.destroy(*img);
+    }
     static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();

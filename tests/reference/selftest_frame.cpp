@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "selftest_scene.h"
@@ -33,6 +34,24 @@ struct Static {
     PreviousFrame prev() const { return s.previous({history}, 3); }
     double blend(size_t k) const { return lambda * history[k] + (1 - lambda) * s.samples[0][k]; }
 };
+
+// A one-row scene of the tests below: STANDARD depth in UNORM16, one fp32
+// channel with lambda 0.5.
+Scene unorm16_row(int width, rrc_reprojection source) {
+    Scene s(width, 1, RRC_DEPTH_MODE_STANDARD, source);
+    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
+    s.add_channel(1, 0.5f);
+    return s;
+}
+
+// The mask of pixels 0, 1, ... in order.
+void expect_masks(const FrameResult& r, std::initializer_list<int> masks) {
+    size_t i = 0;
+    for (int m : masks) {
+        EXPECT_EQ(r.mask[i], m) << "pixel " << i;
+        ++i;
+    }
+}
 
 }  // namespace
 
@@ -163,19 +182,13 @@ TEST(Frame, LinearBackgroundAndInvalidDepth) {
     s.add_channel(1, 0.5f);
     s.depth = {INFINITY, 150.0f, 0.0f, -INFINITY, 99.0f};
     FrameResult r = s.run(PreviousFrame{});
-    EXPECT_EQ(r.mask[0], RRC_MASK_BACKGROUND);
-    EXPECT_EQ(r.mask[1], RRC_MASK_BACKGROUND);
-    EXPECT_EQ(r.mask[2], RRC_MASK_INVALID_GEOMETRY);
-    EXPECT_EQ(r.mask[3], RRC_MASK_INVALID_GEOMETRY);
-    EXPECT_EQ(r.mask[4], 0);
+    expect_masks(r, {RRC_MASK_BACKGROUND, RRC_MASK_BACKGROUND, RRC_MASK_INVALID_GEOMETRY, RRC_MASK_INVALID_GEOMETRY, 0});
 }
 
 TEST(Frame, UvPrevOnAndOutsideTheBorder) {
     // PREV_CLIP, w = 2: pixel 0 lands just left of uv 0, pixel 1 exactly on
     // uv_x = 1 (closed square: a hit), pixel 2 in the middle.
-    Scene s(3, 1, RRC_DEPTH_MODE_STANDARD, RRC_REPROJECTION_PREV_CLIP);
-    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-    s.add_channel(1, 0.5f);
+    Scene s = unorm16_row(3, RRC_REPROJECTION_PREV_CLIP);
     float xs[3] = {2.0f * (-1.0f - 2e-6f), 2.0f, 0.0f};
     for (int i = 0; i < 3; ++i) {
         float* c = &s.reprojection[4 * i];
@@ -194,23 +207,17 @@ TEST(Frame, UvPrevOnAndOutsideTheBorder) {
 }
 
 TEST(Frame, NonPositiveClipWMisses) {
-    Scene s(3, 1, RRC_DEPTH_MODE_STANDARD, RRC_REPROJECTION_PREV_CLIP);
-    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-    s.add_channel(1, 0.5f);
+    Scene s = unorm16_row(3, RRC_REPROJECTION_PREV_CLIP);
     float clips[3][4] = {{0, 0, -1, -2}, {0, 0, 0, 0}, {0, 0, 1, 2}};  // behind, at, in front
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 4; ++k) s.reprojection[4 * i + k] = clips[i][k];
     FrameResult r = s.run(s.previous({std::vector<float>(3, 1.0f)}, 1));
-    EXPECT_EQ(r.mask[0], 0);
-    EXPECT_EQ(r.mask[1], 0);
-    EXPECT_EQ(r.mask[2], RRC_MASK_HIT);
+    expect_masks(r, {0, 0, RRC_MASK_HIT});
     EXPECT_EQ(r.near_threshold[0] + r.near_threshold[1], 0);  // w is an input: exact
 }
 
 TEST(Frame, JitterIsRemovedBeforeReprojecting) {
-    Scene s(8, 1, RRC_DEPTH_MODE_STANDARD, RRC_REPROJECTION_MOTION);
-    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-    s.add_channel(1, 0.5f);
+    Scene s = unorm16_row(8, RRC_REPROJECTION_MOTION);
     std::vector<float> history(8);
     for (int i = 0; i < 8; ++i) history[i] = static_cast<float>(i), s.samples[0][i] = 100.0f;
     PreviousFrame prev = s.previous({history}, 1);
@@ -273,9 +280,7 @@ TEST(Frame, PlainMotionLinearisesStandardDepth) {
 }
 
 TEST(Frame, MotionDepthExpectsDepthPlusChange) {
-    Scene s(2, 1, RRC_DEPTH_MODE_STANDARD, RRC_REPROJECTION_MOTION_DEPTH);
-    s.ctx.depth_format = RRC_DEPTH_FORMAT_UNORM16;
-    s.add_channel(1, 0.5f);
+    Scene s = unorm16_row(2, RRC_REPROJECTION_MOTION_DEPTH);
     s.depth = {0.5f, 0.5f};
     s.reprojection = {0, 0, 0.001f, 0, 0, 0};  // pixel 0 knows its depth change
     PreviousFrame prev = s.previous({std::vector<float>(2, 1.0f)}, 1);

@@ -19,8 +19,11 @@
 #include "reference/params.h"
 #include "reference/rrc_reference.h"
 #include "support/cache_policy.h"
+#include "support/flat_plane.h"
+#include "support/kernel_state.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
+#include "support/split_frame.h"
 #include "support/static_clip.h"
 #include "support/tolerance.h"
 
@@ -32,6 +35,9 @@ using namespace rrc_test;
 
 namespace {
 
+// Output arrays start as values no call writes, so what a call left alone shows.
+const OutputFill kUnwritten{0xAA, -1.0f, 0xBEEF};
+
 // rrc_frame_run with every output read back, refreshed included.
 struct FusedRun {
     FrameResult r;
@@ -39,27 +45,11 @@ struct FusedRun {
 };
 
 FusedRun run_fused(Context& ctx, const std::vector<rrc_channel_desc>& channels, const rrc_frame_desc& f) {
-    const size_t n = (size_t)ctx.desc().width * ctx.desc().height;
     FusedRun out;
-    FrameResult& r = out.r;
-    r.mask.assign(n, 0xAA);
-    r.values.resize(channels.size());
-    r.age.resize(channels.size());
-    std::vector<rrc_channel_output> outs(channels.size());
-    for (size_t c = 0; c < channels.size(); ++c) {
-        r.values[c].assign(n * channels[c].components, -1.0f);
-        r.age[c].assign(n, 0xBEEF);
-        outs[c] = rrc_host::channel_output();
-        outs[c].values = r.values[c].data();
-        outs[c].age = r.age[c].data();
-    }
-    rrc_frame_output o = rrc_host::frame_output();
-    o.mask = r.mask.data();
-    o.channel_count = (uint32_t)outs.size();
-    o.channels = outs.data();
-    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
-    r.stats = o.stats;
-    out.refreshed = o.refreshed;
+    BoundOutput o(out.r, channels, (size_t)ctx.desc().width * ctx.desc().height, kUnwritten);
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o.frame), RRC_SUCCESS) << rrc_last_error();
+    out.r.stats = o.frame.stats;
+    out.refreshed = o.frame.refreshed;
     return out;
 }
 
@@ -155,9 +145,7 @@ void split_vs_fused(const Policy& pol, std::vector<rrc_channel_desc> channels, b
         co.mask = classified.data();
         co.quads = list.data();
         co.quad_capacity = (uint32_t)list.size() - 1;  // the last word is a guard
-        rrc_frame_desc geometry = in.desc;
-        geometry.channel_count = 0;
-        geometry.channels = nullptr;
+        const rrc_frame_desc geometry = geometry_of(in.desc);
         ASSERT_EQ(rrc_frame_classify(split.get(), &geometry, &co), RRC_SUCCESS) << rrc_last_error();
         for (size_t i = 0; i < n; ++i)
             ASSERT_EQ(classified[i], k.r.mask[i] & ~RRC_MASK_INVALID_SAMPLE) << "classify's mask is the fused one, pixel " << i;
@@ -173,57 +161,23 @@ void split_vs_fused(const Policy& pol, std::vector<rrc_channel_desc> channels, b
         EXPECT_EQ(co.refreshed, k.refreshed);
 
         // ---- resolve: REUSE samples only at the listed quads, NaN elsewhere
-        std::vector<std::vector<float>> samples(channels.size());
-        std::vector<rrc_channel_input> inputs(channels.size());
+        HostSamples host(channels, in.desc, quads, W, H);
+        FrameResult sr;
+        BoundOutput o(sr, channels, n, kUnwritten);
+        ASSERT_EQ(rrc_frame_resolve(split.get(), &host.desc, &o.frame), RRC_SUCCESS) << rrc_last_error();
+        EXPECT_EQ(rrc_frame_resolve(split.get(), &host.desc, &o.frame), RRC_ERROR_INVALID_ARGUMENT) << "one resolve a classification";
+        EXPECT_EQ(sr.mask, k.r.mask) << "split mask == fused mask, bit for bit";
         for (size_t ch = 0; ch < channels.size(); ++ch) {
-            const uint32_t m = channels[ch].components;
-            const float* full = in.desc.channels[ch].samples;
-            samples[ch].assign(full, full + n * m);
-            if (channels[ch].blend == RRC_BLEND_REUSE) {
-                std::vector<float> host(n * m, NAN);
-                for (uint32_t q : quads)
-                    for (int s = 0; s < 4; ++s) {
-                        const int x = 2 * (int)(q & 0xFFFF) + (s & 1), y = 2 * (int)(q >> 16) + (s >> 1);
-                        if (x >= W || y >= H) continue;
-                        const size_t px = (size_t)y * W + x;
-                        for (uint32_t j = 0; j < m; ++j) host[m * px + j] = full[m * px + j];
-                    }
-                samples[ch] = host;
-            }
-            inputs[ch] = channel_input(samples[ch].data());
-        }
-        rrc_resolve_desc rd = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
-        rd.channel_count = (uint32_t)inputs.size();
-        rd.channels = inputs.data();
-        std::vector<uint8_t> smask(n, 0xAA);
-        std::vector<std::vector<float>> svalues(channels.size());
-        std::vector<std::vector<uint16_t>> sage(channels.size());
-        std::vector<rrc_channel_output> outs(channels.size());
-        for (size_t ch = 0; ch < channels.size(); ++ch) {
-            svalues[ch].assign(n * channels[ch].components, -1.0f);
-            sage[ch].assign(n, 0xBEEF);
-            outs[ch] = rrc_host::channel_output();
-            outs[ch].values = svalues[ch].data();
-            outs[ch].age = sage[ch].data();
-        }
-        rrc_frame_output o = rrc_host::frame_output();
-        o.mask = smask.data();
-        o.channel_count = (uint32_t)outs.size();
-        o.channels = outs.data();
-        ASSERT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
-        EXPECT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_ERROR_INVALID_ARGUMENT) << "one resolve a classification";
-        EXPECT_EQ(smask, k.r.mask) << "split mask == fused mask, bit for bit";
-        for (size_t ch = 0; ch < channels.size(); ++ch) {
-            EXPECT_EQ(sage[ch], k.r.age[ch]) << "ages, channel " << ch;
-            ASSERT_EQ(svalues[ch].size(), k.r.values[ch].size());
-            EXPECT_EQ(std::memcmp(svalues[ch].data(), k.r.values[ch].data(), svalues[ch].size() * sizeof(float)), 0)
+            EXPECT_EQ(sr.age[ch], k.r.age[ch]) << "ages, channel " << ch;
+            ASSERT_EQ(sr.values[ch].size(), k.r.values[ch].size());
+            EXPECT_EQ(std::memcmp(sr.values[ch].data(), k.r.values[ch].data(), sr.values[ch].size() * sizeof(float)), 0)
                 << "values bit-identical, channel " << ch;
         }
-        EXPECT_EQ(o.stats.hits, k.r.stats.hits);
-        EXPECT_EQ(o.stats.misses, k.r.stats.misses);
-        EXPECT_EQ(o.stats.background, k.r.stats.background);
-        EXPECT_EQ(o.stats.invalid_samples, k.r.stats.invalid_samples);
-        EXPECT_EQ(o.refreshed, k.refreshed);
+        EXPECT_EQ(o.frame.stats.hits, k.r.stats.hits);
+        EXPECT_EQ(o.frame.stats.misses, k.r.stats.misses);
+        EXPECT_EQ(o.frame.stats.background, k.r.stats.background);
+        EXPECT_EQ(o.frame.stats.invalid_samples, k.r.stats.invalid_samples);
+        EXPECT_EQ(o.frame.refreshed, k.refreshed);
 
         // ---- the fused kernel against the reference
         const rrc_ref::FrameResult r = rrc_ref::run_frame(fused.desc(), prev, in.desc);
@@ -248,13 +202,7 @@ void split_vs_fused(const Policy& pol, std::vector<rrc_channel_desc> channels, b
             }
             if ((r.mask[i] & RRC_MASK_HIT) && r.channels[1].age[i] > 1) ++reused;
         }
-        prev.valid = true;
-        prev.depth = in.frame.depth;
-        prev.channels.resize(channels.size());
-        for (size_t ch = 0; ch < channels.size(); ++ch) {
-            prev.channels[ch].history = k.r.values[ch];
-            prev.channels[ch].age = k.r.age[ch];
-        }
+        prev = kernel_state(in.frame.depth, k.r);
     }
     if (!check_reference) return;
     EXPECT_GT(refreshed, 0) << "the comparison must cover refreshes";
@@ -307,17 +255,8 @@ TEST(ShadingCacheClassify, AFailedClassifyKeepsThePendingClassification) {
         rd.channel_count = 1;
         rd.channels = &in;
         FrameResult r;
-        r.mask.assign(n, 0xAA);
-        r.values = {std::vector<float>(4 * n, -1.0f)};
-        r.age = {std::vector<uint16_t>(n, 0xBEEF)};
-        rrc_channel_output co = rrc_host::channel_output();
-        co.values = r.values[0].data();
-        co.age = r.age[0].data();
-        rrc_frame_output o = rrc_host::frame_output();
-        o.mask = r.mask.data();
-        o.channel_count = 1;
-        o.channels = &co;
-        EXPECT_EQ(rrc_frame_resolve(split.get(), &rd, &o), RRC_SUCCESS) << rrc_last_error();
+        BoundOutput o(r, channels, n, kUnwritten);
+        EXPECT_EQ(rrc_frame_resolve(split.get(), &rd, &o.frame), RRC_SUCCESS) << rrc_last_error();
         return r;
     };
     auto expect_equal = [&](const FrameResult& a, const FrameResult& b, const char* what) {
@@ -361,97 +300,61 @@ TEST(ShadingCacheClassify, AFailedClassifyKeepsThePendingClassification) {
 constexpr int kW = 23, kH = 15, kN = kW * kH;  // odd: half quads at the right and bottom
 constexpr int kQW = (kW + 1) / 2, kQH = (kH + 1) / 2, kQ = kQW * kQH;
 
-void pan(double shift, double m[16]) {
-    for (int i = 0; i < 16; ++i) m[i] = (i % 5 == 0) ? 1.0 : 0.0;
-    m[12] = 2.0 * shift / kW;  // column-major translation: shift pixels in x
-}
-
-struct Flat {
-    std::vector<float> depth = std::vector<float>(kN, 0.5f), shade = std::vector<float>(kN);
-    rrc_channel_input in{};
-    rrc_frame_desc frame(uint64_t index, double shift, double prev_shift) {
-        in = channel_input(shade.data());
-        rrc_frame_desc f = frame_desc();
-        f.frame_index = index;
-        f.depth = depth.data();
-        f.channel_count = 1;
-        f.channels = &in;
-        pan(shift, f.view_proj);
-        pan(prev_shift, f.prev_view_proj);
-        return f;
-    }
-};
-
-std::vector<rrc_channel_desc> one_reuse() {
-    return {channel("shade", 1, 0.0f, RRC_HISTORY_FP32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST)};
-}
-
 TEST(ShadingCacheRefresh, OncePerPeriodFromNear2To40AndBalancedRandom) {
-    for (rrc_refresh_policy policy : {RRC_REFRESH_TILED, RRC_REFRESH_RANDOM})
-        for (uint32_t n : {1u, 2u, 4u, 8u})
-            for (uint64_t stride : {uint64_t(1), uint64_t(3)}) {
-                SCOPED_TRACE("policy " + std::to_string(policy) + " n " + std::to_string(n) + " stride " + std::to_string(stride));
-                std::vector<rrc_channel_desc> channels = one_reuse();
-                rrc_context_desc d = context_desc(kW, kH, channels);
-                d.reprojection = RRC_REPROJECTION_CAMERA;
-                d.refresh_policy = policy;
-                d.refresh_period = n;
-                if (policy == RRC_REFRESH_TILED && n == 8) d.refresh_tiles[0] = 4, d.refresh_tiles[1] = 2;
-                Context ctx(d);
-                ASSERT_TRUE(ctx);
-                Flat flat;
-                const uint64_t t0 = (1ull << 40) - 5;
-                std::vector<float> previous = run_fused(ctx, channels, flat.frame(t0 - stride, 0, 0)).r.values[0];
-                const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
-                std::vector<int> count(kN, 0);
-                for (uint32_t k = 0; k < 2 * n; ++k) {
-                    const uint64_t t = t0 + k * stride;
-                    for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * k + i);
-                    const FusedRun r = run_fused(ctx, channels, flat.frame(t, 0, 0));
-                    expect_stats(r.r.mask, r.r.stats, r.refreshed, "static");
-                    std::set<int> due_quads;
-                    for (int i = 0; i < kN; ++i) {
-                        const bool refreshed = (r.r.mask[i] & RRC_MASK_REFRESHED) != 0;
-                        ASSERT_EQ(refreshed, rrc_ref::refresh_due(ref, i % kW, i / kW, t)) << "pixel " << i << " t " << t;
-                        ASSERT_TRUE(refreshed || (r.r.mask[i] & RRC_MASK_HIT)) << "a static scene hits everywhere";
-                        if (refreshed) {
-                            ++count[i];
-                            due_quads.insert(i % kW / 2 + kQW * (i / kW / 2));
-                            EXPECT_EQ(r.r.values[0][i], flat.shade[i]);
-                            EXPECT_EQ(r.r.age[0][i], 1u);
-                        } else {
-                            EXPECT_EQ(r.r.values[0][i], previous[i]) << "a hit keeps the cached value";
-                        }
-                    }
-                    if (policy == RRC_REFRESH_RANDOM) {
-                        // Whole quads, floor(Q/n) or ceil(Q/n) of them.
-                        for (int q : due_quads)
-                            for (int s = 0; s < 4; ++s) {
-                                const int x = 2 * (q % kQW) + (s & 1), y = 2 * (q / kQW) + (s >> 1);
-                                if (x < kW && y < kH) EXPECT_TRUE(r.r.mask[y * kW + x] & RRC_MASK_REFRESHED) << "quad " << q;
-                            }
-                        EXPECT_GE((int)due_quads.size(), kQ / (int)n) << "t " << t;
-                        EXPECT_LE((int)due_quads.size(), (kQ + (int)n - 1) / (int)n) << "t " << t;
-                    }
-                    previous = r.r.values[0];
-                    if (k + 1 == n || k + 1 == 2 * n) {
-                        for (int i = 0; i < kN; ++i) ASSERT_EQ(count[i], 1) << "pixel " << i << " in the " << n << " frames to " << t;
-                        std::fill(count.begin(), count.end(), 0);
-                    }
+    const std::vector<rrc_channel_desc> channels = one_reuse();
+    for_each_refresh_case(kW, kH, channels, [&](rrc_context_desc d, FlatPlane& flat, uint32_t n, uint64_t stride) {
+        const rrc_refresh_policy policy = d.refresh_policy;
+        if (policy == RRC_REFRESH_TILED && n == 8) d.refresh_tiles[0] = 4, d.refresh_tiles[1] = 2;
+        Context ctx(d);
+        ASSERT_TRUE(ctx);
+        const uint64_t t0 = (1ull << 40) - 5;
+        std::vector<float> previous = run_fused(ctx, channels, flat.frame(t0 - stride, 0, 0)).r.values[0];
+        const rrc_ref::Params ref = rrc_ref::resolve(ctx.desc());
+        OncePerPeriod periods(kN, n);
+        for (uint32_t k = 0; k < 2 * n; ++k) {
+            const uint64_t t = t0 + k * stride;
+            for (int i = 0; i < kN; ++i) flat.shade[i] = (float)(1000 * k + i);
+            const FusedRun r = run_fused(ctx, channels, flat.frame(t, 0, 0));
+            expect_stats(r.r.mask, r.r.stats, r.refreshed, "static");
+            std::set<int> due_quads;
+            for (int i = 0; i < kN; ++i) {
+                const bool refreshed = (r.r.mask[i] & RRC_MASK_REFRESHED) != 0;
+                ASSERT_EQ(refreshed, rrc_ref::refresh_due(ref, i % kW, i / kW, t)) << "pixel " << i << " t " << t;
+                ASSERT_TRUE(refreshed || (r.r.mask[i] & RRC_MASK_HIT)) << "a static scene hits everywhere";
+                if (refreshed) {
+                    periods.refreshed(i);
+                    due_quads.insert(i % kW / 2 + kQW * (i / kW / 2));
+                    EXPECT_EQ(r.r.values[0][i], flat.shade[i]);
+                    EXPECT_EQ(r.r.age[0][i], 1u);
+                } else {
+                    EXPECT_EQ(r.r.values[0][i], previous[i]) << "a hit keeps the cached value";
                 }
             }
+            if (policy == RRC_REFRESH_RANDOM) {
+                // Whole quads, floor(Q/n) or ceil(Q/n) of them.
+                for (int q : due_quads)
+                    for (int s = 0; s < 4; ++s) {
+                        const int x = 2 * (q % kQW) + (s & 1), y = 2 * (q / kQW) + (s >> 1);
+                        if (x < kW && y < kH) EXPECT_TRUE(r.r.mask[y * kW + x] & RRC_MASK_REFRESHED) << "quad " << q;
+                    }
+                EXPECT_GE((int)due_quads.size(), kQ / (int)n) << "t " << t;
+                EXPECT_LE((int)due_quads.size(), (kQ + (int)n - 1) / (int)n) << "t " << t;
+            }
+            previous = r.r.values[0];
+            ASSERT_NO_FATAL_FAILURE(periods.end_frame(k, t));
+        }
+    });
 }
 
 TEST(ShadingCacheRefresh, LifetimeAloneRefreshesAtAgeLUnderAPan) {
     for (uint32_t L : {1u, 2u, 4u}) {
         SCOPED_TRACE("L " + std::to_string(L));
         std::vector<rrc_channel_desc> channels = one_reuse();
-        rrc_context_desc d = context_desc(kW, kH, channels);
-        d.reprojection = RRC_REPROJECTION_CAMERA;
+        FlatPlane flat(kW, kH);
+        rrc_context_desc d = flat.context(channels);
         d.max_lifetime = L;  // no policy: only the lifetime (and empty histories) refresh
         Context ctx(d);
         ASSERT_TRUE(ctx);
-        Flat flat;
         std::vector<float> pv;
         std::vector<uint16_t> pa;
         int at_age_l = 0;

@@ -43,6 +43,46 @@ struct FrameResult {
     rrc_frame_stats stats{};
 };
 
+// What BoundOutput puts in the arrays before a call, so that a test sees what
+// the call did not write.
+struct OutputFill {
+    uint8_t mask = 0;
+    float value = 0.0f;
+    uint16_t age = 0;
+};
+
+// r's arrays sized for `channels` at n pixels (weights for the channels with
+// a confidence) and bound into `frame`, the output of rrc_frame_run or
+// rrc_frame_resolve.  Not copyable: `frame` points into `outputs`.
+struct BoundOutput {
+    std::vector<rrc_channel_output> outputs;
+    rrc_frame_output frame;
+
+    BoundOutput(FrameResult& r, const std::vector<rrc_channel_desc>& channels, size_t n, OutputFill fill = {})
+        : outputs(channels.size()), frame(rrc_host::frame_output()) {
+        r.mask.assign(n, fill.mask);
+        r.values.resize(channels.size());
+        r.age.resize(channels.size());
+        r.weight.resize(channels.size());
+        for (size_t i = 0; i < channels.size(); ++i) {
+            r.values[i].assign(n * channels[i].components, fill.value);
+            r.age[i].assign(n, fill.age);
+            outputs[i] = rrc_host::channel_output();
+            outputs[i].values = r.values[i].data();
+            outputs[i].age = r.age[i].data();
+            if (channels[i].confidence) {
+                r.weight[i].resize(n);
+                outputs[i].weight = r.weight[i].data();
+            }
+        }
+        frame.mask = r.mask.data();
+        frame.channel_count = (uint32_t)outputs.size();
+        frame.channels = outputs.data();
+    }
+    BoundOutput(const BoundOutput&) = delete;
+    BoundOutput& operator=(const BoundOutput&) = delete;
+};
+
 // A context under validation.  The destructor destroys it and adds a test
 // failure for any validation message, leaks reported at destruction included.
 class Context {
@@ -70,31 +110,11 @@ public:
 
     // Runs a frame and reads back every output.
     FrameResult run(const rrc_frame_desc& frame) {
-        const size_t n = (size_t)desc_.width * desc_.height;
         FrameResult r;
-        r.mask.resize(n);
-        r.values.resize(channels_.size());
-        r.age.resize(channels_.size());
-        r.weight.resize(channels_.size());
-        std::vector<rrc_channel_output> outs(channels_.size());
-        for (size_t i = 0; i < channels_.size(); ++i) {
-            r.values[i].resize(n * channels_[i].components);
-            r.age[i].resize(n);
-            outs[i] = rrc_host::channel_output();
-            outs[i].values = r.values[i].data();
-            outs[i].age = r.age[i].data();
-            if (channels_[i].confidence) {
-                r.weight[i].resize(n);
-                outs[i].weight = r.weight[i].data();
-            }
-        }
-        rrc_frame_output o = rrc_host::frame_output();
-        o.mask = r.mask.data();
-        o.channel_count = (uint32_t)outs.size();
-        o.channels = outs.data();
-        rrc_result res = rrc_frame_run(ctx_, &frame, &o);
+        BoundOutput o(r, channels_, (size_t)desc_.width * desc_.height);
+        rrc_result res = rrc_frame_run(ctx_, &frame, &o.frame);
         EXPECT_EQ(res, RRC_SUCCESS) << rrc_result_to_string(res) << ": " << rrc_last_error();
-        r.stats = o.stats;
+        r.stats = o.frame.stats;
         return r;
     }
 
