@@ -1,5 +1,6 @@
-# Installs rrc into a fresh prefix, then builds and runs the integration
-# example twice: with find_package(rrc) and with pkg-config.
+# Installs rrc into a fresh prefix, then builds and runs the minimal C host
+# (host_sample/examples/minimal_standalone.c) twice: with find_package(rrc)
+# and with pkg-config.
 # -DBUILD_DIR=<rrc build> -DSOURCE_DIR=<rrc source> -DWORK=<scratch dir>
 file(REMOVE_RECURSE ${WORK})
 set(prefix ${WORK}/prefix)
@@ -22,9 +23,9 @@ endforeach()
 
 # 1. CMake package.
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK}/cmake -DCMAKE_PREFIX_PATH=${prefix}
-    -DRRC_INTEGRATION_DOC=${SOURCE_DIR}/docs/INTEGRATION.md)
+    -DRRC_MINIMAL_HOST=${SOURCE_DIR}/host_sample/examples/minimal_standalone.c)
 run(${CMAKE_COMMAND} --build ${WORK}/cmake)
-run(${WORK}/cmake/integration_example)
+run(${WORK}/cmake/minimal_standalone)
 
 # 2. pkg-config, with the C compiler directly.
 find_program(PKG_CONFIG pkg-config REQUIRED)
@@ -34,6 +35,6 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pkg-config does not find rrc in ${libdir}/pkgconfig")
 endif()
 separate_arguments(flags UNIX_COMMAND "${flags}")
-run(cc -std=c99 -pedantic-errors -Wall -Werror ${WORK}/cmake/integration_example.c ${flags} -Wl,-rpath,${libdir}
-    -o ${WORK}/integration_example_pkgconfig)
-run(${WORK}/integration_example_pkgconfig)
+run(cc -std=c99 -pedantic-errors -Wall -Wextra -Werror ${SOURCE_DIR}/host_sample/examples/minimal_standalone.c ${flags}
+    -Wl,-rpath,${libdir} -o ${WORK}/minimal_standalone_pkgconfig)
+run(${WORK}/minimal_standalone_pkgconfig)
