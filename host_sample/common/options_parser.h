@@ -2,8 +2,8 @@
 // rrc-cache, rrc-accumulate, rrc-make-demo-sequence, rrc-bench,
 // rrc-blender-check): an argument cursor with typed readers whose every error
 // names the option and the value it got, so that each program spells only its
-// options, their ranges and its help text (host_sample/README.md, "Checking a
-// command line").
+// options, their ranges and its help text (host_sample/testbed/README.md,
+// "Checking a command line").
 //
 //     rrc_host::ArgCursor c(argc, argv);
 //     while (c.next()) {
