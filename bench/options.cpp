@@ -39,8 +39,7 @@ Options parse_options(int argc, char** argv) {
     try {
         rrc_host::ArgCursor c(argc, argv);
         while (c.next()) {
-            if (c.flag("--help") || c.flag("-h")) help = true;
-            else if (c.flag("--full")) o.full = true;
+            if (c.flag("--full")) o.full = true;
             else if (c.flag("--list")) o.configs = {"list"};
             else if (c.option("--config")) o.configs = c.names();
             else if (c.option("--size")) c.size(o.width, o.height, 1, 16384);
@@ -56,6 +55,7 @@ Options parse_options(int argc, char** argv) {
             else c.unknown();
         }
         o.check_options = c.check_only();
+        help = c.help();
     } catch (const rrc_host::OptionError& e) {
         std::fprintf(stderr, "rrc-bench: %s\n", e.what());
         usage(2);

@@ -27,9 +27,10 @@ bool ArgCursor::next() {
             inline_value_ = a.substr(eq + 1);
             has_inline_ = true;
         }
-        if (name_ == "--check-options") {
-            if (has_inline_) throw OptionError("--check-options takes no value, got " + quoted(inline_value_));
-            check_only_ = true;
+        bool* common = name_ == "--check-options" ? &check_only_ : name_ == "--help" || name_ == "-h" ? &help_ : nullptr;
+        if (common) {
+            if (has_inline_) throw OptionError("option " + name_ + " takes no value, got " + quoted(inline_value_));
+            *common = true;
             continue;
         }
         return true;
@@ -164,6 +165,10 @@ std::vector<float> ArgCursor::numbers(float lo, float hi) {
         out.push_back(x);
     }
     return out;
+}
+
+std::string check_options_help(const char* program) {
+    return std::string("  --check-options          check the options as a run would, print \"") + program + ": options ok\" and exit\n";
 }
 
 void print_options_ok(const char* program) { std::printf("%s: options ok\n", program); }

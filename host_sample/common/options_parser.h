@@ -13,8 +13,9 @@
 //     }
 //
 // Options take their value as the next argument or after '=' (--frames=8).
-// --check-options is recognised here, for every program: check_only() says it
-// was given, and the program stops after its own checks (print_options_ok).
+// --help (-h) and --check-options are recognised here, for every program:
+// help() and check_only() say they were given; with --check-options the
+// program stops after its own checks (print_options_ok).
 #pragma once
 
 #include "enum_names.h"
@@ -40,7 +41,7 @@ class ArgCursor {
 public:
     ArgCursor(int argc, const char* const* argv);
 
-    /** Moves to the next argument (skipping --check-options); false at the end. */
+    /** Moves to the next argument (taking --help, -h and --check-options); false at the end. */
     bool next();
 
     /** The current argument, without an "=value" part. */
@@ -89,6 +90,8 @@ public:
 
     /** --check-options was given: validate, print print_options_ok's line, exit 0. */
     bool check_only() const { return check_only_; }
+    /** --help or -h was given. */
+    bool help() const { return help_; }
 
 private:
     template <typename T, std::size_t N>
@@ -103,9 +106,12 @@ private:
     std::vector<std::string> args_;
     std::size_t i_ = 0;
     std::string name_, inline_value_, last_value_;
-    bool has_inline_ = false, check_only_ = false;
+    bool has_inline_ = false, check_only_ = false, help_ = false;
     std::map<std::string, int> given_;
 };
+
+/** The --help line of --check-options, in the column layout of rrc-sample's and rrc-sweep's help. */
+std::string check_options_help(const char* program);
 
 /** "PROGRAM: options ok" on stdout: what --check-options prints when every option passed. */
 void print_options_ok(const char* program);

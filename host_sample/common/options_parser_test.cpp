@@ -21,7 +21,7 @@ struct Parsed {
     std::vector<float> lambdas;
     rrc_blend blend = RRC_BLEND_FIXED;
     std::vector<rrc_blend> blends;
-    bool quiet = false, check = false;
+    bool quiet = false, check = false, help = false;
     std::vector<std::string> positional;
 };
 
@@ -52,6 +52,7 @@ Parsed parse(std::vector<const char*> args) {
             c.unknown();
     }
     p.check = c.check_only();
+    p.help = c.help();
     return p;
 }
 
@@ -88,6 +89,9 @@ TEST(Options, ReadsEveryKindInBothSpellings) {
 
 TEST(Options, CheckOptionsIsEveryProgramsFlag) {
     EXPECT_TRUE(parse({"--check-options", "--frames", "3"}).check);
+    EXPECT_TRUE(parse({"-h"}).help);
+    EXPECT_TRUE(parse({"--frames", "3", "--help"}).help);
+    expect_names(error_of({"--help=yes"}), {"--help takes no value"});
     expect_names(error_of({"--check-options=1"}), {"--check-options", "'1'"});
 }
 

@@ -25,6 +25,18 @@ std::string scene_name(rrc_host::ArgCursor& c) {
     return name;
 }
 
+bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet) {
+    if (c.flag("--validation"))
+        validation = true;
+    else if (c.option("--device"))
+        device = c.value();
+    else if (c.flag("--quiet"))
+        quiet = true;
+    else
+        return false;
+    return true;
+}
+
 uint32_t signal_bits(rrc_host::ArgCursor& c) {
     uint32_t bits = 0;
     for (uint32_t s : c.choices(kSignalNames)) bits |= s;
@@ -118,17 +130,14 @@ std::string usage() {
            "  --validation             Khronos validation layer with synchronization validation\n"
            "  --device TEXT            use the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
            "  --quiet                  no per-frame progress\n"
-           "  --check-options          check the options as a run would, print \"rrc-sample: options ok\" and exit\n"
-           "  --help                   this text\n";
+           + rrc_host::check_options_help("rrc-sample") + "  --help                   this text\n";
 }
 
 Options parse_options(int argc, const char* const* argv) {
     Options o;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
-        if (c.flag("--help") || c.flag("-h"))
-            o.help = true;
-        else if (c.option("--scene"))
+        if (c.option("--scene"))
             o.scene = scene_name(c);
         else if (c.option("--frames"))
             o.frames = (int)c.integer(1, 100000);
@@ -215,16 +224,11 @@ Options parse_options(int argc, const char* const* argv) {
             o.object_id = false;
         else if (c.flag("--no-images"))
             o.write_images = false;
-        else if (c.flag("--validation"))
-            o.validation = true;
-        else if (c.option("--device"))
-            o.device = c.value();
-        else if (c.flag("--quiet"))
-            o.quiet = true;
-        else
+        else if (!device_option(c, o.validation, o.device, o.quiet))
             c.unknown();
     }
     o.check_options = c.check_only();
+    o.help = c.help();
     if (o.channels.pcf.blur_sigma > 0.0f && o.channels.pcf.filter != RRC_HISTORY_FILTER_GAUSSIAN)
         throw OptionError("--blur-sigma needs --history-filter gaussian");
     // The fill's fallback is the PCSS estimate, worth --fill-prior samples; without a fill rrc takes none.

@@ -57,6 +57,8 @@ using rrc_host::OptionError;
 
 /** --scene NAME at the cursor, one of Scene::names() (shared with rrc-sweep). */
 std::string scene_name(rrc_host::ArgCursor& c);
+/** --validation, --device TEXT or --quiet at the cursor (shared with rrc-sweep); false if none of them. */
+bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet);
 /** --signals LIST (pcf,env,soft) at the cursor, as Signal bits (shared with rrc-sweep). */
 uint32_t signal_bits(rrc_host::ArgCursor& c);
 

@@ -55,9 +55,7 @@ Options parse(int argc, char** argv) {
     Options o;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
-        if (c.flag("--help") || c.flag("-h")) {
-            o.help = true;
-        } else if (c.option("--size")) {
+        if (c.option("--size")) {
             c.size(o.settings.width, o.settings.height, 1, 16384);
         } else if (c.option("--frames")) {
             // Two warm-up frames are not counted.
@@ -84,6 +82,7 @@ Options parse(int argc, char** argv) {
         }
     }
     o.check_options = c.check_only();
+    o.help = c.help();
     return o;
 }
 

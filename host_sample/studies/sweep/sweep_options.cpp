@@ -64,17 +64,14 @@ std::string sweep_usage() {
            "  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
            "  --device TEXT            the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
            "  --quiet                  no progress lines\n"
-           "  --check-options          check the options as a run would, print \"rrc-sweep: options ok\" and exit\n"
-           "  --help                   this text\n";
+           + rrc_host::check_options_help("rrc-sweep") + "  --help                   this text\n";
 }
 
 SweepOptions parse_sweep_options(int argc, const char* const* argv) {
     SweepOptions o;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
-        if (c.flag("--help") || c.flag("-h"))
-            o.help = true;
-        else if (c.option("--scene"))
+        if (c.option("--scene"))
             o.scene = rrc_sample::scene_name(c);
         else if (c.option("--size"))
             c.size(o.width, o.height, 8, 8192);
@@ -122,16 +119,11 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.out = c.value();
         else if (c.flag("--no-plots"))
             o.plots = false;
-        else if (c.flag("--validation"))
-            o.validation = true;
-        else if (c.option("--device"))
-            o.device = c.value();
-        else if (c.flag("--quiet"))
-            o.quiet = true;
-        else
+        else if (!rrc_sample::device_option(c, o.validation, o.device, o.quiet))
             c.unknown();
     }
     o.check_options = c.check_only();
+    o.help = c.help();
     if (o.study == "rectify") {
         // What was given wins; the study fills in only the rest with its own defaults.
         if (!c.given("--size")) o.width = 192, o.height = 128;

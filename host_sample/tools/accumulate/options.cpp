@@ -606,9 +606,7 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
     try {
         while (c.next()) {
             const std::string arg = c.arg();
-            if (c.flag("--help") || c.flag("-h"))
-                o.help = true;
-            else if (c.flag("--validation"))
+            if (c.flag("--validation"))
                 o.validation = true;
             else if (c.flag("--no-object-id"))
                 o.no_object_id = true;
@@ -627,6 +625,7 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
         return fail(e.what());
     }
     o.check_options = c.check_only();
+    o.help = c.help();
 
     if (o.help) return r;
     if (o.no_object_id && !o.object_id_channel.empty()) return fail("options --object-id and --no-object-id contradict each other");

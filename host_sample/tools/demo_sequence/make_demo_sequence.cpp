@@ -80,9 +80,7 @@ int main(int argc, char** argv) {
     try {
         rrc_host::ArgCursor c(argc, argv);
         while (c.next()) {
-            if (c.flag("--help") || c.flag("-h"))
-                help = true;
-            else if (c.option("--frames"))
+            if (c.option("--frames"))
                 frames = (int)c.integer(1, 100000);
             else if (c.option("--first"))
                 first = (int)c.integer(0, 100000);
@@ -96,6 +94,7 @@ int main(int argc, char** argv) {
                 c.unknown();
         }
         check = c.check_only();
+        help = c.help();
         if (!help && dir.empty()) throw rrc_host::OptionError("the output directory DIR is missing");
     } catch (const rrc_host::OptionError& e) {
         return rrc_host::report_option_error("rrc-make-demo-sequence", e, usage, true);

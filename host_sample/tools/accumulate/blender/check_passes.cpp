@@ -177,9 +177,7 @@ int main(int argc, char** argv) {
     try {
         rrc_host::ArgCursor c(argc, argv);
         while (c.next()) {
-            if (c.flag("--help") || c.flag("-h"))
-                help = true;
-            else if (c.flag("--hits"))
+            if (c.flag("--hits"))
                 hits = true;
             else if (c.positional())
                 paths.push_back(c.arg());
@@ -187,6 +185,7 @@ int main(int argc, char** argv) {
                 c.unknown();
         }
         check = c.check_only();
+        help = c.help();
         if (help) {
             // nothing is required
         } else if (hits && paths.size() == 3) {  // --hits IN_PATTERN OUT_PATTERN FIRST-LAST
