@@ -6,6 +6,7 @@
 #include "config.h"
 #include "interop_run.h"
 #include "options.h"
+#include "options_parser.h"
 #include "report.h"
 #include "result.h"
 #include "run_info.h"
@@ -31,7 +32,7 @@ std::vector<Config> selected(const Options& o) {
     for (const std::string& n : names) {
         bool known = false;
         for (const Config& c : all) known |= n == c.name;
-        if (!known) throw std::runtime_error("unknown configuration \"" + n + "\" (rrc-bench --list names them)");
+        if (!known) throw std::runtime_error("option --config '" + n + "': unknown configuration (rrc-bench --list names them)");
     }
     for (const Config& c : all) {
         bool take = names.empty();
@@ -174,6 +175,10 @@ int main(int argc, char** argv) {
             return 0;
         }
         const std::vector<Config> configs = selected(opt);
+        if (opt.check_options) {
+            rrc_host::print_options_ok("rrc-bench");
+            return 0;
+        }
         RunInfo info;
         info.command = opt.command_line;
         info.reps = opt.reps ? opt.reps : opt.full ? 15 : 9;

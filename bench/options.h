@@ -21,9 +21,10 @@ struct Options {
     bool plot = true;                   // --no-plot: skip bench/plot.py
     std::string plot_script;            // --plot-script PATH (default: the source tree's bench/plot.py)
     std::string command_line;           // as given, for the reports
+    bool check_options = false;         // --check-options: validate (the --config names too), print "options ok", exit
 };
 
-/** Parses argv; prints usage and exits on --help or an error. */
+/** Parses argv (options_parser.h); prints usage and exits on --help or an error. */
 Options parse_options(int argc, char** argv);
 
 }  // namespace rrc_bench

@@ -10,16 +10,8 @@
 int main(int argc, char** argv) {
     using namespace rrc_sample;
     Options options;
-    try {
-        options = parse_options(argc, argv);
-    } catch (const OptionError& e) {
-        std::cerr << "rrc-sample: " << e.what() << "\n" << usage();
-        return 2;
-    }
-    if (options.help) {
-        std::cout << usage();
-        return 0;
-    }
+    const int code = rrc_host::parse_command_line("rrc-sample", [&] { return parse_options(argc, argv); }, usage(), options, true);
+    if (code >= 0) return code;
     try {
         RunResult run = run_sample(options, &std::cout);
         print_summary(run, std::cout);

@@ -1,54 +1,46 @@
 #include "options.h"
 
 #include "enum_names.h"
+#include "options_parser.h"
 #include "scene.h"
 
 #include <rrc/rrc.h>
 
-#include <cerrno>
+#include <algorithm>
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 
 namespace rrc_sample {
 namespace {
 
-uint32_t parse_signals(const std::string& v) {
-    uint32_t bits = 0;
-    std::stringstream ss(v);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        if (item == "pcf")
-            bits |= kSignalPcf;
-        else if (item == "env")
-            bits |= kSignalEnv;
-        else if (item == "soft")
-            bits |= kSignalSoft;
-        else
-            throw OptionError("--signals: unknown signal \"" + item + "\" (pcf, env, soft)");
-    }
-    if (!bits) throw OptionError("--signals: name at least one of pcf, env, soft");
-    return bits;
-}
+// rrc-sweep's --signals too.
+constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"env", kSignalEnv}, {"soft", kSignalSoft}};
+constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
 
 }  // namespace
 
-long to_int(const std::string& opt, const std::string& v, long lo, long hi) {
-    char* end = nullptr;
-    errno = 0;
-    long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end || errno || x < lo || x > hi)
-        throw OptionError(opt + ": expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
+std::string scene_name(rrc_host::ArgCursor& c) {
+    const std::string name = c.value();
+    const std::vector<std::string> names = Scene::names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) c.fail("expected temple or courtyard");
+    return name;
 }
 
-float to_float(const std::string& opt, const std::string& v, float lo, float hi) {
-    char* end = nullptr;
-    errno = 0;
-    float x = std::strtof(v.c_str(), &end);
-    if (v.empty() || *end || errno || !(x >= lo && x <= hi))
-        throw OptionError(opt + ": expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got \"" + v + "\"");
-    return x;
+bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet) {
+    if (c.flag("--validation"))
+        validation = true;
+    else if (c.option("--device"))
+        device = c.value();
+    else if (c.flag("--quiet"))
+        quiet = true;
+    else
+        return false;
+    return true;
+}
+
+uint32_t signal_bits(rrc_host::ArgCursor& c) {
+    uint32_t bits = 0;
+    for (uint32_t s : c.choices(kSignalNames)) bits |= s;
+    return bits;
 }
 
 std::string signal_list(uint32_t s) {
@@ -138,140 +130,105 @@ std::string usage() {
            "  --validation             Khronos validation layer with synchronization validation\n"
            "  --device TEXT            use the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
            "  --quiet                  no per-frame progress\n"
-           "  --help                   this text\n";
+           + rrc_host::check_options_help("rrc-sample") + "  --help                   this text\n";
 }
 
 Options parse_options(int argc, const char* const* argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw OptionError(a + ": missing value");
-            return argv[++i];
-        };
-        if (a == "--help" || a == "-h")
-            o.help = true;
-        else if (a == "--scene")
-            o.scene = value();
-        else if (a == "--frames")
-            o.frames = (int)to_int(a, value(), 1, 100000);
-        else if (a == "--size") {
-            const std::string v = value();
-            const size_t x = v.find('x');
-            if (x == std::string::npos) throw OptionError("--size: expected WxH, got \"" + v + "\"");
-            o.width = (uint32_t)to_int(a, v.substr(0, x), 8, 8192);
-            o.height = (uint32_t)to_int(a, v.substr(x + 1), 8, 8192);
-        } else if (a == "--out")
-            o.out = value();
-        else if (a == "--reference-every")
-            o.reference_every = (int)to_int(a, value(), 0, 100000);
-        else if (a == "--reference-samples")
-            o.reference_samples = (int)to_int(a, value(), 1, 65536);
-        else if (a == "--taps")
-            o.taps = (int)to_int(a, value(), 1, 64);
-        else if (a == "--signals")
-            o.signals = parse_signals(value());
-        else if (a == "--reproject") {
-            const std::string v = value();
-            if (!rrc_host::enum_value(rrc_host::kReprojectionNames, v, o.reprojection))
-                throw OptionError("--reproject: expected " + rrc_host::enum_choices(rrc_host::kReprojectionNames) + ", got \"" + v + "\"");
-        } else if (a == "--depth-test") {
-            const std::string v = value();
-            rrc_depth_test t{};
-            if (!rrc_host::enum_value(kDepthTestNames, v, t))
-                throw OptionError("--depth-test: expected " + rrc_host::enum_choices(kDepthTestNames) + ", got \"" + v + "\"");
-            o.depth_test = (uint32_t)t;
-        } else if (a == "--epsilon-scale")
-            o.epsilon_scale = to_float(a, value(), 0.0f, 1e9f);
-        else if (a == "--soft-prior")
-            o.soft_prior = to_float(a, value(), 0.0f, 1e6f);
-        else if (a == "--soft-age-cap")
-            o.channels.soft.age_cap = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP);
-        else if (a == "--lambda")
-            o.channels.pcf.lambda = o.channels.env.lambda = to_float(a, value(), 0.0f, 0.9999f);
-        else if (a == "--rectify") {
-            const float g = to_float(a, value(), 0.0f, RRC_MAX_RECTIFY_GAMMA);
-            for (ChannelSettings* c : {&o.channels.pcf, &o.channels.env}) {
-                c->rectify = g > 0.0f ? 1u : 0u;
-                c->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
+    rrc_host::ArgCursor c(argc, argv);
+    while (c.next()) {
+        if (c.option("--scene"))
+            o.scene = scene_name(c);
+        else if (c.option("--frames"))
+            o.frames = (int)c.integer(1, 100000);
+        else if (c.option("--size"))
+            c.size(o.width, o.height, 8, 8192);
+        else if (c.option("--out"))
+            o.out = c.value();
+        else if (c.option("--reference-every"))
+            o.reference_every = (int)c.integer(0, 100000);
+        else if (c.option("--reference-samples"))
+            o.reference_samples = (int)c.integer(1, 65536);
+        else if (c.option("--taps"))
+            o.taps = (int)c.integer(1, 64);
+        else if (c.option("--signals"))
+            o.signals = signal_bits(c);
+        else if (c.option("--reproject"))
+            o.reprojection = c.choice(rrc_host::kReprojectionNames);
+        else if (c.option("--depth-test"))
+            o.depth_test = (uint32_t)c.choice(kDepthTestNames);
+        else if (c.option("--epsilon-scale"))
+            o.epsilon_scale = c.number(0.0f, 1e9f);
+        else if (c.option("--soft-prior"))
+            o.soft_prior = c.number(0.0f, 1e6f);
+        else if (c.option("--soft-age-cap"))
+            o.channels.soft.age_cap = (uint32_t)c.integer(1, RRC_MAX_AGE_CAP);
+        else if (c.option("--lambda"))
+            o.channels.pcf.lambda = o.channels.env.lambda = c.number(0.0f, 0.9999f);
+        else if (c.option("--rectify")) {
+            const float g = c.number(0.0f, RRC_MAX_RECTIFY_GAMMA);
+            for (ChannelSettings* ch : {&o.channels.pcf, &o.channels.env}) {
+                ch->rectify = g > 0.0f ? 1u : 0u;
+                ch->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
             }
-        }
-        else if (a == "--blend") {
-            const std::string v = value();
-            if (!rrc_host::enum_value(rrc_host::kBlendNames, v, o.channels.pcf.blend))
-                throw OptionError("--blend: expected " + rrc_host::enum_choices(rrc_host::kBlendNames) + ", got \"" + v + "\"");
-            o.channels.env.blend = o.channels.pcf.blend;
-        } else if (a == "--history-filter" && i + 1 < argc && std::string(argv[i + 1]) == "gaussian") {
-            // GAUSSIAN is the pcf channel's only (the amortized-PCF chapter's blur).
-            ++i;
-            o.channels.pcf.filter = RRC_HISTORY_FILTER_GAUSSIAN;
-        } else if (a == "--history-filter") {
-            const std::string v = value();
-            if (!rrc_host::enum_value(rrc_host::kHistoryFilterNames, v, o.channels.pcf.filter))
-                throw OptionError("--history-filter: expected " + rrc_host::enum_choices(rrc_host::kHistoryFilterNames) + ", got \"" + v +
-                                  "\"");
-            o.channels.env.filter = o.channels.soft.filter = o.channels.pcf.filter;
-        } else if (a == "--pcf-pattern") {
-            const std::string v = value();
-            if (v != "disk" && v != "rotated") throw OptionError("--pcf-pattern: expected disk or rotated, got \"" + v + "\"");
-            o.pcf_pattern = v == "rotated" ? 1u : 0u;
-        } else if (a == "--seed")
-            o.seed = (uint32_t)to_int(a, value(), 0, 65535);
-        else if (a == "--fps")
-            o.fps = to_float(a, value(), 0.1f, 10000.0f);
-        else if (a == "--shadow-map-size")
-            o.sun_map = o.lamp_map = (uint32_t)to_int(a, value(), 16, 8192);
-        else if (a == "--pcf-radius")
-            o.pcf_radius = to_float(a, value(), 0.0f, 64.0f);
-        else if (a == "--soft-fill")
-            o.channels.soft.fill_age = (uint32_t)to_int(a, value(), 0, RRC_MAX_AGE_CAP + 1);
-        else if (a == "--fill-radius")
-            o.fill_radius = (uint32_t)to_int(a, value(), 0, RRC_MAX_FILL_RADIUS);
-        else if (a == "--fill-depth-tolerance")
-            o.fill_depth_tolerance = to_float(a, value(), 0.0f, 1e6f);
-        else if (a == "--fill-prior")
-            o.fill_prior = to_float(a, value(), 0.0f, 1e6f);
-        else if (a == "--blur-sigma")
-            o.channels.pcf.blur_sigma = to_float(a, value(), 0.0f, RRC_MAX_BLUR_SIGMA);
-        else if (a == "--pcf-smoothstep") {
-            const std::string v = value();
-            const size_t c = v.find(',');
-            if (c == std::string::npos) throw OptionError("--pcf-smoothstep: expected E0,E1, got \"" + v + "\"");
-            o.pcf_smooth_e0 = to_float(a, v.substr(0, c), -1e6f, 1e6f);
-            o.pcf_smooth_e1 = to_float(a, v.substr(c + 1), -1e6f, 1e6f);
-            if (!(o.pcf_smooth_e1 > o.pcf_smooth_e0)) throw OptionError("--pcf-smoothstep: needs E0 < E1");
+        } else if (c.option("--blend"))
+            o.channels.pcf.blend = o.channels.env.blend = c.choice(rrc_host::kBlendNames);
+        else if (c.option("--history-filter")) {
+            const rrc_history_filter f = c.choice(rrc_host::kHistoryFilterNames);
+            o.channels.pcf.filter = f;
+            // GAUSSIAN is the pcf channel's only (the amortized-PCF chapter's blur): the others keep theirs.
+            if (f != RRC_HISTORY_FILTER_GAUSSIAN) o.channels.env.filter = o.channels.soft.filter = f;
+        } else if (c.option("--pcf-pattern"))
+            o.pcf_pattern = c.choice(kPcfPatternNames);
+        else if (c.option("--seed"))
+            o.seed = (uint32_t)c.integer(0, 65535);
+        else if (c.option("--fps"))
+            o.fps = c.number(0.1f, 10000.0f);
+        else if (c.option("--shadow-map-size"))
+            o.sun_map = o.lamp_map = (uint32_t)c.integer(16, 8192);
+        else if (c.option("--pcf-radius"))
+            o.pcf_radius = c.number(0.0f, 64.0f);
+        else if (c.option("--soft-fill"))
+            o.channels.soft.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
+        else if (c.option("--fill-radius"))
+            o.fill_radius = (uint32_t)c.integer(0, RRC_MAX_FILL_RADIUS);
+        else if (c.option("--fill-depth-tolerance"))
+            o.fill_depth_tolerance = c.number(0.0f, 1e6f);
+        else if (c.option("--fill-prior"))
+            o.fill_prior = c.number(0.0f, 1e6f);
+        else if (c.option("--blur-sigma"))
+            o.channels.pcf.blur_sigma = c.number(0.0f, RRC_MAX_BLUR_SIGMA);
+        else if (c.option("--pcf-smoothstep")) {
+            const std::vector<float> e = c.numbers(-1e6f, 1e6f);
+            if (e.size() != 2 || !(e[1] > e[0])) c.fail("expected E0,E1 with E0 < E1");
+            o.pcf_smooth_e0 = e[0];
+            o.pcf_smooth_e1 = e[1];
             o.pcf_smoothstep = true;
-        } else if (a == "--pcf-threshold")
-            o.pcf_threshold = to_float(a, value(), 0.0f, 1.0f);
-        else if (a == "--pcf-confidence")
+        } else if (c.option("--pcf-threshold"))
+            o.pcf_threshold = c.number(0.0f, 1.0f);
+        else if (c.flag("--pcf-confidence"))
             o.channels.pcf.confidence = 1;
-        else if (a == "--reference-frames") {
-            std::stringstream ss(value());
-            std::string item;
-            while (std::getline(ss, item, ',')) o.reference_frames.push_back((int)to_int(a, item, 0, 100000));
-        } else if (a == "--dump-soft")
+        else if (c.option("--reference-frames"))
+            for (long f : c.integers(0, 100000)) o.reference_frames.push_back((int)f);
+        else if (c.flag("--dump-soft"))
             o.dump_soft = true;
-        else if (a == "--model-fill-age")
-            o.model_fill_age = (uint32_t)to_int(a, value(), 1, RRC_MAX_AGE_CAP + 1);
-        else if (a == "--young-ages")
-            o.young_ages = (uint32_t)to_int(a, value(), 1, 255);
-        else if (a == "--static-camera")
+        else if (c.option("--model-fill-age"))
+            o.model_fill_age = (uint32_t)c.integer(1, RRC_MAX_AGE_CAP + 1);
+        else if (c.option("--young-ages"))
+            o.young_ages = (uint32_t)c.integer(1, 255);
+        else if (c.flag("--static-camera"))
             o.static_camera = true;
-        else if (a == "--light-speed")
-            o.light_speed = to_float(a, value(), -180.0f, 180.0f);
-        else if (a == "--no-object-id")
+        else if (c.option("--light-speed"))
+            o.light_speed = c.number(-180.0f, 180.0f);
+        else if (c.flag("--no-object-id"))
             o.object_id = false;
-        else if (a == "--no-images")
+        else if (c.flag("--no-images"))
             o.write_images = false;
-        else if (a == "--validation")
-            o.validation = true;
-        else if (a == "--device")
-            o.device = value();
-        else if (a == "--quiet")
-            o.quiet = true;
-        else
-            throw OptionError("unknown option \"" + a + "\" (--help lists them)");
+        else if (!device_option(c, o.validation, o.device, o.quiet))
+            c.unknown();
     }
+    o.check_options = c.check_only();
+    o.help = c.help();
     if (o.channels.pcf.blur_sigma > 0.0f && o.channels.pcf.filter != RRC_HISTORY_FILTER_GAUSSIAN)
         throw OptionError("--blur-sigma needs --history-filter gaussian");
     // The fill's fallback is the PCSS estimate, worth --fill-prior samples; without a fill rrc takes none.

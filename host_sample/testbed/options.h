@@ -2,9 +2,9 @@
 #pragma once
 
 #include "channel_presets.h"
+#include "options_parser.h"
 
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -49,16 +49,18 @@ struct Options {
     bool write_images = true;  // PNG/EXR per frame; the summary is always written
     std::string device;        // substring of the Vulkan device name
     bool help = false;
+    bool check_options = false;  // --check-options: validate, print "options ok", exit
 };
 
-class OptionError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
+/** The host programs' one parser's error (options_parser.h). */
+using rrc_host::OptionError;
 
-/** `v` as an integer / a number in [lo, hi]; throws OptionError naming `opt` (shared with rrc-sweep). */
-long to_int(const std::string& opt, const std::string& v, long lo, long hi);
-float to_float(const std::string& opt, const std::string& v, float lo, float hi);
+/** --scene NAME at the cursor, one of Scene::names() (shared with rrc-sweep). */
+std::string scene_name(rrc_host::ArgCursor& c);
+/** --validation, --device TEXT or --quiet at the cursor (shared with rrc-sweep); false if none of them. */
+bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet);
+/** --signals LIST (pcf,env,soft) at the cursor, as Signal bits (shared with rrc-sweep). */
+uint32_t signal_bits(rrc_host::ArgCursor& c);
 
 /** Parses argv; throws OptionError with a readable message. */
 Options parse_options(int argc, const char* const* argv);

@@ -8,6 +8,7 @@
 #include "cache_run.h"
 #include "cache_targets.h"
 #include "output.h"  // rrc_sample::coherence_map
+#include "options_parser.h"
 #include "png_io.h"
 
 #include <algorithm>
@@ -15,7 +16,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,7 +27,7 @@ namespace {
 
 const char* kUsage =
     "usage: rrc-cache [--size WxH] [--frames N] [--periods N,N,...] [--policies tiled,random] [--no-stereo]\n"
-    "                 [--octaves N,N,...] [--validation] [--out DIR] [--no-plot]\n"
+    "                 [--octaves N,N,...] [--validation] [--out DIR] [--no-plot] [--check-options]\n"
     "Runs the temple scene with an 8-octave Perlin shader: every pixel shaded each frame (the baseline), rrc's\n"
     "shading cache without refresh, with each policy at each period n, with and without a maximum lifetime of\n"
     "2n frames, a stereo pair (second eye reusing the first's shading) against shading both eyes, and motion blur\n"
@@ -36,7 +36,8 @@ const char* kUsage =
     "full and TILED n = 4 (runs named _oN), for the speed-up against shader cost and the break-even shader.\n"
     "Defaults: --size 320x180 --frames 24 --periods 1,2,4,8 --policies tiled,random --octaves 8 --out out/cache.\n"
     "Writes DIR/report.md, runs.csv, speedup_vs_cost.csv, speedup.png and speedup_vs_cost.png (matplotlib), and\n"
-    "cached/full/coherence/anaglyph PNGs.\n";
+    "cached/full/coherence/anaglyph PNGs.\n"
+    "--check-options: check the options as a run would, print \"rrc-cache: options ok\" and exit.\n";
 
 struct Options {
     Settings settings;
@@ -45,72 +46,43 @@ struct Options {
     std::vector<uint32_t> octaves{kDefaultOctaves};  // the first: every run; the others: full and TILED n = 4
     bool stereo = true, plot = true;
     std::string out = "out/cache";
+    bool help = false, check_options = false;
 };
 
-uint32_t positive(const std::string& text, const std::string& what) {
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(text.c_str(), &end, 10);
-    if (text.empty() || *end || v == 0 || v > 16384)
-        throw std::invalid_argument(what + " must be a whole number in 1..16384, not \"" + text + "\"");
-    return (uint32_t)v;
-}
+constexpr rrc_host::EnumName<rrc_refresh_policy> kPolicyNames[] = {{"tiled", RRC_REFRESH_TILED}, {"random", RRC_REFRESH_RANDOM}};
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--help" || a == "-h") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        } else if (a == "--size") {
-            const std::string v = value();
-            const size_t x = v.find('x');
-            if (x == std::string::npos) throw std::invalid_argument("--size takes WxH, not \"" + v + "\"");
-            o.settings.width = positive(v.substr(0, x), "--size width");
-            o.settings.height = positive(v.substr(x + 1), "--size height");
-        } else if (a == "--frames") {
-            o.settings.frames = (int)positive(value(), "--frames");
-            if (o.settings.frames < 4) throw std::invalid_argument("--frames must be at least 4 (two warm-up frames are not counted)");
-        } else if (a == "--periods") {
+    rrc_host::ArgCursor c(argc, argv);
+    while (c.next()) {
+        if (c.option("--size")) {
+            c.size(o.settings.width, o.settings.height, 1, 16384);
+        } else if (c.option("--frames")) {
+            // Two warm-up frames are not counted.
+            o.settings.frames = (int)c.integer(4, 16384);
+        } else if (c.option("--periods")) {
             o.periods.clear();
-            std::stringstream ss(value());
-            for (std::string p; std::getline(ss, p, ',');) o.periods.push_back(positive(p, "--periods"));
-        } else if (a == "--policies") {
-            o.policies.clear();
-            std::stringstream ss(value());
-            for (std::string p; std::getline(ss, p, ',');) {
-                if (p == "tiled")
-                    o.policies.push_back(RRC_REFRESH_TILED);
-                else if (p == "random")
-                    o.policies.push_back(RRC_REFRESH_RANDOM);
-                else
-                    throw std::invalid_argument("--policies takes tiled and/or random, not \"" + p + "\"");
-            }
-        } else if (a == "--octaves") {
+            for (long n : c.integers(1, 16384)) o.periods.push_back((uint32_t)n);
+        } else if (c.option("--policies")) {
+            o.policies = c.choices(kPolicyNames);
+        } else if (c.option("--octaves")) {
             o.octaves.clear();
-            std::stringstream ss(value());
-            for (std::string p; std::getline(ss, p, ',');) {
-                const uint32_t n = positive(p, "--octaves");
-                if (n > kMaxOctaves) throw std::invalid_argument("--octaves must be at most " + std::to_string(kMaxOctaves));
-                if (std::find(o.octaves.begin(), o.octaves.end(), n) == o.octaves.end()) o.octaves.push_back(n);
-            }
-            if (o.octaves.empty()) throw std::invalid_argument("--octaves needs at least one count");
-        } else if (a == "--no-stereo") {
+            for (long n : c.integers(1, kMaxOctaves))
+                if (std::find(o.octaves.begin(), o.octaves.end(), (uint32_t)n) == o.octaves.end()) o.octaves.push_back((uint32_t)n);
+        } else if (c.flag("--no-stereo")) {
             o.stereo = false;
-        } else if (a == "--no-plot") {
+        } else if (c.flag("--no-plot")) {
             o.plot = false;
-        } else if (a == "--validation") {
+        } else if (c.flag("--validation")) {
             o.settings.validation = true;
-        } else if (a == "--out") {
-            o.out = value();
+        } else if (c.option("--out")) {
+            o.out = c.value();
         } else {
-            throw std::invalid_argument("unknown option " + a + " (rrc-cache --help)");
+            c.unknown();
         }
     }
+    o.check_options = c.check_only();
+    o.help = c.help();
     return o;
 }
 
@@ -203,12 +175,8 @@ void progress(int frame, int frames) {
 
 int main(int argc, char** argv) {
     Options o;
-    try {
-        o = parse(argc, argv);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "rrc-cache: %s\n", e.what());
-        return 2;
-    }
+    const int code = rrc_host::parse_command_line("rrc-cache", [&] { return parse(argc, argv); }, kUsage, o);
+    if (code >= 0) return code;
     try {
         fs::create_directories(o.out);
         std::string command = "rrc-cache";

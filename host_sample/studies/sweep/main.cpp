@@ -21,64 +21,45 @@
 #define RRC_SWEEP_PYTHON "python3"
 #endif
 
+namespace {
+
+// The end both runs share: fail on validation messages, then the plotting script (matplotlib: Debian's python3-matplotlib).
+int finish(const rrc_sweep::SweepOptions& o, uint64_t validation_messages, const char* script) {
+    if (o.validation && validation_messages) {
+        std::cerr << "rrc-sweep: " << validation_messages << " validation message(s)\n";
+        return 1;
+    }
+    if (!o.plots) return 0;
+    const std::string py = std::string(RRC_SWEEP_PYTHON) + " '" + script + "' '" + o.out + "'";
+    if (std::system(py.c_str()) == 0) return 0;
+    std::cerr << "rrc-sweep: " << std::filesystem::path(script).filename().string() << " failed (" << py << ")\n";
+    return 1;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace rrc_sweep;
     SweepOptions o;
-    try {
-        o = parse_sweep_options(argc, argv);
-    } catch (const OptionError& e) {
-        std::cerr << "rrc-sweep: " << e.what() << "\n";
-        return 2;
-    }
-    if (o.help) {
-        std::cout << sweep_usage();
-        return 0;
-    }
+    const int code = rrc_host::parse_command_line("rrc-sweep", [&] { return parse_sweep_options(argc, argv); }, sweep_usage(), o);
+    if (code >= 0) return code;
     std::string command = "rrc-sweep";
     for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
-    if (o.study == "rectify") {
-        try {
+    try {
+        if (o.study == "rectify") {
             const RectifyResult r = run_rectify_study(o, &std::cout);
             write_rectify_files(o, r, command);
             std::cout << "rrc-sweep --study rectify: " << r.rows.size() << " rows in " << (int)r.seconds << " s; " << o.out
                       << "/rectify.md\n";
-            if (o.validation && r.validation_messages) {
-                std::cerr << "rrc-sweep: " << r.validation_messages << " validation message(s)\n";
-                return 1;
-            }
-            if (o.plots) {
-                const std::string py = std::string(RRC_SWEEP_PYTHON) + " '" + RRC_SWEEP_RECTIFY_PY + "' '" + o.out + "'";
-                if (std::system(py.c_str()) != 0) {
-                    std::cerr << "rrc-sweep: rectify_plot.py failed (" << py << ")\n";
-                    return 1;
-                }
-            }
-        } catch (const std::exception& e) {
-            std::cerr << "rrc-sweep: " << e.what() << "\n";
-            return 1;
+            return finish(o, r.validation_messages, RRC_SWEEP_RECTIFY_PY);
         }
-        return 0;
-    }
-    try {
         const SweepResult r = run_sweep(o, &std::cout);
         write_sweep_files(o, r, command);
         std::cout << "rrc-sweep: " << r.rrc.size() << " rrc rows, " << r.brute.size() << " brute-force rows in " << (int)r.seconds << " s; files in "
                   << o.out << "\n";
-        if (o.validation && r.validation_messages) {
-            std::cerr << "rrc-sweep: " << r.validation_messages << " validation message(s)\n";
-            return 1;
-        }
-        if (o.plots) {
-            // The plots and the verdicts: matplotlib (Debian's python3-matplotlib).
-            const std::string py = std::string(RRC_SWEEP_PYTHON) + " '" + RRC_SWEEP_FRONTS_PY + "' '" + o.out + "'";
-            if (std::system(py.c_str()) != 0) {
-                std::cerr << "rrc-sweep: fronts.py failed (" << py << ")\n";
-                return 1;
-            }
-        }
+        return finish(o, r.validation_messages, RRC_SWEEP_FRONTS_PY);
     } catch (const std::exception& e) {
         std::cerr << "rrc-sweep: " << e.what() << "\n";
         return 1;
     }
-    return 0;
 }

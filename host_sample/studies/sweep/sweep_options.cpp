@@ -3,24 +3,16 @@
 #include "options.h"
 #include "scene.h"
 
-#include <cerrno>
-#include <cstdlib>
-#include <sstream>
 
 namespace rrc_sweep {
 namespace {
 
-using rrc_sample::to_float;
-using rrc_sample::to_int;
+using Name = rrc_host::EnumName<const char*>;
+constexpr Name kMotionNames[] = {{"all", "all"}, {"camera-still", "camera-still"}, {"still", "still"}};
+constexpr Name kStudyNames[] = {{"rectify", "rectify"}};
+constexpr Name kClockNames[] = {{"auto", "auto"}, {"wall", "wall"}, {"timestamps", "timestamps"}};
 
-std::vector<std::string> split(const std::string& opt, const std::string& v) {
-    std::vector<std::string> items;
-    std::stringstream ss(v);
-    std::string item;
-    while (std::getline(ss, item, ',')) items.push_back(item);
-    if (items.empty()) throw OptionError(opt + ": expected a comma-separated list, got \"" + v + "\"");
-    return items;
-}
+std::vector<int> ints(const std::vector<long>& v) { return std::vector<int>(v.begin(), v.end()); }
 
 }  // namespace
 
@@ -72,116 +64,79 @@ std::string sweep_usage() {
            "  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
            "  --device TEXT            the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
            "  --quiet                  no progress lines\n"
-           "  --help                   this text\n";
+           + rrc_host::check_options_help("rrc-sweep") + "  --help                   this text\n";
 }
 
 SweepOptions parse_sweep_options(int argc, const char* const* argv) {
     SweepOptions o;
-    // What was given, so that --study rectify fills in only the rest with its own defaults.
-    bool given_size = false, given_checkpoints = false, given_lambdas = false, given_taps = false, given_speed = false,
-         given_motion = false, given_out = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw OptionError(a + ": missing value");
-            return argv[++i];
-        };
-        if (a == "--help" || a == "-h")
-            o.help = true;
-        else if (a == "--scene")
-            o.scene = value();
-        else if (a == "--size") {
-            const std::string v = value();
-            const size_t x = v.find('x');
-            if (x == std::string::npos) throw OptionError("--size: expected WxH, got \"" + v + "\"");
-            o.width = (uint32_t)to_int(a, v.substr(0, x), 8, 8192);
-            o.height = (uint32_t)to_int(a, v.substr(x + 1), 8, 8192);
-            given_size = true;
-        } else if (a == "--frames")
-            o.frames = (int)to_int(a, value(), 2, 100000);
-        else if (a == "--checkpoints") {
-            const std::vector<std::string> v = split(a, value());
-            if (v.size() != 2) throw OptionError("--checkpoints: expected FIRST,EVERY");
-            o.first_checkpoint = (int)to_int(a, v[0], 1, 100000);
-            o.checkpoint_every = (int)to_int(a, v[1], 1, 100000);
-            given_checkpoints = true;
-        } else if (a == "--seeds")
-            o.seeds = (int)to_int(a, value(), 2, 1000);
-        else if (a == "--reference-samples")
-            o.reference_samples = (int)to_int(a, value(), 1, 65536);
-        else if (a == "--taps" || a == "--brute-taps") {
-            std::vector<int>& list = a == "--taps" ? o.rrc_taps : o.brute_taps;
-            list.clear();
-            for (const std::string& s : split(a, value())) list.push_back((int)to_int(a, s, 1, 64));
-            given_taps |= a == "--taps";
-        } else if (a == "--lambdas") {
-            o.lambdas.clear();
-            for (const std::string& s : split(a, value())) o.lambdas.push_back(to_float(a, s, 0.0f, 0.9999f));
-            given_lambdas = true;
-        } else if (a == "--change-threshold")
-            o.change_threshold = to_float(a, value(), 0.0f, 10.0f);
-        else if (a == "--rectify-gammas") {
-            o.rectify_gammas.clear();
-            for (const std::string& s : split(a, value())) o.rectify_gammas.push_back(to_float(a, s, 0.01f, 8.0f));
-        } else if (a == "--soft-caps") {
+    rrc_host::ArgCursor c(argc, argv);
+    while (c.next()) {
+        if (c.option("--scene"))
+            o.scene = rrc_sample::scene_name(c);
+        else if (c.option("--size"))
+            c.size(o.width, o.height, 8, 8192);
+        else if (c.option("--frames"))
+            o.frames = (int)c.integer(2, 100000);
+        else if (c.option("--checkpoints")) {
+            const std::vector<long> v = c.integers(1, 100000);
+            if (v.size() != 2) c.fail("expected FIRST,EVERY");
+            o.first_checkpoint = (int)v[0];
+            o.checkpoint_every = (int)v[1];
+        } else if (c.option("--seeds"))
+            o.seeds = (int)c.integer(2, 1000);
+        else if (c.option("--reference-samples"))
+            o.reference_samples = (int)c.integer(1, 65536);
+        else if (c.option("--taps"))
+            o.rrc_taps = ints(c.integers(1, 64));
+        else if (c.option("--brute-taps"))
+            o.brute_taps = ints(c.integers(1, 64));
+        else if (c.option("--lambdas"))
+            o.lambdas = c.numbers(0.0f, 0.9999f);
+        else if (c.option("--change-threshold"))
+            o.change_threshold = c.number(0.0f, 10.0f);
+        else if (c.option("--rectify-gammas"))
+            o.rectify_gammas = c.numbers(0.01f, 8.0f);
+        else if (c.option("--soft-caps")) {
             o.soft_caps.clear();
-            for (const std::string& s : split(a, value())) o.soft_caps.push_back((uint32_t)to_int(a, s, 1, 65535));
-        } else if (a == "--bilinear-only")
+            for (long cap : c.integers(1, 65535)) o.soft_caps.push_back((uint32_t)cap);
+        } else if (c.flag("--bilinear-only"))
             o.catmull_rom = false;
-        else if (a == "--no-rotated")
+        else if (c.flag("--no-rotated"))
             o.rotated = false;
-        else if (a == "--no-finishing")
+        else if (c.flag("--no-finishing"))
             o.finishing = false;
-        else if (a == "--signals") {
-            o.signals = 0;
-            for (const std::string& s : split(a, value())) {
-                if (s == "pcf") o.signals |= rrc_sample::kSignalPcf;
-                else if (s == "env") o.signals |= rrc_sample::kSignalEnv;
-                else if (s == "soft") o.signals |= rrc_sample::kSignalSoft;
-                else throw OptionError("--signals: unknown signal \"" + s + "\" (pcf, env, soft)");
-            }
-        } else if (a == "--motion") {
-            o.motion = value();
-            if (o.motion != "all" && o.motion != "camera-still" && o.motion != "still")
-                throw OptionError("--motion: expected all, camera-still or still, got \"" + o.motion + "\"");
-            given_motion = true;
-        } else if (a == "--light-speed") {
-            o.light_speed = to_float(a, value(), -180.0f, 180.0f);
-            given_speed = true;
-        } else if (a == "--study") {
-            o.study = value();
-            if (o.study != "rectify") throw OptionError("--study: expected rectify, got \"" + o.study + "\"");
-        } else if (a == "--clock") {
-            o.clock = value();
-            if (o.clock != "auto" && o.clock != "wall" && o.clock != "timestamps")
-                throw OptionError("--clock: expected auto, wall or timestamps, got \"" + o.clock + "\"");
-        } else if (a == "--out")
-            o.out = value(), given_out = true;
-        else if (a == "--no-plots")
+        else if (c.option("--signals"))
+            o.signals = rrc_sample::signal_bits(c);
+        else if (c.option("--motion"))
+            o.motion = c.choice(kMotionNames);
+        else if (c.option("--light-speed"))
+            o.light_speed = c.number(-180.0f, 180.0f);
+        else if (c.option("--study"))
+            o.study = c.choice(kStudyNames);
+        else if (c.option("--clock"))
+            o.clock = c.choice(kClockNames);
+        else if (c.option("--out"))
+            o.out = c.value();
+        else if (c.flag("--no-plots"))
             o.plots = false;
-        else if (a == "--validation")
-            o.validation = true;
-        else if (a == "--device")
-            o.device = value();
-        else if (a == "--quiet")
-            o.quiet = true;
-        else
-            throw OptionError("unknown option \"" + a + "\" (--help lists them)");
+        else if (!rrc_sample::device_option(c, o.validation, o.device, o.quiet))
+            c.unknown();
     }
+    o.check_options = c.check_only();
+    o.help = c.help();
     if (o.study == "rectify") {
-        if (!given_size) o.width = 192, o.height = 128;
-        if (!given_checkpoints) o.first_checkpoint = 23, o.checkpoint_every = 4;
-        if (!given_lambdas) o.lambdas = {0.6f, 0.8f, 0.9f};
-        if (!given_taps) o.rrc_taps = {4};
-        if (!given_speed) o.light_speed = 1.0f;
-        if (!given_motion) o.motion = "still";
-        if (!given_out) o.out = "out/rectify";
+        // What was given wins; the study fills in only the rest with its own defaults.
+        if (!c.given("--size")) o.width = 192, o.height = 128;
+        if (!c.given("--checkpoints")) o.first_checkpoint = 23, o.checkpoint_every = 4;
+        if (!c.given("--lambdas")) o.lambdas = {0.6f, 0.8f, 0.9f};
+        if (!c.given("--taps")) o.rrc_taps = {4};
+        if (!c.given("--light-speed")) o.light_speed = 1.0f;
+        if (!c.given("--motion")) o.motion = "still";
+        if (!c.given("--out")) o.out = "out/rectify";
         if (o.light_speed == 0.0f) throw OptionError("--study rectify: the light must move (--light-speed not 0)");
     }
     if (o.checkpoints().empty())
         throw OptionError("--checkpoints: no checkpoint frame below --frames " + std::to_string(o.frames));
-    for (int k : o.rrc_taps)
-        if (k > 64) throw OptionError("--taps: at most 64");
     return o;
 }
 

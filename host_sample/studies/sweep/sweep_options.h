@@ -38,12 +38,13 @@ struct SweepOptions {
     std::string device;
     bool quiet = false;
     bool help = false;
+    bool check_options = false;  // --check-options: validate, print "options ok", exit
 
     std::vector<int> checkpoints() const;
 };
 
-/** rrc-sample's: the two programs parse numbers with the same functions (rrc_sample/options.h). */
-using rrc_sample::OptionError;
+/** The host programs' one parser's error (options_parser.h). */
+using rrc_host::OptionError;
 
 SweepOptions parse_sweep_options(int argc, const char* const* argv);
 std::string sweep_usage();

@@ -531,6 +531,10 @@ int accumulate_main(int argc, const char* const* argv, std::ostream& out, std::o
         out << usage_text();
         return kExitOk;
     }
+    if (parsed.options.check_options) {
+        out << "rrc-accumulate: options ok\n";
+        return kExitOk;
+    }
     Options options = parsed.options;
     if (options.progress == Progress::Auto) options.progress = out_is_terminal ? Progress::Bar : Progress::Lines;
     return run_accumulate(options, out, err);

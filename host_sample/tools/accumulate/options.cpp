@@ -2,6 +2,7 @@
 #include "options.h"
 
 #include "enum_names.h"
+#include "options_parser.h"
 
 #include <algorithm>
 
@@ -400,6 +401,8 @@ Device and output:
                          | bar | lines
   --quiet                no progress (the summary lines remain)
   --verbose              also print the library's informational log
+  --check-options        check the options as a run would (without reading a
+                         file), print "rrc-accumulate: options ok" and exit
   --help, -h             this text
 
 Output channels (32-bit float): each layer's channels as in the input
@@ -467,161 +470,162 @@ const std::vector<std::string>& value_options() {
     return names;
 }
 
+namespace {
+
+// One option that takes a value, at the cursor: its value checked into `o`; the error, or "" if none.
+std::string parse_value_option(rrc_host::ArgCursor& c, Options& o) {
+    const std::string arg = c.arg();
+    c.option(arg.c_str());
+    const std::string value = c.value();
+    if (arg != "--signal" && arg != "--cut") c.once();  // the two repeatable options
+    const std::string where = "option " + arg + " " + quoted(value) + ": ";
+
+    if (arg == "--input" || arg == "--output" || arg == "--coherence" || arg == "--reference") {
+        std::string err;
+        if (!validate_pattern(value, err)) return "option " + arg + ": " + err;
+        (arg == "--input"       ? o.input_pattern
+         : arg == "--output"    ? o.output_pattern
+         : arg == "--coherence" ? o.coherence_pattern
+                                : o.reference_pattern) = value;
+    } else if (arg == "--preset") {
+        if (value != "blender") return where + "the only preset is blender (Blender 3.x multilayer EXR passes)";
+        o.preset = value;
+    } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics" ||
+               arg == "--object-id") {
+        if (value.empty()) return "option " + arg + ": the name is empty";
+        (arg == "--view-layer"      ? o.view_layer
+         : arg == "--depth-channel" ? o.depth_channel
+         : arg == "--metrics"       ? o.metrics_file
+         : arg == "--object-id"     ? o.object_id_channel
+                                    : o.nocache_channel) = value;
+    } else if (arg == "--motion-channels" || arg == "--prevclip-channels") {
+        std::vector<std::string> names;
+        const bool motion = arg == "--motion-channels";
+        if (!split_list(value, names) || (motion ? names.size() < 2 || names.size() > 3 : names.size() != 4))
+            return where + (motion ? "expected 2 or 3 channel names X,Y[,Z] (e.g. mv.X,mv.Y)"
+                                   : "expected 4 channel names X,Y,Z,W (e.g. prevclip.X,...)");
+        for (std::size_t a = 0; a < names.size(); ++a)
+            for (std::size_t b = a + 1; b < names.size(); ++b)
+                if (names[a] == names[b]) return where + "channel " + quoted(names[a]) + " named twice";
+        (motion ? o.motion_channels : o.prevclip_channels) = names;
+    } else if (arg == "--motion-units" || arg == "--progress" || arg == "--depth-mode" || arg == "--depth-format" ||
+               arg == "--reproject" || arg == "--depth-test") {
+        // One of a table's names; the message lists them.
+        std::string choices;
+        auto choose = [&](const auto& table, auto& field) {
+            choices = rrc_host::enum_choices(table);
+            return rrc_host::enum_value(table, value, field);
+        };
+        const bool ok = arg == "--motion-units"   ? choose(kMotionUnitNames, o.motion_units)
+                        : arg == "--progress"     ? choose(kProgressNames, o.progress)
+                        : arg == "--depth-mode"   ? choose(rrc_host::kDepthModeNames, o.depth_mode)
+                        : arg == "--depth-format" ? choose(rrc_host::kDepthFormatNames, o.depth_format)
+                        : arg == "--depth-test"   ? choose(kDepthTestNames, o.depth_test)
+                                                  : choose(kReprojectNames, o.reproject);
+        if (!ok) return where + "expected " + choices;
+    } else if (arg == "--motion-y") {
+        if (value == "down")
+            o.motion_y_up = false;
+        else if (value == "up")
+            o.motion_y_up = true;
+        else
+            return where + "expected down (rows grow downwards, as rrc) or up (as Blender)";
+    } else if (arg == "--cut") {
+        std::vector<std::string> items;
+        if (!split_list(value, items)) return where + "expected frame numbers F[,F...]";
+        for (const std::string& item : items) {
+            int64_t f = 0;
+            if (!parse_int(item, f) || f > 999999999) return where + "expected frame numbers F[,F...], got " + quoted(item);
+            o.cuts.push_back(f);
+        }
+    } else if (arg == "--psnr-peak") {
+        float v = 0;
+        if (!parse_float(value, v) || !(v > 0.0f)) return where + "expected a positive number";
+        o.psnr_peak = v;
+    } else if (arg == "--frames") {
+        std::string err;
+        if (!parse_frame_range(value, o.first_frame, o.last_frame, err)) return err;
+    } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" || arg == "--background-threshold" || arg == "--near") {
+        float v = 0;
+        if (!parse_float(value, v) || !(v > 0.0f)) return where + "expected a positive number";
+        (arg == "--epsilon"         ? o.epsilon
+         : arg == "--epsilon-scale" ? o.epsilon_scale
+         : arg == "--tau"           ? o.tau
+         : arg == "--near"          ? o.near_plane
+                                    : o.background_threshold) = v;
+    } else if (arg == "--far") {
+        float v = 0;
+        if (!parse_float(value, v, /*allow_inf*/ true) || !(v > 0.0f)) return where + "expected a positive number or inf";
+        o.far_plane = v;
+    } else if (arg == "--motion-scale") {
+        std::size_t comma = value.find(',');
+        float sx = 0, sy = 0;
+        if (comma == std::string::npos || !parse_float(value.substr(0, comma), sx) || !parse_float(value.substr(comma + 1), sy))
+            return where + "expected two numbers SX,SY (e.g. 1,-1)";
+        if (sx == 0.0f || sy == 0.0f) return where + "the scales must be non-zero";
+        o.motion_scale[0] = sx;
+        o.motion_scale[1] = sy;
+    } else if (arg == "--camera") {
+        if (value.empty()) return "option --camera: the file name is empty";
+        o.camera_file = value;
+    } else if (arg == "--device") {
+        if (value.empty()) return "option --device: the name is empty";
+        o.device = value;
+    } else if (arg == "--signal") {
+        SignalOptions s;
+        std::string err;
+        if (!parse_signal_spec(value, s, err)) return err;
+        for (const SignalOptions& prev : o.signals)
+            if (prev.layer == s.layer) return "--signal " + quoted(value) + ": layer " + quoted(s.layer) + " given twice";
+        if (o.signals.size() >= RRC_MAX_CHANNELS)
+            return "--signal " + quoted(value) + ": at most " + std::to_string(RRC_MAX_CHANNELS) + " signals per run";
+        o.signals.push_back(s);
+    }
+    return "";
+}
+
+bool is_value_option(const std::string& arg) {
+    const std::vector<std::string>& valued = value_options();
+    return std::find(valued.begin(), valued.end(), arg) != valued.end();
+}
+
+}  // namespace
+
 ParseResult parse_arguments(int argc, const char* const* argv) {
     ParseResult r;
     Options& o = r.options;
-    std::set<std::string> given;
-    bool frames_given = false;
 
     auto fail = [&](const std::string& msg) {
         r.error = msg;
         return r;
     };
 
-    for (int i = 1; i < argc; ++i) {
-        std::string arg = argv[i] ? argv[i] : "";
-        std::string value;
-        bool has_inline = false;
-        if (arg.rfind("--", 0) == 0) {
-            std::size_t eq = arg.find('=');
-            if (eq != std::string::npos) {
-                value = arg.substr(eq + 1);
-                arg = arg.substr(0, eq);
-                has_inline = true;
-            }
-        }
-        // Flags.
-        if (arg == "--help" || arg == "-h" || arg == "--validation" || arg == "--quiet" || arg == "--verbose" || arg == "--no-object-id") {
-            if (has_inline) return fail("option " + arg + " takes no value");
-            if (arg == "--help" || arg == "-h")
-                o.help = true;
-            else if (arg == "--validation")
+    // The host programs' one cursor (options_parser.h): --name=value, "needs a value", "takes no value",
+    // unknown options and "given more than once" read the same in every program.
+    rrc_host::ArgCursor c(argc, argv);
+    try {
+        while (c.next()) {
+            const std::string arg = c.arg();
+            if (c.flag("--validation"))
                 o.validation = true;
-            else if (arg == "--no-object-id")
+            else if (c.flag("--no-object-id"))
                 o.no_object_id = true;
-            else if (arg == "--quiet")
+            else if (c.flag("--quiet"))
                 o.quiet = true;
-            else
+            else if (c.flag("--verbose"))
                 o.verbose = true;
-            continue;
-        }
-        const std::vector<std::string>& valued = value_options();
-
-        if (std::find(valued.begin(), valued.end(), arg) == valued.end()) {
-            if (arg.rfind("-", 0) == 0) return fail("unknown option " + quoted(arg) + " (see --help)");
-            return fail("unexpected argument " + quoted(arg) + " (see --help)");
-        }
-        if (!has_inline) {
-            if (i + 1 >= argc || !argv[i + 1]) return fail("option " + arg + " needs a value");
-            value = argv[++i];
-            if (value.rfind("--", 0) == 0) return fail("option " + arg + " needs a value, got the option " + quoted(value));
-        }
-        if (arg != "--signal" && arg != "--cut" && !given.insert(arg).second) return fail("option " + arg + " given more than once");
-        const std::string where = "option " + arg + " " + quoted(value) + ": ";
-
-        if (arg == "--input" || arg == "--output" || arg == "--coherence" || arg == "--reference") {
-            std::string err;
-            if (!validate_pattern(value, err)) return fail("option " + arg + ": " + err);
-            (arg == "--input"       ? o.input_pattern
-             : arg == "--output"    ? o.output_pattern
-             : arg == "--coherence" ? o.coherence_pattern
-                                    : o.reference_pattern) = value;
-        } else if (arg == "--preset") {
-            if (value != "blender") return fail(where + "the only preset is blender (Blender 3.x multilayer EXR passes)");
-            o.preset = value;
-        } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics" ||
-                   arg == "--object-id") {
-            if (value.empty()) return fail("option " + arg + ": the name is empty");
-            (arg == "--view-layer"      ? o.view_layer
-             : arg == "--depth-channel" ? o.depth_channel
-             : arg == "--metrics"       ? o.metrics_file
-             : arg == "--object-id"     ? o.object_id_channel
-                                        : o.nocache_channel) = value;
-        } else if (arg == "--motion-channels" || arg == "--prevclip-channels") {
-            std::vector<std::string> names;
-            const bool motion = arg == "--motion-channels";
-            if (!split_list(value, names) || (motion ? names.size() < 2 || names.size() > 3 : names.size() != 4))
-                return fail(where + (motion ? "expected 2 or 3 channel names X,Y[,Z] (e.g. mv.X,mv.Y)"
-                                            : "expected 4 channel names X,Y,Z,W (e.g. prevclip.X,...)"));
-            for (std::size_t a = 0; a < names.size(); ++a)
-                for (std::size_t b = a + 1; b < names.size(); ++b)
-                    if (names[a] == names[b]) return fail(where + "channel " + quoted(names[a]) + " named twice");
-            (motion ? o.motion_channels : o.prevclip_channels) = names;
-        } else if (arg == "--motion-units" || arg == "--progress" || arg == "--depth-mode" || arg == "--depth-format" ||
-                   arg == "--reproject" || arg == "--depth-test") {
-            // One of a table's names; the message lists them.
-            std::string choices;
-            auto choose = [&](const auto& table, auto& field) {
-                choices = rrc_host::enum_choices(table);
-                return rrc_host::enum_value(table, value, field);
-            };
-            const bool ok = arg == "--motion-units"   ? choose(kMotionUnitNames, o.motion_units)
-                            : arg == "--progress"     ? choose(kProgressNames, o.progress)
-                            : arg == "--depth-mode"   ? choose(rrc_host::kDepthModeNames, o.depth_mode)
-                            : arg == "--depth-format" ? choose(rrc_host::kDepthFormatNames, o.depth_format)
-                            : arg == "--depth-test"   ? choose(kDepthTestNames, o.depth_test)
-                                                      : choose(kReprojectNames, o.reproject);
-            if (!ok) return fail(where + "expected " + choices);
-        } else if (arg == "--motion-y") {
-            if (value == "down")
-                o.motion_y_up = false;
-            else if (value == "up")
-                o.motion_y_up = true;
-            else
-                return fail(where + "expected down (rows grow downwards, as rrc) or up (as Blender)");
-        } else if (arg == "--cut") {
-            std::vector<std::string> items;
-            if (!split_list(value, items)) return fail(where + "expected frame numbers F[,F...]");
-            for (const std::string& item : items) {
-                int64_t f = 0;
-                if (!parse_int(item, f) || f > 999999999) return fail(where + "expected frame numbers F[,F...], got " + quoted(item));
-                o.cuts.push_back(f);
+            else if (!is_value_option(arg))
+                c.unknown();
+            else {
+                const std::string error = parse_value_option(c, o);
+                if (!error.empty()) return fail(error);
             }
-        } else if (arg == "--psnr-peak") {
-            float v = 0;
-            if (!parse_float(value, v) || !(v > 0.0f)) return fail(where + "expected a positive number");
-            o.psnr_peak = v;
-        } else if (arg == "--frames") {
-            std::string err;
-            if (!parse_frame_range(value, o.first_frame, o.last_frame, err)) return fail(err);
-            frames_given = true;
-        } else if (arg == "--epsilon" || arg == "--epsilon-scale" || arg == "--tau" || arg == "--background-threshold" || arg == "--near") {
-            float v = 0;
-            if (!parse_float(value, v) || !(v > 0.0f)) return fail(where + "expected a positive number");
-            (arg == "--epsilon"         ? o.epsilon
-             : arg == "--epsilon-scale" ? o.epsilon_scale
-             : arg == "--tau"           ? o.tau
-             : arg == "--near"          ? o.near_plane
-                                        : o.background_threshold) = v;
-        } else if (arg == "--far") {
-            float v = 0;
-            if (!parse_float(value, v, /*allow_inf*/ true) || !(v > 0.0f)) return fail(where + "expected a positive number or inf");
-            o.far_plane = v;
-        } else if (arg == "--motion-scale") {
-            std::size_t comma = value.find(',');
-            float sx = 0, sy = 0;
-            if (comma == std::string::npos || !parse_float(value.substr(0, comma), sx) || !parse_float(value.substr(comma + 1), sy))
-                return fail(where + "expected two numbers SX,SY (e.g. 1,-1)");
-            if (sx == 0.0f || sy == 0.0f) return fail(where + "the scales must be non-zero");
-            o.motion_scale[0] = sx;
-            o.motion_scale[1] = sy;
-        } else if (arg == "--camera") {
-            if (value.empty()) return fail("option --camera: the file name is empty");
-            o.camera_file = value;
-        } else if (arg == "--device") {
-            if (value.empty()) return fail("option --device: the name is empty");
-            o.device = value;
-        } else if (arg == "--signal") {
-            SignalOptions s;
-            std::string err;
-            if (!parse_signal_spec(value, s, err)) return fail(err);
-            for (const SignalOptions& prev : o.signals)
-                if (prev.layer == s.layer) return fail("--signal " + quoted(value) + ": layer " + quoted(s.layer) + " given twice");
-            if (o.signals.size() >= RRC_MAX_CHANNELS)
-                return fail("--signal " + quoted(value) + ": at most " + std::to_string(RRC_MAX_CHANNELS) + " signals per run");
-            o.signals.push_back(s);
         }
+    } catch (const rrc_host::OptionError& e) {
+        return fail(e.what());
     }
+    o.check_options = c.check_only();
+    o.help = c.help();
 
     if (o.help) return r;
     if (o.no_object_id && !o.object_id_channel.empty()) return fail("options --object-id and --no-object-id contradict each other");
@@ -629,7 +633,7 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
     // refused by the library; say which option it was before any file is read.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE) {
         for (const char* tolerance : {"--epsilon", "--epsilon-scale", "--tau"})
-            if (given.count(tolerance))
+            if (c.given(tolerance))
                 return fail(std::string("option --depth-test adaptive sets its own tolerance: it cannot be combined with ") + tolerance +
                             " (use --depth-test fixed)");
         if (o.preset == "blender")
@@ -639,17 +643,17 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
     }
     if (o.preset == "blender") {
         // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
-        if (!given.count("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;
-        if (!given.count("--reproject")) o.reproject = Reproject::Motion;
-        if (!given.count("--motion-units")) o.motion_units = MotionUnits::Pixels;
-        if (!given.count("--motion-y")) o.motion_y_up = true;
-        if (!given.count("--tau")) o.tau = kBlenderPresetTau;
+        if (!c.given("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;
+        if (!c.given("--reproject")) o.reproject = Reproject::Motion;
+        if (!c.given("--motion-units")) o.motion_units = MotionUnits::Pixels;
+        if (!c.given("--motion-y")) o.motion_y_up = true;
+        if (!c.given("--tau")) o.tau = kBlenderPresetTau;
     } else if (!o.view_layer.empty()) {
         return fail("option --view-layer needs --preset blender");
     }
     if (o.input_pattern.empty()) return fail("missing required option --input PATTERN (see --help)");
     if (o.output_pattern.empty()) return fail("missing required option --output PATTERN (see --help)");
-    if (!frames_given) return fail("missing required option --frames A-B (see --help)");
+    if (!c.given("--frames")) return fail("missing required option --frames A-B (see --help)");
     if (o.reproject == Reproject::Camera && o.camera_file.empty())
         return fail("option --reproject camera needs --camera FILE (the view-projection matrices)");
     if (o.near_plane > 0.0f && o.far_plane > 0.0f && !(o.far_plane > o.near_plane)) return fail("option --far must be greater than --near");

@@ -41,6 +41,7 @@ struct SignalOptions {
 
 struct Options {
     bool help = false;
+    bool check_options = false; /* --check-options: parse and check, print "options ok", read no file */
 
     std::string input_pattern;  /* --input, printf-style: frames/f_%04d.exr */
     std::string output_pattern; /* --output */

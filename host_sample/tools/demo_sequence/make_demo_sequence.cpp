@@ -2,7 +2,7 @@
 // rrc-accumulate: a sphere on a ground plane seen by a slowly orbiting
 // camera, ray traced analytically in double precision.
 //
-//   rrc-make-demo-sequence DIR [--frames N] [--first F] [--size WxH] [--seed S]
+//   rrc-make-demo-sequence DIR [--frames N] [--first F] [--size WxH] [--seed S] [--check-options]
 //
 // DIR/frame_%04d.exr holds Z (reversed-Z float NDC depth, background 0),
 // prevclip.X/Y/Z/W, mv.X/Y (uv_prev - uv_cur) and mv.Z (depth change), a
@@ -10,6 +10,7 @@
 // color.R/G/B/A; DIR/camera.json maps each frame to its view_proj
 // (column-major, Vulkan clip: y down, z in [0,1]) and a zero jitter.
 #include <exr_io.h>
+#include <options_parser.h>
 
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
@@ -66,47 +67,40 @@ double trace(const glm::dvec3& o, const glm::dvec3& d, glm::dvec3& n, int& id) {
     return best;
 }
 
-bool parse_int(const char* s, int& out) {
-    char* end = nullptr;
-    long v = std::strtol(s, &end, 10);
-    if (!*s || *end || v < 0 || v > 100000) return false;
-    out = static_cast<int>(v);
-    return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string dir;
-    int frames = 24, first = 1, width = 128, height = 96, seed = 1;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
-        bool ok = true;
-        if (a == "--frames" && v)
-            ok = parse_int(argv[++i], frames) && frames >= 1;
-        else if (a == "--first" && v)
-            ok = parse_int(argv[++i], first);
-        else if (a == "--seed" && v)
-            ok = parse_int(argv[++i], seed);
-        else if (a == "--size" && v)
-            ok = std::sscanf(argv[++i], "%dx%d", &width, &height) == 2 && width >= 1 && height >= 1 && width <= 4096 && height <= 4096;
-        else if (a[0] != '-' && dir.empty())
-            dir = a;
-        else
-            ok = false;
-        if (!ok) {
-            std::fprintf(stderr,
-                         "rrc-make-demo-sequence: bad argument '%s'\nusage: rrc-make-demo-sequence DIR "
-                         "[--frames N (24)] [--first F (1)] [--size WxH (128x96)] [--seed S (1)]\n",
-                         a.c_str());
-            return 2;
+    int frames = 24, first = 1, seed = 1;
+    uint32_t size_w = 128, size_h = 96;
+    bool help = false, check = false;
+    const char* usage =
+        "usage: rrc-make-demo-sequence DIR [--frames N (24)] [--first F (1)] [--size WxH (128x96)] [--seed S (1)] [--check-options]\n"
+        "--check-options: check the arguments as a run would, print \"rrc-make-demo-sequence: options ok\" and exit.\n";
+    try {
+        rrc_host::ArgCursor c(argc, argv);
+        while (c.next()) {
+            if (c.option("--frames"))
+                frames = (int)c.integer(1, 100000);
+            else if (c.option("--first"))
+                first = (int)c.integer(0, 100000);
+            else if (c.option("--seed"))
+                seed = (int)c.integer(0, 100000);
+            else if (c.option("--size"))
+                c.size(size_w, size_h, 1, 4096);
+            else if (c.positional() && dir.empty())
+                dir = c.arg();
+            else
+                c.unknown();
         }
+        check = c.check_only();
+        help = c.help();
+        if (!help && dir.empty()) throw rrc_host::OptionError("the output directory DIR is missing");
+    } catch (const rrc_host::OptionError& e) {
+        return rrc_host::report_option_error("rrc-make-demo-sequence", e, usage, true);
     }
-    if (dir.empty()) {
-        std::fprintf(stderr, "usage: rrc-make-demo-sequence DIR [--frames N] [--first F] [--size WxH] [--seed S]\n");
-        return 2;
-    }
+    if (help || check) return rrc_host::report_help_or_check("rrc-make-demo-sequence", help, check, usage);
+    const int width = (int)size_w, height = (int)size_h;
     try {
         std::filesystem::create_directories(dir);
         const glm::dvec3 light = glm::normalize(glm::dvec3(0.3, 1.0, 0.2));

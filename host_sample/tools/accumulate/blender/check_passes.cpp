@@ -21,6 +21,7 @@
 #include "object_index_hits.h"
 
 #include <exr_io.h>
+#include <options_parser.h>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -166,23 +167,42 @@ int count_hits(const std::string& in_pattern, const std::string& out_pattern, in
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr,
-                     "usage: rrc-blender-check DIR [OTHER_DIR] | DIR --hits OUT_PATTERN | --hits IN_PATTERN OUT_PATTERN FIRST-LAST\n");
-        return 2;
-    }
-    if (std::string(argv[1]) == "--hits") {
-        int first = 0, last = -1;
-        if (argc != 5 || std::sscanf(argv[4], "%d-%d", &first, &last) != 2 || first < 0 || last <= first) {
-            std::fprintf(stderr, "usage: rrc-blender-check --hits IN_PATTERN OUT_PATTERN FIRST-LAST (two frames or more)\n");
-            return 2;
+    const char* usage =
+        "usage: rrc-blender-check DIR [OTHER_DIR] | DIR --hits OUT_PATTERN | --hits IN_PATTERN OUT_PATTERN FIRST-LAST\n"
+        "--check-options: check the arguments' shape, print \"rrc-blender-check: options ok\" and exit (no file is read)\n";
+    // The shared cursor (options_parser.h): positional paths, --hits and --check-options.
+    std::vector<std::string> paths;
+    bool hits = false, help = false, check = false;
+    int first = 0, last = -1;
+    try {
+        rrc_host::ArgCursor c(argc, argv);
+        while (c.next()) {
+            if (c.flag("--hits"))
+                hits = true;
+            else if (c.positional())
+                paths.push_back(c.arg());
+            else
+                c.unknown();
         }
-        return count_hits(argv[2], argv[3], first, last);
+        check = c.check_only();
+        help = c.help();
+        if (help) {
+            // nothing is required
+        } else if (hits && paths.size() == 3) {  // --hits IN_PATTERN OUT_PATTERN FIRST-LAST
+            if (std::sscanf(paths[2].c_str(), "%d-%d", &first, &last) != 2 || first < 0 || last <= first)
+                throw rrc_host::OptionError("--hits " + rrc_host::quoted(paths[2]) + ": expected FIRST-LAST, two frames or more");
+        } else if (paths.empty() || paths.size() > 2 || (hits && paths.size() != 2)) {  // DIR [OTHER_DIR] | DIR --hits OUT
+            throw rrc_host::OptionError("expected DIR [OTHER_DIR], DIR --hits OUT_PATTERN or --hits IN_PATTERN OUT_PATTERN FIRST-LAST");
+        }
+    } catch (const rrc_host::OptionError& e) {
+        return rrc_host::report_option_error("rrc-blender-check", e, usage, true);
     }
-    const std::string dir = argv[1];
+    if (help || check) return rrc_host::report_help_or_check("rrc-blender-check", help, check, usage);
+    if (hits && paths.size() == 3) return count_hits(paths[0], paths[1], first, last);
+    const std::string dir = paths[0];
     const Scene s = load_scene(dir);
     const std::string L = "ViewLayer.";
-    if (argc > 3 && std::string(argv[2]) == "--hits") return count_hits(dir + "/frame_%04d.exr", argv[3], 1, s.count);
+    if (hits) return count_hits(dir + "/frame_%04d.exr", paths[1], 1, s.count);
     for (int f = 1; f <= s.count; ++f) {
         char name[64];
         std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
@@ -314,16 +334,16 @@ int main(int argc, char** argv) {
         std::printf("  moving-sphere edge pixels: |Vector| / |exact motion| mean %.3f (%ld pixels; 1 = not diluted)\n",
                     edge_fraction.mean(), edge_fraction.n);
     }
-    if (argc > 2) {
+    if (paths.size() > 1) {
         for (int f = 1; f <= s.count; ++f) {
             char name[64];
             std::snprintf(name, sizeof name, "/frame_%04d.exr", f);
-            const rrc_exr::ExrImage a = rrc_exr::read_exr(dir + name), b = rrc_exr::read_exr(std::string(argv[2]) + name);
+            const rrc_exr::ExrImage a = rrc_exr::read_exr(dir + name), b = rrc_exr::read_exr(paths[1] + name);
             for (const char* c : {"Depth.Z", "Vector.X", "IndexOB.X", "Combined.R"}) {
                 const auto &x = a.channels.at(L + c), &y = b.channels.at(L + c);
                 long same = 0;
                 for (std::size_t k = 0; k < x.size(); ++k) same += x[k] == y[k];
-                std::printf("frame %d %-10s bitwise equal in %s and %s: %5.1f%%\n", f, c, argv[1], argv[2],
+                std::printf("frame %d %-10s bitwise equal in %s and %s: %5.1f%%\n", f, c, paths[0].c_str(), paths[1].c_str(),
                             100.0 * same / double(x.size()));
             }
         }
