@@ -108,7 +108,6 @@ std::string usage() {
            "  --reference-frames LIST  also take the reference on these frames (comma separated)\n"
            "  --dump-soft              on checkpoints write finish/soft_<what>_NNNN.f32 (raw float images of soft's displays)\n"
            "  --young-ages N           the young-pixel table (young.csv): ages 1..N (default 8)\n"
-           "  --model-fill-age T       T of the fill's CPU model, scored in young.csv without --soft-fill (default 8)\n"
            "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.7, env 0.8)\n"
            "  --rectify G              pcf and env channels' history rectification with gamma G (0 = off; default: pcf 1,\n"
            "                           env off: the presets, channel_presets.h)\n"
@@ -212,8 +211,6 @@ Options parse_options(int argc, const char* const* argv) {
             for (long f : c.integers(0, 100000)) o.reference_frames.push_back((int)f);
         else if (c.flag("--dump-soft"))
             o.dump_soft = true;
-        else if (c.option("--model-fill-age"))
-            o.model_fill_age = (uint32_t)c.integer(1, RRC_MAX_AGE_CAP + 1);
         else if (c.option("--young-ages"))
             o.young_ages = (uint32_t)c.integer(1, 255);
         else if (c.flag("--static-camera"))

@@ -26,7 +26,7 @@ struct Options {
     float fill_prior = 4.0f;            // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
     uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
-    // Without --soft-fill the three fill options still set the CPU model of the fill (finish.h).
+    // Without --soft-fill the three fill options are parsed but rrc gets no fill members.
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
@@ -40,7 +40,6 @@ struct Options {
     float pcf_threshold = -1.0f;                       // --pcf-threshold X; < 0: off
     std::vector<int> reference_frames;                 // --reference-frames: extra checkpoint frames
     bool dump_soft = false;                            // --dump-soft: raw float images of soft's displays on checkpoints
-    uint32_t model_fill_age = 8;                       // --model-fill-age: T of the fill's CPU model (without --soft-fill)
     uint32_t young_ages = 8;                           // --young-ages: the young-pixel table's ages 1..N
     float light_speed = 0.0f;                          // the moving light, degrees a frame (Scene::light_speed); 0 = fixed
     bool object_id = true;                             // give rrc the G-buffer's object ids (rrc_context_desc.use_object_id)

@@ -473,7 +473,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_TRUE(is_checkpoint(o, 7));
     const char* no_fill[] = {"rrc-sample", "--soft-fill", "0", "--fill-radius", "3", "--fill-prior", "2"};
     o = parse_options(7, no_fill);
-    EXPECT_EQ(o.channels.soft.fill_prior, 0.0f) << "without --soft-fill rrc gets no fill members (they set the CPU model)";
+    EXPECT_EQ(o.channels.soft.fill_prior, 0.0f) << "without --soft-fill rrc gets no fill members (the library refuses them without a fill)";
     EXPECT_EQ(o.channels.soft.fill_radius, 0u);
     EXPECT_EQ(o.fill_radius, 3u);
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
