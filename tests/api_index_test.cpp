@@ -11,10 +11,11 @@
 //     tag when it has one, else only "after 0.1" is known.
 // The members every tagged struct starts with (type, next, size) are listed
 // once, as rrc_struct_header's.
+#include "support/source_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cctype>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -23,19 +24,9 @@
 #include <utility>
 #include <vector>
 
-#ifndef RRC_SOURCE_DIR
-#    error "RRC_SOURCE_DIR must name the source tree"
-#endif
+using rrc_test::read_source;
 
 namespace {
-
-std::string read(const std::string& relative) {
-    std::ifstream in(std::string(RRC_SOURCE_DIR) + "/" + relative, std::ios::binary);
-    EXPECT_TRUE(in.good()) << "cannot read " << relative;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // The text without comments; a comment holding a version mark "---- 0.N"
 // becomes the statement "@0.N;".
@@ -69,7 +60,7 @@ struct Api {
 
 Api parse(const std::string& dir) {
     Api api;
-    const std::string raw = read(dir + "/rrc.h") + "\n" + read(dir + "/rrc_vulkan.h");
+    const std::string raw = read_source(dir + "/rrc.h") + "\n" + read_source(dir + "/rrc_vulkan.h");
     const std::string text = strip_comments(raw);
     const std::regex open("typedef struct (\\w+) \\{");
     for (std::sregex_iterator it(text.begin(), text.end(), open), end; it != end; ++it) {
@@ -137,7 +128,7 @@ std::map<std::string, std::string> expected_versions() {
 
 // The rows of the index: name -> the versions its rows give.
 std::multimap<std::string, std::string> index_rows() {
-    const std::string doc = read("docs/INTEGRATION.md");
+    const std::string doc = read_source("docs/INTEGRATION.md");
     const size_t begin = doc.find("\n## The API by concept\n");
     EXPECT_NE(begin, std::string::npos) << "docs/INTEGRATION.md: no section \"The API by concept\"";
     if (begin == std::string::npos) return {};

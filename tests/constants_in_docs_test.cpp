@@ -3,30 +3,23 @@
 // macro itself, so a changed value cannot leave a stale copy behind.  Each
 // check finds a specific phrase (an anchor) and reads the value right after
 // it; whitespace runs (line breaks included) count as one space.
+#include "support/source_file.h"
+
 #include <rrc/rrc.h>
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
-#ifndef RRC_SOURCE_DIR
-#    error "RRC_SOURCE_DIR must name the source tree"
-#endif
-
 namespace {
 
 // The file with every whitespace run made one space.
 std::string read_squashed(const std::string& relative) {
-    std::ifstream in(std::string(RRC_SOURCE_DIR) + "/" + relative, std::ios::binary);
-    EXPECT_TRUE(in.good()) << "cannot read " << relative;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return std::regex_replace(ss.str(), std::regex("\\s+"), " ");
+    return std::regex_replace(rrc_test::read_source(relative), std::regex("\\s+"), " ");
 }
 
 // The text right after `anchor` (which must occur exactly once), up to n characters.

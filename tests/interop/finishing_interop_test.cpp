@@ -6,13 +6,7 @@
 // host's output image: the test also checks that it really changed the
 // young pixels (else a fill that never ran would pass) and left the others.
 #include "interop/scene_images.h"
-#include "interop/vulkan_host.h"
 #include "support/rrc_test_context.h"
-#include "support/scene_frames.h"
-
-#include <rrc/rrc_vulkan.h>
-
-#include "rrc_interop.h"
 
 using namespace rrc_test;
 
@@ -47,12 +41,6 @@ std::vector<float> fallback_of(const rrc_scene::Frame& f) {
     std::vector<float> fb(f.signal1.size());
     for (size_t i = 0; i < fb.size(); ++i) fb[i] = 0.25f + 0.5f * (float)((i * 7) % 11) / 11.0f;
     return fb;
-}
-
-std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
-    std::vector<float> f(bytes.size() / 4);
-    std::memcpy(f.data(), bytes.data(), bytes.size());
-    return f;
 }
 
 TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
@@ -91,11 +79,10 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
     EXPECT_GT(changed, young / 2) << "the fill must change most young pixels";
 
     VulkanHost host;
-    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, 2);
     std::vector<rrc_channel_desc> channels = test_channels(true);
-    rrc_context_desc cd = scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels);
-    rrc_context* ctx = nullptr;
-    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context* ctx =
+        interop_context(rrc_host::vulkan_device_desc(host, 2), scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels));
+    ASSERT_NE(ctx, nullptr);
     SceneImages in_img(host, W, H, true);
     HostImage fb = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_USAGE_SAMPLED_BIT);
     HostImage out1 = zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H);
@@ -106,32 +93,14 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
         const SceneFrameInputs& in = inputs[t];
         in_img.upload(host, in, dro, ro);
         host.upload(fb, fallbacks[t].data(), W * H * 4, ro);
-        rrc_vulkan_channel_images ch[2];
-        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = rrc_host::vulkan_image(in_img.s1, ro);
-        ch[0].output = rrc_host::vulkan_image(out1, VK_IMAGE_LAYOUT_GENERAL);
-        ch[0].age = rrc_host::vulkan_image(age1, VK_IMAGE_LAYOUT_GENERAL);
-        ch[0].fallback = rrc_host::vulkan_image(fb, ro);
-        ch[1].samples = rrc_host::vulkan_image(in_img.s4, ro);
-        ch[1].confidence = rrc_host::vulkan_image(in_img.conf, ro);
-        ch[1].output = rrc_host::vulkan_image(out4, VK_IMAGE_LAYOUT_GENERAL);
-        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
-        f.frame_index = t;
-        f.depth = rrc_host::vulkan_image(in_img.depth, dro);
-        f.reprojection = rrc_host::vulkan_image(in_img.clip, ro);
-        std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
-        std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
-        f.channel_count = 2;
-        f.channels = ch;
-        f.command_buffer = host.begin();
+        rrc_vulkan_channel_images ch[2] = {in_img.channel(1, out1, &age1), in_img.channel(4, out4)};
+        ch[0].fallback = view_of(fb, ro);
+        auto f = in_img.frame(in, ch, host.begin());
         ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
         host.submit_and_wait(f.command_buffer);
-        EXPECT_EQ(as_floats(host.download(out1, VK_IMAGE_LAYOUT_GENERAL)), expected[t].values[0]) << "frame " << t;
-        EXPECT_EQ(as_floats(host.download(out4, VK_IMAGE_LAYOUT_GENERAL)), expected[t].values[1]) << "frame " << t;
-        const std::vector<unsigned char> a = host.download(age1, VK_IMAGE_LAYOUT_GENERAL);
-        std::vector<uint16_t> ages(W * H);
-        std::memcpy(ages.data(), a.data(), a.size());
-        EXPECT_EQ(ages, expected[t].age[0]) << "frame " << t;
+        EXPECT_EQ(read_back<float>(host, out1), expected[t].values[0]) << "frame " << t;
+        EXPECT_EQ(read_back<float>(host, out4), expected[t].values[1]) << "frame " << t;
+        EXPECT_EQ(read_back<uint16_t>(host, age1), expected[t].age[0]) << "frame " << t;
     }
     rrc_context_destroy(ctx);
     in_img.destroy(host);

@@ -3,13 +3,7 @@
 // standalone and the interop paths, with zero validation messages (the host
 // runs the layer with synchronization validation, teardown included).
 #include "interop/scene_images.h"
-#include "interop/vulkan_host.h"
 #include "support/rrc_test_context.h"
-#include "support/scene_frames.h"
-
-#include <rrc/rrc_vulkan.h>
-
-#include "rrc_interop.h"
 
 #include <glm/gtc/packing.hpp>
 
@@ -41,14 +35,6 @@ rrc_context_desc test_desc(std::vector<rrc_channel_desc>& channels, bool object_
 // Two frames in flight: the test records a frame while the previous one may still be pending.
 rrc_vulkan_device_desc device_desc(const VulkanHost& host) { return rrc_host::vulkan_device_desc(host, 2); }
 
-rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) { return rrc_host::vulkan_image(img, layout); }
-
-std::vector<float> as_floats(const std::vector<unsigned char>& bytes) {
-    std::vector<float> f(bytes.size() / 4);
-    std::memcpy(f.data(), bytes.data(), bytes.size());
-    return f;
-}
-
 // The test scene's first inputs.size() frames (jittered, REVERSED depth) into
 // `inputs`, and the standalone path's results for them on the library's own
 // device into `expected`: what the interop path must give.
@@ -76,10 +62,8 @@ void interop_matches_standalone(bool storage) {
 
     // Interop: the host's device, images and command buffers.
     VulkanHost host;
-    rrc_vulkan_device_desc dd = device_desc(host);
-    rrc_context_desc cd = test_desc(channels, true);
-    rrc_context* ctx = nullptr;
-    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context* ctx = interop_context(device_desc(host), test_desc(channels, true));
+    ASSERT_NE(ctx, nullptr);
     uint64_t bytes = 0;
     ASSERT_EQ(rrc_get_memory_usage(ctx, &bytes), RRC_SUCCESS);
     // Ping-pong: depth 2 x 4 B, object ids 2 x 4 B, fp16 history + age 2 x (2 + 2) B,
@@ -104,34 +88,16 @@ void interop_matches_standalone(bool storage) {
                                           in.object_id.end());  // the sky's 0xFFFFFFFF is 0xFFFF here: still its own id
         host.upload(ids, ids16.data(), W * H * 2, id_layout);
 
-        rrc_vulkan_channel_images ch[2];
-        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = view_of(in_img.s1, ro);
-        ch[0].output = view_of(out1, VK_IMAGE_LAYOUT_GENERAL);
-        ch[1].samples = view_of(in_img.s4, ro);
-        ch[1].confidence = view_of(in_img.conf, ro);
-        ch[1].output = view_of(out4, VK_IMAGE_LAYOUT_GENERAL);
-        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
-        f.frame_index = t;
-        f.depth = view_of(in_img.depth, dro);
-        f.reprojection = view_of(in_img.clip, ro);
+        const rrc_vulkan_channel_images ch[2] = {in_img.channel(1, out1), in_img.channel(4, out4)};
+        auto f = in_img.frame(in, ch, host.begin());
         f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
         f.object_id = view_of(ids, id_layout);
-        f.storage_inputs = storage ? 1u : 0u;
-        std::memcpy(f.jitter, in.desc.jitter, sizeof f.jitter);
-        std::memcpy(f.prev_jitter, in.desc.prev_jitter, sizeof f.prev_jitter);
-        f.channel_count = 2;
-        f.channels = ch;
-        f.command_buffer = host.begin();
         ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
         host.submit_and_wait(f.command_buffer);
 
-        std::vector<float> v1 = as_floats(host.download(out1, VK_IMAGE_LAYOUT_GENERAL));
-        std::vector<float> v4 = as_floats(host.download(out4, VK_IMAGE_LAYOUT_GENERAL));
-        std::vector<unsigned char> m = host.download(mask, VK_IMAGE_LAYOUT_GENERAL);
-        EXPECT_EQ(v1, expected[t].values[0]) << "frame " << t;  // fp16 history: the same rounded values
-        EXPECT_EQ(v4, expected[t].values[1]) << "frame " << t;
-        EXPECT_EQ(std::vector<uint8_t>(m.begin(), m.end()), expected[t].mask) << "frame " << t;
+        EXPECT_EQ(read_back<float>(host, out1), expected[t].values[0]) << "frame " << t;  // fp16 history: the same rounded values
+        EXPECT_EQ(read_back<float>(host, out4), expected[t].values[1]) << "frame " << t;
+        EXPECT_EQ(read_back<uint8_t>(host, mask), expected[t].mask) << "frame " << t;
         if (t > 0) EXPECT_GT(expected[t].stats.hits, (uint64_t)W * H / 3) << "the comparison must cover hits";
     }
     rrc_context_destroy(ctx);
@@ -209,57 +175,33 @@ TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
     ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
 
     VulkanHost host;
-    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, N);  // N frames pending at once
-    rrc_context_desc cd = test_desc(channels);
-    rrc_context* ctx = nullptr;
-    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context* ctx = interop_context(rrc_host::vulkan_device_desc(host, N), test_desc(channels));  // N frames pending at once
+    ASSERT_NE(ctx, nullptr);
 
-    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const VkDeviceSize stride = 256;  // a multiple of every device's minStorageBufferOffsetAlignment
     rrc_host::Buffer stats = host.create_buffer(stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     std::memset(stats.mapped, 0xAB, stride * N);
-    struct PerFrame {
-        SceneImages in;
-        HostImage out1, out4, mask, age1, age4;
-    };
-    std::vector<PerFrame> fr;
+    std::vector<FrameImages> fr;
     for (int t = 0; t < N; ++t) {
-        fr.push_back({SceneImages(host, W, H, true), zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H),
-                      zeroed_output(host, VK_FORMAT_R32G32B32A32_SFLOAT, W, H), zeroed_output(host, VK_FORMAT_R8_UINT, W, H),
-                      zeroed_output(host, VK_FORMAT_R16_UINT, W, H), zeroed_output(host, VK_FORMAT_R16_UINT, W, H)});
+        fr.emplace_back(host, W, H, true);
         fr.back().in.upload(host, inputs[t], ro, ro);
     }
 
     VkCommandBuffer cmd = host.begin();
     for (int t = 0; t < N; ++t) {
-        PerFrame& p = fr[t];
-        rrc_vulkan_channel_images ch[2];
-        for (auto& c : ch) c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = view_of(p.in.s1, ro);
-        ch[0].output = view_of(p.out1, gen);
-        ch[0].age = view_of(p.age1, gen);
-        ch[1].samples = view_of(p.in.s4, ro);
-        ch[1].confidence = view_of(p.in.conf, ro);
-        ch[1].output = view_of(p.out4, gen);
-        ch[1].age = view_of(p.age4, gen);
-        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
-        f.frame_index = t;
-        f.depth = view_of(p.in.depth, ro);
-        f.reprojection = view_of(p.in.clip, ro);
-        f.mask = view_of(p.mask, gen);
-        std::memcpy(f.jitter, inputs[t].desc.jitter, sizeof f.jitter);
-        std::memcpy(f.prev_jitter, inputs[t].desc.prev_jitter, sizeof f.prev_jitter);
-        f.channel_count = 2;
-        f.channels = ch;
+        const FrameImages& p = fr[t];
+        const rrc_vulkan_channel_images ch[2] = {p.channel(1), p.channel(4)};
+        auto f = p.in.frame(inputs[t], ch, cmd);
+        f.mask = view_of(p.mask, VK_IMAGE_LAYOUT_GENERAL);
         f.stats_buffer = stats.buffer;
         f.stats_offset = stride * t;
-        f.command_buffer = cmd;
         ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
     }
     host.submit_and_wait(cmd);  // the one wait
 
     for (int t = 0; t < N; ++t) {
-        PerFrame& p = fr[t];
+        FrameImages& p = fr[t];
         rrc_vulkan_frame_stats s;
         std::memcpy(&s, static_cast<const unsigned char*>(stats.mapped) + stride * t, sizeof s);
         const rrc_frame_stats& e = expected[t].stats;
@@ -272,22 +214,14 @@ TEST(Interop, FramesInFlightGiveEachFramesStatisticsAndAges) {
         EXPECT_EQ(s.pixels, (uint32_t)(W * H)) << "frame " << t;
         EXPECT_EQ(s.reserved, 0u) << "frame " << t;
         if (t > 0) EXPECT_GT(s.hits, (uint32_t)(W * H / 3)) << "the comparison must cover hits";
-        EXPECT_EQ(as_floats(host.download(p.out1, gen)), expected[t].values[0]) << "frame " << t;
-        EXPECT_EQ(as_floats(host.download(p.out4, gen)), expected[t].values[1]) << "frame " << t;
-        std::vector<unsigned char> m = host.download(p.mask, gen);
-        EXPECT_EQ(std::vector<uint8_t>(m.begin(), m.end()), expected[t].mask) << "frame " << t;
-        for (int c = 0; c < 2; ++c) {
-            std::vector<unsigned char> a = host.download(c == 0 ? p.age1 : p.age4, gen);
-            std::vector<uint16_t> age(a.size() / 2);
-            std::memcpy(age.data(), a.data(), a.size());
-            EXPECT_EQ(age, expected[t].age[c]) << "frame " << t << " channel " << c;
-        }
+        EXPECT_EQ(read_back<float>(host, p.out1), expected[t].values[0]) << "frame " << t;
+        EXPECT_EQ(read_back<float>(host, p.out4), expected[t].values[1]) << "frame " << t;
+        EXPECT_EQ(read_back<uint8_t>(host, p.mask), expected[t].mask) << "frame " << t;
+        EXPECT_EQ(read_back<uint16_t>(host, p.age1), expected[t].age[0]) << "frame " << t << " channel 0";
+        EXPECT_EQ(read_back<uint16_t>(host, p.age4), expected[t].age[1]) << "frame " << t << " channel 1";
     }
     rrc_context_destroy(ctx);
-    for (PerFrame& p : fr) {
-        p.in.destroy(host);
-        for (HostImage* img : {&p.out1, &p.out4, &p.mask, &p.age1, &p.age4}) host.destroy(*img);
-    }
+    for (FrameImages& p : fr) p.destroy(host);
     static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();

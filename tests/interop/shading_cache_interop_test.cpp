@@ -9,13 +9,8 @@
 // HITs), with and without rrc_vulkan_frame_desc.split_outputs; and what the
 // host's mask image holds right after classify (rrc_vulkan.h: unchanged, or
 // with split_outputs this frame's classification).
-#include "interop/vulkan_host.h"
+#include "interop/scene_images.h"
 #include "support/rrc_test_context.h"
-#include "support/scene_frames.h"
-
-#include <rrc/rrc_vulkan.h>
-
-#include "rrc_interop.h"
 
 #include <set>
 
@@ -97,15 +92,6 @@ Split run_split(Context& ctx, SceneFrameInputs& in) {
     return s;
 }
 
-rrc_vulkan_image view_of(const HostImage& img, VkImageLayout layout) { return rrc_host::vulkan_image(img, layout); }
-
-template <typename T>
-std::vector<T> as(const std::vector<unsigned char>& bytes) {
-    std::vector<T> v(bytes.size() / sizeof(T));
-    std::memcpy(v.data(), bytes.data(), bytes.size());
-    return v;
-}
-
 void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) {
     std::vector<rrc_channel_desc> channels = cache_channels(reuse_only);
     rrc_scene::Scene scene(cache_scene());
@@ -129,12 +115,9 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
     ASSERT_GT(hits, 0u) << "the comparison must cover hits";
 
     VulkanHost host;
-    rrc_vulkan_device_desc dd = rrc_host::vulkan_device_desc(host, N);  // N frames pending at once
-    rrc_context_desc cd = cache_desc(channels);
-    rrc_context* ctx = nullptr;
-    ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context* ctx = interop_context(rrc_host::vulkan_device_desc(host, N), cache_desc(channels));  // N frames pending at once
+    ASSERT_NE(ctx, nullptr);
 
-    const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, gen = VK_IMAGE_LAYOUT_GENERAL;
     const VkDeviceSize stats_stride = 256, list_stride = (RRC_QUAD_LIST_BYTES(W, H) + 255) / 256 * 256;
     rrc_host::Buffer stats =
@@ -143,28 +126,11 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
         list_stride * N, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     std::memset(stats.mapped, 0xAB, stats_stride * N);
     std::memset(lists.mapped, 0xCD, list_stride * N);
-    struct PerFrame {
-        HostImage depth, clip, shade_in, pcf_in, shade_out, pcf_out, mask, shade_age, pcf_age;
-    };
-    std::vector<PerFrame> fr(N + 1);
-    std::vector<unsigned char> zeros((size_t)W * H * 16, 0);
+    // Channel 0 (shade) is the 4-component one, channel 1 (pcf) the 1-component.
+    std::vector<FrameImages> fr;
     for (int t = 0; t <= N; ++t) {
-        PerFrame& p = fr[t];
-        p.depth = host.create_image(VK_FORMAT_D32_SFLOAT, W, H, sampled | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
-        p.clip = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-        p.shade_in = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, sampled);
-        p.pcf_in = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, sampled);
-        p.shade_out = host.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, W, H, storage);
-        p.pcf_out = host.create_image(VK_FORMAT_R32_SFLOAT, W, H, storage);
-        p.mask = host.create_image(VK_FORMAT_R8_UINT, W, H, storage);
-        p.shade_age = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
-        p.pcf_age = host.create_image(VK_FORMAT_R16_UINT, W, H, storage);
-        host.upload(p.depth, inputs[t].frame.depth.data(), W * H * 4, ro);
-        host.upload(p.clip, inputs[t].reprojection.data(), W * H * 16, ro);
-        host.upload(p.shade_in, inputs[t].frame.signal4.data(), W * H * 16, ro);
-        host.upload(p.pcf_in, inputs[t].frame.signal1.data(), W * H * 4, ro);
-        for (HostImage* img : {&p.shade_out, &p.pcf_out, &p.mask, &p.shade_age, &p.pcf_age})
-            host.upload(*img, zeros.data(), (size_t)W * H * img->texel_bytes, gen);
+        fr.emplace_back(host, W, H, false);
+        fr.back().in.upload(host, inputs[t], ro, ro);
     }
 
     VkCommandBuffer cmd = host.begin();
@@ -174,27 +140,14 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
         list.offset = list_stride * (t % N);
         return list;
     };
-    auto frame_at = [&](int t, rrc_vulkan_channel_images* ch) {
-        PerFrame& p = fr[t];
-        for (int c = 0; c < 2; ++c) ch[c] = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
-        ch[0].samples = view_of(p.shade_in, ro);
-        ch[0].output = view_of(p.shade_out, gen);
-        ch[0].age = view_of(p.shade_age, gen);
-        ch[1].samples = view_of(p.pcf_in, ro);
-        ch[1].output = view_of(p.pcf_out, gen);
-        ch[1].age = view_of(p.pcf_age, gen);
-        auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
-        f.frame_index = 100 + t;
-        f.depth = view_of(p.depth, ro);
-        f.reprojection = view_of(p.clip, ro);
+    auto frame_at = [&](int t, rrc_vulkan_channel_images(&ch)[2]) {
+        const FrameImages& p = fr[t];
+        ch[0] = p.channel(4);
+        ch[1] = p.channel(1);
+        auto f = p.in.frame(inputs[t], ch, cmd);  // frame index 100 + t, as the standalone run's
         f.mask = view_of(p.mask, gen);
-        std::memcpy(f.jitter, inputs[t].desc.jitter, sizeof f.jitter);
-        std::memcpy(f.prev_jitter, inputs[t].desc.prev_jitter, sizeof f.prev_jitter);
-        f.channel_count = 2;
-        f.channels = ch;
         f.stats_buffer = stats.buffer;
         f.stats_offset = stats_stride * (t % N);
-        f.command_buffer = cmd;
         f.split_outputs = split_outputs;
         return f;
     };
@@ -213,7 +166,7 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
 
     for (int t = 0; t < N; ++t) {
         SCOPED_TRACE("frame " + std::to_string(t));
-        PerFrame& p = fr[t];
+        FrameImages& p = fr[t];
         const Split& e = expected[t];
         const uint32_t* words = reinterpret_cast<const uint32_t*>(static_cast<const unsigned char*>(lists.mapped) + list_stride * t);
         const uint32_t count = words[RRC_QUAD_LIST_COUNT];
@@ -231,11 +184,11 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
         EXPECT_EQ(s.invalid_samples, e.stats.invalid_samples);
         EXPECT_EQ(s.invalid_geometry, e.stats.invalid_geometry);
         EXPECT_EQ(s.pixels, (uint32_t)(W * H));
-        EXPECT_EQ(as<uint8_t>(host.download(p.mask, gen)), e.mask);
-        EXPECT_EQ(as<float>(host.download(p.shade_out, gen)), e.shade);
-        EXPECT_EQ(as<float>(host.download(p.pcf_out, gen)), e.pcf);
-        EXPECT_EQ(as<uint16_t>(host.download(p.shade_age, gen)), e.shade_age);
-        EXPECT_EQ(as<uint16_t>(host.download(p.pcf_age, gen)), e.pcf_age);
+        EXPECT_EQ(read_back<uint8_t>(host, p.mask), e.mask);
+        EXPECT_EQ(read_back<float>(host, p.out4), e.shade);
+        EXPECT_EQ(read_back<float>(host, p.out1), e.pcf);
+        EXPECT_EQ(read_back<uint16_t>(host, p.age4), e.shade_age);
+        EXPECT_EQ(read_back<uint16_t>(host, p.age1), e.pcf_age);
     }
 
     // Frame N's classify alone, into the last frame's mask image: with
@@ -249,14 +202,12 @@ void frames_in_flight_match_standalone(bool reuse_only, uint32_t split_outputs) 
         auto list = list_at(N);
         ASSERT_EQ(rrc_vulkan_record_classify(ctx, &f, &list), RRC_SUCCESS) << rrc_last_error();
         host.submit_and_wait(cmd);
-        const std::vector<uint8_t> after = as<uint8_t>(host.download(fr[N - 1].mask, gen));
+        const std::vector<uint8_t> after = read_back<uint8_t>(host, fr[N - 1].mask);
         EXPECT_EQ(after, split_outputs ? classified : expected[N - 1].mask) << "the host's mask right after classify";
         EXPECT_NE(classified, expected[N - 1].mask) << "the two frames' masks must differ for this to tell";
     }
     rrc_context_destroy(ctx);
-    for (PerFrame& p : fr)
-        for (HostImage* img : {&p.depth, &p.clip, &p.shade_in, &p.pcf_in, &p.shade_out, &p.pcf_out, &p.mask, &p.shade_age, &p.pcf_age})
-            host.destroy(*img);
+    for (FrameImages& p : fr) p.destroy(host);
     static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
     static_cast<rrc_host::VulkanBootstrap&>(host).destroy(lists);
     host.shutdown();
