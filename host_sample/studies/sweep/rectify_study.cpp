@@ -45,10 +45,7 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
     return c;
 }
 
-void full_barrier(VkCommandBuffer c) {
-    rrc_sample::memory_barrier(c, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                               VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-}
+using rrc_host::full_barrier;
 
 bool scored(uint32_t signal, uint8_t m) { return signal == kSignalEnv ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; }
 
