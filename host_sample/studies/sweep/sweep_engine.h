@@ -9,6 +9,7 @@
 #include "gpu.h"
 #include "raster.h"
 #include "readback.h"
+#include "rrc_stage.h"
 #include "scene.h"
 #include "signals.h"
 
@@ -101,6 +102,25 @@ struct Engine {
         const double period = gpu.properties.limits.timestampPeriod * 1e-6;
         for (uint32_t i = 0; i < stamps; ++i) ms.push_back((double)ts[i] * period);
         return ms;
+    }
+
+    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are. */
+    rrc_sample::RrcSettings rrc_settings(uint32_t signals) const {
+        rrc_sample::RrcSettings s;
+        s.width = settings.width;
+        s.height = settings.height;
+        s.signals = signals;
+        s.near_plane = scene.near_plane;
+        s.far_plane = scene.far_plane;
+        return s;
+    }
+    /** The same for one signal, its channel set to `channel` (a configuration the sweep or the study tries). */
+    rrc_sample::RrcSettings rrc_settings(uint32_t signal, const rrc_sample::ChannelSettings& channel) const {
+        rrc_sample::RrcSettings s = rrc_settings(signal);
+        if (signal == kSignalPcf) s.channels.pcf = channel;
+        if (signal == kSignalEnv) s.channels.env = channel;
+        if (signal == kSignalSoft) s.channels.soft = channel;
+        return s;
     }
 
     /** The frame's geometry: the sun's map (pcf's) and the G-buffer. */
