@@ -11,84 +11,13 @@ namespace rrc_bench {
 
 using rrc_host::vk_check;
 
-// (Timer and Submitter are declared in interop_run.h, held by InteropBench.)
 // Queries: 0-1 around the kernel's commands, 2-3 around the roof's.
-class Timer {
-public:
-    explicit Timer(VulkanBootstrap& vk) : vk_(vk) {
-        if (!vk.timestamps) return;
-        VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        qi.queryCount = 4;
-        vk_check(vkCreateQueryPool(vk.device, &qi, nullptr, &pool_), "vkCreateQueryPool");
-    }
-    ~Timer() {
-        if (pool_) vkDestroyQueryPool(vk_.device, pool_, nullptr);
-    }
-    bool enabled() const { return pool_ != VK_NULL_HANDLE; }
-    void reset(VkCommandBuffer cmd, uint32_t first) const {
-        if (pool_) vkCmdResetQueryPool(cmd, pool_, first, 2);
-    }
-    void stamp(VkCommandBuffer cmd, uint32_t query, bool end) const {
-        if (pool_) vkCmdWriteTimestamp(cmd, end ? VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_, query);
-    }
-    double elapsed_ms(uint32_t first) const {
-        uint64_t t[2];
-        vk_check(vkGetQueryPoolResults(vk_.device, pool_, first, 2, sizeof t, t, sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                 "vkGetQueryPoolResults");
-        return (double)(t[1] - t[0]) * vk_.properties.limits.timestampPeriod * 1e-6;
-    }
+constexpr uint32_t kQueries = 4;
 
-private:
-    VulkanBootstrap& vk_;
-    VkQueryPool pool_ = VK_NULL_HANDLE;
-};
-
-// Every submission starts by waiting for all earlier work and its writes, so
-// the kernel and the roof (which write the same outputs) never overlap.
-static void full_barrier(VkCommandBuffer cmd) {
-    rrc_host::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                             VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-}
-
-class Submitter {
-public:
-    explicit Submitter(VulkanBootstrap& vk) : vk_(vk) {
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = vk.pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        vk_check(vkAllocateCommandBuffers(vk.device, &ai, &cmd_), "vkAllocateCommandBuffers");
-        VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        vk_check(vkCreateFence(vk.device, &fi, nullptr, &fence_), "vkCreateFence");
-    }
-    ~Submitter() {
-        vkDestroyFence(vk_.device, fence_, nullptr);
-        vkFreeCommandBuffers(vk_.device, vk_.pool, 1, &cmd_);
-    }
-    VkCommandBuffer begin() {
-        vk_check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk_check(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
-        return cmd_;
-    }
-    void submit_and_wait() {
-        vk_check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &cmd_;
-        vk_check(vkQueueSubmit(vk_.queue, 1, &si, fence_), "vkQueueSubmit");
-        vk_check(vkWaitForFences(vk_.device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        vk_check(vkResetFences(vk_.device, 1, &fence_), "vkResetFences");
-    }
-
-private:
-    VulkanBootstrap& vk_;
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
-};
+// Every submission starts with a full barrier (waiting for all earlier work
+// and its writes), so the kernel and the roof, which write the same outputs,
+// never overlap.
+using rrc_host::full_barrier;
 
 static rrc_vulkan_image general(const Image& img) { return rrc_host::vulkan_image(img, VK_IMAGE_LAYOUT_GENERAL); }
 
@@ -108,8 +37,8 @@ InteropBench::InteropBench(VulkanBootstrap& vk, const Config& c, const SceneInpu
                                       true, "bench quad list");
         roof_ = std::make_unique<Roof>(vk, c, img);
         res_.roof_bytes_bound = roof_->bound_bytes();
-        timer_ = std::make_unique<Timer>(vk);
-        sub_ = std::make_unique<Submitter>(vk);
+        timer_ = std::make_unique<rrc_host::TimestampQueries>(vk, kQueries);
+        sub_ = std::make_unique<rrc_host::FencedCommands>(vk);
         res_.timestamps = timer_->enabled();
     } catch (...) {
         release();
@@ -164,8 +93,8 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     const double t0 = now_ms();
     f.command_buffer = sub_->begin();
     full_barrier(f.command_buffer);
-    timer_->reset(f.command_buffer, 0);
-    timer_->stamp(f.command_buffer, 0, false);
+    timer_->reset(f.command_buffer, 0, 2);
+    timer_->write(f.command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
     if (config_.shading_cache == Config::Cache::Split || config_.shading_cache == Config::Cache::ClassifyFused) {
         auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
         list.buffer = quads_.buffer;
@@ -177,11 +106,11 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     } else if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS) {
         throw std::runtime_error(std::string("rrc_vulkan_record_frame: ") + rrc_context_last_error(ctx_));
     }
-    timer_->stamp(f.command_buffer, 1, true);
+    timer_->write(f.command_buffer, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
     sub_->submit_and_wait();
     const double wall = now_ms() - t0;
     ++frame_;
-    return {timer_->enabled() ? timer_->elapsed_ms(0) : wall, wall};
+    return {timer_->enabled() ? elapsed_ms(0) : wall, wall};
 }
 
 // One roof dispatch on `pose`'s inputs.
@@ -189,14 +118,20 @@ double InteropBench::roof_pass(int pose) {
     const double t0 = now_ms();
     VkCommandBuffer cmd = sub_->begin();
     full_barrier(cmd);
-    timer_->reset(cmd, 2);
-    timer_->stamp(cmd, 2, false);
+    timer_->reset(cmd, 2, 2);
+    timer_->write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 2);
     roof_->record(cmd, pose);
-    timer_->stamp(cmd, 3, true);
+    timer_->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
     full_barrier(cmd);  // its writes are done before anything later reads or rewrites them
     sub_->submit_and_wait();
     const double wall = now_ms() - t0;
-    return timer_->enabled() ? timer_->elapsed_ms(2) : wall;
+    return timer_->enabled() ? elapsed_ms(2) : wall;
+}
+
+// Milliseconds between queries `first` and `first` + 1.
+double InteropBench::elapsed_ms(uint32_t first) const {
+    const std::vector<uint64_t> t = timer_->ticks(first, 2);
+    return (double)(t[1] - t[0]) * vk_.properties.limits.timestampPeriod * 1e-6;
 }
 
 void InteropBench::prime(int frames) {

@@ -7,6 +7,7 @@
 
 #include "bench_images.h"
 #include "context_setup.h"
+#include "fenced_commands.h"
 #include "roof.h"
 
 #include <rrc/rrc_vulkan.h>
@@ -29,9 +30,6 @@ struct InteropResult {
     std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)
     RoofBytes roof_bytes_bound;                     // the bytes of the images the roof bound
 };
-
-class Timer;
-class Submitter;
 
 /** One configuration's interop context and roof on the bench's device.
  *  step() runs one kernel/roof pair, so the caller can interleave
@@ -56,6 +54,7 @@ public:
 private:
     std::pair<double, double> kernel(bool with_stats);
     double roof_pass(int pose);
+    double elapsed_ms(uint32_t first) const;
     uint64_t count_young();
     void release();
     VulkanBootstrap& vk_;
@@ -66,8 +65,8 @@ private:
     rrc_host::Buffer stats_;
     rrc_host::Buffer quads_;  // Config::Cache::Split: classify's list
     std::unique_ptr<Roof> roof_;
-    std::unique_ptr<Timer> timer_;
-    std::unique_ptr<Submitter> sub_;
+    std::unique_ptr<rrc_host::TimestampQueries> timer_;
+    std::unique_ptr<rrc_host::FencedCommands> sub_;
     std::vector<rrc_vulkan_channel_images> channels_;
     uint64_t frame_ = 0, steps_ = 0;
     InteropResult res_;

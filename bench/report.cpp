@@ -44,6 +44,14 @@ struct Field {
     std::string key, value;
     bool text;
 };
+
+// A summary's median, min and max as the columns <name>_median, _min, _max.
+void add_spread(std::vector<Field>& f, const std::string& name, const Summary& s) {
+    f.push_back({name + "_median", num(s.median), false});
+    f.push_back({name + "_min", num(s.min), false});
+    f.push_back({name + "_max", num(s.max), false});
+}
+
 std::vector<Field> fields(const Row& r) {
     const Config& c = r.config;
     const Summary k = r.kernel(), t = r.roof(), q = r.ratio(), w = r.wall();
@@ -56,45 +64,44 @@ std::vector<Field> fields(const Row& r) {
         {"channels", std::to_string(c.channels.size()), false},
         {"channel_layout", channels_text(c), true},
         {"source", source_name(c.source), true},
-        {"kernel_ms_median", num(k.median), false},
-        {"kernel_ms_min", num(k.min), false},
-        {"kernel_ms_max", num(k.max), false},
-        {"roof_ms_median", num(t.median), false},
-        {"roof_ms_min", num(t.min), false},
-        {"roof_ms_max", num(t.max), false},
-        {"ratio_median", num(q.median), false},
-        {"ratio_min", num(q.min), false},
-        {"ratio_max", num(q.max), false},
-        {"ratio_q1", num(q.q1), false},
-        {"ratio_q3", num(q.q3), false},
-        {"roof_gbps", num(r.roof_gbps(), 3), false},
-        {"kernel_gbps", num(r.kernel_gbps(), 3), false},
-        {"bytes_read", std::to_string(r.api_bytes.read), false},
-        {"bytes_written", std::to_string(r.api_bytes.written), false},
-        {"bytes", std::to_string(r.api_bytes.total()), false},
-        {"bound_bytes_read", std::to_string(r.interop.roof_bytes_bound.read), false},
-        {"bound_bytes_written", std::to_string(r.interop.roof_bytes_bound.written), false},
-        {"memory_bytes", std::to_string(r.interop.memory_bytes), false},
-        {"wall_ms_median", num(w.median), false},
-        {"wall_ms_min", num(w.min), false},
-        {"wall_ms_max", num(w.max), false},
-        {"hit_fraction", num(r.hit_fraction()), false},
-        {"background_fraction", num(r.interop.stats.pixels ? (double)r.interop.stats.background / r.interop.stats.pixels : 0.0), false},
-        {"nocache_share", c.nocache ? num(c.nocache_share) : "", false},
-        {"young_fraction", num(r.young_fraction()), false},
-        {"young_surface_fraction", num(r.young_surface_fraction()), false},
-        {"listed_quads", c.shading_cache == Config::Cache::Split ? std::to_string(r.interop.listed_quads) : "", false},
-        {"listed_fraction", c.shading_cache == Config::Cache::Split ? num(r.listed_fraction()) : "", false},
-        {"reps", std::to_string(r.interop.kernel_ms.size()), false},
-        {"timer", r.interop.timestamps ? "timestamps" : "wall", true},
-        {"roof_check", r.interop.roof_check == "skipped" ? "skipped" : r.interop.roof_check.empty() ? "exact" : r.interop.roof_check, true},
     };
+    add_spread(f, "kernel_ms", k);
+    add_spread(f, "roof_ms", t);
+    add_spread(f, "ratio", q);
+    f.insert(f.end(), {
+                          {"ratio_q1", num(q.q1), false},
+                          {"ratio_q3", num(q.q3), false},
+                          {"roof_gbps", num(r.roof_gbps(), 3), false},
+                          {"kernel_gbps", num(r.kernel_gbps(), 3), false},
+                          {"bytes_read", std::to_string(r.api_bytes.read), false},
+                          {"bytes_written", std::to_string(r.api_bytes.written), false},
+                          {"bytes", std::to_string(r.api_bytes.total()), false},
+                          {"bound_bytes_read", std::to_string(r.interop.roof_bytes_bound.read), false},
+                          {"bound_bytes_written", std::to_string(r.interop.roof_bytes_bound.written), false},
+                          {"memory_bytes", std::to_string(r.interop.memory_bytes), false},
+                      });
+    add_spread(f, "wall_ms", w);
+    f.insert(f.end(), {
+                          {"hit_fraction", num(r.hit_fraction()), false},
+                          {"background_fraction",
+                           num(r.interop.stats.pixels ? (double)r.interop.stats.background / r.interop.stats.pixels : 0.0), false},
+                          {"nocache_share", c.nocache ? num(c.nocache_share) : "", false},
+                          {"young_fraction", num(r.young_fraction()), false},
+                          {"young_surface_fraction", num(r.young_surface_fraction()), false},
+                          {"listed_quads", c.shading_cache == Config::Cache::Split ? std::to_string(r.interop.listed_quads) : "", false},
+                          {"listed_fraction", c.shading_cache == Config::Cache::Split ? num(r.listed_fraction()) : "", false},
+                          {"reps", std::to_string(r.interop.kernel_ms.size()), false},
+                          {"timer", r.interop.timestamps ? "timestamps" : "wall", true},
+                          {"roof_check",
+                           r.interop.roof_check == "skipped" ? "skipped"
+                           : r.interop.roof_check.empty()    ? "exact"
+                                                             : r.interop.roof_check,
+                           true},
+                      });
     if (r.has_standalone) {
         const Summary s = summarize(r.standalone.frame_ms), m = summarize(r.standalone.memcpy_ms);
         f.push_back({"standalone_fps", num(1000.0 / s.median, 2), false});
-        f.push_back({"standalone_ms_median", num(s.median), false});
-        f.push_back({"standalone_ms_min", num(s.min), false});
-        f.push_back({"standalone_ms_max", num(s.max), false});
+        add_spread(f, "standalone_ms", s);
         f.push_back({"memcpy_ms_median", num(m.median), false});
         f.push_back({"standalone_bytes", std::to_string(r.standalone.bytes), false});
         f.push_back({"round_trip_ratio", num(r.round_trip_ratio()), false});
@@ -133,10 +140,11 @@ void print_table(const std::vector<Row>& rows) {
     for (const Row& r : rows)
         if (r.has_standalone) {
             const Summary s = summarize(r.standalone.frame_ms), m = summarize(r.standalone.memcpy_ms);
-            std::printf("\nstandalone %s %ux%u: %.2f ms a frame (%.1f fps, min %.2f max %.2f), memcpy of its %.1f MB %.2f ms, "
-                        "round trip / (kernel + memcpy) = %.2f, memory %.1f MB\n",
-                        r.config.name.c_str(), r.config.width, r.config.height, s.median, 1000.0 / s.median, s.min, s.max,
-                        mb(r.standalone.bytes), m.median, r.round_trip_ratio(), mb(r.standalone.memory_bytes));
+            std::printf(
+                "\nstandalone %s %ux%u: %.2f ms a frame (%.1f fps, min %.2f max %.2f), memcpy of its %.1f MB %.2f ms, "
+                "round trip / (kernel + memcpy) = %.2f, memory %.1f MB\n",
+                r.config.name.c_str(), r.config.width, r.config.height, s.median, 1000.0 / s.median, s.min, s.max, mb(r.standalone.bytes),
+                m.median, r.round_trip_ratio(), mb(r.standalone.memory_bytes));
         }
     std::printf("\npublished, not measured: NRD SIGMA %.1f MB at 1080p, FSR 2 %.0f MB at 1080p quality\n", kNrdSigmaMb1080p,
                 kFsr2Mb1080pQuality);
@@ -159,7 +167,8 @@ void write_json(const std::string& path, const RunInfo& info, const std::vector<
     std::ostringstream o;
     o << "{\n  \"command\": " << json_string(info.command) << ",\n  \"device\": " << json_string(info.device)
       << ",\n  \"commit\": " << json_string(info.commit) << ",\n  \"date\": " << json_string(info.date)
-      << ",\n  \"cpu\": " << json_string(info.cpu) << ",\n  \"load_average\": [" << num(info.load_start, 2) << ", " << num(info.load_end, 2) << "],\n  \"reps\": " << info.reps << ",\n  \"warmup\": " << info.warmup
+      << ",\n  \"cpu\": " << json_string(info.cpu) << ",\n  \"load_average\": [" << num(info.load_start, 2) << ", " << num(info.load_end, 2)
+      << "],\n  \"reps\": " << info.reps << ",\n  \"warmup\": " << info.warmup
       << ",\n  \"validation\": " << (info.validation ? "true" : "false") << ",\n  \"validation_messages\": " << info.validation_messages
       << ",\n  \"published_memory_mb\": {\"nrd_sigma_1080p\": " << kNrdSigmaMb1080p << ", \"fsr2_1080p_quality\": " << kFsr2Mb1080pQuality
       << "},\n  \"rows\": [\n";
@@ -167,21 +176,24 @@ void write_json(const std::string& path, const RunInfo& info, const std::vector<
         const auto f = fields(rows[i]);
         o << "    {";
         for (size_t j = 0; j < f.size(); ++j)
-            o << (j ? ", " : "") << json_string(f[j].key) << ": " << (f[j].text ? json_string(f[j].value) : f[j].value.empty() ? "null" : f[j].value);
+            o << (j ? ", " : "") << json_string(f[j].key) << ": "
+              << (f[j].text            ? json_string(f[j].value)
+                  : f[j].value.empty() ? "null"
+                                       : f[j].value);
         o << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
-    o << "  ],\n  \"linearity\": {\"measured\": " << (lin.measured ? "true" : "false") << ", \"ms_per_megapixel\": " << num(lin.ms_per_mpixel)
-      << ", \"intercept_ms\": " << num(lin.intercept_ms) << ", \"slope_ms_per_megapixel\": " << num(lin.slope_ms)
-      << ", \"max_abs_deviation\": " << num(lin.max_abs_deviation) << ", \"small_share\": " << (lin.small_measured ? num(lin.small_share) : "null")
-      << ", \"deviation\": {";
+    o << "  ],\n  \"linearity\": {\"measured\": " << (lin.measured ? "true" : "false")
+      << ", \"ms_per_megapixel\": " << num(lin.ms_per_mpixel) << ", \"intercept_ms\": " << num(lin.intercept_ms)
+      << ", \"slope_ms_per_megapixel\": " << num(lin.slope_ms) << ", \"max_abs_deviation\": " << num(lin.max_abs_deviation)
+      << ", \"small_share\": " << (lin.small_measured ? num(lin.small_share) : "null") << ", \"deviation\": {";
     for (size_t i = 0; i < lin.deviation.size(); ++i)
         o << (i ? ", " : "") << json_string(lin.deviation[i].first) << ": " << num(lin.deviation[i].second);
     o << "}},\n  \"targets\": [\n";
     for (size_t i = 0; i < targets.size(); ++i) {
         const Target& t = targets[i];
-        o << "    {\"name\": " << json_string(t.name) << ", \"goal\": " << json_string(t.goal) << ", \"measured\": " << json_string(t.measured)
-          << ", \"status\": " << json_string(t.status) << ", \"margin\": " << json_string(t.margin) << "}" << (i + 1 < targets.size() ? "," : "")
-          << "\n";
+        o << "    {\"name\": " << json_string(t.name) << ", \"goal\": " << json_string(t.goal)
+          << ", \"measured\": " << json_string(t.measured) << ", \"status\": " << json_string(t.status)
+          << ", \"margin\": " << json_string(t.margin) << "}" << (i + 1 < targets.size() ? "," : "") << "\n";
     }
     o << "  ]\n}\n";
     write_file(path, o.str());
@@ -190,18 +202,21 @@ void write_json(const std::string& path, const RunInfo& info, const std::vector<
 void write_markdown(const std::string& path, const RunInfo& info, const std::vector<Row>& rows, const Linearity& lin,
                     const std::vector<Target>& targets) {
     std::ostringstream o;
-    o << "Measured on commit `" << info.commit << "`, " << info.date << ", " << info.device << " on " << info.cpu << " (1-minute load average " << num(info.load_start, 2) << " before the run, "
-      << num(info.load_end, 2) << " after, the bench's own threads included).\n\n"
+    o << "Measured on commit `" << info.commit << "`, " << info.date << ", " << info.device << " on " << info.cpu
+      << " (1-minute load average " << num(info.load_start, 2) << " before the run, " << num(info.load_end, 2)
+      << " after, the bench's own threads included).\n\n"
       << "Command: `" << info.command << "` (" << info.reps << " timed repetitions after " << info.warmup << " warm-up frames"
       << (info.validation ? ", under validation: timings not representative" : "") << ").\n\n";
-    o << "| config | size | channels | source | kernel ms median (min–max) | roof ms median (min–max) | kernel/roof median (IQR; min–max) | roof GB/s | "
+    o << "| config | size | channels | source | kernel ms median (min–max) | roof ms median (min–max) | kernel/roof median (IQR; min–max) "
+         "| roof GB/s | "
          "kernel GB/s | roof MB/frame | memory MB | wall ms/frame | hits % | young % |\n"
          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     char line[1024];
     for (const Row& r : rows) {
         const Summary k = r.kernel(), t = r.roof(), q = r.ratio();
         std::snprintf(line, sizeof line,
-                      "| %s | %ux%u | %s | %s | %.2f (%.2f–%.2f) | %.2f (%.2f–%.2f) | %.3f (%.2f–%.2f; %.2f–%.2f) | %.2f | %.2f | %.1f | %.1f | %.2f | %.1f | %.1f |\n",
+                      "| %s | %ux%u | %s | %s | %.2f (%.2f–%.2f) | %.2f (%.2f–%.2f) | %.3f (%.2f–%.2f; %.2f–%.2f) | %.2f | %.2f | %.1f | "
+                      "%.1f | %.2f | %.1f | %.1f |\n",
                       r.config.name.c_str(), r.config.width, r.config.height, channels_text(r.config).c_str(), source_name(r.config.source),
                       k.median, k.min, k.max, t.median, t.min, t.max, q.median, q.q1, q.q3, q.min, q.max, r.roof_gbps(), r.kernel_gbps(),
                       mb(r.api_bytes.total()), mb(r.interop.memory_bytes), r.wall().median, 100.0 * r.hit_fraction(),
@@ -213,8 +228,9 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
       << ") over all pixels of the untimed statistics frame.";
     for (const Row& r : rows)
         if (r.config.young)
-            o << " " << r.config.name << ": nocache share " << num(100.0 * r.config.nocache_share, 1) << " %, young " << num(100.0 * r.young_fraction(), 1)
-              << " % of pixels (" << num(100.0 * r.young_surface_fraction(), 1) << " % of surface pixels).";
+            o << " " << r.config.name << ": nocache share " << num(100.0 * r.config.nocache_share, 1) << " %, young "
+              << num(100.0 * r.young_fraction(), 1) << " % of pixels (" << num(100.0 * r.young_surface_fraction(), 1)
+              << " % of surface pixels).";
     for (const Row& r : rows)
         if (r.config.shading_cache == Config::Cache::Split)
             o << " " << r.config.name << ": " << r.interop.listed_quads << " quads listed, " << num(100.0 * r.listed_fraction(), 1)
@@ -231,22 +247,27 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
                           mb(r.standalone.memory_bytes));
             o << line;
         }
-    o << "\nMemory beside published figures (not measured here): NRD's SIGMA shadow denoiser " << kNrdSigmaMb1080p
-      << " MB at 1080p, FSR 2 " << kFsr2Mb1080pQuality << " MB at 1080p (quality mode).";
+    o << "\nMemory beside published figures (not measured here): NRD's SIGMA shadow denoiser " << kNrdSigmaMb1080p << " MB at 1080p, FSR 2 "
+      << kFsr2Mb1080pQuality << " MB at 1080p (quality mode).";
     for (const Row& r : rows)
-        if (r.config.name == "base") o << " rrc, base (" << r.config.width << "x" << r.config.height << "): " << num(mb(r.interop.memory_bytes), 1) << " MB.";
+        if (r.config.name == "base")
+            o << " rrc, base (" << r.config.width << "x" << r.config.height << "): " << num(mb(r.interop.memory_bytes), 1) << " MB.";
     o << "\n\nLinearity (kernel median time against pixels): ";
     if (lin.measured) {
-        o << num(lin.ms_per_mpixel, 2) << " ms per megapixel (least squares through 0 over 720p and above, fitted in each round of repetitions; medians over the rounds); deviations:";
+        o << num(lin.ms_per_mpixel, 2)
+          << " ms per megapixel (least squares through 0 over 720p and above, fitted in each round of repetitions; medians over the "
+             "rounds); deviations:";
         for (const auto& d : lin.deviation) o << " " << d.first << " " << num(100.0 * d.second, 1) << "%";
         o << "; max |deviation| " << num(100.0 * lin.max_abs_deviation, 1) << "%.";
         if (lin.small_measured) o << " 256x160: " << num(lin.small_share, 2) << "x its linear share.";
-        o << " Fit with an intercept over every resolution row: ms = " << num(lin.intercept_ms, 2) << " + " << num(lin.slope_ms, 2) << " * MP.\n";
+        o << " Fit with an intercept over every resolution row: ms = " << num(lin.intercept_ms, 2) << " + " << num(lin.slope_ms, 2)
+          << " * MP.\n";
     } else {
         o << "not measured (needs at least two resolutions of 720p and above).\n";
     }
     o << "\n| target | goal | measured | status | margin |\n|---|---|---|---|---|\n";
-    for (const Target& t : targets) o << "| " << t.name << " | " << t.goal << " | " << t.measured << " | " << t.status << " | " << t.margin << " |\n";
+    for (const Target& t : targets)
+        o << "| " << t.name << " | " << t.goal << " | " << t.measured << " | " << t.status << " | " << t.margin << " |\n";
     write_file(path, o.str());
 }
 

@@ -1,7 +1,8 @@
 // Builders for rrc's public C descriptors (include/rrc/rrc.h): zeroed, with
-// type and size set, and the fields every caller fills.  rrc-sample, the
-// tests' support code and the reference self-tests each used to spell these
-// out field by field; they share these instead.  Public API only.
+// type and size set, and the fields every caller fills.  rrc-sample,
+// rrc-accumulate, the tests' support code and the reference self-tests each
+// used to spell these out field by field; they share these instead.  Public
+// API only.
 #pragma once
 
 #include <rrc/rrc.h>

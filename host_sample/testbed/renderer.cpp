@@ -26,7 +26,8 @@ void label(const Gpu& gpu, VkCommandBuffer cmd, const char* name) {
 
 }  // namespace
 
-Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gpu_(gpu), scene_(scene), s_(s) {
+Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s)
+    : gpu_(gpu), scene_(scene), s_(s), commands_(gpu), queries_(gpu, kStampCount) {
     const uint32_t w = s.render.width, h = s.render.height;
     gpu_scene_.reset(new GpuScene(gpu, scene));
     maps_ = create_shadow_maps(gpu, s.render);
@@ -61,27 +62,10 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s) : gp
     slot_.confidence = r.add(signals_->pcf_confidence());
     slot_.weighted = r.add(signals_->pcf_weighted_target());
     r.allocate();
-
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = gpu.pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd_), "vkAllocateCommandBuffers");
-    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence_), "vkCreateFence");
-    if (gpu.timestamps) {
-        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        qci.queryCount = kStampCount;
-        vk_check(vkCreateQueryPool(gpu.device, &qci, nullptr, &queries_), "vkCreateQueryPool");
-    }
 }
 
 Renderer::~Renderer() {
     vkDeviceWaitIdle(gpu_.device);
-    if (queries_) vkDestroyQueryPool(gpu_.device, queries_, nullptr);
-    vkDestroyFence(gpu_.device, fence_, nullptr);
-    vkFreeCommandBuffers(gpu_.device, gpu_.pool, 1, &cmd_);
     readback_.reset();
     post_.reset();
     rrc_.reset();
@@ -97,19 +81,13 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     const FrameState state = make_frame_state(scene_, s_.render, index);
     gpu_scene_->update(state);  // the previous frame's fence has been waited for
     const uint32_t sig = s_.signals;
-    VkCommandBuffer cmd = cmd_;
-    vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    const VkCommandBuffer cmd = commands_.begin();
     auto stamp = [&](Stamp s) {
-        if (queries_)
-            vkCmdWriteTimestamp(cmd, s == kStart ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, s);
+        queries_.write(cmd, s == kStart ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s);
     };
-    if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, kStampCount);
+    queries_.reset(cmd, 0, kStampCount);
     // Everything of the previous frame (readback copies included) before anything of this one.
-    memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+    rrc_host::full_barrier(cmd);
     stamp(kStart);
 
     label(gpu_, cmd, "shadow maps");
@@ -158,14 +136,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
         for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);
     if (checkpoint) slots.push_back(slot_.colour[1]), slots.push_back(slot_.colour[2]);
     readback_->record(cmd, slots);
-    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd;
-    vk_check(vkQueueSubmit(gpu_.queue, 1, &si, fence_), "vkQueueSubmit");
-    vk_check(vkWaitForFences(gpu_.device, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    vk_check(vkResetFences(gpu_.device, 1, &fence_), "vkResetFences");
+    commands_.submit_and_wait();
     const auto t1 = std::chrono::steady_clock::now();
 
     FrameOutput out;
@@ -175,12 +146,8 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     out.eye = glm::vec3(state.uniforms.camera_pos);
     out.pixel_angle = scene_.camera(state.uniforms.camera_pos.w).fov_y / (float)s_.render.height;
     out.timings.cpu_frame = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    if (queries_) {
-        uint64_t ts[kStampCount] = {};
-        const uint32_t n = checkpoint ? kStampCount : kReference;
-        vk_check(vkGetQueryPoolResults(gpu_.device, queries_, 0, n, sizeof ts, ts, sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                 "vkGetQueryPoolResults");
+    if (queries_.enabled()) {
+        const std::vector<uint64_t> ts = queries_.ticks(0, checkpoint ? kStampCount : kReference);
         const double ms = gpu_.properties.limits.timestampPeriod * 1e-6;
         auto d = [&](Stamp a, Stamp b) { return (double)(ts[b] - ts[a]) * ms; };
         FrameTimings& t = out.timings;

@@ -3,6 +3,7 @@
 // then the readback -- all in one command buffer, timed with GPU timestamps.
 #pragma once
 
+#include "fenced_commands.h"
 #include "frame_state.h"
 #include "gpu.h"
 #include "post.h"
@@ -97,9 +98,8 @@ private:
     struct Slots {
         int mask, age[2], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip, confidence, weighted;
     } slot_{};
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
-    VkQueryPool queries_ = VK_NULL_HANDLE;
+    rrc_host::FencedCommands commands_;
+    rrc_host::TimestampQueries queries_;  // kStampCount
     uint32_t parity_ = 0;
 };
 

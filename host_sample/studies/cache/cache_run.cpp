@@ -1,5 +1,6 @@
 #include "cache_run.h"
 
+#include "fenced_commands.h"
 #include "frame_state.h"
 #include "gpu.h"
 #include "kernel.h"
@@ -16,7 +17,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -61,7 +61,8 @@ struct Bench::Impl {
           scene(rrc_sample::Scene::make("temple")),
           render(make_render(s)),
           gpu_scene(gpu, scene),
-          gbuffer(gpu, gpu_scene, s.width, s.height) {
+          gbuffer(gpu, gpu_scene, s.width, s.height),
+          commands(gpu) {
         const VkImageUsageFlags storage =
             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
         shaded = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, storage, "shaded (rrc samples)");
@@ -74,18 +75,9 @@ struct Bench::Impl {
             RRC_QUAD_LIST_BYTES(s.width, s.height),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, "quad list");
         counter = gpu.create_buffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, "shaded quads");
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = gpu.pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd), "vkAllocateCommandBuffers");
-        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence), "vkCreateFence");
     }
     ~Impl() {
         vkDeviceWaitIdle(gpu.device);
-        vkDestroyFence(gpu.device, fence, nullptr);
-        vkFreeCommandBuffers(gpu.device, gpu.pool, 1, &cmd);
         shaders.clear();
         gpu.destroy(list);
         gpu.destroy(counter);
@@ -133,26 +125,13 @@ struct Bench::Impl {
     // visible), submits, waits; the wall clock less the fastest empty one.
     template <typename Body>
     double submit(Body&& body) {
-        vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-        rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        const VkCommandBuffer cmd = commands.begin();
+        rrc_host::full_barrier(cmd);
         body(cmd);
         // Its writes to the host (the list, the counter, readbacks after the fence).
         rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                                    VK_ACCESS_HOST_READ_BIT);
-        vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &cmd;
-        const auto t0 = std::chrono::steady_clock::now();
-        vk_check(vkQueueSubmit(gpu.queue, 1, &si, fence), "vkQueueSubmit");
-        vk_check(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        vk_check(vkResetFences(gpu.device, 1, &fence), "vkResetFences");
-        return ms;
+        return commands.submit_and_wait();
     }
     double timed(const std::function<void(VkCommandBuffer)>& body) {
         empty_floor = std::min(empty_floor, submit([](VkCommandBuffer) {}));
@@ -172,10 +151,9 @@ struct Bench::Impl {
     rrc_sample::RenderSettings render;
     rrc_sample::GpuScene gpu_scene;
     rrc_sample::GBufferPass gbuffer;
+    rrc_host::FencedCommands commands;
     Image shaded, truth, out, mask;
     rrc_host::Buffer list, counter;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
     std::map<uint32_t, Shaders> shaders;  // by octave count
     double empty_floor = std::numeric_limits<double>::infinity();
 };

@@ -45,10 +45,7 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
     return c;
 }
 
-void full_barrier(VkCommandBuffer c) {
-    rrc_sample::memory_barrier(c, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                               VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-}
+using rrc_host::full_barrier;
 
 bool scored(uint32_t signal, uint8_t m) { return signal == kSignalEnv ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; }
 
@@ -142,18 +139,7 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
 
     // ---- rrc: one context per configuration, all fed the same signals, frame by frame and seed by seed.
     std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
-    for (const StudyConfig& c : configs) {
-        rrc_sample::RrcSettings s;
-        s.width = o.width;
-        s.height = o.height;
-        s.signals = c.app.signal;
-        s.near_plane = scene.near_plane;
-        s.far_plane = scene.far_plane;
-        if (c.app.signal == kSignalPcf) s.channels.pcf = c.channel;
-        if (c.app.signal == kSignalEnv) s.channels.env = c.channel;
-        if (c.app.signal == kSignalSoft) s.channels.soft = c.channel;
-        stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
-    }
+    for (const StudyConfig& c : configs) stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
     rrc_sample::Readback rb(gpu);
     std::vector<int> slots;
     for (size_t i = 0; i < stages.size(); ++i) slots.push_back(rb.add(signal_image(stages[i]->accumulated(), configs[i].app.signal)));

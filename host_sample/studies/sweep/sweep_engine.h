@@ -4,16 +4,17 @@
 // submitted and waited for at a time, with timestamps.
 #pragma once
 
+#include "fenced_commands.h"
 #include "frame_state.h"
 #include "gpu.h"
 #include "raster.h"
 #include "readback.h"
+#include "rrc_stage.h"
 #include "scene.h"
 #include "signals.h"
 
 #include <glm/gtc/packing.hpp>
 
-#include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -55,24 +56,14 @@ struct Engine {
           maps(rrc_sample::create_shadow_maps(g, rs)),
           shadows(g, gpu_scene),
           gbuffer(g, gpu_scene, rs.width, rs.height),
-          signals(g, gpu_scene, gbuffer.images(), maps, rs.width, rs.height) {
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = gpu.pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        rrc_sample::vk_check(vkAllocateCommandBuffers(gpu.device, &ai, &cmd), "vkAllocateCommandBuffers");
-        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        rrc_sample::vk_check(vkCreateFence(gpu.device, &fci, nullptr, &fence), "vkCreateFence");
-        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        qci.queryCount = kQueries;
-        rrc_sample::vk_check(vkCreateQueryPool(gpu.device, &qci, nullptr, &queries), "vkCreateQueryPool");
+          signals(g, gpu_scene, gbuffer.images(), maps, rs.width, rs.height),
+          commands(g),
+          queries(g, kQueries) {
+        // The sweep's results are GPU times: without timestamps it has nothing to measure.
+        if (!queries.enabled()) throw std::runtime_error("rrc-sweep: the device's queue has no timestamps");
     }
     ~Engine() {
         vkDeviceWaitIdle(gpu.device);
-        vkDestroyQueryPool(gpu.device, queries, nullptr);
-        vkDestroyFence(gpu.device, fence, nullptr);
-        vkFreeCommandBuffers(gpu.device, gpu.pool, 1, &cmd);
         rrc_sample::destroy_shadow_maps(gpu, maps);
     }
 
@@ -91,42 +82,45 @@ struct Engine {
     template <typename Body>
     std::vector<double> submit(uint32_t stamps, Body&& body) {
         if (stamps > kQueries) throw std::runtime_error("rrc-sweep: more timestamps in a frame than the query pool holds");
-        rrc_sample::vk_check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        rrc_sample::vk_check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-        vkCmdResetQueryPool(cmd, queries, 0, kQueries);
-        rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                                   VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        const VkCommandBuffer cmd = commands.begin();
+        queries.reset(cmd, 0, kQueries);
+        rrc_host::full_barrier(cmd);
         uint32_t next = 0;
         // A full barrier before each timestamp: lavapipe may write a BOTTOM_OF_PIPE timestamp before a
         // dispatch recorded ahead of it has finished (a lone dispatch then timed at 0.07 ms instead of
         // milliseconds); after the barrier each interval holds exactly the work recorded in it.
         auto stamp = [&] {
-            rrc_sample::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
-                                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, next++);
+            rrc_host::full_barrier(cmd);
+            queries.write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, next++);
         };
         body(cmd, stamp);
-        rrc_sample::vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &cmd;
-        const auto t0 = std::chrono::steady_clock::now();
-        rrc_sample::vk_check(vkQueueSubmit(gpu.queue, 1, &si, fence), "vkQueueSubmit");
-        rrc_sample::vk_check(vkWaitForFences(gpu.device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        last_wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        rrc_sample::vk_check(vkResetFences(gpu.device, 1, &fence), "vkResetFences");
+        last_wall_ms = commands.submit_and_wait();
         if (next != stamps) throw std::runtime_error("rrc-sweep: a frame wrote another number of timestamps than it declared");
         std::vector<double> ms;
         if (stamps == 0) return ms;
-        std::vector<uint64_t> ts(stamps);
-        rrc_sample::vk_check(vkGetQueryPoolResults(gpu.device, queries, 0, stamps, stamps * sizeof(uint64_t), ts.data(), sizeof(uint64_t),
-                                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                             "vkGetQueryPoolResults");
+        const std::vector<uint64_t> ts = queries.ticks(0, stamps);
         const double period = gpu.properties.limits.timestampPeriod * 1e-6;
         for (uint32_t i = 0; i < stamps; ++i) ms.push_back((double)ts[i] * period);
         return ms;
+    }
+
+    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are. */
+    rrc_sample::RrcSettings rrc_settings(uint32_t signals) const {
+        rrc_sample::RrcSettings s;
+        s.width = settings.width;
+        s.height = settings.height;
+        s.signals = signals;
+        s.near_plane = scene.near_plane;
+        s.far_plane = scene.far_plane;
+        return s;
+    }
+    /** The same for one signal, its channel set to `channel` (a configuration the sweep or the study tries). */
+    rrc_sample::RrcSettings rrc_settings(uint32_t signal, const rrc_sample::ChannelSettings& channel) const {
+        rrc_sample::RrcSettings s = rrc_settings(signal);
+        if (signal == kSignalPcf) s.channels.pcf = channel;
+        if (signal == kSignalEnv) s.channels.env = channel;
+        if (signal == kSignalSoft) s.channels.soft = channel;
+        return s;
     }
 
     /** The frame's geometry: the sun's map (pcf's) and the G-buffer. */
@@ -143,10 +137,9 @@ struct Engine {
     rrc_sample::ShadowPass shadows;
     rrc_sample::GBufferPass gbuffer;
     rrc_sample::SignalPasses signals;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkFence fence = VK_NULL_HANDLE;
-    VkQueryPool queries = VK_NULL_HANDLE;
-    double last_wall_ms = 0.0;  // the last submission, vkQueueSubmit to its fence
+    rrc_host::FencedCommands commands;
+    rrc_host::TimestampQueries queries;  // kQueries
+    double last_wall_ms = 0.0;           // the last submission, vkQueueSubmit to its fence
 };
 
 /** The targets of one frame and its materials (the sweep's make_targets and the rectification study):

@@ -164,31 +164,15 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         for (size_t ri = 0; ri < runs.size(); ++ri) {
             const RrcRun& run = runs[ri];
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
-            for (const RrcConfig& c : run.configs) {
-                rrc_sample::RrcSettings s;
-                s.width = o.width;
-                s.height = o.height;
-                s.signals = c.app.signal;
-                s.near_plane = scene.near_plane;
-                s.far_plane = scene.far_plane;
-                if (c.app.signal == kSignalPcf) s.channels.pcf = c.channel;
-                if (c.app.signal == kSignalEnv) s.channels.env = c.channel;
-                if (c.app.signal == kSignalSoft) s.channels.soft = c.channel;
-                stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
-            }
+            for (const RrcConfig& c : run.configs)
+                stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
             // The sharing probe: each application's default channel alone, then all of them in one context.
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> probe;
             const bool probing = run.pattern == 0 && apps_of(sigs).size() > 1;
             if (probing) {
                 for (uint32_t bits : {(uint32_t)kSignalPcf, (uint32_t)kSignalEnv, (uint32_t)kSignalSoft, sigs}) {
                     if (!(bits & sigs)) continue;
-                    rrc_sample::RrcSettings s;
-                    s.width = o.width;
-                    s.height = o.height;
-                    s.signals = bits & sigs;
-                    s.near_plane = scene.near_plane;
-                    s.far_plane = scene.far_plane;
-                    probe.emplace_back(new rrc_sample::RrcStage(gpu, s));
+                    probe.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(bits & sigs)));
                 }
             }
             rrc_sample::Readback rb(gpu);

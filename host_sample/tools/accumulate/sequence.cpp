@@ -1,6 +1,8 @@
 // rrc-accumulate: reading the sequence into rrc's descriptors.
 #include "sequence.h"
 
+#include "rrc_descs.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cctype>
@@ -421,30 +423,12 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
 
     channels.clear();
     for (const SignalLayout& s : layout.signals) {
-        rrc_channel_desc c{};
-        c.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-        c.next = nullptr;
-        c.size = sizeof(rrc_channel_desc);
         if (s.options.layer.size() >= RRC_MAX_NAME) throw CliError("layer name " + quoted(s.options.layer) + " is too long for rrc");
-        s.options.layer.copy(c.name, s.options.layer.size());
-        c.name[s.options.layer.size()] = '\0';
-        c.components = s.rrc_components;
-        c.precision = s.options.history;
-        c.lambda = s.options.lambda;
-        c.blend = s.options.blend;
-        c.filter = s.options.filter;
-        c.age_cap = s.options.max_age;
-        c.confidence = s.confidence ? 1u : 0u;
-        channels.push_back(c);
+        channels.push_back(rrc_host::channel(s.options.layer.c_str(), s.rrc_components, s.options.lambda, s.options.history,
+                                             s.options.blend, s.options.filter, s.options.max_age, s.confidence ? 1u : 0u));
     }
 
-    rrc_context_desc d{};
-    d.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-    d.next = nullptr;
-    d.size = sizeof(rrc_context_desc);
-    d.api_version = RRC_API_VERSION;
-    d.width = static_cast<uint32_t>(layout.width);
-    d.height = static_cast<uint32_t>(layout.height);
+    rrc_context_desc d = rrc_host::context_desc(static_cast<uint32_t>(layout.width), static_cast<uint32_t>(layout.height), channels);
     d.depth_mode = o.depth_mode;
     d.near_plane = o.near_plane;
     d.far_plane = o.far_plane;
@@ -463,8 +447,6 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
     if (o.motion_y_up) sy = -sy;
     d.motion_scale[0] = static_cast<float>(sx);
     d.motion_scale[1] = static_cast<float>(sy);
-    d.channel_count = static_cast<uint32_t>(channels.size());
-    d.channels = channels.data();
     d.use_nocache_mask = layout.nocache ? 1u : 0u;
     d.depth_test = o.depth_test;
     d.use_object_id = layout.channels.object_id.empty() ? 0u : 1u;
