@@ -8,71 +8,37 @@
 #include <rrc/rrc.h>
 
 #include <stdio.h>
-#include <string.h>
 
 enum { W = 16, H = 8 };
 
 int main(void) {
     static float depth[W * H], samples[W * H], values[W * H];
     static uint8_t mask[W * H];
-    rrc_channel_desc shadow;
-    rrc_context_desc desc;
-    rrc_channel_input input;
-    rrc_frame_desc frame;
-    rrc_channel_output channel_out;
-    rrc_frame_output out;
     rrc_context* ctx = NULL;
     rrc_result r;
     uint64_t messages = 0;
     int i, t, ok;
 
-    /* Every descriptor: zeroed (a zero member is its default), then its type tag and size. */
-    memset(&shadow, 0, sizeof shadow);
-    shadow.type = RRC_STRUCT_TYPE_CHANNEL_DESC;
-    shadow.size = sizeof shadow;
-    strcpy(shadow.name, "shadow");
-    shadow.components = 1;
-    shadow.precision = RRC_HISTORY_FP32;
-    shadow.lambda = 0.5f;
+    /* Every descriptor starts with its type tag and size; a member left out is zero, its default. */
+    rrc_channel_desc shadow = {.type = RRC_STRUCT_TYPE_CHANNEL_DESC, .size = sizeof shadow, .name = "shadow",
+                               .components = 1, .precision = RRC_HISTORY_FP32, .lambda = 0.5f};
+    rrc_context_desc desc = {.type = RRC_STRUCT_TYPE_CONTEXT_DESC, .size = sizeof desc, .api_version = RRC_API_VERSION,
+                             .width = W, .height = H, .depth_mode = RRC_DEPTH_MODE_REVERSED,
+                             .reprojection = RRC_REPROJECTION_CAMERA, /* static scene: matrices only */
+                             .channel_count = 1, .channels = &shadow};
+    rrc_channel_input input = {.type = RRC_STRUCT_TYPE_CHANNEL_INPUT, .size = sizeof input, .samples = samples};
+    rrc_frame_desc frame = {.type = RRC_STRUCT_TYPE_FRAME_DESC, .size = sizeof frame, .depth = depth,
+                            .channel_count = 1, .channels = &input};
+    rrc_channel_output channel_out = {.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT, .size = sizeof channel_out, .values = values};
+    rrc_frame_output out = {.type = RRC_STRUCT_TYPE_FRAME_OUTPUT, .size = sizeof out, .mask = mask,
+                            .channel_count = 1, .channels = &channel_out};
+    for (i = 0; i < 16; i += 5) frame.view_proj[i] = frame.prev_view_proj[i] = 1.0; /* identity camera */
 
-    memset(&desc, 0, sizeof desc);
-    desc.type = RRC_STRUCT_TYPE_CONTEXT_DESC;
-    desc.size = sizeof desc;
-    desc.api_version = RRC_API_VERSION;
-    desc.width = W;
-    desc.height = H;
-    desc.depth_mode = RRC_DEPTH_MODE_REVERSED;
-    desc.reprojection = RRC_REPROJECTION_CAMERA; /* static scene: matrices only */
-    desc.channel_count = 1;
-    desc.channels = &shadow;
     r = rrc_context_create(&desc, &ctx);
     if (r != RRC_SUCCESS) {
         fprintf(stderr, "rrc_context_create: %s: %s\n", rrc_result_to_string(r), rrc_last_error());
         return 1;
     }
-
-    memset(&input, 0, sizeof input);
-    input.type = RRC_STRUCT_TYPE_CHANNEL_INPUT;
-    input.size = sizeof input;
-    input.samples = samples;
-    memset(&frame, 0, sizeof frame);
-    frame.type = RRC_STRUCT_TYPE_FRAME_DESC;
-    frame.size = sizeof frame;
-    frame.depth = depth;
-    for (i = 0; i < 16; i += 5) frame.view_proj[i] = frame.prev_view_proj[i] = 1.0; /* identity camera */
-    frame.channel_count = 1;
-    frame.channels = &input;
-    memset(&channel_out, 0, sizeof channel_out);
-    channel_out.type = RRC_STRUCT_TYPE_CHANNEL_OUTPUT;
-    channel_out.size = sizeof channel_out;
-    channel_out.values = values;
-    memset(&out, 0, sizeof out);
-    out.type = RRC_STRUCT_TYPE_FRAME_OUTPUT;
-    out.size = sizeof out;
-    out.mask = mask;
-    out.channel_count = 1;
-    out.channels = &channel_out;
-
     for (i = 0; i < W * H; ++i) depth[i] = 0.5f;
     for (t = 0; t < 9; ++t) {
         for (i = 0; i < W * H; ++i) samples[i] = (float)(t % 2);

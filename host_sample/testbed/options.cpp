@@ -25,6 +25,13 @@ std::string scene_name(rrc_host::ArgCursor& c) {
     return name;
 }
 
+std::string device_options_help(const char* program) {
+    return std::string("  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
+                       "  --device TEXT            the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
+                       "  --quiet                  no progress lines\n") +
+           rrc_host::check_options_help(program) + "  --help                   this text\n";
+}
+
 bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet) {
     if (c.flag("--validation"))
         validation = true;
@@ -126,10 +133,7 @@ std::string usage() {
            "  --no-object-id           do not give rrc the G-buffer's per-pixel object ids (default: given, so a hit\n"
            "                           also needs every previous-depth tap to show the pixel's object; see README.md)\n"
            "  --no-images              write only summary.md, summary.csv and errors.csv\n"
-           "  --validation             Khronos validation layer with synchronization validation\n"
-           "  --device TEXT            use the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
-           "  --quiet                  no per-frame progress\n"
-           + rrc_host::check_options_help("rrc-sample") + "  --help                   this text\n";
+           + device_options_help("rrc-sample");
 }
 
 Options parse_options(int argc, const char* const* argv) {

@@ -58,6 +58,8 @@ using rrc_host::OptionError;
 std::string scene_name(rrc_host::ArgCursor& c);
 /** --validation, --device TEXT or --quiet at the cursor (shared with rrc-sweep); false if none of them. */
 bool device_option(rrc_host::ArgCursor& c, bool& validation, std::string& device, bool& quiet);
+/** The help lines of device_option's options, --check-options and --help (rrc-sample's and rrc-sweep's). */
+std::string device_options_help(const char* program);
 /** --signals LIST (pcf,env,soft) at the cursor, as Signal bits (shared with rrc-sweep). */
 uint32_t signal_bits(rrc_host::ArgCursor& c);
 

@@ -59,7 +59,7 @@ struct Bench::Impl {
         : settings(s),
           gpu(rrc_sample::GpuOptions{s.validation, ""}),
           scene(rrc_sample::Scene::make("temple")),
-          render(make_render(s)),
+          render{s.width, s.height},  // the test bed's other render settings: its defaults
           gpu_scene(gpu, scene),
           gbuffer(gpu, gpu_scene, s.width, s.height),
           commands(gpu) {
@@ -112,13 +112,6 @@ struct Bench::Impl {
         k.miss.bind_buffer(0, 3, list.buffer);
         k.miss.bind_buffer(0, 4, counter.buffer);
         return k;
-    }
-
-    static rrc_sample::RenderSettings make_render(const Settings& s) {
-        rrc_sample::RenderSettings r;
-        r.width = s.width;
-        r.height = s.height;
-        return r;
     }
 
     // Records `body` after a full barrier (the previous submission's writes

@@ -61,10 +61,7 @@ std::string sweep_usage() {
            "                           timestamps otherwise), wall or timestamps\n"
            "  --out DIR                output directory (default out/sweep)\n"
            "  --no-plots               do not run fronts.py\n"
-           "  --validation             Khronos validation layer with synchronization validation (exit 1 on a message)\n"
-           "  --device TEXT            the first Vulkan device whose name contains TEXT (or RRC_DEVICE)\n"
-           "  --quiet                  no progress lines\n"
-           + rrc_host::check_options_help("rrc-sweep") + "  --help                   this text\n";
+           + rrc_sample::device_options_help("rrc-sweep");
 }
 
 SweepOptions parse_sweep_options(int argc, const char* const* argv) {
