@@ -1,8 +1,7 @@
-// The interop path as an engine drives it (docs/INTEGRATION.md, "The interop path, step by step"): its own
-// device (volk), a raster pass writing depth, previous clip position and a signal, then rrc recorded into the
-// same command buffer; two frames, the camera pans.  --cache: the shading cache ("The shading cache: shade only
-// the misses"): classify, a miss shader dispatched indirectly on rrc's quad list, resolve.  Exits 1 on a wrong
-// result or, with RRC_VALIDATION=1 (validation layer, synchronization validation), on any message.
+// The interop path as an engine drives it (docs/INTEGRATION.md, "The interop path, step by step"): its own device (volk), a raster
+// pass writing depth, previous clip position and a signal, then rrc recorded into the same command buffer; two frames, the camera pans.
+// --cache: the shading cache ("The shading cache: shade only the misses"): classify, a miss shader dispatched indirectly on rrc's quad
+// list, resolve.  Exits 1 on a wrong result or, with RRC_VALIDATION=1 (validation layer, synchronization validation), on any message.
 #include <volk.h>
 
 #include <rrc/rrc_vulkan.h>
@@ -41,7 +40,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
     return VK_FALSE;
 }
 
-VkDeviceMemory allocate(VkMemoryRequirements need, VkMemoryPropertyFlags flags) {
+// Memory for an image or a buffer (the other is VK_NULL_HANDLE): the first type with `flags`, bound at offset 0.
+VkDeviceMemory bind_memory(VkImage image, VkBuffer buffer, VkMemoryPropertyFlags flags) {
+    VkMemoryRequirements need;
+    image ? vkGetImageMemoryRequirements(device, image, &need) : vkGetBufferMemoryRequirements(device, buffer, &need);
     VkPhysicalDeviceMemoryProperties props;
     vkGetPhysicalDeviceMemoryProperties(physical, &props);
     uint32_t i = 0;
@@ -51,55 +53,53 @@ VkDeviceMemory allocate(VkMemoryRequirements need, VkMemoryPropertyFlags flags) 
     VkDeviceMemory memory;
     VK(vkAllocateMemory(device, &info, nullptr, &memory));
     destroy.push_back([memory] { vkFreeMemory(device, memory, nullptr); });
+    VK(image ? vkBindImageMemory(device, image, memory, 0) : vkBindBufferMemory(device, buffer, memory, 0));
     return memory;
 }
 
-struct Image {
-    VkImage image;
-    VkImageView view;
-    VkFormat format;
-    rrc_vulkan_image rrc(VkImageLayout layout) const { return {image, view, format, layout, layout}; }  // found and left in `layout`
+// How a pass uses an image; a barrier goes from one use to the next (synchronization2).
+struct Use {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
 };
+const VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kCopy = VK_PIPELINE_STAGE_2_COPY_BIT;
+const Use kDiscard{kCompute | kCopy, 0, VK_IMAGE_LAYOUT_UNDEFINED};  // after the last frame's compute and copies; contents dropped
+const Use kColour{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+const Use kSampled{kCompute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};  // rrc's inputs
+const Use kStorage{kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL};                  // the miss shader's image
+const Use kCopied{kCopy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};  // rrc's outputs between frames
 
-Image make_image(VkFormat format, VkImageUsageFlags usage) {
+// An image as rrc is given it: in `use`'s layout when its commands start, and left in it (docs/INTEGRATION.md, step 2).
+rrc_vulkan_image make_image(VkFormat format, VkImageUsageFlags usage, Use use) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, nullptr, 0, VK_IMAGE_TYPE_2D, format, VkExtent3D{W, H, 1}, 1, 1};
     info.samples = VK_SAMPLE_COUNT_1_BIT, info.usage = usage;
     CREATE(Image, image, info);
-    VkMemoryRequirements need;
-    vkGetImageMemoryRequirements(device, image, &need);
-    VK(vkBindImageMemory(device, image, allocate(need, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT), 0));
+    bind_memory(image, VK_NULL_HANDLE, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, image, VK_IMAGE_VIEW_TYPE_2D, format};
     view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     CREATE(ImageView, view, view_info);
-    return {image, view, format};
+    return {image, view, format, use.layout};
 }
 
-VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits which, const uint32_t* code, size_t bytes) {
-    const VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, bytes, code};
+template <size_t N>
+VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits which, const uint32_t (&code)[N]) {
+    const VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0, sizeof code, code};
     CREATE(ShaderModule, module, info);
     return {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, which, module, "main"};
 }
 
-VkPipelineLayout pipeline_layout(VkShaderStageFlags stages, uint32_t push_bytes, const VkDescriptorSetLayout* set) {
-    const VkPushConstantRange push{stages, 0, push_bytes};
-    const VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, set ? 1u : 0u, set, 1, &push};
-    CREATE(PipelineLayout, layout, info);
-    return layout;
-}
-
-// The raster pass: a strip without vertex buffers.  One plane needs no depth test: depth (reversed: near 1, far 0,
-// RRC_DEPTH_MODE_REVERSED) goes to a colour target, which rrc reads in .r (docs/INTEGRATION.md, "Inputs").
+// The raster pass: a strip, no vertex buffers, no depth test (one plane); reversed depth to a colour target, rrc reads .r ("Inputs").
 VkPipeline ground_pipeline(VkPipelineLayout layout) {
-    const VkPipelineShaderStageCreateInfo stages[2] = {
-        stage(VK_SHADER_STAGE_VERTEX_BIT, example_ground_vert, sizeof example_ground_vert),
-        stage(VK_SHADER_STAGE_FRAGMENT_BIT, example_ground_frag, sizeof example_ground_frag)};
+    const VkPipelineShaderStageCreateInfo stages[2] = {stage(VK_SHADER_STAGE_VERTEX_BIT, example_ground_vert),
+                                                       stage(VK_SHADER_STAGE_FRAGMENT_BIT, example_ground_frag)};
     const VkPipelineVertexInputStateCreateInfo vertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     VkPipelineInputAssemblyStateCreateInfo strip{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     strip.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
     const VkViewport viewport{0, 0, W, H, 0, 1};
     const VkRect2D scissor{VkOffset2D{0, 0}, VkExtent2D{W, H}};
-    const VkPipelineViewportStateCreateInfo view{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, nullptr, 0, 1, &viewport, 1,
-                                                 &scissor};
+    VkPipelineViewportStateCreateInfo view{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, nullptr, 0, 1, &viewport, 1, &scissor};
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.lineWidth = 1;
     VkPipelineMultisampleStateCreateInfo samples{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
@@ -118,21 +118,7 @@ VkPipeline ground_pipeline(VkPipelineLayout layout) {
     return pipeline;
 }
 
-// How a pass uses an image; a barrier goes from one use to the next (synchronization2).
-struct Use {
-    VkPipelineStageFlags2 stage;
-    VkAccessFlags2 access;
-    VkImageLayout layout;
-};
-const VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, kCopy = VK_PIPELINE_STAGE_2_COPY_BIT;
-const Use kDiscard{kCompute | kCopy, 0, VK_IMAGE_LAYOUT_UNDEFINED};  // after the last frame's compute and copies; contents dropped
-const Use kColour{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
-                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-const Use kSampled{kCompute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};  // rrc's inputs
-const Use kStorage{kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL};                  // the miss shader's image
-const Use kCopied{kCopy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};  // rrc's outputs between frames
-
-VkImageMemoryBarrier2 transition(const Image& img, Use a, Use b) {
+VkImageMemoryBarrier2 transition(const rrc_vulkan_image& img, Use a, Use b) {
     VkImageMemoryBarrier2 r{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, nullptr, a.stage, a.access, b.stage, b.access, a.layout, b.layout};
     r.srcQueueFamilyIndex = r.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     r.image = img.image, r.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -156,24 +142,23 @@ glm::mat4 view_proj(int t) {
 int main(int argc, char** argv) {
     const bool cache = argc > 1 && std::strcmp(argv[1], "--cache") == 0;
     const bool validation = std::getenv("RRC_VALIDATION") && std::strcmp(std::getenv("RRC_VALIDATION"), "1") == 0;
-    // With validation: the layer, synchronization validation, and a messenger counting every warning and
-    // error (chained into vkCreateInstance too, for the messages of creation and destruction).
+    // With validation: the layer, synchronization validation, a messenger counting warnings and errors (chained into vkCreateInstance too).
     VK(volkInitialize());
     const VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, "rrc interop example", 0, nullptr, 0, VK_API_VERSION_1_3};
-    const VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT, nullptr, 0,
-        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT, 7, on_message};  // 7: every type
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger_info.messageType = 7, messenger_info.pfnUserCallback = on_message;  // 7: every type
     const VkValidationFeatureEnableEXT sync_validation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     const VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messenger_info, 1, &sync_validation};
     const char *layer = "VK_LAYER_KHRONOS_validation", *debug_utils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    const VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, validation ? &features : nullptr, 0, &app,
-                                             validation, &layer, validation, &debug_utils};
+    const VkInstanceCreateInfo instance_info{
+        VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, validation ? &features : nullptr, 0, &app, validation, &layer, validation, &debug_utils};
     VkInstance instance;
     VK(vkCreateInstance(&instance_info, nullptr, &instance));
     volkLoadInstance(instance);
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     if (validation) VK(vkCreateDebugUtilsMessengerEXT(instance, &messenger_info, nullptr, &messenger));
-    // The first device and its family 0, graphics + compute on lavapipe and desktop GPUs (an engine chooses).
-    // rrc needs shaderStorageImageWriteWithoutFormat; this program dynamic rendering, synchronization2, push descriptors.
+    // The first device, family 0 (graphics + compute; an engine chooses).  rrc needs shaderStorageImageWriteWithoutFormat.
     uint32_t count = 1, family = 0;
     vkEnumeratePhysicalDevices(instance, &count, &physical);
     const float priority = 1;
@@ -182,8 +167,8 @@ int main(int argc, char** argv) {
     features13.synchronization2 = features13.dynamicRendering = VK_TRUE;
     VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
     features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
-    const char* push_descriptor = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
-    const VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features2, 0, 1, &queue_info, 0, nullptr, 1, &push_descriptor};
+    const char* extension = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;  // this program's, as are dynamic rendering, synchronization2
+    const VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features2, 0, 1, &queue_info, 0, nullptr, 1, &extension};
     VK(vkCreateDevice(physical, &device_info, nullptr, &device));
     volkLoadDevice(device);
     VkQueue queue;
@@ -202,21 +187,21 @@ int main(int argc, char** argv) {
     RRC(rrc_vulkan_context_create(&desc, &host, &ctx));
     const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled,
                             result = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    const Image depth = make_image(VK_FORMAT_R32_SFLOAT, target), clip = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, target), signal = make_image(VK_FORMAT_R32_SFLOAT, target);
-    const Image shaded = make_image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | sampled);  // the miss shader's (--cache)
-    const Image output = make_image(VK_FORMAT_R32_SFLOAT, result), mask = make_image(VK_FORMAT_R8_UINT, result);
+    const auto depth = make_image(VK_FORMAT_R32_SFLOAT, target, kSampled), signal = make_image(VK_FORMAT_R32_SFLOAT, target, kSampled);
+    const auto clip = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, target, kSampled);
+    const auto shaded = make_image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | sampled, kStorage);  // the miss shader's (--cache)
+    const auto output = make_image(VK_FORMAT_R32_SFLOAT, result, kCopied), mask = make_image(VK_FORMAT_R8_UINT, result, kCopied);
+    rrc_vulkan_channel_images images{RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES, nullptr, sizeof images, cache ? shaded : signal, {}, output};
     // One host-visible buffer: rrc's quad list, then the output and the mask copied back.
     const VkDeviceSize kOutput = (RRC_QUAD_LIST_BYTES(W, H) + 255) / 256 * 256;
     const VkDeviceSize kMask = kOutput + W * H * sizeof(float), bytes = kMask + W * H;
-    const VkBufferCreateInfo buffer_info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, nullptr, 0, bytes,
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    const VkBufferUsageFlags usage =
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    const VkBufferCreateInfo buffer_info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, nullptr, 0, bytes, usage};
     CREATE(Buffer, buffer, buffer_info);
-    VkMemoryRequirements need;
-    vkGetBufferMemoryRequirements(device, buffer, &need);
-    VkDeviceMemory memory = allocate(need, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    const VkMemoryPropertyFlags host_visible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     char* mapped;
-    VK(vkBindBufferMemory(device, buffer, memory, 0));
-    VK(vkMapMemory(device, memory, 0, bytes, 0, (void**)&mapped));
+    VK(vkMapMemory(device, bind_memory(VK_NULL_HANDLE, buffer, host_visible), 0, bytes, 0, (void**)&mapped));
     // The miss shader's bindings (push descriptors): rrc's quad list and the image it shades.
     const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
     const VkDescriptorType storage_buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_image = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -229,33 +214,35 @@ int main(int argc, char** argv) {
     const VkStructureType write = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     const VkWriteDescriptorSet writes[2] = {{write, nullptr, VK_NULL_HANDLE, 0, 0, 1, storage_buffer, nullptr, &list_at},
                                             {write, nullptr, VK_NULL_HANDLE, 1, 0, 1, storage_image, &shaded_at}};
-    const VkPipelineLayout miss_layout = pipeline_layout(cs, sizeof(float), &set_layout);
+    const VkPushConstantRange push{cs, 0, sizeof(float)};  // the value it shades
+    const VkPipelineLayoutCreateInfo miss_layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1, &set_layout, 1, &push};
+    CREATE(PipelineLayout, miss_layout, miss_layout_info);
     const VkComputePipelineCreateInfo miss_info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, nullptr, 0,
-                                                stage(VK_SHADER_STAGE_COMPUTE_BIT, example_shade_misses_comp, sizeof example_shade_misses_comp), miss_layout};
+                                                stage(VK_SHADER_STAGE_COMPUTE_BIT, example_shade_misses_comp), miss_layout};
     VkPipeline miss;
     VK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &miss_info, nullptr, &miss));
     destroy.push_back([miss] { vkDestroyPipeline(device, miss, nullptr); });
-    const VkPipelineLayout ground_layout = pipeline_layout(VK_SHADER_STAGE_VERTEX_BIT, 2 * sizeof(glm::mat4), nullptr);
+    const VkPushConstantRange cameras{VK_SHADER_STAGE_VERTEX_BIT, 0, 2 * sizeof(glm::mat4)};  // now and the previous frame's
+    const VkPipelineLayoutCreateInfo ground_layout_info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 0, nullptr, 1, &cameras};
+    CREATE(PipelineLayout, ground_layout, ground_layout_info);
     const VkPipeline ground = ground_pipeline(ground_layout);
     int failures = 0;
     float previous = 0;  // frame 0's value at every pixel: the history frame 1 reads
     for (int t = 0; t < 2; ++t) {
-        // The frame's signal (the fragment shader's 1 + 2 * instance index); --cache: what the miss shader shades.
-        const float value = cache ? 0.25f + 0.5f * (float)t : 1.0f + 2.0f * (float)t;
-        const VkCommandBufferAllocateInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool, VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+        const float value = cache ? 0.25f + 0.5f * (float)t : 1.0f + 2.0f * (float)t;  // ground.vert's signal; --cache: the miss shader's
+        const VkCommandBufferAllocateInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                                   VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
         VkCommandBuffer cmd;  // one per frame, freed with the pool
         VK(vkAllocateCommandBuffers(device, &cmd_info, &cmd));
         const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         VK(vkBeginCommandBuffer(cmd, &begin));
         barrier(cmd, {transition(depth, kDiscard, kColour), transition(clip, kDiscard, kColour), transition(signal, kDiscard, kColour)});
         if (t == 0) barrier(cmd, {transition(output, kDiscard, kCopied), transition(mask, kDiscard, kCopied)});
-        VkRenderingAttachmentInfo targets[3] = {};
-        const Image* images_drawn[3] = {&depth, &clip, &signal};
-        for (int i = 0; i < 3; ++i) {  // cleared: depth to 0 (reversed: far, the sky), the background's signal to this frame's
-            targets[i] = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, images_drawn[i]->view, kColour.layout};
-            targets[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, targets[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        }
-        targets[2].clearValue.color.float32[0] = value;
+        VkRenderingAttachmentInfo targets[3] = {{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, depth.view, kColour.layout},
+                                                {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, clip.view, kColour.layout},
+                                                {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, signal.view, kColour.layout}};
+        for (auto& a : targets) a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR, a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        targets[2].clearValue.color.float32[0] = value;  // the background's signal; depth clears to 0 (reversed: far, the sky)
         const VkRenderingInfo pass{VK_STRUCTURE_TYPE_RENDERING_INFO, nullptr, 0, VkRect2D{{0, 0}, {W, H}}, 1, 0, 3, targets};
         vkCmdBeginRendering(cmd, &pass);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ground);
@@ -263,16 +250,11 @@ int main(int argc, char** argv) {
         vkCmdPushConstants(cmd, ground_layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof camera, camera);
         vkCmdDraw(cmd, 4, 1, 0, (uint32_t)t);
         vkCmdEndRendering(cmd);
-        // rrc samples its inputs in SHADER_READ_ONLY_OPTIMAL (step 2); it moves its outputs to GENERAL to
-        // write them and back to the layout given, here the copy's.
+        // rrc samples its inputs in SHADER_READ_ONLY_OPTIMAL; it moves its outputs to GENERAL and back to the copy's layout.
         barrier(cmd, {transition(depth, kColour, kSampled), transition(clip, kColour, kSampled), transition(signal, kColour, kSampled),
                       transition(shaded, kDiscard, kStorage)});
-        rrc_vulkan_channel_images images{RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES, nullptr, sizeof images,
-                                         cache ? shaded.rrc(kStorage.layout) : signal.rrc(kSampled.layout)};
-        images.output = output.rrc(kCopied.layout);
         rrc_vulkan_frame_desc frame{RRC_STRUCT_TYPE_VULKAN_FRAME_DESC, nullptr, sizeof frame, cmd, (uint64_t)t};
-        frame.depth = depth.rrc(kSampled.layout), frame.reprojection = clip.rrc(kSampled.layout), frame.mask = mask.rrc(kCopied.layout);
-        frame.channel_count = 1, frame.channels = &images;
+        frame.depth = depth, frame.reprojection = clip, frame.mask = mask, frame.channel_count = 1, frame.channels = &images;
         frame.split_outputs = 1;  // classify writes the hits, resolve the listed quads ("What each call writes")
         if (!cache) {
             RRC(rrc_vulkan_record_frame(ctx, &frame));
@@ -290,17 +272,16 @@ int main(int argc, char** argv) {
         vkCmdCopyImageToBuffer(cmd, output.image, kCopied.layout, buffer, 1, &region);
         region.bufferOffset = kMask;
         vkCmdCopyImageToBuffer(cmd, mask.image, kCopied.layout, buffer, 1, &region);
-        const VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, kCopy | kCompute,
-                                       VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+        const VkAccessFlags2 written = VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;  // the copies, the list
+        const VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, nullptr, kCopy | kCompute, written, VK_PIPELINE_STAGE_2_HOST_BIT,
                                        VK_ACCESS_2_HOST_READ_BIT};
         barrier(cmd, {}, &to_host);
         VK(vkEndCommandBuffer(cmd));
         const VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO, nullptr, 0, nullptr, nullptr, 1, &cmd};
         VK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE));
         VK(vkQueueWaitIdle(queue));  // an engine waits for the frame's fence
-        // A hit blends frame 0's value with this frame's (lambda 0.5) or, with --cache, keeps it; any other
-        // pixel takes this frame's (docs/CONVENTIONS.md).  A quad is listed iff one of its pixels is not a
-        // hit ("Classify, the quad list and resolve").  On this plane a miss has no mask bit.
+        // A hit blends frame 0's value with this frame's (lambda 0.5) or, with --cache, keeps it; any other pixel takes this frame's
+        // (docs/CONVENTIONS.md).  A quad is listed iff a pixel of it is not a hit ("Classify, the quad list and resolve").
         const float* out = (const float*)(mapped + kOutput);
         const uint8_t* bits = (const uint8_t*)(mapped + kMask);
         uint32_t hits = 0, background = 0, quads = 0, wrong = 0;
@@ -322,7 +303,6 @@ int main(int argc, char** argv) {
         failures += !ok;
         previous = value;
     }
-
     VK(vkDeviceWaitIdle(device));
     rrc_context_destroy(ctx);
     for (auto it = destroy.rbegin(); it != destroy.rend(); ++it) (*it)();

@@ -1,12 +1,10 @@
 #version 450
-// The miss shader (docs/INTEGRATION.md, "The frame, interop"), dispatched indirectly from rrc's
-// quad list: invocation n shades the list's entry n, a 2x2 quad, and counts it for the host.
+// The miss shader (docs/INTEGRATION.md, "The frame, interop"), dispatched indirectly: invocation n shades rrc's listed quad n.
 #extension GL_GOOGLE_include_directive : require
 #include "rrc/rrc_values.h"
 layout(local_size_x = RRC_QUADS_PER_GROUP) in;
 layout(std430, binding = 0) readonly buffer QuadList { uint entries[]; } quad_list;
 layout(binding = 1, r32f) uniform writeonly image2D shaded;
-layout(std430, binding = 2) buffer ShadedQuads { uint count; } shaded_quads;
 layout(push_constant) uniform Shading { float value; } shading;
 void main() {
     const uint entry = gl_GlobalInvocationID.x;
@@ -16,5 +14,4 @@ void main() {
         const ivec2 pixel = ivec2(quad & 0xFFFFu, quad >> 16) * 2 + ivec2(k % 2, k / 2);
         if (all(lessThan(pixel, imageSize(shaded)))) imageStore(shaded, pixel, vec4(shading.value));  // odd sizes
     }
-    atomicAdd(shaded_quads.count, 1u);
 }
