@@ -17,7 +17,8 @@
 //               ramped by saturate(diff^2), Ksep 1.37e-5 for inverted depth, 4 x 1.37e-5 otherwise) and
 //               ffx_fsr2_reconstruct_dilated_velocity_and_previous_depth.h (commit
 //               c8fc17d281665927e414b6b8117873cccbac0990); reconstructedDepthBilinearWeightThreshold
-//               0.05 (ffx_fsr2_common.h of the same line).
+//               0.05 (ffx_fsr2_common.h of the same line); hit/miss: the lock rule's
+//               depthClipThreshold 0.99 (ffx_fsr2_postprocess_lock_status.h).
 // Simplifications common to all (stated in docs/COMPARISON.md, "How the peers were rebuilt"):
 //   * double precision throughout; no fp16 packing of normals or depth (NRD, Falcor pack them).
 //   * every test gets the same exact previous texel coordinate q (peer_tests.h).
@@ -228,6 +229,7 @@ Decision svgf(const GBuffer& cur, const Reprojection& r, const GBuffer& prev, in
 
 const double kReconstructedDepthBilinearWeightThreshold = 0.05;
 const double kDepthClipBaseScale = 4.0;
+const double kDepthClipThreshold = 0.99;
 
 std::vector<Decision> fsr2(const GBuffer& cur, const Reprojection& r, const Options& o) {
     const int W = cur.width, H = cur.height;
@@ -289,10 +291,11 @@ std::vector<Decision> fsr2(const GBuffer& cur, const Reprojection& r, const Opti
                 wsum += f.w[t];
             }
             const double depth_clip = wsum > 0.0 ? clip / wsum : kDepthClipBaseScale;
-            // The accumulate pass reads saturate(depth clip): 1 keeps the history at full weight, lower
-            // values shorten it (ffx_fsr2_accumulate.h / ffx_fsr2_upsample.h).  A hit here = 1: the
-            // history kept whole; anything below counts as FSR2 rejecting (part of) it.
-            d.hit = saturate(depth_clip) >= 1.0 - 1e-12;  // the weighted mean of exact 1s may round below 1
+            // FSR2 makes no binary decision: the accumulate pass reads saturate(depth clip) (1 keeps the
+            // history, lower values shorten it).  Its own line between trusted and not is the lock
+            // rule of ffx_fsr2_postprocess_lock_status.h (same commit line), which kills a lock where
+            // the depth clip is below depthClipThreshold = 0.99: a hit here is >= 0.99.
+            d.hit = saturate(depth_clip) >= kDepthClipThreshold;
             if (d.hit) set_bilinear(d, f, W, H);
         }
     return out;
