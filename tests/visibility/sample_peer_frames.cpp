@@ -1,4 +1,4 @@
-#include "peer_frames.h"
+#include "sample_peer_frames.h"
 
 #include <rrc/rrc.h>
 

@@ -1,4 +1,4 @@
-// rrc-sample-peers (peers_main.cpp): the peers' validity tests
+// rrc-sample-peers (sample_peers_main.cpp): the peers' validity tests
 // (tests/reference/peer_tests.h) on rrc-sample's read-back G-buffers, scored
 // by its ray-cast oracle (oracle.h).  docs/COMPARISON.md, "rrc-sample".
 #pragma once

@@ -2,12 +2,13 @@
 // peers' validity tests (tests/reference/peer_tests.h) run on the CPU on each
 // frame's read-back G-buffer and scored by the sample's ray-cast oracle
 // beside rrc's own mask.  It appends a "Peer validity tests" table to
-// OUT/summary.md.  A separate program because rrc-sample itself uses only the
-// public headers of include/, and the peer tests live in the test suite's
-// double-precision reference (README.md, "rrc-sample-peers").
+// OUT/summary.md.  It lives with the tests, not in host_sample/: rrc-sample
+// and every host program use only the public headers of include/, and the
+// peer tests are the test suite's double-precision reference
+// (host_sample/testbed/README.md, "The peers' validity tests").
 #include "options.h"
 #include "oracle.h"
-#include "peer_frames.h"
+#include "sample_peer_frames.h"
 #include "sample_run.h"
 #include "scene.h"
 #include "summary.h"
