@@ -34,8 +34,8 @@ std::string fmt(const char* f, double v) {
 }
 std::string percent(const rrc_scene::RecallScore& s) { return s.scored ? fmt("%.2f%%", 100.0 * s.recall()) : "-"; }
 
-// Orange: a visible pixel missed; red: a false hit; magenta: a false hit that mixes another
-// object's history; light grey: a visible pixel hit; dark: not visible and missed; mid grey: excluded.
+// Orange: a visible pixel missed; red: a false hit; light grey: a visible pixel hit; dark: not
+// visible and missed; mid grey: excluded or straddling (scored neither way).
 void picture(const std::string& path, const CaseResult& r, int test) {
     const rrc_scene::VisibilityMap& m = r.last_map;
     rrc_png::RgbImage img;
@@ -111,6 +111,10 @@ std::string tables(const std::vector<CaseResult>& results) {
 
 std::string picture_table(const std::vector<CaseResult>& results, const std::string& images_rel) {
     std::ostringstream t;
+    t << "\n### Where each test fails\n\n"
+         "The last scored frame of four cases, one picture per test, " << kScale << "x magnified: **orange** = a visible pixel the test\n"
+         "missed, **red** = a false hit, light grey = a visible pixel hit, dark = not visible and missed (sky included),\n"
+         "mid grey = excluded or straddling (scored neither way).\n";
     t << "\n| case |";
     for (int k = 0; k < kTestCount; ++k) t << " " << test_label(k) << " |";
     t << "\n|---|";
