@@ -143,13 +143,18 @@
 
 // ---- The ADAPTIVE depth test (docs/CONVENTIONS.md, "The ADAPTIVE test") ---
 // eps = max(eps_paper, FLOOR_ULPS ulp(e)) + min(CAP * |e - z_inf|,
-//         GAIN * ((fx(1-fx) + fy(1-fy)) max(Cx, Cy) + ox Sx + oy Sy)
+//         GAIN * ((fx(1-fx) + fy(1-fy)) C + ox Sx + oy Sy)
 //         + POSITION_ULPS 2^-24 (width Sx + height Sy))  [+ CAMERA's allowance],
-// C = the centre's second difference of the current depth (5 taps an axis)
-// unless it is a step, less NOISE_ULPS * ulp(largest tap) + NOISE_STEPS * the
-// format's step; o = overhang beyond the outermost texel centres, S = slope.
+// C from the current depth's second differences (5 taps an axis): per axis the
+// centre's, or at a step of its own the smooth side's, less NOISE_ULPS *
+// ulp(largest tap) + NOISE_STEPS * the format's step; an axis beside a step
+// borrows the other's only below BORROW of that step, both beside steps give
+// 0; o = overhang beyond the outermost texel centres, S = slope.
 #define RRC_ADAPTIVE_GAIN 2.0         // 4x the Taylor residual f(1-f) z''/2: margin for grid motion, kinks, higher orders
-#define RRC_ADAPTIVE_STEP_RATIO 0.5   // a step: a neighbouring second difference of the other sign, at least this share of it
+#define RRC_ADAPTIVE_STEP_RATIO 0.5   // beside a step: a neighbouring second difference of the other sign, at least this share of it
+#define RRC_ADAPTIVE_STEP_OWN 0.5     // a step of its own: the centre's second difference or slope towards it is at least this share of it
+#define RRC_ADAPTIVE_SMOOTH_SIDE 0.25  // a step's smooth side: a neighbour not of the other sign, at most this share of the centre's
+#define RRC_ADAPTIVE_BORROW 0.5        // beside a step, the other axis's curvature counts only up to this share of the step
 #define RRC_ADAPTIVE_CAP 0.04         // of |z - z_inf|: 4% of the linear depth on infinite projections
 #define RRC_ADAPTIVE_POSITION_ULPS 8.0  // the kernel's fp32 error of q, in units of 2^-24 * size texels (times the slope)
 #define RRC_ADAPTIVE_CAMERA_ULPS 4.0    // CAMERA: fp32 error of e = (M p).z / w, in units of 2^-24 * sum |M_2k p_k| / w

@@ -96,17 +96,20 @@ RrcTaps rrc_taps(vec2 q, ivec2 size) {
 // The quantity the bilinear fetch interpolates: z, or 1/d for LINEAR.
 float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1.0 / z : z; }
 
-// One axis of the ADAPTIVE test (docs/CONVENTIONS.md) on five taps of the
-// current depth's interpolated quantity a2, a, c, b, b2 (left/up to
-// right/down, clamped to the image; `edge`: c is on the image's first or last
-// column/row).  x: the centre's second difference where it is curvature, less
-// its fp32 and quantisation noise; 0 for a step, on a plane (within noise),
-// on the image's first and last column/row (no second difference there) and
-// for non-finite taps.  A step: a neighbouring second difference of the other
-// sign and at least STEP_RATIO of its size (+h next to -h; curvature and
-// creases keep one sign).  y: the slope, for the clamped fetch beyond the
-// outermost texel centres and the fp32 position term (the smaller one-sided
-// difference; at the image edge, the one that exists).
+// One axis of the ADAPTIVE test (docs/CONVENTIONS.md, "The ADAPTIVE test")
+// on five taps of the current depth's interpolated quantity a2, a, c, b, b2
+// (left/up to right/down, clamped to the image; `edge`: c is on the image's
+// first or last column/row).  x: the curvature estimate less its fp32 and
+// quantisation noise: the centre's second difference s, or at a step of its
+// own (a neighbour n of the other sign with |s| or the one-sided difference
+// towards n at least STEP_OWN of |n|: +h next to -h, or c on the step's ramp)
+// the smooth side's (a neighbour not of the other sign and at most
+// SMOOTH_SIDE of |s|), 0 if there is none; 0 on the image's first and last
+// column/row and for non-finite taps.  y: the slope, for the clamped fetch
+// beyond the outermost texel centres and the fp32 position term (the smaller
+// one-sided difference; at the image edge, the one that exists).  z: beside
+// a step (a neighbour of the other sign and at least STEP_RATIO of |s|, |s|
+// above the noise) the larger such |n|, else 0.
 //
 // Written for lavapipe, which pays every operation (docs/PERFORMANCE.md,
 // "Inside the kernel"); each shortcut gives the same bits as the plain
@@ -116,7 +119,7 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // takes the largest of their exponent fields (an integer max).  At the
 // image's first or last column/row one one-sided difference is exactly 0
 // (the clamped neighbour is c itself), so the larger one is their sum.
-vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float step) {
+vec3 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float step) {
     float dp = b - c, dm = c - a, s = dp - dm;
     float sm = dm - (a - a2), sp = (b2 - b) - dp;  // the neighbours' second differences
     float a_s = abs(s), a_sm = abs(sm), a_sp = abs(sp), adp = abs(dp), adm = abs(dm);
@@ -124,11 +127,16 @@ vec2 rrc_axis(float a2, float a, float c, float b, float b2, bool edge, float st
     uint exponent = max(max(floatBitsToUint(a) & kExp, floatBitsToUint(b) & kExp), floatBitsToUint(c) & kExp);
     float noise = RRC_ADAPTIVE_NOISE_ULPS * rrc_ulp_of_exponent(exponent) + RRC_ADAPTIVE_NOISE_STEPS * step;
     float ratio_s = RRC_ADAPTIVE_STEP_RATIO * a_s;
-    bool opposite = (sm * s < 0.0 && a_sm >= ratio_s) || (sp * s < 0.0 && a_sp >= ratio_s);
+    bool opp_m = sm * s < 0.0 && a_sm >= ratio_s, opp_p = sp * s < 0.0 && a_sp >= ratio_s;
+    bool own = (opp_m && max(a_s, adm) >= RRC_ADAPTIVE_STEP_OWN * a_sm) || (opp_p && max(a_s, adp) >= RRC_ADAPTIVE_STEP_OWN * a_sp);
+    float cut = RRC_ADAPTIVE_SMOOTH_SIDE * a_s;
+    float side = max(!opp_m && a_sm <= cut ? a_sm : 0.0, !opp_p && a_sp <= cut ? a_sp : 0.0);
+    float curvature = max((own ? side : a_s) - noise, 0.0);
+    float beside = a_s > noise ? max(opp_m ? a_sm : 0.0, opp_p ? a_sp : 0.0) : 0.0;
     const float kInf = uintBitsToFloat(kExp);
     bool finite = a_s < kInf && a_sm < kInf && a_sp < kInf;
     float slope = edge ? adp + adm : min(adp, adm);
-    return finite ? vec2(edge || opposite ? 0.0 : max(a_s - noise, 0.0), slope) : vec2(0.0);
+    return finite ? vec3(edge ? 0.0 : curvature, slope, edge ? 0.0 : beside) : vec3(0.0);
 }
 
 // This frame's depth at px and its eight cross neighbours, clamped to the
@@ -176,14 +184,20 @@ float rrc_adaptive_widening(ivec2 px, ivec2 size, RrcCross cr, vec2 q, float e) 
     ivec2 hi = size - 1;
     float step = EPS_KIND == RRC_EPS_ABSOLUTE ? pc.eps : 0.0;  // ADAPTIVE takes no host epsilon: pc.eps is the format's step
     float c = rrc_interpolated(cr.c);
-    vec2 ax = rrc_axis(rrc_interpolated(cr.h.x), rrc_interpolated(cr.h.y), c, rrc_interpolated(cr.h.z), rrc_interpolated(cr.h.w),
+    vec3 ax = rrc_axis(rrc_interpolated(cr.h.x), rrc_interpolated(cr.h.y), c, rrc_interpolated(cr.h.z), rrc_interpolated(cr.h.w),
                        px.x == 0 || px.x == hi.x, step);
-    vec2 ay = rrc_axis(rrc_interpolated(cr.v.x), rrc_interpolated(cr.v.y), c, rrc_interpolated(cr.v.z), rrc_interpolated(cr.v.w),
+    vec3 ay = rrc_axis(rrc_interpolated(cr.v.x), rrc_interpolated(cr.v.y), c, rrc_interpolated(cr.v.z), rrc_interpolated(cr.v.w),
                        px.y == 0 || px.y == hi.y, step);
     vec2 p = q - 0.5;
     vec2 f = p - floor(p);
     vec2 overhang = max(max(-p, p - vec2(hi)), vec2(0.0));  // beyond the outermost texel centres: clamped taps
-    float curvature = max(ax.x, ay.x);                        // one estimate for both axes: a step-flagged axis borrows the other's
+    // One estimate for both axes.  An axis beside a step (a silhouette) borrows
+    // the other's only below BORROW of that step: a larger one is likely the
+    // step seen obliquely; beside steps on both axes (a corner, a diagonal
+    // silhouette) none is trusted.
+    bool bx = ax.z > 0.0, by = ay.z > 0.0;
+    float curvature = bx ? (by ? 0.0 : max(ax.x, ay.x <= RRC_ADAPTIVE_BORROW * ax.z ? ay.x : 0.0))
+                         : (by ? max(ay.x, ax.x <= RRC_ADAPTIVE_BORROW * ay.z ? ax.x : 0.0) : max(ax.x, ay.x));
     float widening = RRC_ADAPTIVE_GAIN * (dot(f * (1.0 - f), vec2(curvature)) + dot(overhang, vec2(ax.y, ay.y)));
     // The kernel's own fp32 error of q (uv_prev's rounding, ~2^-24 of the image) times the slope.
     widening += RRC_ADAPTIVE_POSITION_ULPS * exp2(-24.0) * dot(vec2(size), vec2(ax.y, ay.y));

@@ -20,6 +20,9 @@ constexpr double kVisibleTolerance = 1e-4;
 // The straddling bound (docs/ACCURACY.md, "Hit test against true visibility"): a previous-depth tap counts when its bilinear
 // weight exceeds this (docs/ACCURACY.md's strict false hits use the same bound).
 constexpr double kTapWeight = 1e-3;
+// Excluded beside the image border (README.md, "Recall and false hits"): 2^-20 in uv, 1e-3 px at 1024 wide, a few
+// fp32 ulps of the clip position's x/w.
+constexpr double kBorderRounding = 0x1p-20;
 
 struct Triangle {
     glm::dvec3 a, e1, e2;  // vertex, two edges (Moller-Trumbore)
@@ -243,6 +246,27 @@ std::vector<uint16_t> VisibilityOracle::object_ids(const OracleView& view, uint3
     return ids;
 }
 
+namespace {
+
+// X moved by its object's previous model matrix.
+glm::dvec3 cur_to_prev(const glm::dmat4& inverse_model, const glm::dmat4& prev_model, const glm::dvec3& X) {
+    return dehomogenise(prev_model * (inverse_model * glm::dvec4(X, 1.0)));
+}
+
+// X_prev projects outside the previous image, but by less than kBorderRounding
+// in uv: rrc tests uv_prev from the G-buffer's fp32 clip position, whose
+// rounding (and the rasteriser's interpolation) decides which side it falls.
+bool beside_border(const glm::dmat4& prev_view_proj, const glm::dvec3& X_prev) {
+    const glm::dvec4 c = prev_view_proj * glm::dvec4(X_prev, 1.0);
+    if (!(c.w > 0.0)) return false;
+    const glm::dvec2 uv = (glm::dvec2(c) / c.w + 1.0) * 0.5;
+    const bool inside = uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0;
+    const double r = kBorderRounding;
+    return !inside && uv.x >= -r && uv.x <= 1.0 + r && uv.y >= -r && uv.y <= 1.0 + r;
+}
+
+}  // namespace
+
 VisibilityStats VisibilityOracle::judge(const OracleView& cur, const OracleView& prev, uint32_t W, uint32_t H,
                                         const std::vector<uint8_t>& mask, const std::vector<uint16_t>& prev_object,
                                         std::vector<uint8_t>* verdict) const {
@@ -267,12 +291,17 @@ VisibilityStats VisibilityOracle::judge(const OracleView& cur, const OracleView&
                     continue;
                 }
                 if (h.object < 0) continue;
+                const glm::dvec3 X_prev = cur_to_prev(pc.objects[h.object].inverse, prev.model[h.object], eye + h.t * d);
+                if (has_previous && beside_border(prev.view_proj, X_prev)) {
+                    ++s.excluded;
+                    if (is_hit) ++s.excluded_hits;
+                    if (verdict) (*verdict)[i] = kVerdictExcluded | (is_hit ? kVerdictHit : 0);
+                    continue;
+                }
                 ++s.surface;
                 if (is_hit) ++s.hits;
                 bool visible = false, straddles = false;
                 if (has_previous) {
-                    const glm::dvec3 X = eye + h.t * d;
-                    const glm::dvec3 X_prev = dehomogenise(prev.model[h.object] * (pc.objects[h.object].inverse * glm::dvec4(X, 1.0)));
                     const glm::dvec4 c = prev.view_proj * glm::dvec4(X_prev, 1.0);
                     if (c.w > 0.0) {
                         const glm::dvec2 uv = (glm::dvec2(c) / c.w + 1.0) * 0.5;

@@ -233,7 +233,8 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
       << " visible pixels that straddle no silhouette), **false hits " << v.false_hits << "** (hits whose point was not visible; "
       << v.false_hits_straddling << " of them straddle a silhouette); of " << v.surface << " surface pixels " << v.visible
       << " were visible, " << v.straddling << " straddle a silhouette (counted apart from recall), " << v.excluded
-      << " excluded (ray and G-buffer disagree on background; " << v.excluded_hits << " of them hits)\n";
+      << " excluded (ray and G-buffer disagree on background, or the point left the image by under fp32 rounding; " << v.excluded_hits
+      << " of them hits)\n";
     f << "- visible pixels off silhouettes that missed, by surface:";
     for (uint32_t m = 1; m < kMaterialCount; ++m) f << (m > 1 ? "," : "") << " " << material_name(m) << " " << v.missed_by_material[m];
     f << "\n";

@@ -34,15 +34,23 @@ EpsRange epsilon_range(const Params& p, Bounded e, double scale) {
 }
 
 // docs/CONVENTIONS.md "The ADAPTIVE test", one axis at the current depth
-// a, c, b: the second difference where it is curvature, less its noise, and
-// the slope.  The kernel evaluates them in fp32: its one-sided differences
-// and their difference may be off by about 2 ulp of the largest tap, so a
-// step test within that margin, or a value near the noise floor, is a range.
+// a2, a, c, b, b2: the curvature estimate (the centre's second difference, or
+// at a step of its own the smooth side's) less its noise, the slope, whether
+// the axis is beside a step and that step's size.  The kernel evaluates them in fp32: its
+// one-sided differences and their difference may be off by about 2 ulp of
+// the largest tap, so a comparison within that margin may go either way: the
+// curvature is a range over every decision the kernel may take, and
+// "beside" says which of its values are possible.
 struct Range {
     double value, lo, hi;
 };
+struct Flag {
+    bool value, may_be_true, may_be_false;
+};
 struct Axis {
     Range curvature, slope;
+    Flag beside;
+    Range step;  // beside a step: the larger |n| of the neighbours of the other sign (the borrow limit's measure)
 };
 
 Axis axis(const Params& p, double a2, double a, double c, double b, double b2, bool edge, double scale) {
@@ -56,25 +64,89 @@ Axis axis(const Params& p, double a2, double a, double c, double b, double b2, b
     // LINEAR's taps are fp32 reciprocals in the kernel: 2 ulp more.
     const double err =
         (p.mode == RRC_DEPTH_MODE_LINEAR ? 4.0 : 2.0) * ulp_fp32(std::max(top, std::max(std::fabs(a2), std::fabs(b2)))) * scale;
-    Axis r{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    Axis r{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {false, false, true}, {0.0, 0.0, 0.0}};
     if (!std::isfinite(s) || !std::isfinite(sm) || !std::isfinite(sp)) return r;
     const double slope = edge ? std::max(std::fabs(dp), std::fabs(dm)) : std::min(std::fabs(dp), std::fabs(dm));
     r.slope = {slope, std::max(slope - err, 0.0), slope + err};
-    // A step: a neighbour's second difference has the other sign and at least
-    // STEP_RATIO of its size (+h, -h: a step's signature; curvature and creases keep one sign).
-    auto is_step = [&](double e) {
-        const double as = std::fabs(s) + e;
-        auto opposite = [&](double n) { return n * s < 0.0 && std::fabs(n) - e >= RRC_ADAPTIVE_STEP_RATIO * as; };
-        return opposite(sm) || opposite(sp);
-    };
-    const bool step_sure = is_step(err), step_nominal = is_step(0.0), step_maybe = is_step(-err);
-    const double smooth = std::max(std::fabs(s) - noise, 0.0), hi = std::max(std::fabs(s) - noise + err, 0.0);
     if (edge) return r;  // no second difference on the image's first and last column/row
-    if (!step_maybe)
-        r.curvature = {smooth, std::max(std::fabs(s) - noise - err, 0.0), hi};  // surely curvature
-    else if (!step_sure)
-        r.curvature = {step_nominal ? 0.0 : smooth, 0.0, hi};  // the kernel may call it either
-    return r;                                                  // else surely a step: 0
+
+    // Each test in three readings: d = +1 the kernel surely passes it (every
+    // magnitude off by err against it), 0 as in double, -1 it may pass.
+    const double as = std::fabs(s);
+    auto opposite = [&](double n, int d) {  // n of the other sign, at least STEP_RATIO of s
+        const double e = d * err;
+        const bool sign = d > 0   ? (n * s < 0.0 && std::fabs(n) > err && as > err)
+                          : d < 0 ? (n * s < 0.0 || std::fabs(n) <= err || as <= err)
+                                  : n * s < 0.0;
+        return sign && std::fabs(n) - e >= RRC_ADAPTIVE_STEP_RATIO * (as + e);
+    };
+    // and s, or the one-sided difference towards n, at least STEP_OWN of n: a step of its own
+    auto own = [&](double n, double towards, int d) {
+        const double e = d * err;
+        return opposite(n, d) && std::max(as, std::fabs(towards)) - e >= RRC_ADAPTIVE_STEP_OWN * (std::fabs(n) + e);
+    };
+    // The smooth side: a neighbour that is not "opposite" and at most SMOOTH_SIDE of s.
+    auto side_ok = [&](double n, int d) {
+        const double e = d * err;
+        return !opposite(n, -d) && std::fabs(n) + e <= RRC_ADAPTIVE_SMOOTH_SIDE * (as - e);
+    };
+    auto beside = [&](int d) { return (opposite(sm, d) || opposite(sp, d)) && as - d * err > noise; };
+    auto is_own = [&](int d) { return own(sm, dm, d) || own(sp, dp, d); };
+    r.beside = {beside(0), beside(-1), !beside(1)};
+    auto step_height = [&](int d) {  // d = +1 its least, -1 its most
+        double h = 0.0;
+        for (double n : {sm, sp})
+            if (opposite(n, d)) h = std::max(h, std::fabs(n) - d * err);
+        return std::max(h, 0.0);
+    };
+    r.step = {step_height(0), step_height(1), step_height(-1)};
+
+    const double centre = std::max(as - noise, 0.0), centre_lo = std::max(as - noise - err, 0.0),
+                 centre_hi = std::max(as - noise + err, 0.0);
+    auto side = [&](int d) {  // the smooth side's estimate, before the noise: d = +1 its least, -1 its most, 0 as in double
+        double v = 0.0;
+        for (double n : {sm, sp})
+            if (side_ok(n, d)) v = std::max(v, std::fabs(n) - d * err);
+        return std::max(v, 0.0);
+    };
+    const double side_value = std::max(side(0) - noise, 0.0), side_lo = std::max(side(1) - noise, 0.0),
+                 side_hi = std::max(side(-1) - noise, 0.0);
+    const bool own_value = is_own(0), own_maybe = is_own(-1), own_sure = is_own(1);
+    r.curvature.value = own_value ? side_value : centre;
+    r.curvature.lo = own_sure ? side_lo : own_maybe ? std::min(side_lo, centre_lo) : centre_lo;
+    r.curvature.hi = own_sure ? side_hi : own_maybe ? std::max(side_hi, centre_hi) : centre_hi;
+    return r;
+}
+
+// The two axes' curvature as one estimate (docs/CONVENTIONS.md, "The ADAPTIVE
+// test"): an axis beside a step borrows the other's only up to BORROW of that
+// step, both beside steps give 0; over every combination of decisions the
+// kernel may reach.
+Range combined_curvature(const Axis& x, const Axis& y) {
+    // `s` beside a step, `o` the other axis, not: max(s, o if o <= BORROW * step).
+    auto beside_one = [](const Axis& s, const Axis& o) {
+        const double k = RRC_ADAPTIVE_BORROW;
+        const bool value = o.curvature.value <= k * s.step.value, sure = o.curvature.hi <= k * s.step.lo,
+                   maybe = o.curvature.lo <= k * s.step.hi;
+        return Range{std::max(s.curvature.value, value ? o.curvature.value : 0.0), std::max(s.curvature.lo, sure ? o.curvature.lo : 0.0),
+                     std::max(s.curvature.hi, maybe ? o.curvature.hi : 0.0)};
+    };
+    auto pick = [&](bool bx, bool by) {
+        if (bx && by) return Range{0.0, 0.0, 0.0};
+        if (bx) return beside_one(x, y);
+        if (by) return beside_one(y, x);
+        return Range{std::max(x.curvature.value, y.curvature.value), std::max(x.curvature.lo, y.curvature.lo),
+                     std::max(x.curvature.hi, y.curvature.hi)};
+    };
+    Range c{pick(x.beside.value, y.beside.value).value, INFINITY, -INFINITY};
+    for (bool bx : {false, true})
+        for (bool by : {false, true}) {
+            if (!(bx ? x.beside.may_be_true : x.beside.may_be_false) || !(by ? y.beside.may_be_true : y.beside.may_be_false)) continue;
+            const Range r = pick(bx, by);
+            c.lo = std::min(c.lo, r.lo);
+            c.hi = std::max(c.hi, r.hi);
+        }
+    return c;
 }
 
 // The ADAPTIVE test's widening at the current pixel: min(cap, GAIN * (residual + edge term)).
@@ -87,8 +159,7 @@ Range adaptive_widening(const Params& p, const CurrentPixel& cur, Bounded qx, Bo
     };
     const Axis ax = axis(p, z(i - 2, j), z(i - 1, j), z(i, j), z(i + 1, j), z(i + 2, j), i == 0 || i == W - 1, scale);
     const Axis ay = axis(p, z(i, j - 2), z(i, j - 1), z(i, j), z(i, j + 1), z(i, j + 2), j == 0 || j == H - 1, scale);
-    const Range c{std::max(ax.curvature.value, ay.curvature.value), std::max(ax.curvature.lo, ay.curvature.lo),
-                  std::max(ax.curvature.hi, ay.curvature.hi)};
+    const Range c = combined_curvature(ax, ay);
     // f (1 - f) of the fetch's fractions and the overhang beyond the outermost
     // texel centres; the kernel's are off by up to q's error.
     auto b = [&](Bounded q) {

@@ -1,6 +1,8 @@
 // The ADAPTIVE test of docs/CONVENTIONS.md on hand-made PREV_CLIP frames whose
 // widening can be worked out by hand: a parabola in x (curvature), a plane
-// (only the fp32 position term), a card step (none) and object ids.
+// (only the fp32 position term), a card step (none), a step beside the
+// parabola (its smooth side's curvature), a two-pixel card (none) and object
+// ids.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,6 +98,37 @@ TEST(Adaptive, StepIsNotWidened) {
     EXPECT_EQ(r.mask[k], 0);
     const size_t k5 = s.at(5, 1);  // on the card, taps 5 and 6 on the card, expects the wall
     EXPECT_EQ(r.mask[k5], 0);
+}
+
+TEST(Adaptive, StepTakesItsSmoothSidesCurvature) {
+    // A far wall up to column 2, the parabola from column 3 on: pixel 3 is a
+    // step of its own (s = 0.25 - 2k next to s- = -0.25 + 9k), its fetch at
+    // q.x = 4 lies on the parabola, and its smooth side s+ = 2k is the
+    // parabola's curvature, which the widening takes (as on a column beside
+    // its silhouette).
+    auto depth = [](int i) { return i <= 2 ? 0.75 : parabola(i); };
+    Scene s = shifted(depth, parabola_at_half, RRC_DEPTH_TEST_DEFAULT);
+    FrameResult r = run(s);
+    const size_t k = s.at(3, 1);
+    EXPECT_DOUBLE_EQ(r.diff[k], 0x1p-12);  // (D3 + D4)/2 against the surface at 3.5, as in the parabola's middle
+    // noise 4 ulp(0.75) = 2^-22; y: no second difference; slope min(7k, 0.25 - 9k) = 7k.
+    EXPECT_DOUBLE_EQ(r.eps[k], 4 * 0x1p-24 + 2.0 * 0.25 * (2 * kK - 0x1p-22) + position_term(7 * kK));
+    EXPECT_EQ(r.mask[k], RRC_MASK_HIT);
+}
+
+TEST(Adaptive, TwoPixelSliverIsNotWidened) {
+    // A card two columns wide (4 and 5) 2^-8 in front of the wall; every
+    // pixel expects the wall.  At pixel 4 the far side's second difference
+    // (+h, the card's other edge) has the step's own size: it is no smooth
+    // side, so the card is not widened by its own height.
+    auto card = [](int i) { return i == 4 || i == 5 ? 0.5 - 0x1p-8 : 0.5; };
+    auto wall = [](int) { return 0.5; };
+    Scene s = shifted(card, wall, RRC_DEPTH_TEST_DEFAULT);
+    FrameResult r = run(s);
+    const size_t k = s.at(4, 1);  // taps 4 and 5, both on the card
+    EXPECT_DOUBLE_EQ(r.diff[k], -0x1p-8);
+    EXPECT_DOUBLE_EQ(r.eps[k], 0x1p-22);  // the paper's epsilon: no curvature, slope min(2^-8, 0) = 0
+    EXPECT_EQ(r.mask[k], 0);
 }
 
 TEST(Adaptive, ObjectIdsRejectForeignTaps) {

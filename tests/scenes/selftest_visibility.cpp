@@ -56,8 +56,23 @@ TEST(Visibility, StaticSceneIsVisibleExceptContactsAndSilhouettes) {
         EXPECT_EQ(m.counts[VIS_OFFSCREEN], 0);
         EXPECT_GT(m.counts[VIS_EXCLUDED_CONTACT], 0);  // boxes and the resting sphere on the ground
         EXPECT_GT(m.counts[VIS_VISIBLE], int64_t(c.width) * c.height / 2);
-        // Without jitter every pixel reads exactly its own texel: nothing straddles.
-        if (!c.jitter) EXPECT_EQ(m.counts[VIS_STRADDLING], 0);
+        // Without jitter every pixel reads exactly its own texel, and nothing
+        // straddles but beside the sky: q on a texel centre may round to
+        // either neighbour in fp32, and a background tap makes the library
+        // miss whatever its weight, so those pixels are counted apart.
+        if (!c.jitter) {
+            const Scene s(c);
+            const std::vector<int32_t> ids = s.object_ids(2);
+            for (int j = 0; j < c.height; ++j)
+                for (int i = 0; i < c.width; ++i) {
+                    bool sky = false;
+                    for (int y = std::max(j - 1, 0); y <= std::min(j + 1, c.height - 1); ++y)
+                        for (int x = std::max(i - 1, 0); x <= std::min(i + 1, c.width - 1); ++x)
+                            sky |= ids[size_t(y) * c.width + x] == OBJECT_BACKGROUND;
+                    const uint8_t cls = m.cls[size_t(j) * c.width + i];
+                    if (cls == VIS_STRADDLING) EXPECT_TRUE(sky) << "pixel " << i << ", " << j;
+                }
+        }
         if (c.jitter) EXPECT_GT(m.counts[VIS_STRADDLING], 0);
     }
 }

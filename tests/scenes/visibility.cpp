@@ -1,6 +1,7 @@
 // The oracle of true visibility (the rule is documented in visibility.h).
 #include "scenes/visibility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scenes/bilinear.h"
@@ -62,6 +63,21 @@ PreviousTexels previous_texels(const Scene& scene, const FrameState& prev, const
         }
     }
     return p;
+}
+
+// Does any texel of the four bilinear taps at sample coordinate q (prev
+// jitter removed), for any q within kQRounding of it, read as background?
+// kQRounding: 2^-20 of the image size, twice the fp32 error of q that
+// docs/CONVENTIONS.md ("The ADAPTIVE test", POSITION_ULPS) allows the kernel
+// (its input clip position is fp32 too).
+bool footprint_reads_background(const glm::dvec2& q, int w, int h, const PreviousTexels& texels) {
+    const glm::dvec2 p = q - 0.5, tol = std::ldexp(1.0, -20) * glm::dvec2(w, h);
+    const glm::ivec2 lo = glm::ivec2(glm::floor(p - tol)), hi = glm::ivec2(glm::floor(p + tol)) + 1;
+    for (int y = std::max(lo.y, 0); y <= std::min(hi.y, h - 1); ++y)
+        for (int x = std::max(lo.x, 0); x <= std::min(hi.x, w - 1); ++x)
+            if (texels.stored_background[static_cast<size_t>(y) * w + x]) return true;
+    // Taps clamped to the image: an out-of-range coordinate reads the edge texel, already covered.
+    return false;
 }
 
 }  // namespace
@@ -134,7 +150,14 @@ VisibilityMap true_visibility(const Scene& scene, int frame, int prev_frame, con
             if (texels.object[tk] != o) return VIS_STRADDLING;
             tap_stored_background |= texels.stored_background[tk] != 0;
         }
-        return tap_stored_background ? VIS_EXCLUDED_QUANTISED : VIS_VISIBLE;
+        if (tap_stored_background) return VIS_EXCLUDED_QUANTISED;
+        // The library's test misses on a background tap whatever its weight
+        // (docs/CONVENTIONS.md, Previous depth fetch and the hit test), and
+        // it computes q in fp32: a texel that q's rounding can bring into the
+        // four taps (with weight 0 when q lands on a texel centre, as on a
+        // still camera without jitter) counts as one of them.
+        if (footprint_reads_background(pixel - prev_jitter, w, h, texels)) return VIS_STRADDLING;
+        return VIS_VISIBLE;
     };
 
     for (int j = 0; j < h; ++j) {

@@ -30,7 +30,11 @@
 //                     (scenes/bilinear.h) with weight > tap_weight_threshold
 //                     lies on another object or on background (the object its
 //                     texel's own jittered previous sample hit): the fetched
-//                     depth mixes surfaces.  Counted apart.
+//                     depth mixes surfaces; or any of the four taps, at
+//                     any weight and for any q within fp32 rounding of it
+//                     (2^-20 of the image size), reads as background: the
+//                     library's test must miss there (docs/CONVENTIONS.md).
+//                     Counted apart.
 //   EXCLUDED_QUANTISED also: visible, every weighted tap on X's object, but
 //                     one tap's stored previous depth reads as background.
 //   VISIBLE           scored: the depth test should hit.
