@@ -146,6 +146,8 @@ struct Engine {
  *  `samples` per pixel; with env, its second, independent estimate (the random stream of seed 1). */
 struct FrameTarget {
     std::vector<uint8_t> material;
+    std::vector<float> depth;      // reversed-z depth of the G-buffer's surface point (0: background; bias_regions.h)
+    std::vector<float> prev_clip;  // 4 a pixel: the G-buffer's previous clip position (rrc's PREV_CLIP)
     std::vector<float> pcf, env, env_twin, soft;
     const std::vector<float>& of(uint32_t signal) const { return signal == kSignalPcf ? pcf : signal == kSignalEnv ? env : soft; }
 };
@@ -155,6 +157,8 @@ inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t sample
     const rrc_sample::SignalImages& ref = e.signals.reference();
     const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
     const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const int s_position = rb.add(e.gbuffer.images().position, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const int s_prev_clip = rb.add(e.gbuffer.images().prev_clip, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     rb.allocate();
     FrameTarget ft;
     const FrameState state = e.begin_frame(f, 1, 0);
@@ -163,7 +167,7 @@ inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t sample
             e.record_geometry(c, state, sigs);
             // twin 1: env's second, independent estimate (the random stream of seed 1).
             e.signals.record_reference(c, twin ? kSignalEnv : sigs, samples, e.scene, e.shadows, twin);
-            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
+            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal, s_position, s_prev_clip});
         });
         if (twin) {
             ft.env_twin = floats_of(rb, s_env);
@@ -176,6 +180,15 @@ inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t sample
         std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
         ft.material.resize(nm.size() / 4);
         for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
+        ft.prev_clip = floats_of(rb, s_prev_clip);
+        // The depth the G-buffer's depth test kept, from its world position (w: object + 1, 0 background).
+        const std::vector<float> pos = floats_of(rb, s_position);
+        ft.depth.assign(ft.material.size(), 0.0f);
+        for (size_t i = 0; i < ft.depth.size(); ++i) {
+            if (!(pos[i * 4 + 3] > 0.0f)) continue;
+            const glm::dvec4 c = state.view_proj * glm::dvec4(pos[i * 4], pos[i * 4 + 1], pos[i * 4 + 2], 1.0);
+            ft.depth[i] = (float)(c.z / c.w);
+        }
     }
     return ft;
 }
