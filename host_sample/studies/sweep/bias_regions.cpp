@@ -54,32 +54,39 @@ std::vector<uint8_t> edge_seeds(const RegionFrame& g, float jump) {
     return s;
 }
 
-/** Did the target leave the range of the previous frame's target around the reprojected point?
- *  The 2x2 texels a bilinear fetch at the previous position reads (those scored in t - 1): a value
- *  that only moved on screen stays within their range (up to curvature), so resampling alone does
- *  not count as a change.  No scored texel there: not changed (a disocclusion; edge or young). */
-bool changed(const RegionFrame& g, size_t p, const CheckpointTarget& now, size_t i, const PreviousTarget& prev, float tau) {
-    const float* c = &g.prev_clip[p * 4];
-    if (!(c[3] > 0.0f)) return false;
-    const double px = (c[0] / c[3] + 1.0) * 0.5 * g.width - 0.5, py = (c[1] / c[3] + 1.0) * 0.5 * g.height - 0.5;
+/** The previous value of pixel p (PreviousTarget's two kinds) in `out`; false where there is none. */
+bool previous_value(const PreviousTarget& prev, size_t p, const float* position, const std::vector<uint8_t>& material_now, uint32_t w,
+                    uint32_t h, int components, double* out) {
+    if (prev.at_same_point) {
+        if (!prev.scored[p] || prev.material[p] != material_now[p]) return false;
+        for (int k = 0; k < components; ++k) out[k] = prev.values[p * prev.stride + k];
+        return true;
+    }
+    const float* x = &position[p * 4];
+    const double* m = prev.view_proj;  // column-major: clip = M (x, 1)
+    double clip[4];
+    for (int r = 0; r < 4; ++r) clip[r] = m[0 * 4 + r] * x[0] + m[1 * 4 + r] * x[1] + m[2 * 4 + r] * x[2] + m[3 * 4 + r];
+    if (!(clip[3] > 0.0)) return false;
+    const double px = (clip[0] / clip[3] + 1.0) * 0.5 * w - 0.5, py = (clip[1] / clip[3] + 1.0) * 0.5 * h - 0.5;
     if (!std::isfinite(px) || !std::isfinite(py)) return false;
     const int x0 = (int)std::floor(px), y0 = (int)std::floor(py);
-    for (int k = 0; k < now.components; ++k) {
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-                const int x = x0 + dx, y = y0 + dy;
-                if (x < 0 || y < 0 || x >= (int)g.width || y >= (int)g.height) continue;
-                const size_t q = (size_t)y * g.width + x;
-                if (!prev.scored[q]) continue;
-                const double v = prev.values[q * prev.stride + k];
-                lo = std::min(lo, v), hi = std::max(hi, v);
-            }
-        if (lo > hi) return false;
-        const double v = now.target[i * now.components + k];
-        if (v < lo - tau || v > hi + tau) return true;
-    }
-    return false;
+    const double fx = px - x0, fy = py - y0;
+    // Bilinear over the scored texels of the 2x2 footprint, renormalised.
+    double sum = 0.0;
+    for (int k = 0; k < components; ++k) out[k] = 0.0;
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+            const int xx = x0 + dx, yy = y0 + dy;
+            const double wt = (dx ? fx : 1.0 - fx) * (dy ? fy : 1.0 - fy);
+            if (xx < 0 || yy < 0 || xx >= (int)w || yy >= (int)h || wt <= 0.0) continue;
+            const size_t q = (size_t)yy * w + xx;
+            if (!prev.scored[q]) continue;
+            for (int k = 0; k < components; ++k) out[k] += wt * prev.values[q * prev.stride + k];
+            sum += wt;
+        }
+    if (sum < 1e-6) return false;
+    for (int k = 0; k < components; ++k) out[k] /= sum;
+    return true;
 }
 
 }  // namespace
@@ -89,10 +96,25 @@ const char* region_name(int r) {
     return r >= 0 && r < kRegionCount ? names[r] : "unscored";
 }
 
-RegionMap classify_regions(const RegionFrame& g, const CheckpointTarget& now, const PreviousTarget& prev, const RegionThresholds& t) {
+void mark_changes(std::vector<uint8_t>& changed, const CheckpointTarget& now, const PreviousTarget& prev, const float* position,
+                  const std::vector<uint8_t>& material_now, uint32_t w, uint32_t h, float tau) {
+    const size_t n = (size_t)w * h;
+    if (changed.size() != n || prev.scored.size() != n || material_now.size() != n || (prev.at_same_point && prev.material.size() != n) ||
+        now.components > 4)
+        throw std::runtime_error("mark_changes: the images differ in size");
+    double before[4];
+    for (size_t i = 0; i < now.pixels.size(); ++i) {
+        const size_t p = now.pixels[i];
+        if (changed[p] || !previous_value(prev, p, position, material_now, w, h, now.components, before)) continue;
+        for (int k = 0; k < now.components; ++k)
+            if (std::abs(now.target[i * now.components + k] - before[k]) > tau) changed[p] = 1;
+    }
+}
+
+RegionMap classify_regions(const RegionFrame& g, const CheckpointTarget& now, const std::vector<uint8_t>& changed, const RegionThresholds& t) {
     const size_t n = (size_t)g.width * g.height;
-    if (g.material.size() != n || g.depth.size() != n || g.prev_clip.size() != 4 * n || prev.scored.size() != n ||
-        (!g.mask.empty() && g.mask.size() != n) || (!g.age.empty() && g.age.size() != n))
+    if (g.material.size() != n || g.depth.size() != n || changed.size() != n || (!g.mask.empty() && g.mask.size() != n) ||
+        (!g.age.empty() && g.age.size() != n))
         throw std::runtime_error("classify_regions: the frame's images differ in size");
     const std::vector<uint8_t> edge = dilate(edge_seeds(g, t.depth_jump), g.width, g.height, t.edge_radius);
     RegionMap m;
@@ -102,7 +124,7 @@ RegionMap classify_regions(const RegionFrame& g, const CheckpointTarget& now, co
         if (g.material[p] == t.object_material) bits |= 1u << kRegionObject;
         if (edge[p]) bits |= 1u << kRegionEdge;
         if (!g.age.empty() && g.age[p] < t.young_age) bits |= 1u << kRegionYoung;
-        if (changed(g, p, now, i, prev, t.change)) bits |= 1u << kRegionChanged;
+        if (changed[p]) bits |= 1u << kRegionChanged;
         uint8_t region = kRegionStatic;
         for (int r = 0; r < kRegionStatic; ++r)
             if (bits & (1u << r)) {

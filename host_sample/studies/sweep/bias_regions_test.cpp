@@ -21,11 +21,12 @@ namespace {
 using namespace rrc_sweep;
 
 // A 24 x 16 frame: a plane (depth affine in x and y), a block at twice the depth's 1/z in x 16..19,
-// the moving object at (4, 4), a young pixel at (10, 10), and a previous clip position half a pixel
-// to the left of every pixel (the camera moved).
+// the moving object at (4, 4), a young pixel at (10, 10); the world position of each pixel is its
+// centre's NDC, and frame t - 1's camera saw every point half a pixel to the left (the camera moved).
 struct Made {
     RegionFrame g;
     CheckpointTarget now;
+    std::vector<float> position;
     std::vector<float> before;  // the previous target, 1 a pixel
     PreviousTarget prev;
 };
@@ -42,10 +43,8 @@ Made made_frame() {
             const size_t p = y * W + x;
             const float d = 0.01f + 0.0005f * x + 0.0002f * y;
             m.g.depth.push_back(x >= 16 && x < 20 ? 2.0f * d : d);
-            // NDC of the pixel's centre shifted by half a pixel to the left, at w = 2.
-            const float u = ((x + 0.5f - 0.5f) / W) * 2.0f - 1.0f, v = ((y + 0.5f) / H) * 2.0f - 1.0f;
-            m.g.prev_clip.insert(m.g.prev_clip.end(), {2.0f * u, 2.0f * v, 0.0f, 2.0f});
-            // A ramp in x: resampled by half a pixel it stays within its 2x2 neighbourhood's range.
+            m.position.insert(m.position.end(), {((x + 0.5f) / W) * 2.0f - 1.0f, ((y + 0.5f) / H) * 2.0f - 1.0f, 0.0f, 1.0f});
+            // A ramp in x: read half a pixel to the left it is 0.01 lower.
             m.before.push_back(0.02f * x);
             m.now.pixels.push_back((uint32_t)p);
             m.now.target.push_back(0.02f * x);
@@ -57,14 +56,22 @@ Made made_frame() {
     m.prev.values = m.before.data();
     m.prev.stride = 1;
     m.prev.scored.assign(W * H, 1);
+    for (int i = 0; i < 16; ++i) m.prev.view_proj[i] = (i % 5 == 0) ? 1.0 : 0.0;
+    m.prev.view_proj[12] = -1.0 / W;  // half a pixel (2 / W in NDC is one) to the left
     return m;
+}
+
+std::vector<uint8_t> changes(const Made& m, float tau) {
+    std::vector<uint8_t> c(m.g.material.size(), 0);
+    mark_changes(c, m.now, m.prev, m.position.data(), m.g.material, m.g.width, m.g.height, tau);
+    return c;
 }
 
 TEST(BiasRegions, EachTestFindsWhatItShould) {
     const Made m = made_frame();
     RegionThresholds t;
     t.object_material = rrc_sample::kMatMover;
-    const RegionMap r = classify_regions(m.g, m.now, m.prev, t);
+    const RegionMap r = classify_regions(m.g, m.now, changes(m, 0.05f), t);
     ASSERT_EQ(r.region.size(), m.now.pixels.size());
     const uint32_t W = m.g.width;
     EXPECT_EQ(r.region[4 * W + 4], kRegionObject);
@@ -73,17 +80,32 @@ TEST(BiasRegions, EachTestFindsWhatItShould) {
     // The block's sides (x 15..16 and 19..20 jump) and one pixel around them are edges; the plane is not.
     for (uint32_t x : {14u, 15u, 16u, 17u, 18u, 19u, 20u, 21u}) EXPECT_EQ(r.region[8 * W + x], kRegionEdge) << "x = " << x;
     for (uint32_t x : {2u, 8u, 12u, 13u, 22u}) EXPECT_EQ(r.region[8 * W + x], kRegionStatic) << "x = " << x;
-    // Resampled by half a pixel, the ramp is not a change.
+    // Read bilinearly half a pixel away, the ramp differs by 0.01: not a change at 0.05, a change at 0.005.
     EXPECT_EQ(r.region[3 * W + 8], kRegionStatic);
+    EXPECT_EQ(changes(m, 0.005f)[3 * W + 8], 1);
+    EXPECT_EQ(changes(m, 0.015f)[3 * W + 8], 0);
+    // At the same point (a view-independent signal seen from frame t's camera): compared without resampling,
+    // and a pixel showing another surface in t - 1 is a disocclusion, not a change.
+    Made same = made_frame();
+    same.prev.at_same_point = true;
+    same.prev.material = same.g.material;
+    same.before[3 * W + 8] += 0.002f;
+    same.before[5 * W + 2] += 0.5f;
+    same.prev.material[5 * W + 2] = rrc_sample::kMatStone;
+    const std::vector<uint8_t> c = changes(same, 1e-3f);
+    EXPECT_EQ(c[3 * W + 9], 0) << "the ramp is compared with itself";
+    EXPECT_EQ(c[3 * W + 8], 1) << "0.002 is above 1e-3";
+    EXPECT_EQ(c[12 * W + 6], 1);
+    EXPECT_EQ(c[5 * W + 2], 0) << "another surface: not a change";
     // Precedence: the moving object wins over young.
     Made m2 = made_frame();
     m2.g.age[4 * W + 4] = 1;
-    const RegionMap r2 = classify_regions(m2.g, m2.now, m2.prev, t);
+    const RegionMap r2 = classify_regions(m2.g, m2.now, changes(m2, 0.05f), t);
     EXPECT_EQ(r2.region[4 * W + 4], kRegionObject);
     EXPECT_TRUE(r2.bits[4 * W + 4] & (1u << kRegionYoung)) << "the raw bits keep every test it passes";
     // A miss seeds an edge around it.
     m2.g.mask[2 * W + 10] = 0;
-    const RegionMap r3 = classify_regions(m2.g, m2.now, m2.prev, t);
+    const RegionMap r3 = classify_regions(m2.g, m2.now, changes(m2, 0.05f), t);
     EXPECT_EQ(r3.region[3 * W + 11], kRegionEdge);
 }
 
@@ -91,7 +113,7 @@ TEST(BiasRegions, PartsAddUpToTheRowsTotals) {
     const Made m = made_frame();
     RegionThresholds t;
     t.object_material = rrc_sample::kMatMover;
-    const RegionMap r = classify_regions(m.g, m.now, m.prev, t);
+    const RegionMap r = classify_regions(m.g, m.now, changes(m, 0.05f), t);
     // Two checkpoints, 6 seeds: noise everywhere, a bias of 0.2 on the changed pixel, 0.05 on the edges.
     std::vector<CheckpointTarget> targets = {m.now, m.now};
     for (CheckpointTarget& c : targets) c.noise = 1e-5;
@@ -154,6 +176,7 @@ SweepOptions small_sweep(const char* motion, const std::string& out) {
     o.signals = rrc_sample::kSignalPcf;
     o.motion = motion;
     o.bias_maps = true;
+    o.change_window = 8;
     o.out = out;
     o.validation = true;
     o.quiet = true;

@@ -59,11 +59,69 @@ bool scored_by(uint32_t signal, uint8_t material) {
     return signal == kSignalEnv ? material == rrc_sample::kMatSphere : material != rrc_sample::kMatBackground;
 }
 
-/** make_targets's rendered frames (each checkpoint and the frame before it), kept for the bias regions. */
-using TargetFrames = std::map<int, FrameTarget>;
+/** --bias-maps: the checkpoint frames' G-buffers (material, depth, position) and, per application and
+ *  checkpoint, the pixels whose target changed within the window (bias_regions.h, mark_changes). */
+struct RegionSources {
+    std::map<int, FrameTarget> frames;
+    std::map<uint32_t, std::vector<std::vector<uint8_t>>> changed;
+    void clear() { frames.clear(), changed.clear(); }
+};
 
-Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress, TargetFrames* keep) {
-    TargetFrames frames;
+// The changed pixels' thresholds (README.md, "Bias maps"): pcf's and soft's targets are noiseless and
+// compared at the same point: 1e-3 (the sweep's static pixels' rule); env's is a 256-ray estimate:
+// 3 standard deviations of the difference of two estimates, at least 0.01 (the rectification study's).
+constexpr float kChangeNoiseless = 1e-3f;
+float change_threshold(uint32_t signal, const CheckpointTarget& t) {
+    return signal == kSignalEnv ? (float)std::max(0.01, 3.0 * std::sqrt(2.0 * t.noise)) : kChangeNoiseless;
+}
+
+/** Fills `keep`: for each checkpoint t and each of the `window` frames t - j before it, pcf's and soft's
+ *  targets of frame t - j's scene seen from frame t's camera, env's of frame t - j as it was rendered. */
+void find_changes(Engine& e, const SweepOptions& o, uint32_t sigs, const std::map<uint32_t, std::vector<CheckpointTarget>>& targets,
+                  std::map<int, FrameTarget>& frames, RegionSources& keep, std::ostream* progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<int> cps = o.checkpoints();
+    const uint32_t n = o.width * o.height, same_point = sigs & (kSignalPcf | kSignalSoft);
+    for (size_t c = 0; c < cps.size(); ++c) {
+        const int t = cps[c];
+        const FrameTarget& cur = frames.at(t);
+        for (const App& app : apps_of(sigs)) keep.changed[app.signal].push_back(std::vector<uint8_t>(n, 0));
+        auto mark = [&](uint32_t signal, const FrameTarget& before, bool at_same_point) {
+            PreviousTarget pt;
+            pt.values = before.of(signal).data();
+            pt.stride = stride_of(signal);
+            for (uint8_t m : before.material) pt.scored.push_back(scored_by(signal, m) ? 1 : 0);
+            pt.at_same_point = at_same_point;
+            if (at_same_point) pt.material = before.material;
+            for (int i = 0; i < 16; ++i) pt.view_proj[i] = before.view_proj[i / 4][i % 4];
+            const CheckpointTarget& ct = targets.at(signal)[c];
+            mark_changes(keep.changed[signal][c], ct, pt, cur.position.data(), cur.material, o.width, o.height, change_threshold(signal, ct));
+        };
+        for (int j = 1; j <= o.change_window && t - j >= 0; ++j) {
+            if (same_point) {
+                const FrameTarget seen = frame_target(e, t - j, same_point, (uint32_t)o.reference_samples, t, false);
+                for (uint32_t s : {(uint32_t)kSignalPcf, (uint32_t)kSignalSoft})
+                    if (same_point & s) mark(s, seen, true);
+            }
+            if (sigs & kSignalEnv) {
+                auto it = frames.find(t - j);
+                if (it != frames.end()) {
+                    mark(kSignalEnv, it->second, false);
+                } else {
+                    const FrameTarget own = frame_target(e, t - j, kSignalEnv, (uint32_t)o.reference_samples, -1, false);
+                    mark(kSignalEnv, own, false);
+                }
+            }
+        }
+    }
+    for (int t : cps) keep.frames[t] = frames.at(t);
+    if (progress)
+        *progress << "bias regions: the targets of the " << o.change_window << " frames before each checkpoint, "
+                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s" << std::endl;
+}
+
+Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress, RegionSources* keep) {
+    std::map<int, FrameTarget> frames;
     const auto t0 = std::chrono::steady_clock::now();
     for (int t : o.checkpoints())
         for (int f : {t - 1, t}) frames[f] = frame_target(e, f, sigs, (uint32_t)o.reference_samples);
@@ -105,13 +163,13 @@ Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostre
             targets[app.signal].push_back(std::move(ct));
         }
     }
-    if (keep) *keep = std::move(frames);
+    if (keep) find_changes(e, o, sigs, targets, frames, *keep, progress);
     return targets;
 }
 
 /** The regions of every application at every checkpoint (bias_regions.h), from the targets' frames and
  *  rrc's mask and age at each checkpoint; also writes each application's region image. */
-std::map<uint32_t, std::vector<RegionMap>> make_regions(const SweepOptions& o, uint32_t sigs, const Targets& targets, const TargetFrames& frames,
+std::map<uint32_t, std::vector<RegionMap>> make_regions(const SweepOptions& o, uint32_t sigs, const Targets& targets, const RegionSources& sources,
                                                         const std::map<int, std::vector<uint8_t>>& masks,
                                                         const std::map<int, std::vector<uint16_t>>& ages) {
     std::map<uint32_t, std::vector<RegionMap>> maps;
@@ -122,22 +180,15 @@ std::map<uint32_t, std::vector<RegionMap>> make_regions(const SweepOptions& o, u
         std::vector<std::vector<float>> target_images;
         for (size_t c = 0; c < cps.size(); ++c) {
             const int t = cps[c];
-            const FrameTarget &cur = frames.at(t), &prev = frames.at(t - 1);
+            const FrameTarget& cur = sources.frames.at(t);
             RegionFrame g;
             g.width = o.width, g.height = o.height;
-            g.material = cur.material, g.depth = cur.depth, g.prev_clip = cur.prev_clip;
+            g.material = cur.material, g.depth = cur.depth;
             g.mask = masks.at(t), g.age = ages.at(t);
             const CheckpointTarget& ct = targets.at(app.signal)[c];
-            PreviousTarget pt;
-            pt.values = prev.of(app.signal).data();
-            pt.stride = stride_of(app.signal);
-            for (uint8_t m : prev.material) pt.scored.push_back(scored_by(app.signal, m) ? 1 : 0);
             RegionThresholds th;
             th.object_material = rrc_sample::kMatMover;
-            // pcf's and soft's targets are noiseless; env's is a 256-ray estimate: 3 standard deviations of the
-            // difference of two estimates, at least 0.01 (the rectification study's rule, README.md).
-            th.change = app.signal == kSignalEnv ? std::max(0.01, 3.0 * std::sqrt(2.0 * ct.noise)) : o.change_threshold;
-            maps[app.signal].push_back(classify_regions(g, ct, pt, th));
+            maps[app.signal].push_back(classify_regions(g, ct, sources.changed.at(app.signal)[c], th));
             images.push_back(region_image(maps[app.signal].back(), ct, g.material.size()));
             age_images.push_back(g.age);
             std::vector<float> target(g.material.size(), std::numeric_limits<float>::quiet_NaN());
@@ -200,7 +251,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                   << (o.validation ? " (validation layer on)" : "") << std::endl;
     {
         Engine e(gpu, scene, rs);
-        TargetFrames target_frames;  // --bias-maps: the regions' inputs, until the regions are made
+        RegionSources target_frames;  // --bias-maps: the regions' inputs, until the regions are made
         const Targets targets = make_targets(e, o, sigs, progress, o.bias_maps ? &target_frames : nullptr);
         // --bias-maps: rrc's mask and its age (followed on the host) at each checkpoint, from the first run's
         // first seed: both depend on the geometry alone, which every run and seed shares.
