@@ -7,7 +7,9 @@ Reads OUT/bias_regions_<app>.csv and OUT/bias_maps/*.exr (written by rrc-sweep) 
                              of the age-aware bilinear rows and brute force, at every checkpoint
 Needs matplotlib and OpenImageIO's Python module (Debian: python3-matplotlib, python3-openimageio).
 
-usage: bias_maps.py OUT [--checkpoint T]
+usage: bias_maps.py OUT [--checkpoints T,T...] [--dpi N]
+       bias_maps.py --table OUT...   one markdown table of every OUT's age-aware bilinear rows, rectified rows
+                                     and brute force (docs/BIAS.md), on stdout
 """
 import csv
 import glob
@@ -110,9 +112,11 @@ def mapped_rows(labels, by):
     return plain + other[:2] + brute[-1:]
 
 
-def maps(out, app, labels, by):
+def maps(out, app, labels, by, only=None, dpi=110):
     regions = read_exr(os.path.join(out, "bias_maps", "%s_regions.exr" % app))
     cps = sorted(int(n.split(".cp")[1]) for n in regions if n.startswith("region.cp"))
+    if only:
+        cps = [c for c in cps if c in only]
     rows = mapped_rows(labels, by)
     images = {l: read_exr(os.path.join(out, "bias_maps", l + ".exr")) for l in rows}
     # One symmetric range for every map of the application: the 99.5th percentile of |bias|.
@@ -146,21 +150,59 @@ def maps(out, app, labels, by):
     if im_bias is not None:
         fig.colorbar(im_bias, ax=axes[2:, :].ravel().tolist(), shrink=0.6, label="seed mean − target (%s)" % app)
     fig.suptitle("%s: regions, target and signed bias (red: too bright, blue: too dark)" % app, fontsize=9)
-    fig.savefig(os.path.join(out, "bias_%s.png" % app), dpi=110)
+    fig.savefig(os.path.join(out, "bias_%s.png" % app), dpi=dpi)
     plt.close(fig)
+
+
+def table(dirs):
+    """The doc's table: per application and run, the plain age-aware bilinear rows, the rectified ones and
+    brute force: RMSE, bias², variance, and each region's share of the pixels and of the bias²."""
+    lines = ["| run | app | row | RMSE | bias² | variance | " + " | ".join(REGIONS) + " |",
+             "|---|---|---|---|---|---|" + "---|" * len(REGIONS)]
+    for d in dirs:
+        run = os.path.basename(os.path.normpath(d))
+        for path in sorted(glob.glob(os.path.join(d, "bias_regions_*.csv"))):
+            app = os.path.basename(path)[len("bias_regions_"):-len(".csv")]
+            by = {}
+            order = []
+            for r in read_rows(path):
+                if r["label"] not in by:
+                    order.append(r["label"])
+                    by[r["label"]] = {}
+                by[r["label"]][r["region"]] = r
+            first = by[order[0]]
+            lines.append("| %s | %s | *pixels* | | | | " % (run, app) + " | ".join(pct(first[g]["pixel_share"]) for g in REGIONS) + " |")
+            for lab in order:
+                t = by[lab]["total"]
+                keep = t["method"] == "brute" or (t["blend"] == "age-aware" and t["filter"] in ("bilinear", "bilinear+rectify"))
+                if not keep:
+                    continue
+                # Brute force is unbiased: its bias² is noise around 0, and shares of it mean nothing.
+                shares = (["–"] * len(REGIONS) if t["method"] == "brute" else [pct(by[lab][g]["bias2_share"]) for g in REGIONS])
+                lines.append("| %s | %s | %s | %.4f | %s | %s | " % (run, app, describe(t), float(t["rmse"]), fmt(t["bias2"]), fmt(t["variance"]))
+                             + " | ".join(shares) + " |")
+    print("\n".join(lines))
 
 
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
+    if argv[1] == "--table":
+        table(argv[2:])
+        return
     out = argv[1]
+    only, dpi = None, 110
+    if "--checkpoints" in argv:
+        only = [int(v) for v in argv[argv.index("--checkpoints") + 1].split(",")]
+    if "--dpi" in argv:
+        dpi = int(argv[argv.index("--dpi") + 1])
     found = sorted(glob.glob(os.path.join(out, "bias_regions_*.csv")))
     if not found:
         sys.exit("bias_maps.py: no bias_regions_*.csv in " + out)
     for path in found:
         app = os.path.basename(path)[len("bias_regions_"):-len(".csv")]
         labels, by = tables(out, app, read_rows(path))
-        maps(out, app, labels, by)
+        maps(out, app, labels, by, only, dpi)
         print("bias_maps.py: %s/bias_regions_%s.md, bias_%s.png" % (out, app, app))
 
 
