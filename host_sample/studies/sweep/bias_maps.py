@@ -5,7 +5,8 @@ Reads OUT/bias_regions_<app>.csv and OUT/bias_maps/*.exr (written by rrc-sweep) 
   OUT/bias_regions_<app>.md  the rows' bias² and variance by region (shares and per-pixel means)
   OUT/bias_<app>.png         the regions, the target and the signed bias maps (seed mean - target)
                              of the age-aware bilinear rows and brute force, at every checkpoint
-Needs matplotlib and OpenImageIO's Python module (Debian: python3-matplotlib, python3-openimageio).
+Needs matplotlib, Pillow and OpenImageIO's Python module (Debian: python3-matplotlib, python3-pil,
+python3-openimageio).
 
 usage: bias_maps.py OUT [--checkpoints T,T...] [--dpi N]
        bias_maps.py --table OUT...   one markdown table of every OUT's age-aware bilinear rows, rectified rows
@@ -105,9 +106,11 @@ def tables(out, app, rows):
 
 
 def mapped_rows(labels, by):
-    """The maps drawn: the plain age-aware bilinear rows, then the cures and finishing rows, then brute force."""
+    """The maps drawn: the plain age-aware bilinear rows, the other age-aware rows at λ = 0.8 (a finishing
+    step or a cure: the presets' λ), then the largest brute force."""
     plain = [l for l in labels if by[l]["total"]["blend"] == "age-aware" and by[l]["total"]["filter"] == "bilinear"]
-    other = [l for l in labels if by[l]["total"]["method"] == "rrc" and l not in plain and by[l]["total"]["blend"] == "age-aware"]
+    other = [l for l in labels if by[l]["total"]["method"] == "rrc" and l not in plain and by[l]["total"]["blend"] == "age-aware"
+             and by[l]["total"]["lambda"] == "0.8" and by[l]["total"]["filter"] != "gaussian"]
     brute = [l for l in labels if by[l]["total"]["method"] == "brute"]
     return plain + other[:2] + brute[-1:]
 
@@ -123,6 +126,16 @@ def maps(out, app, labels, by, only=None, dpi=110):
     vals = np.concatenate([np.abs(im["bias.cp%d" % c][np.isfinite(im["bias.cp%d" % c])]) for im in images.values() for c in cps])
     vmax = float(np.percentile(vals, 99.5)) if vals.size else 1.0
     vmax = vmax if vmax > 0 else 1.0
+    # Crop to the scored pixels (env scores the mirror sphere only), with a margin.
+    scored = np.zeros(regions["region.cp%d" % cps[0]].shape, dtype=bool)
+    for c in cps:
+        scored |= regions["region.cp%d" % c] < 255
+    ys, xs = np.nonzero(scored)
+    y0, y1 = max(int(ys.min()) - 4, 0), min(int(ys.max()) + 5, scored.shape[0])
+    x0, x1 = max(int(xs.min()) - 4, 0), min(int(xs.max()) + 5, scored.shape[1])
+    crop = (slice(y0, y1), slice(x0, x1))
+    regions = {n: v[crop] for n, v in regions.items()}
+    images = {l: {n: v[crop] for n, v in im.items()} for l, im in images.items()}
     h, w = regions["region.cp%d" % cps[0]].shape
     n_rows = 2 + len(rows)
     fig, axes = plt.subplots(n_rows, len(cps), figsize=(3.2 * len(cps) * max(w / h, 1.0) * 0.75 + 1.2, 2.1 * n_rows + 0.6),
@@ -150,8 +163,12 @@ def maps(out, app, labels, by, only=None, dpi=110):
     if im_bias is not None:
         fig.colorbar(im_bias, ax=axes[2:, :].ravel().tolist(), shrink=0.6, label="seed mean − target (%s)" % app)
     fig.suptitle("%s: regions, target and signed bias (red: too bright, blue: too dark)" % app, fontsize=9)
-    fig.savefig(os.path.join(out, "bias_%s.png" % app), dpi=dpi)
+    path = os.path.join(out, "bias_%s.png" % app)
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)
+    # 256 colours are plenty for a colour map and a few region colours, and keep the file small (docs/bias/).
+    from PIL import Image
+    Image.open(path).convert("RGB").quantize(colors=256).save(path, optimize=True)
 
 
 def table(dirs):
@@ -174,7 +191,7 @@ def table(dirs):
             lines.append("| %s | %s | *pixels* | | | | " % (run, app) + " | ".join(pct(first[g]["pixel_share"]) for g in REGIONS) + " |")
             for lab in order:
                 t = by[lab]["total"]
-                keep = t["method"] == "brute" or (t["blend"] == "age-aware" and t["filter"] in ("bilinear", "bilinear+rectify"))
+                keep = t["method"] == "brute" or (t["blend"] == "age-aware" and t["filter"] in ("bilinear", "bilinear+rectify", "bilinear+fill8"))
                 if not keep:
                     continue
                 # Brute force is unbiased: its bias² is noise around 0, and shares of it mean nothing.
