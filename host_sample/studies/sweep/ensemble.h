@@ -43,6 +43,13 @@ public:
 
     Metrics metrics(const std::vector<CheckpointTarget>& targets) const;
 
+    /** Checkpoint c's sums over seeds of x and x² per value (CheckpointTarget::target's order), and its seeds:
+     *  what bias_regions.h splits by region. */
+    const std::vector<double>& sum(size_t c) const { return sums_.at(c).sum; }
+    const std::vector<double>& sum_sq(size_t c) const { return sums_.at(c).sum_sq; }
+    int seeds(size_t c) const { return sums_.at(c).seeds; }
+    size_t checkpoints() const { return sums_.size(); }
+
 private:
     struct Sums {
         std::vector<double> sum, sum_sq;

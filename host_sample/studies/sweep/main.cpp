@@ -1,6 +1,7 @@
 // rrc-sweep: error against run time for rrc-sample's three applications
 // (docs/PERFORMANCE.md, "Error against run time").  Runs the sweep, writes
 // the CSVs, then fronts.py for the Pareto fronts, plots and verdicts.
+#include "bias_output.h"
 #include "rectify_study.h"
 #include "sweep_options.h"
 #include "sweep_output.h"
@@ -16,6 +17,9 @@
 #endif
 #ifndef RRC_SWEEP_RECTIFY_PY
 #define RRC_SWEEP_RECTIFY_PY "rectify_plot.py"
+#endif
+#ifndef RRC_SWEEP_BIAS_MAPS_PY
+#define RRC_SWEEP_BIAS_MAPS_PY "bias_maps.py"
 #endif
 #ifndef RRC_SWEEP_PYTHON
 #define RRC_SWEEP_PYTHON "python3"
@@ -55,9 +59,12 @@ int main(int argc, char** argv) {
         }
         const SweepResult r = run_sweep(o, &std::cout);
         write_sweep_files(o, r, command);
+        if (o.bias_maps) write_region_tables(o, r);
         std::cout << "rrc-sweep: " << r.rrc.size() << " rrc rows, " << r.brute.size() << " brute-force rows in " << (int)r.seconds << " s; files in "
                   << o.out << "\n";
-        return finish(o, r.validation_messages, RRC_SWEEP_FRONTS_PY);
+        const int fronts = finish(o, r.validation_messages, RRC_SWEEP_FRONTS_PY);
+        if (fronts != 0 || !o.bias_maps) return fronts;
+        return finish(o, r.validation_messages, RRC_SWEEP_BIAS_MAPS_PY);  // bias_regions_<app>.md and bias_<app>.png
     } catch (const std::exception& e) {
         std::cerr << "rrc-sweep: " << e.what() << "\n";
         return 1;

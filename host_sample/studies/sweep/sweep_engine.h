@@ -77,6 +77,22 @@ struct Engine {
         return state;
     }
 
+    /** Frame `index`'s scene (its light, its moving object's place) seen from frame `camera_frame`'s camera:
+     *  a view-independent signal's value at the surface points frame `camera_frame` shows, as it was in
+     *  frame `index` (bias_regions.h, PreviousTarget).  Sets the uniforms and returns the state. */
+    FrameState begin_frame_seen_from(int index, int camera_frame) {
+        FrameState state = rrc_sample::make_frame_state(scene, settings, index);
+        const FrameState eye = rrc_sample::make_frame_state(scene, settings, camera_frame);
+        state.uniforms.view_proj = eye.uniforms.view_proj;
+        state.uniforms.prev_view_proj = eye.uniforms.prev_view_proj;
+        state.uniforms.inv_view_proj = eye.uniforms.inv_view_proj;
+        state.uniforms.camera_pos = glm::vec4(glm::vec3(eye.uniforms.camera_pos), state.uniforms.camera_pos.w);
+        state.view_proj = eye.view_proj;
+        state.prev_view_proj = eye.prev_view_proj;
+        gpu_scene.update(state);
+        return state;
+    }
+
     /** Records with `body` (after the previous frame's work and the query reset), submits, waits;
      *  returns the `stamps` timestamps in milliseconds. */
     template <typename Body>
@@ -146,24 +162,30 @@ struct Engine {
  *  `samples` per pixel; with env, its second, independent estimate (the random stream of seed 1). */
 struct FrameTarget {
     std::vector<uint8_t> material;
+    std::vector<float> depth;      // reversed-z depth of the G-buffer's surface point (0: background; bias_regions.h)
+    std::vector<float> position;   // 4 a pixel: the G-buffer's world position (w: object + 1, 0 background)
+    glm::dmat4 view_proj{1.0};     // the camera's, of the frame's state
     std::vector<float> pcf, env, env_twin, soft;
     const std::vector<float>& of(uint32_t signal) const { return signal == kSignalPcf ? pcf : signal == kSignalEnv ? env : soft; }
 };
 
-inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t samples) {
+/** camera_frame >= 0: frame f's scene seen from that frame's camera (Engine::begin_frame_seen_from). */
+inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t samples, int camera_frame = -1, bool env_twin = true) {
     rrc_sample::Readback rb(e.gpu);
     const rrc_sample::SignalImages& ref = e.signals.reference();
     const int s_pcf = rb.add(ref.pcf), s_env = rb.add(ref.env), s_soft = rb.add(ref.soft);
     const int s_normal = rb.add(e.gbuffer.images().normal, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    const int s_position = rb.add(e.gbuffer.images().position, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     rb.allocate();
     FrameTarget ft;
-    const FrameState state = e.begin_frame(f, 1, 0);
-    for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) ? 2u : 1u); ++twin) {
+    const FrameState state = camera_frame >= 0 ? e.begin_frame_seen_from(f, camera_frame) : e.begin_frame(f, 1, 0);
+    ft.view_proj = state.view_proj;
+    for (uint32_t twin = 0; twin < ((sigs & kSignalEnv) && env_twin ? 2u : 1u); ++twin) {
         e.submit(0, [&](VkCommandBuffer c, auto&&) {
             e.record_geometry(c, state, sigs);
             // twin 1: env's second, independent estimate (the random stream of seed 1).
             e.signals.record_reference(c, twin ? kSignalEnv : sigs, samples, e.scene, e.shadows, twin);
-            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal});
+            rb.record(c, twin ? std::vector<int>{s_env} : std::vector<int>{s_pcf, s_env, s_soft, s_normal, s_position});
         });
         if (twin) {
             ft.env_twin = floats_of(rb, s_env);
@@ -176,6 +198,15 @@ inline FrameTarget frame_target(Engine& e, int f, uint32_t sigs, uint32_t sample
         std::memcpy(nm.data(), rb.data(s_normal), rb.bytes(s_normal));
         ft.material.resize(nm.size() / 4);
         for (size_t i = 0; i < ft.material.size(); ++i) ft.material[i] = (uint8_t)(glm::unpackHalf1x16(nm[i * 4 + 3]) + 0.5f);
+        // The depth the G-buffer's depth test kept, from its world position (w: object + 1, 0 background).
+        ft.position = floats_of(rb, s_position);
+        const std::vector<float>& pos = ft.position;
+        ft.depth.assign(ft.material.size(), 0.0f);
+        for (size_t i = 0; i < ft.depth.size(); ++i) {
+            if (!(pos[i * 4 + 3] > 0.0f)) continue;
+            const glm::dvec4 c = state.view_proj * glm::dvec4(pos[i * 4], pos[i * 4 + 1], pos[i * 4 + 2], 1.0);
+            ft.depth[i] = (float)(c.z / c.w);
+        }
     }
     return ft;
 }

@@ -56,6 +56,12 @@ std::string sweep_usage() {
            "  --rectify-gammas LIST    the study's rectify-on rows, one per gamma (default 0.5,1,1.5)\n"
            "  --change-threshold T     the study's changed pixels (pcf, soft): the target moved by more than T since the\n"
            "                           frame before (default 0.05); env's: by more than 3 sigma of its target's noise\n"
+           "  --bias-maps              also the signed bias maps (seed mean - target) of every row at every checkpoint\n"
+           "                           and its bias² and variance split by region (object, edge, young, changed,\n"
+           "                           static; README.md, \"Bias maps\"): bias_regions_<app>.csv, bias_maps/*.exr, and\n"
+           "                           (bias_maps.py) bias_regions_<app>.md and bias_<app>.png\n"
+           "  --change-window W        --bias-maps: a pixel's target changed when its surface point's target differed\n"
+           "                           from the current one in any of the last W frames (default 16)\n"
            "  --clock C                auto (default: the wall clock of each pass's own submission on a CPU device\n"
            "                           such as lavapipe, whose timestamps are wrong after graphics work; GPU\n"
            "                           timestamps otherwise), wall or timestamps\n"
@@ -114,6 +120,10 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.clock = c.choice(kClockNames);
         else if (c.option("--out"))
             o.out = c.value();
+        else if (c.option("--change-window"))
+            o.change_window = (int)c.integer(1, 1000);
+        else if (c.flag("--bias-maps"))
+            o.bias_maps = true;
         else if (c.flag("--no-plots"))
             o.plots = false;
         else if (!rrc_sample::device_option(c, o.validation, o.device, o.quiet))
@@ -132,6 +142,9 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
         if (!c.given("--out")) o.out = "out/rectify";
         if (o.light_speed == 0.0f) throw OptionError("--study rectify: the light must move (--light-speed not 0)");
     }
+    if (o.bias_maps && o.first_checkpoint < o.change_window)
+        throw OptionError("--bias-maps: the first checkpoint must be at least --change-window frames from the reset");
+    if (o.study == "rectify" && o.bias_maps) throw OptionError("--bias-maps: the sweep's, not --study rectify's");
     if (o.checkpoints().empty())
         throw OptionError("--checkpoints: no checkpoint frame below --frames " + std::to_string(o.frames));
     return o;

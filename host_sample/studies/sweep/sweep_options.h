@@ -31,6 +31,8 @@ struct SweepOptions {
     std::string study;                    // "" the sweep; "rectify" the rectification study (rectify_study.h)
     std::vector<float> rectify_gammas = {0.5f, 1.0f, 1.5f};  // the study's rectify-on rows
     float change_threshold = 0.05f;       // the study: a pcf/soft target changed when it moved by more (env: 3 sigma of its noise)
+    bool bias_maps = false;               // --bias-maps: per-pixel bias maps and bias² by region (bias_regions.h)
+    int change_window = 16;               // --bias-maps: a pixel's target "changed" when it did in any of the last W frames
     std::string clock = "auto";           // auto (wall on a CPU device, timestamps otherwise), wall or timestamps
     std::string out = "out/sweep";
     bool plots = true;                    // run fronts.py at the end

@@ -1,5 +1,6 @@
 #include "sweep_run.h"
 
+#include "bias_output.h"
 #include "sweep_engine.h"
 #include "sweep_time.h"
 
@@ -53,7 +54,73 @@ void transfer_to_compute(VkCommandBuffer cmd) {
 /** Per application, per checkpoint: the pixels scored, the target, its noise, the static pixels. */
 using Targets = std::map<uint32_t, std::vector<CheckpointTarget>>;
 
-Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress) {
+/** The pixels an application is scored on: env the sphere's, the others every surface's. */
+bool scored_by(uint32_t signal, uint8_t material) {
+    return signal == kSignalEnv ? material == rrc_sample::kMatSphere : material != rrc_sample::kMatBackground;
+}
+
+/** --bias-maps: the checkpoint frames' G-buffers (material, depth, position) and, per application and
+ *  checkpoint, the pixels whose target changed within the window (bias_regions.h, mark_changes). */
+struct RegionSources {
+    std::map<int, FrameTarget> frames;
+    std::map<uint32_t, std::vector<std::vector<uint8_t>>> changed;
+    void clear() { frames.clear(), changed.clear(); }
+};
+
+// The changed pixels' thresholds (README.md, "Bias maps"): pcf's and soft's targets are noiseless and
+// compared at the same point: 1e-3 (the sweep's static pixels' rule); env's is a 256-ray estimate:
+// 3 standard deviations of the difference of two estimates, at least 0.01 (the rectification study's).
+constexpr float kChangeNoiseless = 1e-3f;
+float change_threshold(uint32_t signal, const CheckpointTarget& t) {
+    return signal == kSignalEnv ? (float)std::max(0.01, 3.0 * std::sqrt(2.0 * t.noise)) : kChangeNoiseless;
+}
+
+/** Fills `keep`: for each checkpoint t and each of the `window` frames t - j before it, pcf's and soft's
+ *  targets of frame t - j's scene seen from frame t's camera, env's of frame t - j as it was rendered. */
+void find_changes(Engine& e, const SweepOptions& o, uint32_t sigs, const std::map<uint32_t, std::vector<CheckpointTarget>>& targets,
+                  std::map<int, FrameTarget>& frames, RegionSources& keep, std::ostream* progress) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<int> cps = o.checkpoints();
+    const uint32_t n = o.width * o.height, same_point = sigs & (kSignalPcf | kSignalSoft);
+    for (size_t c = 0; c < cps.size(); ++c) {
+        const int t = cps[c];
+        const FrameTarget& cur = frames.at(t);
+        for (const App& app : apps_of(sigs)) keep.changed[app.signal].push_back(std::vector<uint8_t>(n, 0));
+        auto mark = [&](uint32_t signal, const FrameTarget& before, bool at_same_point) {
+            PreviousTarget pt;
+            pt.values = before.of(signal).data();
+            pt.stride = stride_of(signal);
+            for (uint8_t m : before.material) pt.scored.push_back(scored_by(signal, m) ? 1 : 0);
+            pt.at_same_point = at_same_point;
+            if (at_same_point) pt.material = before.material;
+            for (int i = 0; i < 16; ++i) pt.view_proj[i] = before.view_proj[i / 4][i % 4];
+            const CheckpointTarget& ct = targets.at(signal)[c];
+            mark_changes(keep.changed[signal][c], ct, pt, cur.position.data(), cur.material, o.width, o.height, change_threshold(signal, ct));
+        };
+        for (int j = 1; j <= o.change_window && t - j >= 0; ++j) {
+            if (same_point) {
+                const FrameTarget seen = frame_target(e, t - j, same_point, (uint32_t)o.reference_samples, t, false);
+                for (uint32_t s : {(uint32_t)kSignalPcf, (uint32_t)kSignalSoft})
+                    if (same_point & s) mark(s, seen, true);
+            }
+            if (sigs & kSignalEnv) {
+                auto it = frames.find(t - j);
+                if (it != frames.end()) {
+                    mark(kSignalEnv, it->second, false);
+                } else {
+                    const FrameTarget own = frame_target(e, t - j, kSignalEnv, (uint32_t)o.reference_samples, -1, false);
+                    mark(kSignalEnv, own, false);
+                }
+            }
+        }
+    }
+    for (int t : cps) keep.frames[t] = frames.at(t);
+    if (progress)
+        *progress << "bias regions: the targets of the " << o.change_window << " frames before each checkpoint, "
+                  << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s" << std::endl;
+}
+
+Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostream* progress, RegionSources* keep) {
     std::map<int, FrameTarget> frames;
     const auto t0 = std::chrono::steady_clock::now();
     for (int t : o.checkpoints())
@@ -68,7 +135,7 @@ Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostre
             const FrameTarget& cur = frames.at(t);
             const FrameTarget& prev = frames.at(t - 1);
             const bool env = app.signal == kSignalEnv;
-            auto scored = [&](uint8_t m) { return env ? m == rrc_sample::kMatSphere : m != rrc_sample::kMatBackground; };
+            auto scored = [&](uint8_t m) { return scored_by(app.signal, m); };
             const std::vector<float>& now = env ? cur.env : app.signal == kSignalPcf ? cur.pcf : cur.soft;
             const std::vector<float>& before = env ? prev.env : app.signal == kSignalPcf ? prev.pcf : prev.soft;
             CheckpointTarget ct;
@@ -96,7 +163,52 @@ Targets make_targets(Engine& e, const SweepOptions& o, uint32_t sigs, std::ostre
             targets[app.signal].push_back(std::move(ct));
         }
     }
+    if (keep) find_changes(e, o, sigs, targets, frames, *keep, progress);
     return targets;
+}
+
+/** The regions of every application at every checkpoint (bias_regions.h), from the targets' frames and
+ *  rrc's mask and age at each checkpoint; also writes each application's region image. */
+std::map<uint32_t, std::vector<RegionMap>> make_regions(const SweepOptions& o, uint32_t sigs, const Targets& targets, const RegionSources& sources,
+                                                        const std::map<int, std::vector<uint8_t>>& masks,
+                                                        const std::map<int, std::vector<uint16_t>>& ages) {
+    std::map<uint32_t, std::vector<RegionMap>> maps;
+    const std::vector<int> cps = o.checkpoints();
+    for (const App& app : apps_of(sigs)) {
+        std::vector<std::vector<uint8_t>> images;
+        std::vector<std::vector<uint16_t>> age_images;
+        std::vector<std::vector<float>> target_images;
+        for (size_t c = 0; c < cps.size(); ++c) {
+            const int t = cps[c];
+            const FrameTarget& cur = sources.frames.at(t);
+            RegionFrame g;
+            g.width = o.width, g.height = o.height;
+            g.material = cur.material, g.depth = cur.depth;
+            g.mask = masks.at(t), g.age = ages.at(t);
+            const CheckpointTarget& ct = targets.at(app.signal)[c];
+            RegionThresholds th;
+            th.object_material = rrc_sample::kMatMover;
+            maps[app.signal].push_back(classify_regions(g, ct, sources.changed.at(app.signal)[c], th));
+            images.push_back(region_image(maps[app.signal].back(), ct, g.material.size()));
+            age_images.push_back(g.age);
+            std::vector<float> target(g.material.size(), std::numeric_limits<float>::quiet_NaN());
+            for (size_t i = 0; i < ct.pixels.size(); ++i) {
+                double v = 0.0;
+                for (int k = 0; k < ct.components; ++k) v += ct.target[i * ct.components + k];
+                target[ct.pixels[i]] = (float)(v / ct.components);
+            }
+            target_images.push_back(std::move(target));
+        }
+        write_region_images(o, app.name, images, age_images, target_images);
+    }
+    return maps;
+}
+
+/** --bias-maps: a row's bias maps at every checkpoint into its EXR. */
+void write_row_maps(const SweepOptions& o, const std::string& label, const Ensemble& e, const std::vector<CheckpointTarget>& targets) {
+    std::vector<std::vector<float>> maps;
+    for (size_t c = 0; c < targets.size(); ++c) maps.push_back(bias_map(e, c, targets[c], (size_t)o.width * o.height));
+    write_bias_map(o, label, maps);
 }
 
 std::string eta(double done, double total, double seconds) {
@@ -139,7 +251,14 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                   << (o.validation ? " (validation layer on)" : "") << std::endl;
     {
         Engine e(gpu, scene, rs);
-        const Targets targets = make_targets(e, o, sigs, progress);
+        RegionSources target_frames;  // --bias-maps: the regions' inputs, until the regions are made
+        const Targets targets = make_targets(e, o, sigs, progress, o.bias_maps ? &target_frames : nullptr);
+        // --bias-maps: rrc's mask and its age (followed on the host) at each checkpoint, from the first run's
+        // first seed: both depend on the geometry alone, which every run and seed shares.
+        std::map<int, std::vector<uint8_t>> cp_masks;
+        std::map<int, std::vector<uint16_t>> cp_ages;
+        std::vector<uint16_t> age;
+        std::map<uint32_t, std::vector<RegionMap>> regions;
         auto checkpoint_of = [&](int f) { return (size_t)(std::find(checkpoints.begin(), checkpoints.end(), f) - checkpoints.begin()); };
 
         // Brute force is timed inside the rrc runs' frames, one configuration a frame in turn, so that
@@ -180,6 +299,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (size_t i = 0; i < stages.size(); ++i)
                 out_slots.push_back(rb.add(signal_image(stages[i]->accumulated(), run.configs[i].app.signal)));
             const int mask_slot = rb.add(stages.front()->mask());
+            const int clip_slot = o.bias_maps ? rb.add(e.gbuffer.images().prev_clip, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) : -1;
             rb.allocate();
             std::vector<Ensemble> ensembles(stages.size(), Ensemble(checkpoints.size()));
             std::map<uint32_t, std::vector<double>> signal_ms;  // per application
@@ -249,6 +369,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     if (read || hits)
                         e.submit(0, [&](VkCommandBuffer c, auto&&) {
                             std::vector<int> slots = {mask_slot};
+                            if (hits && clip_slot >= 0) slots.push_back(clip_slot);
                             if (read) slots.insert(slots.end(), out_slots.begin(), out_slots.end());
                             rb.record(c, slots);
                         });
@@ -256,6 +377,11 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                         std::vector<uint8_t> mask(rb.bytes(mask_slot));
                         std::memcpy(mask.data(), rb.data(mask_slot), mask.size());
                         result.hit_ratio.push_back(rrc_sample::hit_stats(mask).ratio());
+                        if (clip_slot >= 0) {
+                            const std::vector<float> clip = floats_of(rb, clip_slot);
+                            age = next_age(age, mask, clip.data(), o.width, o.height, RRC_MAX_AGE_CAP);
+                            if (checkpoint_of(f) < checkpoints.size()) cp_masks[f] = mask, cp_ages[f] = age;
+                        }
                     }
                     if (!read) continue;
                     const size_t cp = checkpoint_of(f);
@@ -274,6 +400,10 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                               << eta(work_done, work_total, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
                               << std::endl;
             }
+            if (o.bias_maps && ri == 0) {
+                regions = make_regions(o, sigs, targets, target_frames, cp_masks, cp_ages);
+                target_frames.clear();
+            }
             for (size_t i = 0; i < stages.size(); ++i) {
                 RrcRow row;
                 row.config = run.configs[i];
@@ -283,6 +413,12 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                 std::vector<double>& pool = pooled_rrc_ms[channel_key(run.configs[i])];
                 pool.insert(pool.end(), rrc_ms[i].begin(), rrc_ms[i].end());
                 row.metrics = ensembles[i].metrics(targets.at(run.configs[i].app.signal));
+                if (o.bias_maps) {
+                    const uint32_t sig = run.configs[i].app.signal;
+                    row.regions = decompose(ensembles[i], targets.at(sig), regions.at(sig));
+                    row.has_regions = true;
+                    write_row_maps(o, row_label(row), ensembles[i], targets.at(sig));
+                }
                 result.rrc.push_back(row);
             }
         }
@@ -336,6 +472,11 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             row.config = brute[j];
             row.signal_ms = median(brute_ms[j]);
             row.metrics = ensembles[j].metrics(targets.at(brute[j].app.signal));
+            if (o.bias_maps) {
+                row.regions = decompose(ensembles[j], targets.at(brute[j].app.signal), regions.at(brute[j].app.signal));
+                row.has_regions = true;
+                write_row_maps(o, row_label(row), ensembles[j], targets.at(brute[j].app.signal));
+            }
             result.brute.push_back(row);
         }
         // The signal pass of an rrc row is the brute-force pass at the same k (the same estimator, the

@@ -3,6 +3,7 @@
 // (ensemble.h) and its GPU time by timestamps.
 #pragma once
 
+#include "bias_regions.h"
 #include "ensemble.h"
 #include "sweep_configs.h"
 #include "sweep_options.h"
@@ -21,12 +22,16 @@ struct RrcRow {
     double rrc_ms = 0.0;        // its share of rrc: rrc_alone_ms less a third of what sharing a context saves (below)
     double rrc_alone_ms = 0.0;  // this channel's rrc dispatch alone (its own context; median)
     Metrics metrics;
+    RegionParts regions;  // --bias-maps: bias² and variance by region
+    bool has_regions = false;
 };
 
 struct BruteRow {
     BruteConfig config;
     double signal_ms = 0.0;
     Metrics metrics;
+    RegionParts regions;
+    bool has_regions = false;
 };
 
 struct SweepResult {
