@@ -21,7 +21,7 @@ import shlex
 import subprocess
 import sys
 
-PROGRAMS = ("rrc-sample", "rrc-sweep", "rrc-cache", "rrc-accumulate", "rrc-make-demo-sequence", "rrc-bench", "rrc-blender-check")
+PROGRAMS = ("rrc-sample", "rrc-sample-peers", "rrc-sweep", "rrc-cache", "rrc-accumulate", "rrc-make-demo-sequence", "rrc-bench", "rrc-blender-check")
 
 # Snippets that cannot be checked, each with its reason: (file, a regular expression the snippet matches).
 EXEMPT = [
