@@ -22,7 +22,7 @@ RMSE, and the decomposition below.  Re-measuring the preset with a new option
 on the 320x180 sequences of docs/OFFLINE.md, section 7:
 
     for s in strafe_a strafe_b; do
-      nice -n 10 python3 host_sample/tools/accumulate/blender/error_study.py /work/blender_seqs/$s \
+      nice -n 10 /usr/bin/python3 host_sample/tools/accumulate/blender/error_study.py /work/blender_seqs/$s \
         --tool build/release/bin/rrc-accumulate --evaluate mytry --rrc-args '--some-option value' \
         --eval-signal 'ViewLayer.Combined:lambda=0.8,blend=age_aware,filter=catmull_rom'
     done
@@ -465,6 +465,27 @@ def main():
         log("mean of %d 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image (noise floor %.4f)" %
             (centre_check["renders"], centre_check["mean_to_reference_rmse"], centre_check["mean_to_centre_rmse"],
              centre_check["noise_floor_rmse"]))
+    # Which way the centre sampling's aliasing runs: motion averages it only
+    # along the direction the surface moves under the pixel centres.  Its MSE
+    # (centre-sampled image against the reference) as is, after a 9-px box
+    # along x and along y (rows / columns away from the ends), and the mean
+    # |Vector.X|, |Vector.Y| over the pixels that see geometry (px a frame).
+    e, ex, ey, vx, vy = [], [], [], [], []
+    box = np.ones(9) / 9
+    for f in range(args.first, args.frames + 1):
+        fr = "frame_%04d.exr" % f
+        d = read_rgb(os.path.join(work, "centre", fr)) - read_rgb(os.path.join(work, "ref", fr))
+        e.append(np.mean(d ** 2))
+        ex.append(np.mean(np.apply_along_axis(lambda a: np.convolve(a, box, "same"), 1, d)[:, 4:-4] ** 2))
+        ey.append(np.mean(np.apply_along_axis(lambda a: np.convolve(a, box, "same"), 0, d)[4:-4] ** 2))
+        geometry = read_channel(os.path.join(work, "spp1", fr), "ViewLayer.IndexOB.X") > 0
+        vx.append(np.mean(np.abs(read_channel(os.path.join(work, "spp1", fr), "ViewLayer.Vector.X"))[geometry]))
+        vy.append(np.mean(np.abs(read_channel(os.path.join(work, "spp1", fr), "ViewLayer.Vector.Y"))[geometry]))
+    aliasing = {"centre_mse": float(np.mean(e)), "after_box_x": float(np.mean(ex)), "after_box_y": float(np.mean(ey)),
+                "mean_abs_vector_x": float(np.mean(vx)), "mean_abs_vector_y": float(np.mean(vy))}
+    log("centre sampling's aliasing: MSE %.3e, after a 9-px box along x %.3e, along y %.3e; mean |Vector| on geometry x %.2f, y %.2f px" %
+        (aliasing["centre_mse"], aliasing["after_box_x"], aliasing["after_box_y"], aliasing["mean_abs_vector_x"],
+         aliasing["mean_abs_vector_y"]))
 
     # 2. Brute force and the candidate sweep.
     brute = {}
@@ -520,7 +541,8 @@ def main():
     results = {"size": args.size, "scene_args": args.scene_args, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
                "time_fit": fit, "times": {str(k): {kk: float(vv) for kk, vv in v.items()} for k, v in times.items()},
                "brute": {str(k): v for k, v in brute.items()}, "sweep": sweep, "preset_default": preset_default,
-               "decomposition": decomp, "centre_check": centre_check}
+               "decomposition": decomp, "centre_check": centre_check, "aliasing": aliasing,
+               "timing_renders": bool(args.timing_frames)}
     with open(os.path.join(work, "results.json"), "w") as fp:
         json.dump(results, fp, indent=1)
     write_markdown(work, results)
@@ -568,7 +590,8 @@ def write_markdown(work, R):
     L.append("Sequence: %s, %d frames, render_check_scene.py %s; reference %d spp" %
              (R["size"], R["frames"], R.get("scene_args") or "(the check scene)", R["ref_spp"]))
     L.append("")
-    L.append("Per-frame times (medians over frames 2.. of the timing renders, the reference's own; seconds): total = path tracing + fixed")
+    L.append("Per-frame times (medians over frames 2.. of the %s, the reference's own; seconds): total = path tracing + fixed" %
+             ("timing renders" if R.get("timing_renders", True) else "sequences' own renders"))
     L.append("")
     L.append("| spp | total | path tracing | fixed | first frame | Blender start-up (per run) |")
     L.append("|---|---|---|---|---|---|")
@@ -583,6 +606,12 @@ def write_markdown(work, R):
     if c:
         L.append("Mean of %d independent 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image"
                  " (noise floor %.4f)" % (c["renders"], c["mean_to_reference_rmse"], c["mean_to_centre_rmse"], c["noise_floor_rmse"]))
+        L.append("")
+    a = R.get("aliasing")
+    if a:
+        L.append("Centre sampling's aliasing (centre-sampled image against the reference, frames %d..): MSE %.3e; after a"
+                 " 9-px box along x %.3e, along y %.3e; mean |Vector.X| %.2f px, |Vector.Y| %.2f px a frame where there is geometry" %
+                 (R["from"], a["centre_mse"], a["after_box_x"], a["after_box_y"], a["mean_abs_vector_x"], a["mean_abs_vector_y"]))
         L.append("")
     L.append("Brute force (RMSE over frames %d..%d against %d spp):" % (R["from"], R["frames"], R["ref_spp"]))
     L.append("")
