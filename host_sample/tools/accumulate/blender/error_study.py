@@ -6,7 +6,32 @@ section 7, gives the results and how the preset's defaults follow from them.
 
     python3 host_sample/tools/accumulate/blender/error_study.py WORK_DIR \\
         [--tool build/.../rrc-accumulate] [--size 96x64] [--frames 24] [--ref-spp 1024] [--seeds 4] \\
-        [--decompose BLEND,VALUE,FILTER ...]
+        [--decompose BLEND,VALUE,FILTER ...] [--scene-args 'KEY=VALUE ...'] [--spps 1,2,4,8,16] \
+        [--timing-frames 12] [--centre-spp 256]
+    python3 host_sample/tools/accumulate/blender/error_study.py WORK_DIR --evaluate NAME \
+        [--tool ...] [--rrc-args 'OPTIONS'] [--eval-signal SPEC ...] [--spp 1]
+
+The second form renders nothing: it evaluates rrc-accumulate settings on the
+renders a first run left in WORK_DIR (it reads that run's size, frames,
+spps and scene from WORK_DIR/study.json).  For each setting (the preset's own
+defaults, i.e. no --signal, then every --eval-signal SPEC, given as
+rrc-accumulate's --signal takes it), with --rrc-args appended to every
+rrc-accumulate command, it prints and writes to WORK_DIR/evaluate/NAME.md the
+RMSE over frames >= --from against the reference, its ratio to the 4-spp
+RMSE, and the decomposition below.  Re-measuring the preset with a new option
+on the 320x180 sequences of docs/OFFLINE.md, section 7:
+
+    for s in strafe_a strafe_b; do
+      nice -n 10 /usr/bin/python3 host_sample/tools/accumulate/blender/error_study.py /work/blender_seqs/$s \
+        --tool build/release/bin/rrc-accumulate --evaluate mytry --rrc-args '--some-option value' \
+        --eval-signal 'ViewLayer.Combined:lambda=0.8,blend=age_aware,filter=catmull_rom'
+    done
+
+The decomposition assumes that rrc is linear in the samples for a fixed
+geometry (decompose()); an option whose weights depend on the colours (a lag
+detector, a clamp) makes its variance / blur-and-lag / centre split
+approximate, and the seeds columns (independent sequences, no model) are then
+the check.
 
 Needs Debian's blender (3.4.1), python3-numpy, python3-openimageio and, for
 the figure, python3-matplotlib; rrc-accumulate runs on any Vulkan device
@@ -15,7 +40,9 @@ the figure, python3-matplotlib; rrc-accumulate runs on any Vulkan device
 What it does, all under WORK_DIR (renders and rrc runs are kept and reused
 while their command, and for rrc the tool, are unchanged):
   1. Renders render_check_scene.py (moving camera, moving sphere, soft sun
-     shadow, checkered ground) at 1, 2, 4, 8 and 16 spp with an animated seed
+     shadow, checkered ground; --scene-args passes it KEY=VALUE options for
+     another camera path, mover or pillars) at --spps (1, 2, 4, 8 and 16) spp
+     with an animated seed
      (base seed 0), a reference at --ref-spp with another base seed, a
      centre-sampled image (pixel filter 0.01 px, --centre-spp: what a frame's
      first sample converges to, for Cycles puts it at the pixel centre), and
@@ -26,7 +53,9 @@ while their command, and for rrc the tool, are unchanged):
      tracing is the time between them, the rest of the frame (scene sync,
      BVH, film, writing) the fixed cost, what the log's total adds Blender's
      start-up; a least-squares fit time = F + c * spp checks them.
-  2. Runs rrc-accumulate --preset blender on the 1- and 2-spp sequences with
+     --timing-frames 0 skips them and takes the times from the sequences'
+     own renders (on a busy machine, upper bounds).
+  2. Runs rrc-accumulate --preset blender on the 1- and 2-spp sequences (those of --spps) with
      every candidate --signal setting (blend fixed / age_aware with lambda,
      running_mean with max_age; bilinear and catmull_rom history) and reads
      the RMSE against the reference from its --metrics CSV.  The error is
@@ -57,7 +86,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "render_check_scene.py")
 LAYER = "ViewLayer.Combined"
 RGB = [LAYER + ".R", LAYER + ".G", LAYER + ".B"]
-SPPS = [1, 2, 4, 8, 16]
 TIMING_SPPS = [1, 2, 4, 8, 16, 64]
 
 
@@ -105,6 +133,7 @@ def parse_blender_log(text):
 
 def render(work, name, spp, seed, args, extra=(), frames=None):
     frames = frames or args.frames
+    extra = list(extra) + args.scene_args.split()
     out = os.path.join(work, name)
     info_path = os.path.join(out, "render.json")
     if os.path.exists(info_path):
@@ -114,7 +143,7 @@ def render(work, name, spp, seed, args, extra=(), frames=None):
             return info
     os.makedirs(out, exist_ok=True)
     cmd = ["blender", "-b", "--factory-startup", "--python", SCENE, "--", out, str(spp), "float", "seed",
-           str(frames), "seed=%d" % seed, "size=" + args.size] + list(extra)
+           str(frames), "seed=%d" % seed, "size=" + args.size] + extra
     log("render", name, ":", " ".join(cmd))
     t0 = time.monotonic()
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -211,12 +240,13 @@ def expected_sequence(args, work, spp, n):
 # ---------------------------------------------------------------- rrc
 
 def rrc_run(args, work, name, inputs, signal, reference=True):
-    out = os.path.join(work, "rrc", name)
+    out = os.path.join(work, args.rrc_dir, name)
     os.makedirs(out, exist_ok=True)
     cmd = [args.tool, "--preset", "blender", "--input", os.path.join(inputs, "frame_%04d.exr"),
            "--frames", "1-%d" % args.frames, "--output", os.path.join(out, "acc_%04d.exr"), "--progress", "lines"]
     if signal:
         cmd += ["--signal", signal]
+    cmd += args.rrc_args.split()
     if reference:
         cmd += ["--reference", os.path.join(work, "ref", "frame_%04d.exr"), "--metrics", os.path.join(out, "metrics.csv")]
     # A run is kept while the command and the tool are unchanged.
@@ -285,7 +315,7 @@ def mean_sq(a, b, frames):
     return float(np.mean([np.mean((a[f] - b[f]) ** 2) for f in frames]))
 
 
-def decompose(args, work, spp, cfg, seeds_dirs):
+def decompose(args, work, spp, cfg, seeds_dirs, spec=None, text=None, name=None):
     """MSE over frames >= first = variance + bias^2, bias^2 = blur and lag + centre sampling.
 
     rrc is linear in the samples for fixed geometry (its weights depend on
@@ -301,9 +331,10 @@ def decompose(args, work, spp, cfg, seeds_dirs):
       variance = MSE - bias^2.
     The --seeds independent 1-spp sequences check it: their per-pixel spread
     is the variance, the error of their mean (less spread / K) the bias."""
-    blend, value, filt = cfg
-    name = "decomp_%dspp_%s_%g_%s" % (spp, blend, value, filt)
-    spec = signal_spec(blend, value, filt)
+    if cfg is not None:  # a sweep setting; else spec (None: the preset's defaults), text and name
+        blend, value, filt = cfg
+        name = "decomp_%dspp_%s_%g_%s" % (spp, blend, value, filt)
+        spec, text = signal_spec(blend, value, filt), label(*cfg)
     frames = range(args.first, args.frames + 1)
     rd = lambda d: {f: read_rgb(os.path.join(d, "acc_%04d.exr" % f)) for f in frames}
     ref = {f: read_rgb(os.path.join(work, "ref", "frame_%04d.exr" % f)) for f in frames}
@@ -311,7 +342,7 @@ def decompose(args, work, spp, cfg, seeds_dirs):
     of_ref = rrc_run(args, work, name + "_of_ref", expected_sequence(args, work, spp, 0), spec)
     of_mean = rrc_run(args, work, name + "_of_mean", expected_sequence(args, work, spp, spp), spec)
     noisy_px, ref_px, mean_px = rd(noisy["dir"]), rd(of_ref["dir"]), rd(of_mean["dir"])
-    res = {"config": label(*cfg), "spp": spp, "mse": noisy["output_rmse"] ** 2, "rmse": noisy["output_rmse"]}
+    res = {"config": text, "spp": spp, "mse": noisy["output_rmse"] ** 2, "rmse": noisy["output_rmse"]}
     res["bias2"] = mean_sq(mean_px, ref, frames)
     res["blur_lag"] = mean_sq(ref_px, ref, frames)
     res["centre"] = res["bias2"] - res["blur_lag"]
@@ -366,14 +397,29 @@ def main():
     ap.add_argument("--from", dest="first", type=int, default=8, help="first frame of the error")
     ap.add_argument("--decompose", action="append", default=[],
                     help="BLEND,VALUE,FILTER to decompose (repeatable); default: the best of each blend at 1 spp")
+    ap.add_argument("--scene-args", default="", help="KEY=VALUE options for render_check_scene.py, space-separated")
+    ap.add_argument("--spps", default="1,2,4,8,16", help="the brute-force sample counts to render (must hold 4)")
+    ap.add_argument("--evaluate", metavar="NAME", help="render nothing: evaluate settings on a previous run's renders")
+    ap.add_argument("--rrc-args", default="", help="options appended to every rrc-accumulate command (space-separated)")
+    ap.add_argument("--eval-signal", action="append", default=[], help="with --evaluate: a --signal SPEC (repeatable)")
+    ap.add_argument("--spp", type=int, default=1, help="with --evaluate: the input sequence's spp")
     args = ap.parse_args()
+    args.rrc_dir = "rrc"
     work = os.path.abspath(args.work)
     os.makedirs(work, exist_ok=True)
     if not os.path.exists(args.tool):
         sys.exit("no rrc-accumulate at " + args.tool + " (--tool)")
+    if args.evaluate:
+        return evaluate(args, work)
+    spps = [int(x) for x in args.spps.split(",")]
+    if 4 not in spps:
+        sys.exit("--spps must hold 4 (the error is a ratio to the 4-spp RMSE)")
+    with open(os.path.join(work, "study.json"), "w") as fp:
+        json.dump({"size": args.size, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp, "spps": spps,
+                   "scene_args": args.scene_args, "seeds": args.seeds}, fp, indent=1)
 
     # 1. Renders and their times.
-    renders = {spp: render(work, "spp%d" % spp, spp, 0, args) for spp in SPPS}
+    renders = {spp: render(work, "spp%d" % spp, spp, 0, args) for spp in spps}
     ref = render(work, "ref", args.ref_spp, args.ref_seed, args)
     # What a frame's sample 0 converges to: the pixel-centre image (filter width 0.01 px).
     render(work, "centre", args.centre_spp, args.ref_seed + 1, args, ["filter=0.01"])
@@ -385,16 +431,20 @@ def main():
     # above may share the machine with other work), each repeated; per spp
     # the repeat with the lowest median frame time.  64 spp fixes the slope.
     times = {}
-    for spp in TIMING_SPPS:
+    timing_spps = TIMING_SPPS if args.timing_frames else spps
+    for spp in timing_spps:
+        if not args.timing_frames:  # no timing renders: the sequences' own times
+            times[spp] = frame_times(renders[spp])
+            continue
         reps = [frame_times(render(work, "timing/spp%d_run%d" % (spp, k), spp, 0, args, frames=args.timing_frames))
                 for k in range(args.timing_repeats)]
         times[spp] = min(reps, key=lambda t: t["total"])
     times["reference"] = frame_times(ref)
-    xs = np.array(TIMING_SPPS, dtype=float)
-    ys = np.array([times[s]["total"] for s in TIMING_SPPS])
+    xs = np.array(timing_spps, dtype=float)
+    ys = np.array([times[s]["total"] for s in timing_spps])
     (F, c), *_ = np.linalg.lstsq(np.stack([np.ones_like(xs), xs], axis=1), ys, rcond=None)
     fit = {"fixed_s": float(F), "per_spp_s": float(c)}
-    log("per-frame time: %.4f s + %.3f ms x spp (least squares over %s spp)" % (F, 1e3 * c, TIMING_SPPS))
+    log("per-frame time: %.4f s + %.3f ms x spp (least squares over %s spp)" % (F, 1e3 * c, timing_spps))
 
     # Where a 1-spp frame's one sample lies: the mean of the independent
     # 1-spp renders (base seeds 0..K) against the filtered reference and
@@ -415,15 +465,37 @@ def main():
         log("mean of %d 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image (noise floor %.4f)" %
             (centre_check["renders"], centre_check["mean_to_reference_rmse"], centre_check["mean_to_centre_rmse"],
              centre_check["noise_floor_rmse"]))
+    # Which way the centre sampling's aliasing runs: motion averages it only
+    # along the direction the surface moves under the pixel centres.  Its MSE
+    # (centre-sampled image against the reference) as is, after a 9-px box
+    # along x and along y (rows / columns away from the ends), and the mean
+    # |Vector.X|, |Vector.Y| over the pixels that see geometry (px a frame).
+    e, ex, ey, vx, vy = [], [], [], [], []
+    box = np.ones(9) / 9
+    for f in range(args.first, args.frames + 1):
+        fr = "frame_%04d.exr" % f
+        d = read_rgb(os.path.join(work, "centre", fr)) - read_rgb(os.path.join(work, "ref", fr))
+        e.append(np.mean(d ** 2))
+        ex.append(np.mean(np.apply_along_axis(lambda a: np.convolve(a, box, "same"), 1, d)[:, 4:-4] ** 2))
+        ey.append(np.mean(np.apply_along_axis(lambda a: np.convolve(a, box, "same"), 0, d)[4:-4] ** 2))
+        geometry = read_channel(os.path.join(work, "spp1", fr), "ViewLayer.IndexOB.X") > 0
+        vx.append(np.mean(np.abs(read_channel(os.path.join(work, "spp1", fr), "ViewLayer.Vector.X"))[geometry]))
+        vy.append(np.mean(np.abs(read_channel(os.path.join(work, "spp1", fr), "ViewLayer.Vector.Y"))[geometry]))
+    aliasing = {"centre_mse": float(np.mean(e)), "after_box_x": float(np.mean(ex)), "after_box_y": float(np.mean(ey)),
+                "mean_abs_vector_x": float(np.mean(vx)), "mean_abs_vector_y": float(np.mean(vy))}
+    log("centre sampling's aliasing: MSE %.3e, after a 9-px box along x %.3e, along y %.3e; mean |Vector| on geometry x %.2f, y %.2f px" %
+        (aliasing["centre_mse"], aliasing["after_box_x"], aliasing["after_box_y"], aliasing["mean_abs_vector_x"],
+         aliasing["mean_abs_vector_y"]))
 
     # 2. Brute force and the candidate sweep.
     brute = {}
-    for spp in SPPS:
+    for spp in spps:
         r = rrc_run(args, work, "brute_%dspp" % spp, os.path.join(work, "spp%d" % spp), None)
         brute[spp] = {"rmse": r["input_rmse"], **{k: float(v) for k, v in times[spp].items()}}
         log("brute %2d spp: RMSE %.5f" % (spp, r["input_rmse"]))
     sweep = []
-    for spp in (1, 2):
+    acc_spps = [s for s in (1, 2) if s in spps]
+    for spp in acc_spps:
         for blend, value in CANDIDATES:
             for filt in FILTERS:
                 r = rrc_run(args, work, "sweep_%dspp_%s_%g_%s" % (spp, blend, value, filt),
@@ -459,26 +531,67 @@ def main():
             configs.append((blend, best["value"], best["filter"]))
     decomp = []
     for cfg in configs:
-        for spp in (1, 2):
+        for spp in acc_spps:
             d = decompose(args, work, spp, cfg, seed_dirs if spp == 1 else [])
             decomp.append(d)
             log("decomposition %d spp %s: MSE %.3e = variance %.3e + blur/lag %.3e + centre sampling %.3e%s" %
                 (spp, d["config"], d["mse"], d["variance"], d["blur_lag"], d["centre"],
                  "; seeds: bias^2 %.3e variance %.3e" % (d["bias2_seeds"], d["variance_seeds"]) if "seeds" in d else ""))
 
-    results = {"size": args.size, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
+    results = {"size": args.size, "scene_args": args.scene_args, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
                "time_fit": fit, "times": {str(k): {kk: float(vv) for kk, vv in v.items()} for k, v in times.items()},
                "brute": {str(k): v for k, v in brute.items()}, "sweep": sweep, "preset_default": preset_default,
-               "decomposition": decomp, "centre_check": centre_check}
+               "decomposition": decomp, "centre_check": centre_check, "aliasing": aliasing,
+               "timing_renders": bool(args.timing_frames)}
     with open(os.path.join(work, "results.json"), "w") as fp:
         json.dump(results, fp, indent=1)
     write_markdown(work, results)
     plot(work, results)
 
 
+def evaluate(args, work):
+    """--evaluate NAME: rrc-accumulate settings on a previous run's renders (see the module's doc)."""
+    with open(os.path.join(work, "study.json")) as fp:
+        st = json.load(fp)
+    args.size, args.frames, args.first, args.scene_args = st["size"], st["frames"], st["from"], st["scene_args"]
+    if args.spp not in st["spps"]:
+        sys.exit("no %d-spp sequence in %s (it has %s)" % (args.spp, work, st["spps"]))
+    args.rrc_dir = os.path.join("evaluate", args.evaluate)
+    brute4 = rrc_run(args, work, "brute_4spp", os.path.join(work, "spp4"), None)["input_rmse"]
+    seed_dirs = [os.path.join(work, "spp1_seed%d" % k) for k in range(1, st["seeds"] + 1)] if args.spp == 1 else []
+    rows = []
+    for i, spec in enumerate([None] + args.eval_signal):
+        text = spec or "the preset's defaults"
+        d = decompose(args, work, args.spp, None, seed_dirs, spec=spec, text=text, name="eval%d_%dspp" % (i, args.spp))
+        d["ratio_to_4spp"] = d["rmse"] / brute4
+        rows.append(d)
+        log("%s: RMSE %.5f = %.3fx 4 spp; MSE %.3e = variance %.3e + blur/lag %.3e + centre sampling %.3e" %
+            (text, d["rmse"], d["ratio_to_4spp"], d["mse"], d["variance"], d["blur_lag"], d["centre"]))
+    L = ["Sequence %s (%s, %d frames, render_check_scene.py %s), %d spp, error over frames %d..%d" %
+         (work, args.size, args.frames, args.scene_args or "(the check scene)", args.spp, args.first, args.frames), "",
+         "Command: " + " ".join(sys.argv), "",
+         "rrc-accumulate --preset blender %s [--signal SPEC]; 4-spp RMSE %.5f" % (args.rrc_args, brute4), "",
+         "| setting | RMSE | / 4-spp RMSE | MSE | variance | blur and lag | centre sampling | seeds: variance | seeds: bias² |",
+         "|---|---|---|---|---|---|---|---|---|"]
+    pc = lambda x, d: "%.2e (%.0f%%)" % (x, 100 * x / d["mse"])
+    for d in rows:
+        L.append("| %s | %.5f | %.3f | %.3e | %s | %s | %s | %s | %s |" %
+                 (d["config"], d["rmse"], d["ratio_to_4spp"], d["mse"], pc(d["variance"], d), pc(d["blur_lag"], d),
+                  pc(d["centre"], d), "%.2e" % d["variance_seeds"] if "seeds" in d else "",
+                  "%.2e" % d["bias2_seeds"] if "seeds" in d else ""))
+    os.makedirs(os.path.join(work, "evaluate"), exist_ok=True)
+    with open(os.path.join(work, "evaluate", args.evaluate + ".md"), "w") as fp:
+        fp.write("\n".join(L) + "\n")
+    log("\n".join(L))
+
+
 def write_markdown(work, R):
     L = []
-    L.append("Per-frame times (medians over frames 2.. of the timing renders, the reference's own; seconds): total = path tracing + fixed")
+    L.append("Sequence: %s, %d frames, render_check_scene.py %s; reference %d spp" %
+             (R["size"], R["frames"], R.get("scene_args") or "(the check scene)", R["ref_spp"]))
+    L.append("")
+    L.append("Per-frame times (medians over frames 2.. of the %s, the reference's own; seconds): total = path tracing + fixed" %
+             ("timing renders" if R.get("timing_renders", True) else "sequences' own renders"))
     L.append("")
     L.append("| spp | total | path tracing | fixed | first frame | Blender start-up (per run) |")
     L.append("|---|---|---|---|---|---|")
@@ -493,6 +606,12 @@ def write_markdown(work, R):
     if c:
         L.append("Mean of %d independent 1-spp renders: RMSE %.4f to the reference, %.4f to the centre-sampled image"
                  " (noise floor %.4f)" % (c["renders"], c["mean_to_reference_rmse"], c["mean_to_centre_rmse"], c["noise_floor_rmse"]))
+        L.append("")
+    a = R.get("aliasing")
+    if a:
+        L.append("Centre sampling's aliasing (centre-sampled image against the reference, frames %d..): MSE %.3e; after a"
+                 " 9-px box along x %.3e, along y %.3e; mean |Vector.X| %.2f px, |Vector.Y| %.2f px a frame where there is geometry" %
+                 (R["from"], a["centre_mse"], a["after_box_x"], a["after_box_y"], a["mean_abs_vector_x"], a["mean_abs_vector_y"]))
         L.append("")
     L.append("Brute force (RMSE over frames %d..%d against %d spp):" % (R["from"], R["frames"], R["ref_spp"]))
     L.append("")
@@ -551,11 +670,13 @@ def plot(work, R):
     for ax, key, title in ((axes[0], "path_tracing", "path-tracing time per frame"), (axes[1], "total", "render time per frame (incl. fixed)")):
         bx = [R["brute"][k][key] for k in sorted(R["brute"], key=int)]
         by = [R["brute"][k]["rmse"] for k in sorted(R["brute"], key=int)]
-        ax.plot(bx, by, "ko-", label="brute force 1-16 spp")
+        ax.plot(bx, by, "ko-", label="brute force")
         for k, x, y in zip(sorted(R["brute"], key=int), bx, by):
             ax.annotate(k, (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
         marks = {"fixed": "s", "age_aware": "^", "running_mean": "v"}
         for spp, colour in ((1, "tab:blue"), (2, "tab:orange")):
+            if not any(s["spp"] == spp for s in R["sweep"]):
+                continue
             base = R["brute"][str(spp)][key]
             for blend in marks:
                 rows = [s for s in R["sweep"] if s["spp"] == spp and s["blend"] == blend]

@@ -22,6 +22,23 @@
 #                 section 7): an animated seed does not jitter it.
 #   filter=W      the pixel filter width in pixels (Cycles' 1.5); 0.01 gives
 #                 a centre-sampled image
+#   bounces=N     Cycles' max_bounces (Blender's 12): fewer bounces make the
+#                 many-sample references of large frames affordable
+# Variants of the scene for the error study (docs/OFFLINE.md, section 7,
+# "Independent 320x180 sequences"); rrc-blender-check understands only the
+# defaults (it intersects the ground, the cube and the sphere analytically):
+#   camera=check|strafe   check (default): the camera translates, rises and
+#                 pans; strafe: it slides along x at a constant height and
+#                 tilt, panning by pan= degrees a frame
+#   cam_x0=X, cam_speed=V, pan=DEG   the strafe's x at frame 0, its x per
+#                 frame (signed) and its yaw per frame, zero at the middle
+#                 frame (defaults -1.8, 0.15, 0)
+#   mover=sphere|cube     the moving object (sphere); the cube is 0.9 wide
+#                 and spins about z by spin= degrees a frame (0)
+#   mover_vel=X,Y,Z       the moving object's velocity per frame
+#                 (0.25,0,0.15 for the sphere: right and up)
+#   pillars=N     N static upright cylinders between the camera and the
+#                 scene (0): under a strafe they uncover what lies behind them
 import bpy
 import json
 import math
@@ -31,7 +48,9 @@ import sys
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 keys = dict(a.split("=", 1) for a in argv if "=" in a)
 argv = [a for a in argv if "=" not in a]
-unknown = set(keys) - {"seed", "size", "offset", "filter"}
+keys_given = dict(keys)
+unknown = set(keys) - {"seed", "size", "offset", "filter", "bounces", "camera", "cam_x0", "cam_speed", "pan", "mover",
+                       "mover_vel", "spin", "pillars"}
 if unknown:
     sys.exit("render_check_scene.py: unknown option(s) " + ", ".join(sorted(unknown)))
 out_dir = os.path.abspath(argv[0] if argv else "blender_check")
@@ -43,6 +62,15 @@ base_seed = int(keys.get("seed", "0"))
 size = keys.get("size", "64x48").split("x")
 offset_per_frame = keys.get("offset", "0") == "frame"
 filter_width = float(keys.get("filter", "1.5"))
+bounces = int(keys["bounces"]) if "bounces" in keys else None
+camera_path = keys.get("camera", "check")
+cam_x0, cam_speed, pan = float(keys.get("cam_x0", "-1.8")), float(keys.get("cam_speed", "0.15")), float(keys.get("pan", "0"))
+mover_kind = keys.get("mover", "sphere")
+mover_vel = [float(v) for v in keys.get("mover_vel", "0.25,0,0.15").split(",")]
+spin = float(keys.get("spin", "0"))
+pillars = int(keys.get("pillars", "0"))
+if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube") or len(mover_vel) != 3:
+    sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube, mover_vel=X,Y,Z")
 os.makedirs(out_dir, exist_ok=True)
 
 W, H = int(size[0]), int(size[1])
@@ -59,6 +87,8 @@ scene.cycles.seed = base_seed
 scene.cycles.use_animated_seed = animated_seed
 scene.cycles.filter_width = filter_width
 scene.cycles.sample_offset = 0
+if bounces is not None:
+    scene.cycles.max_bounces = bounces
 if offset_per_frame:
     def set_sample_offset(sc, *_):
         sc.cycles.sample_offset = max(sc.frame_current - 1, 0) * samples
@@ -124,15 +154,32 @@ cube = bpy.context.active_object
 cube.name = "Cube"
 cube.pass_index = 2
 cube.data.materials.append(material("Cube", (0.2, 0.5, 0.2, 1.0)))
-bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(1.0, -0.5, 1.2), segments=48, ring_count=24)
-sphere = bpy.context.active_object
-sphere.name = "Sphere"
+if mover_kind == "sphere":
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(1.0, -0.5, 1.2), segments=48, ring_count=24)
+    sphere = bpy.context.active_object
+    sphere.name = "Sphere"
+    sphere.data.materials.append(material("Sphere", (0.7, 0.2, 0.1, 1.0)))
+    bpy.ops.object.shade_smooth()
+    start = (1.0, -0.5, 1.2)
+else:  # a spinning cube: its vectors vary across its faces
+    bpy.ops.mesh.primitive_cube_add(size=0.9, location=(1.0, -0.5, 0.45))
+    sphere = bpy.context.active_object
+    sphere.name = "Mover"
+    sphere.data.materials.append(material("Mover", (0.7, 0.2, 0.1, 1.0), checker=True))
+    start = (1.0, -0.5, 0.45)
 sphere.pass_index = 3
-sphere.data.materials.append(material("Sphere", (0.7, 0.2, 0.1, 1.0)))
-bpy.ops.object.shade_smooth()
-# The sphere moves right and up: both signs of the vector show.
+# By default the sphere moves right and up: both signs of the vector show.
 keys = (0, frames + 1)  # linear between, so every frame moves alike
-keyed(sphere, {f: (1.0 + 0.25 * f, -0.5, 1.2 + 0.15 * f) for f in keys})
+keyed(sphere, {f: tuple(start[i] + mover_vel[i] * f for i in range(3)) for f in keys},
+      {f: (0.0, 0.0, math.radians(spin * f)) for f in keys} if spin else None)
+statics = [plane, cube]
+for i in range(pillars):  # evenly spread across the view, 5.5 in front of the scene's centre
+    bpy.ops.mesh.primitive_cylinder_add(radius=0.18, depth=3.0, location=(-3.0 + 6.0 * (i + 0.5) / pillars, -4.5, 1.5))
+    pillar = bpy.context.active_object
+    pillar.name = "Pillar%d" % i
+    pillar.pass_index = 4 + i
+    pillar.data.materials.append(material("Pillar%d" % i, (0.8, 0.75, 0.6, 1.0)))
+    statics.append(pillar)
 
 cam_data = bpy.data.cameras.new("Camera")
 cam_data.lens = 35.0
@@ -140,9 +187,16 @@ cam_data.sensor_fit = 'AUTO'
 cam = bpy.data.objects.new("Camera", cam_data)
 scene.collection.objects.link(cam)
 scene.camera = cam
-# The camera moves sideways, rises and pans: translation and rotation.
-keyed(cam, {f: (0.4 * f, -9.0 + 0.2 * f, 3.0 + 0.12 * f) for f in keys},
-      {f: (math.radians(73.0 - 0.8 * f), 0.0, math.radians(4.0 + 1.5 * f)) for f in keys})
+if camera_path == "check":
+    # The camera moves sideways, rises and pans: translation and rotation.
+    keyed(cam, {f: (0.4 * f, -9.0 + 0.2 * f, 3.0 + 0.12 * f) for f in keys},
+          {f: (math.radians(73.0 - 0.8 * f), 0.0, math.radians(4.0 + 1.5 * f)) for f in keys})
+else:
+    # A strafe: sideways at a constant height and tilt, optionally panning,
+    # centred on the scene at the middle frame.
+    mid = (frames + 1) / 2.0
+    keyed(cam, {f: (cam_x0 + cam_speed * f, -9.0, 3.0) for f in keys},
+          {f: (math.radians(73.0), 0.0, math.radians(pan * (f - mid))) for f in keys})
 
 sun = bpy.data.lights.new("Sun", type='SUN')
 sun.energy = 1.5
@@ -156,7 +210,8 @@ def mat(m):
     return [[m[i][j] for j in range(4)] for i in range(4)]  # row-major
 
 
-info = {"width": W, "height": H, "samples": samples, "half": half, "frame_count": frames, "frames": {}}
+info = {"width": W, "height": H, "samples": samples, "half": half, "frame_count": frames, "frames": {},
+        "options": keys_given}
 depsgraph = bpy.context.evaluated_depsgraph_get()
 for f in range(0, frames + 2):
     scene.frame_set(f)
@@ -167,7 +222,7 @@ for f in range(0, frames + 2):
         "camera_world": mat(cam_eval.matrix_world),
         "projection": mat(proj),
         "objects": {o.name: {"index": o.pass_index, "world": mat(o.evaluated_get(depsgraph).matrix_world)}
-                    for o in (plane, cube, sphere)},
+                    for o in statics + [sphere]},
     }
 with open(os.path.join(out_dir, "scene.json"), "w") as fp:
     json.dump(info, fp, indent=1)
