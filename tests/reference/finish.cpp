@@ -103,8 +103,10 @@ Antilag antilag_age(const ChannelParams& ch, const RectifyBox& b, const double* 
     };
     a.c = conf(a.d);
     a.age = age_at(a.c);
-    a.age_lo = age_at(conf(d_hi) - 4.0 * kU32);
-    a.age_hi = age_at(conf(d_lo) + 4.0 * kU32);
+    // c strictly inside (0, 1) is a rounded fp32 value; clamped to 0 or 1 it is exact.
+    auto widen = [](double c, double by) { return c > 0.0 && c < 1.0 ? c + by : c; };
+    a.age_lo = age_at(widen(conf(d_hi), -4.0 * kU32));
+    a.age_hi = age_at(widen(conf(d_lo), 4.0 * kU32));
     return a;
 }
 
