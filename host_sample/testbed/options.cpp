@@ -182,7 +182,15 @@ Options parse_options(int argc, const char* const* argv) {
                 ch->rectify = g > 0.0f ? 1u : 0u;
                 ch->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
             }
-        } else if (c.option("--blend"))
+        } else if (c.option("--antilag"))
+            antilag = signal_bits(c);
+        else if (c.option("--antilag-gamma"))
+            antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
+        else if (c.option("--antilag-threshold"))
+            antilag_threshold = c.number(0.0f, RRC_MAX_ANTILAG_THRESHOLD);
+        else if (c.option("--soft-lambda"))
+            o.channels.soft.lambda = c.number(0.0f, 0.9999f);
+        else if (c.option("--blend"))
             o.channels.pcf.blend = o.channels.env.blend = c.choice(rrc_host::kBlendNames);
         else if (c.option("--history-filter")) {
             const rrc_history_filter f = c.choice(rrc_host::kHistoryFilterNames);
