@@ -124,6 +124,8 @@ std::string usage() {
            "  --antilag-gamma G        its box half width in sigmas (default 0: the library's, 2)\n"
            "  --antilag-threshold T    its relative gap that drops the history (default 0: the library's, 0.5)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
+           "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
+           "                           pixels younger than T frames (default 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
            "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
@@ -188,6 +190,10 @@ Options parse_options(int argc, const char* const* argv) {
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))
             antilag_threshold = c.number(0.0f, RRC_MAX_ANTILAG_THRESHOLD);
+        else if (c.option("--pcf-fill"))
+            o.channels.pcf.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
+        else if (c.option("--env-fill"))
+            o.channels.env.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
         else if (c.option("--soft-lambda"))
             o.channels.soft.lambda = c.number(0.0f, 0.9999f);
         else if (c.option("--blend"))
