@@ -488,6 +488,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.env.antilag_gamma, 0.0f) << "a channel without the detector gets none of its members (the library refuses them)";
     EXPECT_EQ(o.channels.soft.lambda, 0.9f);
     EXPECT_EQ(o.channels.pcf.lambda, 0.7f);
+    const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
+    o = parse_options(5, fills);
+    EXPECT_EQ(o.channels.pcf.fill_age, 4u);
+    EXPECT_EQ(o.channels.env.fill_age, 6u);
+    EXPECT_EQ(o.channels.pcf.fill_prior, 0.0f) << "pcf and env have no fallback image";
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.7f);
