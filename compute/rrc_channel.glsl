@@ -100,7 +100,10 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     //    "Rectification"); formed about the centre sample, which is valid
     //    wherever the blend uses it, so large magnitudes do not cancel.
     vec4 H_blend = H;
-    if (CH_(_RECTIFY)) {
+    // The lag detector (docs/CONVENTIONS.md, "The lag detector") reads the
+    // same 3x3 moments with its own gamma: the age the blend uses, n_a.
+    uint n_blend = n_prev;
+    if (CH_(_RECTIFY) || CH_(_ANTILAG)) {
         ivec2 hi = size - 1;
         vec4 sum = vec4(0.0), sum2 = vec4(0.0);
         float m = 0.0;
@@ -121,11 +124,25 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         vec4 lo = s + mean_d - CH_(_RECTIFY_GAMMA) * sigma, hi_v = s + mean_d + CH_(_RECTIFY_GAMMA) * sigma;
         // A box an fp32 overflow made infinite or NaN clamps nothing.
         bvec4 box = bvec4(uvec4(not(isnan(lo))) & uvec4(not(isnan(hi_v))) & uvec4(not(isinf(lo))) & uvec4(not(isinf(hi_v))));
-        H_blend = mix(H, clamp(H, lo, hi_v), box);
+        if (CH_(_RECTIFY)) H_blend = mix(H, clamp(H, lo, hi_v), box);
+        if (CH_(_ANTILAG)) {
+            // The distance from H to mu +- gamma_a sigma, relative to the larger
+            // of |H| and |mu| (plus the box and the darkness term): d.
+            const float ga = CH_(_ANTILAG_GAMMA);
+            vec4 gap = max(abs((H - s) - mean_d) - ga * sigma, vec4(0.0));
+            vec4 d4 = gap / (max(abs(H), abs(s + mean_d)) + ga * sigma + float(RRC_ANTILAG_DARKNESS));
+            float d = CH_(_COMPONENTS) == 1u ? d4.x : max(max(d4.x, d4.y), max(d4.z, d4.w));
+            // Confidence c: 1 up to T/2, 0 from T; a d an fp32 overflow made NaN or infinite changes nothing.
+            float c = clamp(2.0 - 2.0 * d / CH_(_ANTILAG_THRESHOLD), 0.0, 1.0);
+            c = (isnan(d) || isinf(d)) ? 1.0 : c;
+            n_blend = min(uint(floor(c * float(n_prev))), n_prev);
+        }
     }
 
     // -- the table of docs/CONVENTIONS.md
     float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
+    // A shortened age caps lambda_eff at n_a/(n_a + 1) (0: the sample alone).
+    if (CH_(_ANTILAG)) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;
     if (CH_(_CONFIDENCE)) {
@@ -163,7 +180,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         W_out = 0.0;
     } else {
         out_v = blended;
-        n_out = min(n_prev + 1u, CH_(_AGE_CAP));
+        n_out = min(n_blend + 1u, CH_(_AGE_CAP));
         W_out = W_new;
     }
     // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp

@@ -71,6 +71,14 @@ RRC_SLOTS2(uint, FILL_AGE, FILL_AGE, 0u)
 RRC_SLOTS2(uint, FILL_RADIUS, FILL_RADIUS, 2u)
 RRC_SLOTS2(float, FILL_TOLERANCE, FILL_TOLERANCE, 0.005)
 RRC_SLOTS2(float, FILL_PRIOR, FILL_PRIOR, 0.0)
+// 0.5, the lag detector (docs/CONVENTIONS.md, "The lag detector").
+#ifdef RRC_WITHOUT_ANTILAG  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(bool, ANTILAG, false)
+#else
+RRC_SLOTS2(bool, ANTILAG, ANTILAG, false)
+#endif
+RRC_SLOTS2(float, ANTILAG_GAMMA, ANTILAG_GAMMA, 2.0)
+RRC_SLOTS2(float, ANTILAG_THRESHOLD, ANTILAG_THRESHOLD, 0.5)
 #undef RRC_SLOTS2
 #undef RRC_SLOTS_OFF
 // Slot selectors: called with a literal slot, they fold to one constant.
@@ -90,6 +98,9 @@ RRC_SLOT_SELECT(uint, FILL_AGE)
 RRC_SLOT_SELECT(uint, FILL_RADIUS)
 RRC_SLOT_SELECT(float, FILL_TOLERANCE)
 RRC_SLOT_SELECT(float, FILL_PRIOR)
+RRC_SLOT_SELECT(bool, ANTILAG)
+RRC_SLOT_SELECT(float, ANTILAG_GAMMA)
+RRC_SLOT_SELECT(float, ANTILAG_THRESHOLD)
 
 // Which channel slots write the host's output and age images in this pass
 // (interop, and the standalone fill's displayed values): chosen by the frame

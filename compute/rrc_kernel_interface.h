@@ -57,8 +57,16 @@
 #define RRC_CHANNEL2_PROPERTY_FILL_RADIUS 4    // uint r
 #define RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE 5 // float tau
 #define RRC_CHANNEL2_PROPERTY_FILL_PRIOR 6     // float P, 0 = no fallback
-#define RRC_CHANNEL2_PROPERTY_COUNT 7
+// 0.5, the lag detector (docs/CONVENTIONS.md, "The lag detector"): the same range.
+#define RRC_CHANNEL2_PROPERTY_ANTILAG 7            // bool: the lag detector
+#define RRC_CHANNEL2_PROPERTY_ANTILAG_GAMMA 8      // float gamma_a
+#define RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD 9  // float T_a
+#define RRC_CHANNEL2_PROPERTY_COUNT 10             // ids 56..95: below RRC_SPEC_GROUP_SIZE_X
 #define RRC_SPEC_CHANNEL2(property, slot) (56 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+// The lag detector's darkness term: added to the relative gap's denominator so
+// that a history and a signal both near 0 do not make a large relative gap
+// (docs/CONVENTIONS.md, "The lag detector").
+#define RRC_ANTILAG_DARKNESS 1e-3
 
 // ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
 // Which passes a frame runs, in which order, over which grid, is decided in

@@ -188,6 +188,9 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
         spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_RADIUS, slot), ch.fill_radius);
         spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE, slot), ch.fill_depth_tolerance);
         spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_PRIOR, slot), ch.fill_prior);
+        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG, slot), ch.antilag ? 1u : 0u);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_GAMMA, slot), ch.antilag_gamma);
+        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD, slot), ch.antilag_threshold);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -28,6 +28,10 @@ struct ChannelConfig {
     uint32_t fill_radius = RRC_DEFAULT_FILL_RADIUS;
     float fill_depth_tolerance = RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
     float fill_prior = 0.0f;      // > 0: frames carry a fallback
+    // 0.5 the lag detector (docs/CONVENTIONS.md, "The lag detector"), defaults applied.
+    bool antilag = false;
+    float antilag_gamma = RRC_DEFAULT_ANTILAG_GAMMA;
+    float antilag_threshold = RRC_DEFAULT_ANTILAG_THRESHOLD;
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
     bool fill() const { return fill_age != 0; }
     bool fallback() const { return fill_prior > 0.0f; }

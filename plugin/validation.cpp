@@ -93,6 +93,20 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     out.fill_radius = c.fill_radius == 0 ? RRC_DEFAULT_FILL_RADIUS : c.fill_radius;
     out.fill_depth_tolerance = c.fill_depth_tolerance == 0.0f ? RRC_DEFAULT_FILL_DEPTH_TOLERANCE : c.fill_depth_tolerance;
     out.fill_prior = c.fill_prior;
+    // 0.5: the lag detector (docs/CONVENTIONS.md, "The lag detector").
+    out.antilag = c.antilag != 0;
+    if (out.antilag && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and antilag: a shading cache takes no sample on a hit to compare with", what);
+    if (!(c.antilag_gamma >= 0.0f && c.antilag_gamma <= RRC_MAX_ANTILAG_GAMMA))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.antilag_gamma is %g, must be in (0, %g] (0 = default)", what, (double)c.antilag_gamma,
+             (double)RRC_MAX_ANTILAG_GAMMA);
+    if (!(c.antilag_threshold >= 0.0f && c.antilag_threshold <= RRC_MAX_ANTILAG_THRESHOLD))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.antilag_threshold is %g, must be in (0, %g] (0 = default)", what, (double)c.antilag_threshold,
+             (double)RRC_MAX_ANTILAG_THRESHOLD);
+    if (!out.antilag && (c.antilag_gamma != 0.0f || c.antilag_threshold != 0.0f))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s sets antilag_gamma or antilag_threshold but antilag is 0", what);
+    out.antilag_gamma = c.antilag_gamma == 0.0f ? RRC_DEFAULT_ANTILAG_GAMMA : c.antilag_gamma;
+    out.antilag_threshold = c.antilag_threshold == 0.0f ? RRC_DEFAULT_ANTILAG_THRESHOLD : c.antilag_threshold;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the

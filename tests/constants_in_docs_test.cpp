@@ -160,3 +160,12 @@ TEST(ConstantsInDocs, FinishingStepDefaults) {
     expect_value<float>("RRC_DEFAULT_FILL_DEPTH_TOLERANCE", RRC_DEFAULT_FILL_DEPTH_TOLERANCE,
                         {{"docs/CONVENTIONS.md", "τ = `fill_depth_tolerance` (default "}});
 }
+
+// 0.5: the lag detector's defaults and limits, as docs/CONVENTIONS.md states them.
+TEST(ConstantsInDocs, AntilagDefaults) {
+    expect_value<float>("RRC_DEFAULT_ANTILAG_GAMMA", RRC_DEFAULT_ANTILAG_GAMMA, {{"docs/CONVENTIONS.md", "`RRC_DEFAULT_ANTILAG_GAMMA` = "}});
+    expect_value<float>("RRC_MAX_ANTILAG_GAMMA", RRC_MAX_ANTILAG_GAMMA, {{"docs/CONVENTIONS.md", "`RRC_MAX_ANTILAG_GAMMA` = "}});
+    expect_value<float>("RRC_DEFAULT_ANTILAG_THRESHOLD", RRC_DEFAULT_ANTILAG_THRESHOLD,
+                        {{"docs/CONVENTIONS.md", "`RRC_DEFAULT_ANTILAG_THRESHOLD` = "}});
+    expect_value<float>("RRC_MAX_ANTILAG_THRESHOLD", RRC_MAX_ANTILAG_THRESHOLD, {{"docs/CONVENTIONS.md", "`RRC_MAX_ANTILAG_THRESHOLD` = "}});
+}

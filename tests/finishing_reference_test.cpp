@@ -102,6 +102,7 @@ struct Mutant {
 
 struct CaseStats {
     int64_t compared = 0, skipped = 0, hits = 0, refreshed = 0, rectified = 0, rectified_refreshed = 0;
+    int64_t shortened = 0, dropped = 0, uncertain = 0;  // the lag detector: n_a < n_prev, n_a = 0, n_a within fp32 error of a step
     double max_fp32_err = 0, max_fp16_steps = 0;
     std::vector<int64_t> caught;  // per mutant
 };
@@ -162,6 +163,15 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
                 const rrc_ref::ChannelResult& rc = r.channels[ch];
                 st.rectified += rc.rectified[i];
                 if (r.mask[i] & RRC_MASK_REFRESHED) st.rectified_refreshed += rc.rectified[i];
+                if (channels[ch].antilag && rc.antilag_c[i] < 1.0) {
+                    ++st.shortened;
+                    st.dropped += rc.antilag_age[i] == 0;
+                }
+                // n_a sits on a step of floor(c n_prev) within the fp32 error: either age is right.
+                if (rc.antilag_uncertain[i]) {
+                    ++st.uncertain;
+                    continue;
+                }
                 if (k.age[ch][i] != rc.age[i])
                     ages.add() << "frame " << t << " pixel " << i << " channel " << ch << " kernel " << k.age[ch][i] << " reference "
                                << rc.age[i];
@@ -199,9 +209,12 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
         prev = kernel_state(in.frame.depth, k);
     }
     std::printf(
-        "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n",
+        "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n"
+        "%-24s antilag: shortened %lld dropped %lld uncertain %lld\n",
         name, (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.refreshed, (long long)st.rectified,
-        (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps);
+        (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps, "", (long long)st.shortened, (long long)st.dropped,
+        (long long)st.uncertain);
+    EXPECT_LE(st.uncertain, st.shortened / 20 + 5) << name << ": too many pixels with an uncertain lag-detector age";
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
     EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 3) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
@@ -305,6 +318,47 @@ TEST(RectifyRefreshed, MatchesTheReference) {
     EXPECT_GT(st.refreshed, 1000) << "too few refreshed pixels";
     EXPECT_GT(st.rectified_refreshed, 50) << "too few refreshed pixels rectified";
 }
+
+// ---- The lag detector ---------------------------------------------------------------
+
+rrc_channel_desc antilagged(rrc_channel_desc d, float gamma, float threshold) {
+    d.antilag = 1;
+    d.antilag_gamma = gamma;
+    d.antilag_threshold = threshold;
+    return d;
+}
+
+class Antilag : public ::testing::TestWithParam<float> {};
+
+// The brightening front leaves the history outside its box behind it: the
+// detector shortens (and drops) ages there, and the kernel's ages and values
+// must match the reference's, each blend mode, 1 and 4 components, fp16 and
+// fp32, with confidence, with and without rectification.
+TEST_P(Antilag, MatchesTheReference) {
+    const float threshold = GetParam();
+    const std::vector<rrc_channel_desc> chs = {
+        antilagged(channel("a1h", 1, 0.8f, kFp16, RRC_BLEND_AGE_AWARE, kBil), 1.0f, threshold),
+        // With confidence, the default gamma (a wide box: half the threshold keeps it noticeable).
+        antilagged(channel("a1f", 1, 0.9f, kFp32, RRC_BLEND_FIXED, kBil, 0, 1), 0.0f, 0.5f * threshold),
+        antilagged(rectified(channel("a4h", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_CATMULL_ROM, 16), 1.0f), 1.5f,
+                   threshold),
+        antilagged(channel("a4f", 4, 0.9f, kFp32, RRC_BLEND_AGE_AWARE, kBil), 3.0f, threshold),
+    };
+    std::vector<Mutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c) {
+        mutants.push_back({std::string(chs[c].name) + " without antilag", c, [](rrc_channel_desc& d) {
+                               d.antilag = 0, d.antilag_gamma = 0, d.antilag_threshold = 0;
+                           }});
+    }
+    mutants.push_back({"a1h other threshold", 0, [threshold](rrc_channel_desc& d) { d.antilag_threshold = threshold * 2.0f; }});
+    mutants.push_back({"a4f other gamma", 3, [](rrc_channel_desc& d) { d.antilag_gamma = 0.5f; }});
+    const std::string name = "antilag_threshold_" + std::to_string(threshold);
+    CaseStats st = run_accumulating(name.c_str(), chs, mutants, true);
+    EXPECT_GT(st.shortened, 300) << "the lag detector hardly shortened any history";
+    EXPECT_GT(st.dropped, 100) << "the lag detector hardly dropped any history";
+}
+INSTANTIATE_TEST_SUITE_P(Threshold, Antilag, ::testing::Values(0.25f, 0.5f),
+                         [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.25f ? std::string("t0_25") : std::string("t0_5"); });
 
 // ---- The spatial fill -------------------------------------------------------------
 

@@ -22,6 +22,10 @@ struct ChannelSettings {
     uint32_t fill_radius = 0;
     float fill_depth_tolerance = 0.0f;
     float fill_prior = 0.0f;          // the fallback's weight in samples (needs a fallback image)
+    // 0.5 the lag detector (docs/CONVENTIONS.md, "The lag detector"); zero = off / the library's default.
+    uint32_t antilag = 0;
+    float antilag_gamma = 0.0f;
+    float antilag_threshold = 0.0f;
 };
 
 /** The sample's presets, one per application, chosen from rrc-sweep's fronts at the

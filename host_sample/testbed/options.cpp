@@ -7,6 +7,7 @@
 #include <rrc/rrc.h>
 
 #include <algorithm>
+#include <utility>
 #include <cstdio>
 
 namespace rrc_sample {
@@ -118,6 +119,13 @@ std::string usage() {
            "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.7, env 0.8)\n"
            "  --rectify G              pcf and env channels' history rectification with gamma G (0 = off; default: pcf 1,\n"
            "                           env off: the presets, channel_presets.h)\n"
+           "  --antilag LIST           the lag detector on these channels (pcf,env,soft; default: none): a history that\n"
+           "                           left its 3x3 box is shortened (docs/CONVENTIONS.md, \"The lag detector\")\n"
+           "  --antilag-gamma G        its box half width in sigmas (default 0: the library's, 2)\n"
+           "  --antilag-threshold T    its relative gap that drops the history (default 0: the library's, 0.5)\n"
+           "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
+           "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
+           "                           pixels younger than T frames (default 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
            "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
@@ -138,6 +146,8 @@ std::string usage() {
 
 Options parse_options(int argc, const char* const* argv) {
     Options o;
+    uint32_t antilag = 0;  // the signals whose channel gets the lag detector
+    float antilag_gamma = 0.0f, antilag_threshold = 0.0f;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
         if (c.option("--scene"))
@@ -174,7 +184,19 @@ Options parse_options(int argc, const char* const* argv) {
                 ch->rectify = g > 0.0f ? 1u : 0u;
                 ch->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
             }
-        } else if (c.option("--blend"))
+        } else if (c.option("--antilag"))
+            antilag = signal_bits(c);
+        else if (c.option("--antilag-gamma"))
+            antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
+        else if (c.option("--antilag-threshold"))
+            antilag_threshold = c.number(0.0f, RRC_MAX_ANTILAG_THRESHOLD);
+        else if (c.option("--pcf-fill"))
+            o.channels.pcf.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
+        else if (c.option("--env-fill"))
+            o.channels.env.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
+        else if (c.option("--soft-lambda"))
+            o.channels.soft.lambda = c.number(0.0f, 0.9999f);
+        else if (c.option("--blend"))
             o.channels.pcf.blend = o.channels.env.blend = c.choice(rrc_host::kBlendNames);
         else if (c.option("--history-filter")) {
             const rrc_history_filter f = c.choice(rrc_host::kHistoryFilterNames);
@@ -238,6 +260,14 @@ Options parse_options(int argc, const char* const* argv) {
     o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
     o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
     o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
+    if (antilag == 0 && (antilag_gamma > 0.0f || antilag_threshold > 0.0f))
+        throw OptionError("--antilag-gamma and --antilag-threshold need --antilag");
+    for (auto [bit, ch] : {std::pair<uint32_t, ChannelSettings*>{kSignalPcf, &o.channels.pcf}, {kSignalEnv, &o.channels.env},
+                           {kSignalSoft, &o.channels.soft}}) {
+        ch->antilag = (antilag & bit) ? 1u : 0u;
+        ch->antilag_gamma = ch->antilag ? antilag_gamma : 0.0f;
+        ch->antilag_threshold = ch->antilag ? antilag_threshold : 0.0f;
+    }
     // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)
         throw OptionError("--depth-test adaptive takes no --epsilon-scale (an epsilon makes the test fixed)");

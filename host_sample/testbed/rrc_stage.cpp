@@ -27,6 +27,9 @@ std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPrese
         d.fill_radius = c.fill_radius;
         d.fill_depth_tolerance = c.fill_depth_tolerance;
         d.fill_prior = c.fill_prior;
+        d.antilag = c.antilag;
+        d.antilag_gamma = c.antilag ? c.antilag_gamma : 0.0f;
+        d.antilag_threshold = c.antilag ? c.antilag_threshold : 0.0f;
         return d;
     };
     std::vector<rrc_channel_desc> c;

@@ -33,6 +33,9 @@ std::string channel_line(const rrc_channel_desc& c) {
         l += ", blur sigma " + std::to_string(c.blur_sigma > 0.0f ? c.blur_sigma : RRC_DEFAULT_BLUR_SIGMA).substr(0, 5);
     if (c.confidence) l += ", confidence";
     if (c.rectify) l += ", rectified (gamma " + std::to_string(c.rectify_gamma > 0.0f ? c.rectify_gamma : RRC_DEFAULT_RECTIFY_GAMMA).substr(0, 4) + ")";
+    if (c.antilag)
+        l += ", anti-lag (gamma " + std::to_string(c.antilag_gamma > 0.0f ? c.antilag_gamma : RRC_DEFAULT_ANTILAG_GAMMA).substr(0, 4) +
+             ", threshold " + std::to_string(c.antilag_threshold > 0.0f ? c.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD).substr(0, 5) + ")";
     if (c.fill_age)
         l += ", fill below age " + std::to_string(c.fill_age) + " (radius " + std::to_string(c.fill_radius ? c.fill_radius : RRC_DEFAULT_FILL_RADIUS) +
              ", fallback weight " + std::to_string(c.fill_prior).substr(0, 4) + ")";

@@ -477,6 +477,23 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.soft.fill_prior, 0.0f) << "without --soft-fill rrc gets no fill members (the library refuses them without a fill)";
     EXPECT_EQ(o.channels.soft.fill_radius, 0u);
     EXPECT_EQ(o.fill_radius, 3u);
+    // The lag detector (0.5) on the listed channels only, its constants only there.
+    const char* antilag[] = {"rrc-sample", "--antilag", "pcf,soft", "--antilag-threshold", "0.3", "--antilag-gamma", "1.5",
+                             "--soft-lambda", "0.9"};
+    o = parse_options(9, antilag);
+    EXPECT_EQ(o.channels.pcf.antilag, 1u);
+    EXPECT_EQ(o.channels.env.antilag, 0u);
+    EXPECT_EQ(o.channels.soft.antilag, 1u);
+    EXPECT_EQ(o.channels.pcf.antilag_threshold, 0.3f);
+    EXPECT_EQ(o.channels.soft.antilag_gamma, 1.5f);
+    EXPECT_EQ(o.channels.env.antilag_gamma, 0.0f) << "a channel without the detector gets none of its members (the library refuses them)";
+    EXPECT_EQ(o.channels.soft.lambda, 0.9f);
+    EXPECT_EQ(o.channels.pcf.lambda, 0.7f);
+    const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
+    o = parse_options(5, fills);
+    EXPECT_EQ(o.channels.pcf.fill_age, 4u);
+    EXPECT_EQ(o.channels.env.fill_age, 6u);
+    EXPECT_EQ(o.channels.pcf.fill_prior, 0.0f) << "pcf and env have no fallback image";
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.7f);
@@ -486,6 +503,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.8f);
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
+    for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.antilag, 0u);
 
     const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
                                                        {"rrc-sample", "--lambda", "1"},
@@ -504,7 +522,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--blur-sigma", "0.5"},
                                                        {"rrc-sample", "--pcf-smoothstep", "0.8,0.2"},
                                                        {"rrc-sample", "--pcf-smoothstep", "0.5"},
-                                                       {"rrc-sample", "--fill-radius", "5"}};
+                                                       {"rrc-sample", "--fill-radius", "5"},
+                                                       {"rrc-sample", "--antilag", "fog"},
+                                                       {"rrc-sample", "--antilag-threshold", "0.3"},
+                                                       {"rrc-sample", "--antilag", "pcf", "--antilag-gamma", "17"},
+                                                       {"rrc-sample", "--soft-lambda", "1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

@@ -229,6 +229,10 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_MAX_BLUR_SIGMA 0.8164966f          /* sqrt(2/3): the blur's 3 taps stay decreasing */
 #define RRC_DEFAULT_FILL_RADIUS 2u             /* rrc_channel_desc.fill_radius (0.4) */
 #define RRC_MAX_FILL_RADIUS 4u
+#define RRC_DEFAULT_ANTILAG_GAMMA 2.0f        /* rrc_channel_desc.antilag_gamma (0.5) */
+#define RRC_MAX_ANTILAG_GAMMA 16.0f
+#define RRC_DEFAULT_ANTILAG_THRESHOLD 0.5f    /* rrc_channel_desc.antilag_threshold (0.5) */
+#define RRC_MAX_ANTILAG_THRESHOLD 2.0f        /* the relative gap is below 2 */
 #define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
@@ -278,6 +282,15 @@ typedef struct rrc_channel_desc {
      * (rrc_channel_input.fallback, rrc_vulkan_channel_images.fallback), which
      * the frame must then carry; 0 = no fallback.  Needs fill_age. */
     float fill_prior;
+    /* ---- 0.5: the lag detector (docs/CONVENTIONS.md, "The lag detector") ---- */
+    /* Non-zero: anti-lag.  On a blend, the gap between the resampled history
+     * and the box mu +- antilag_gamma * sigma of this frame's valid samples
+     * in the 3x3 neighbourhood, relative to the signal's size, shortens the
+     * history's age (and so the effective lambda) where the signal changed.
+     * Accumulating blends only (REUSE refuses it). */
+    uint32_t antilag;
+    float antilag_gamma;     /* the box's half width in sigmas, in (0, RRC_MAX_ANTILAG_GAMMA]; 0 = default */
+    float antilag_threshold; /* the relative gap at which the history is dropped, in (0, RRC_MAX_ANTILAG_THRESHOLD]; 0 = default */
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {

@@ -96,6 +96,7 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_context_desc, max_lifetime), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_frame_output, refreshed), size01("rrc_frame_output"));
     EXPECT_GE(offsetof(rrc_channel_desc, rectify), size01("rrc_channel_desc"));  // 0.4
+    EXPECT_GE(offsetof(rrc_channel_desc, antilag), offsetof(rrc_channel_desc, fill_prior) + sizeof(float));  // 0.5 appends after 0.4
     EXPECT_GE(offsetof(rrc_channel_input, fallback), size01("rrc_channel_input"));
     EXPECT_GE(offsetof(rrc_vulkan_channel_images, fallback), size01("rrc_vulkan_channel_images"));
     EXPECT_EQ(sizeof(rrc_vulkan_frame_stats), 32u);
@@ -534,6 +535,12 @@ TEST(AbiChannelDesc, RulesOneToFour) {
         Blob a = pack_array(channels, big, {}, 0);
         d.channels = a.as<rrc_channel_desc>();
         expect_same_sequence(&d, "strided by sizeof + 16, zero tails");
+    }
+    {
+        // A 0.4 caller: its channel descriptors end before the lag detector's members (read as zero: off).
+        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, antilag), {}, 0);
+        d.channels = a.as<rrc_channel_desc>();
+        expect_same_sequence(&d, "0.4 size, exact buffer");
     }
     {
         Blob a = pack_array(channels, s01 - 1, {}, 0);

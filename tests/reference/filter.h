@@ -24,6 +24,10 @@ struct Resampled {
     // uses; every other case keeps h.
     bool rectified = false;
     double h_rect[4] = {0, 0, 0, 0};
+    // The lag detector (finish.h): the age n_a the blend row uses in place of
+    // `age` (n_a <= age; lambda_eff capped at n_a/(n_a + 1) where n_a < age).
+    bool antilag = false;
+    unsigned age_antilag = 0;
 };
 
 struct Update {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "rrc_reference.h"
+#include "rrc_kernel_interface.h"  // RRC_ANTILAG_DARKNESS (a constant, written once)
 
 namespace rrc_ref {
 
@@ -61,6 +62,8 @@ RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int
         double sigma_err = std::sqrt(var_err);
         if (sigma > 0.0) sigma_err = std::min(sigma_err, var_err / sigma);
         b.err[c] = mu_err + gamma * (sigma_err + 2.0 * kU32 * sigma) + 2.0 * kU32 * std::fabs(mu);
+        b.mu_err[c] = mu_err + 2.0 * kU32 * std::fabs(mu);
+        b.sigma_err[c] = sigma_err + 2.0 * kU32 * sigma;
     }
     return b;
 }
@@ -72,6 +75,39 @@ void rectify_history(const RectifyBox& b, unsigned components, double* h, double
         err[c] = (h[c] > b.lo[c] + e && h[c] < b.hi[c] - e) ? 0.0 : e;
         h[c] = std::min(std::max(h[c], b.lo[c]), b.hi[c]);
     }
+}
+
+Antilag antilag_age(const ChannelParams& ch, const RectifyBox& b, const double* h, unsigned n_prev) {
+    // docs/CONVENTIONS.md, "The lag detector": per component the distance from
+    // H to mu +- gamma_a sigma over max(|H|, |mu|) + gamma_a sigma + delta.
+    const double ga = ch.antilag_gamma, T = ch.antilag_threshold, delta = RRC_ANTILAG_DARKNESS;
+    Antilag a;
+    double d_lo = 0.0, d_hi = 0.0;
+    for (unsigned k = 0; k < ch.components; ++k) {
+        const double gap = std::max(std::fabs(h[k] - b.mu[k]) - ga * b.sigma[k], 0.0);
+        const double den = std::max(std::fabs(h[k]), std::fabs(b.mu[k])) + ga * b.sigma[k] + delta;
+        const double d = gap / den;
+        // The fp32 evaluation's error: the box's (mu, gamma_a sigma), the
+        // resampled H's, the roundings of the gap and the quotient.
+        const double e_h = 1e-4 * (std::fabs(h[k]) + std::fabs(b.mu[k]) + b.sigma[k]) + 1e-6;
+        const double e_box = b.mu_err[k] + ga * b.sigma_err[k] + e_h;
+        const double err = (e_box + d * e_box) / den + 8.0 * kU32 * (d + 1.0);
+        a.d = std::max(a.d, d);
+        d_lo = std::max(d_lo, d - err);
+        d_hi = std::max(d_hi, d + err);
+    }
+    auto conf = [T](double d) { return std::min(std::max(2.0 - 2.0 * d / T, 0.0), 1.0); };
+    auto age_at = [n_prev](double c) {
+        const double v = std::floor(std::min(std::max(c, 0.0), 1.0) * n_prev);
+        return static_cast<unsigned>(std::min(v, static_cast<double>(n_prev)));
+    };
+    a.c = conf(a.d);
+    a.age = age_at(a.c);
+    // c strictly inside (0, 1) is a rounded fp32 value; clamped to 0 or 1 it is exact.
+    auto widen = [](double c, double by) { return c > 0.0 && c < 1.0 ? c + by : c; };
+    a.age_lo = age_at(widen(conf(d_hi), -4.0 * kU32));
+    a.age_hi = age_at(widen(conf(d_lo), 4.0 * kU32));
+    return a;
 }
 
 void gaussian_weights(double t, double g, double w[4]) {

@@ -27,6 +27,9 @@ struct RectifyBox {
     // ones: sigma's cancellation makes this sqrt(u) * |s| large where the 9
     // samples (nearly) agree.
     double err[4] = {0, 0, 0, 0};
+    // The parts of err: mu's and sigma's own bounds (the lag detector uses
+    // sigma with its own gamma).
+    double mu_err[4] = {0, 0, 0, 0}, sigma_err[4] = {0, 0, 0, 0};
 };
 
 // A sample of the channel's input counts when every component (and, with
@@ -39,6 +42,23 @@ RectifyBox rectify_box(const ChannelParams& ch, const rrc_channel_input& in, int
 // component, the bound on the kernel's clamped value's error from the box's
 // error (0 where H lies inside the box by more than that error).
 void rectify_history(const RectifyBox& box, unsigned components, double* h, double* err);
+
+// ---- The lag detector -------------------------------------------------------
+
+struct Antilag {
+    double d = 0.0;  // the relative gap, max over components
+    double c = 1.0;  // the history's confidence
+    unsigned age = 0;  // n_a = floor(c * n_prev)
+    // The ages an fp32 evaluation can give: the range of n_a over d within the
+    // bound of the fp32 box and of the resampled H (a relative 1e-4 of the
+    // values: the sample position's share, tests/support/tolerance.h, is
+    // below it), and c within 4 ulp.  age_lo == age_hi where n_a is certain.
+    unsigned age_lo = 0, age_hi = 0;
+};
+
+// n_a for the resampled (unclamped) history h with age n_prev >= 1, from the
+// box's mu and sigma (rectify_box; its gamma is not used).
+Antilag antilag_age(const ChannelParams& ch, const RectifyBox& box, const double* h, unsigned n_prev);
 
 // ---- The Gaussian history filter -------------------------------------------
 

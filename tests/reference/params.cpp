@@ -68,6 +68,9 @@ Params resolve(const rrc_context_desc& ctx) {
         ch.fill_radius = d.fill_radius != 0 ? static_cast<int>(d.fill_radius) : static_cast<int>(RRC_DEFAULT_FILL_RADIUS);
         ch.fill_tau = d.fill_depth_tolerance != 0.0f ? d.fill_depth_tolerance : RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
         ch.fill_prior = d.fill_prior;
+        ch.antilag = d.antilag != 0;
+        ch.antilag_gamma = d.antilag_gamma != 0.0f ? d.antilag_gamma : RRC_DEFAULT_ANTILAG_GAMMA;
+        ch.antilag_threshold = d.antilag_threshold != 0.0f ? d.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD;
         p.channels.push_back(ch);
     }
     return p;

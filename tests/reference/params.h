@@ -27,6 +27,10 @@ struct ChannelParams {
     int fill_radius = 2;         // r
     double fill_tau = 0.005;     // fill_depth_tolerance
     double fill_prior = 0.0;     // P; 0 = no fallback
+    // 0.5 the lag detector (docs/CONVENTIONS.md "The lag detector"), defaults resolved.
+    bool antilag = false;
+    double antilag_gamma = 2.0;      // gamma_a
+    double antilag_threshold = 0.5;  // T_a
 };
 
 struct Params {

@@ -63,6 +63,13 @@ struct ChannelResult {
     // per component, 0 elsewhere; and the pixels whose H the clamp moved.
     std::vector<double> rectify_err;  // W*H*components
     std::vector<uint8_t> rectified;   // W*H
+    // The lag detector (reference/finish.h): where it applied, n_a (else the
+    // previous age), whether an fp32 evaluation could give another n_a
+    // (compare such a pixel's age and value loosely), and its confidence c
+    // (1 where it did not apply).
+    std::vector<uint16_t> antilag_age;      // W*H
+    std::vector<uint8_t> antilag_uncertain;  // W*H
+    std::vector<double> antilag_c;          // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
     // not rounded to fp16); empty otherwise.

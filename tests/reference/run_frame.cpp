@@ -65,6 +65,9 @@ FrameResult allocate(const Params& p) {
         if (ch.confidence) c.weight.assign(n, 0.0);
         c.rectify_err.assign(n * ch.components, 0.0);
         c.rectified.assign(n, 0);
+        c.antilag_age.assign(n, 0);
+        c.antilag_uncertain.assign(n, 0);
+        c.antilag_c.assign(n, 1.0);
         r.channels.push_back(std::move(c));
     }
     return r;
@@ -197,6 +200,16 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                         r.rectified = true;
                         rectify_history(box, ch.components, r.h_rect, &res.channels[c].rectify_err[px * ch.components]);
                         res.channels[c].rectified[px] = !std::equal(r.h, r.h + ch.components, r.h_rect);
+                    }
+                    // The lag detector: the same case, from the unclamped H.
+                    if (ch.antilag && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
+                        const RectifyBox box = rectify_box(ch, frame.channels[c], p.width, p.height, i, j);
+                        const Antilag a = antilag_age(ch, box, r.h, r.age);
+                        r.antilag = true;
+                        r.age_antilag = a.age;
+                        res.channels[c].antilag_age[px] = static_cast<uint16_t>(a.age);
+                        res.channels[c].antilag_uncertain[px] = a.age_lo != a.age_hi;
+                        res.channels[c].antilag_c[px] = a.c;
                     }
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;

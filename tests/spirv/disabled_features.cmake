@@ -75,12 +75,12 @@ endfunction()
 foreach(p COMPONENTS FP16 BLEND FILTER CONFIDENCE)
   rrc_slot_ids(RRC_CHANNEL_PROPERTY 16 ${p} IDS_${p})
 endforeach()
-foreach(p RECTIFY FILL_AGE)
+foreach(p RECTIFY FILL_AGE ANTILAG)
   rrc_slot_ids(RRC_CHANNEL2_PROPERTY ${ID_CHANNEL2_FIRST} ${p} IDS_${p})
 endforeach()
 
 # Feature -> its spec ids and the value that turns it on.
-set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL)
+set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG)
 set(F_NOCACHE_IDS ${ID_HAS_NOCACHE})
 set(F_INTEROP_IDS ${ID_INTEROP})
 set(F_ADAPTIVE_IDS ${ID_ADAPTIVE})
@@ -90,6 +90,7 @@ set(F_STATS_IDS ${ID_STATS})
 set(F_HOST_AGE_IDS ${ID_HOST_AGE_MASK})
 set(F_RECTIFY_IDS ${IDS_RECTIFY})
 set(F_FILL_IDS ${IDS_FILL_AGE})
+set(F_ANTILAG_IDS ${IDS_ANTILAG})
 foreach(f IN LISTS features)
   set(F_${f}_ON true)
 endforeach()
@@ -110,7 +111,7 @@ set(BASE_defaults_FEATURES ${features})
 # packed fp16 scalar, slot 1 RGBA fp32, Catmull-Rom, AGE_AWARE.
 set(BASE_interop_SET ${ID_INTEROP}:true ${ID_DEPTH_MODE}:1 ${ID_CHANNEL_COUNT}:2
     ${slot1_components}:4 ${slot1_fp16}:false ${slot1_filter}:2 ${slot1_blend}:1)
-set(BASE_interop_FEATURES NOCACHE ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL)
+set(BASE_interop_FEATURES NOCACHE ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG)
 # all_on: the interop base with every other feature on (leave one out;
 # INTEROP itself off when it is the feature checked).
 set(BASE_all_on_SET ${BASE_interop_SET})
