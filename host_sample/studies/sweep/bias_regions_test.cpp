@@ -218,6 +218,16 @@ TEST(BiasMaps, UnderMotionTheBiasSitsWhereTheTargetChanged) {
     EXPECT_GT(row.metrics.bias2, 0.1 * row.metrics.variance) << "rrc lags under motion";
     // Per pixel, the lag behind a changed target is far above the static pixels' bias.
     EXPECT_GT(p.bias2[kRegionChanged] / p.pixel_share[kRegionChanged], 10.0 * p.bias2[kRegionStatic] / p.pixel_share[kRegionStatic]);
+    // The lag detector's row (sweep_configs.cpp) is decomposed like every other: its parts add up to its bias².
+    const RrcRow* cured = nullptr;
+    for (const RrcRow& c : r.rrc)
+        if (c.config.channel.antilag) cured = &c;
+    ASSERT_NE(cured, nullptr);
+    ASSERT_TRUE(cured->has_regions);
+    double cured_bias2 = 0.0;
+    for (double b : cured->regions.bias2) cured_bias2 += b;
+    EXPECT_NEAR(cured_bias2, cured->metrics.bias2, 1e-12);
+    EXPECT_GT(cured->regions.pixel_share[kRegionChanged], 0.0);
     // Brute force is unbiased in every region: its parts stay within its noise.
     ASSERT_EQ(r.brute.size(), 1u);
     EXPECT_LT(std::abs(r.brute[0].metrics.bias2), 0.05 * r.brute[0].metrics.variance);

@@ -51,6 +51,21 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                         run.configs.push_back({app, fl});
                     }
                 }
+            // The lag detector (docs/CONVENTIONS.md, "The lag detector"), on the presets'
+            // blend at the settings docs/PERFORMANCE.md ("The lag detector (0.5): what it
+            // buys, measured") found best: pcf rectified as its preset is, env without;
+            // never on soft (a block of nine binary samples agrees by chance, and the
+            // detector then drops right histories: worse at every setting tried).
+            if (o.antilag)
+                for (float lambda : o.lambdas) {
+                    if (app.signal == rrc_sample::kSignalSoft) continue;
+                    rrc_sample::ChannelSettings a{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+                    a.rectify = app.signal == rrc_sample::kSignalPcf ? 1u : 0u;
+                    a.antilag = 1;
+                    a.antilag_gamma = kSweepAntilagGamma;
+                    a.antilag_threshold = kSweepAntilagThreshold;
+                    run.configs.push_back({app, a});
+                }
         }
         runs.push_back(run);
     }
@@ -89,6 +104,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     std::string s = filter_label(c.filter);
     if (c.rectify) s += "+rectify";
     if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
+    if (c.antilag) s += "+antilag";
     return s;
 }
 

@@ -47,8 +47,13 @@ std::vector<BruteConfig> brute_configs(const SweepOptions& o, uint32_t signals);
 /** The CSV's spellings: fixed, age-aware, running-mean; bilinear, catmull-rom. */
 const char* blend_label(rrc_blend blend);
 const char* filter_label(rrc_history_filter filter);
-/** The filter with the finishing steps a row adds ("bilinear+rectify", "bilinear+fill8"): the sweep's filter column. */
+/** The filter with the finishing steps and cures a row adds ("bilinear+rectify", "bilinear+fill8",
+ *  "bilinear+rectify+antilag"): the sweep's filter column. */
 std::string filter_label(const rrc_sample::ChannelSettings& c);
+/** The lag detector's rows (--no-antilag drops them): gamma_a and T, the best of docs/PERFORMANCE.md,
+ *  "The lag detector (0.5): what it buys, measured" (pcf at 1024x640, lambda 0.9). */
+constexpr float kSweepAntilagGamma = 1.0f;
+constexpr float kSweepAntilagThreshold = 0.25f;
 /** The taps the rotated pattern's fixed point set has (its brute force is rotations of it). */
 constexpr int kRotatedBaseTaps = 4;
 

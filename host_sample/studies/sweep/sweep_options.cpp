@@ -44,6 +44,8 @@ std::string sweep_usage() {
            "  --no-rotated             no rows for the paper's rotated PCF pattern\n"
            "  --no-finishing           no rows for the finishing steps (age-aware: pcf rectified and Gaussian history,\n"
            "                           env rectified, soft with the spatial fill, fill_age 8, no fallback)\n"
+           "  --no-antilag             no rows for the lag detector (age-aware, gamma_a 1, threshold 0.25: pcf rectified,\n"
+           "                           env; never soft)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -108,6 +110,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.rotated = false;
         else if (c.flag("--no-finishing"))
             o.finishing = false;
+        else if (c.flag("--no-antilag"))
+            o.antilag = false;
         else if (c.option("--signals"))
             o.signals = rrc_sample::signal_bits(c);
         else if (c.option("--motion"))

@@ -273,7 +273,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         std::map<std::string, std::vector<double>> pooled_rrc_ms;
         auto channel_key = [](const RrcConfig& c) {
             return std::string(c.app.name) + "/" + std::to_string(c.channel.lambda) + "/" + std::to_string((int)c.channel.blend) + "/" +
-                   std::to_string((int)c.channel.filter) + "/" + std::to_string(c.channel.age_cap);
+                   filter_label(c.channel) + "/" + std::to_string(c.channel.age_cap);
         };
 
         // ---- rrc: one run per (k, pattern), every configuration fed from the same signals.

@@ -196,10 +196,46 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
         EXPECT_LT(acc->metrics.rmse, b4->metrics.rmse) << "accumulating 4 taps a frame must beat one frame of 4";
         EXPECT_LT(acc->metrics.variance, 0.5 * b4->metrics.variance);
     }
+    // The lag detector's rows (on by default) run and still accumulate.
+    for (uint32_t signal : {1u, 2u}) {
+        const RrcRow* cured = nullptr;
+        for (const RrcRow& row : r.rrc)
+            if (row.config.app.signal == signal && row.config.channel.antilag) cured = &row;
+        ASSERT_NE(cured, nullptr) << signal;
+        EXPECT_LT(cured->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
+    }
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
     EXPECT_GT(rot->metrics.bias2, 0.05 * rot->metrics.variance);
+}
+
+TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
+    SweepOptions o;
+    o.rrc_taps = {4};
+    o.lambdas = {0.8f, 0.9f};
+    const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
+    int pcf = 0, env = 0;
+    for (const RrcRun& run : rrc_runs(o, all))
+        for (const RrcConfig& c : run.configs) {
+            if (!c.channel.antilag) continue;
+            ASSERT_NE(c.app.signal, (uint32_t)rrc_sample::kSignalSoft) << "the detector drops right soft histories";
+            EXPECT_EQ(c.channel.blend, RRC_BLEND_AGE_AWARE);
+            EXPECT_EQ(c.channel.filter, RRC_HISTORY_FILTER_BILINEAR);
+            EXPECT_EQ(c.channel.antilag_gamma, kSweepAntilagGamma);
+            EXPECT_EQ(c.channel.antilag_threshold, kSweepAntilagThreshold);
+            const bool is_pcf = c.app.signal == rrc_sample::kSignalPcf;
+            EXPECT_EQ(c.channel.rectify, is_pcf ? 1u : 0u) << "rectified where the preset is";
+            EXPECT_EQ(filter_label(c.channel), is_pcf ? "bilinear+rectify+antilag" : "bilinear+antilag");
+            (is_pcf ? pcf : env)++;
+        }
+    EXPECT_EQ(pcf, 2);
+    EXPECT_EQ(env, 2);
+    const char* argv[] = {"rrc-sweep", "--no-antilag"};
+    const SweepOptions off = parse_sweep_options(2, argv);
+    EXPECT_FALSE(off.antilag);
+    for (const RrcRun& run : rrc_runs(off, all))
+        for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.antilag, 0u);
 }
 
 TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
