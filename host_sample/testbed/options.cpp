@@ -7,6 +7,7 @@
 #include <rrc/rrc.h>
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 #include <cstdio>
 
@@ -116,18 +117,22 @@ std::string usage() {
            "  --reference-frames LIST  also take the reference on these frames (comma separated)\n"
            "  --dump-soft              on checkpoints write finish/soft_<what>_NNNN.f32 (raw float images of soft's displays)\n"
            "  --young-ages N           the young-pixel table (young.csv): ages 1..N (default 8)\n"
-           "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.7, env 0.8)\n"
+           "  --lambda L               pcf and env channels' lambda, in [0, 1) (default: pcf 0.9, env 0.8)\n"
            "  --rectify G              pcf and env channels' history rectification with gamma G (0 = off; default: pcf 1,\n"
            "                           env off: the presets, channel_presets.h)\n"
-           "  --antilag LIST           the lag detector on these channels (pcf,env,soft; default: none): a history that\n"
-           "                           left its 3x3 box is shortened (docs/CONVENTIONS.md, \"The lag detector\")\n"
-           "  --antilag-gamma G        its box half width in sigmas (default 0: the library's, 2)\n"
-           "  --antilag-threshold T    its relative gap that drops the history (default 0: the library's, 0.5)\n"
+           "  --antilag LIST           the lag detector on exactly these channels (pcf,env,soft, or none; default: the\n"
+           "                           presets', pcf with gamma 0.25, threshold 0.25): a history that left its 3x3 box\n"
+           "                           is shortened (docs/CONVENTIONS.md, \"The lag detector\")\n"
+           "  --antilag-gamma G        its box half width in sigmas (default: the preset's on a preset channel when\n"
+           "                           --antilag is not given, else the library's, 2)\n"
+           "  --antilag-threshold T    its relative gap that drops the history (default: as --antilag-gamma; the\n"
+           "                           library's is 0.5)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
-           "                           pixels younger than T frames (default 0 = off)\n"
+           "                           pixels younger than T frames (default: pcf 4, the preset; env 0; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
-           "  --history-filter F       every channel's history resampling: bilinear (default), catmull_rom or nearest;\n"
+           "  --history-filter F       every channel's history resampling: bilinear (default; pcf's preset catmull_rom),\n"
+           "                           catmull_rom or nearest;\n"
            "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
            "  --pcf-pattern P          disk (default: k taps uniform over the filter disk, unbiased for the exact disk\n"
            "                           mean the reference is) or rotated (the paper's Poisson disk, rotated per pixel)\n"
@@ -146,7 +151,8 @@ std::string usage() {
 
 Options parse_options(int argc, const char* const* argv) {
     Options o;
-    uint32_t antilag = 0;  // the signals whose channel gets the lag detector
+    // The signals whose channel gets the lag detector; not given: the presets' (channel_presets.h).
+    std::optional<uint32_t> antilag;
     float antilag_gamma = 0.0f, antilag_threshold = 0.0f;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
@@ -184,8 +190,16 @@ Options parse_options(int argc, const char* const* argv) {
                 ch->rectify = g > 0.0f ? 1u : 0u;
                 ch->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
             }
-        } else if (c.option("--antilag"))
-            antilag = signal_bits(c);
+        } else if (c.option("--antilag")) {
+            // "none": no channel (the presets' detector off); else the listed ones.
+            uint32_t bits = 0;
+            for (const std::string& name : c.names()) {
+                uint32_t s = 0;
+                if (name != "none" && !rrc_host::enum_value(kSignalNames, name, s)) c.fail("expected pcf, env, soft or none");
+                bits |= s;
+            }
+            antilag = bits;
+        }
         else if (c.option("--antilag-gamma"))
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))
@@ -260,13 +274,25 @@ Options parse_options(int argc, const char* const* argv) {
     o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
     o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
     o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
-    if (antilag == 0 && (antilag_gamma > 0.0f || antilag_threshold > 0.0f))
+    // Not given, --antilag keeps the presets' channels and constants (--antilag-gamma/-threshold
+    // override them); given, the listed channels get the given constants or the library's.
+    const ChannelPresets presets;
+    uint32_t preset_bits = 0;
+    for (auto [bit, ch] : {std::pair<uint32_t, const ChannelSettings*>{kSignalPcf, &presets.pcf}, {kSignalEnv, &presets.env},
+                           {kSignalSoft, &presets.soft}})
+        if (ch->antilag) preset_bits |= bit;
+    const uint32_t antilag_bits = antilag ? *antilag : preset_bits;
+    if (antilag_bits == 0 && (antilag_gamma > 0.0f || antilag_threshold > 0.0f))
         throw OptionError("--antilag-gamma and --antilag-threshold need --antilag");
     for (auto [bit, ch] : {std::pair<uint32_t, ChannelSettings*>{kSignalPcf, &o.channels.pcf}, {kSignalEnv, &o.channels.env},
                            {kSignalSoft, &o.channels.soft}}) {
-        ch->antilag = (antilag & bit) ? 1u : 0u;
-        ch->antilag_gamma = ch->antilag ? antilag_gamma : 0.0f;
-        ch->antilag_threshold = ch->antilag ? antilag_threshold : 0.0f;
+        const bool from_preset = !antilag && ch->antilag;
+        ch->antilag = (antilag_bits & bit) ? 1u : 0u;
+        ch->antilag_gamma = !ch->antilag ? 0.0f : antilag_gamma > 0.0f ? antilag_gamma : from_preset ? ch->antilag_gamma : 0.0f;
+        ch->antilag_threshold = !ch->antilag            ? 0.0f
+                                : antilag_threshold > 0.0f ? antilag_threshold
+                                : from_preset             ? ch->antilag_threshold
+                                                          : 0.0f;
     }
     // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)

@@ -488,7 +488,20 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.soft.antilag_gamma, 1.5f);
     EXPECT_EQ(o.channels.env.antilag_gamma, 0.0f) << "a channel without the detector gets none of its members (the library refuses them)";
     EXPECT_EQ(o.channels.soft.lambda, 0.9f);
-    EXPECT_EQ(o.channels.pcf.lambda, 0.7f);
+    EXPECT_EQ(o.channels.pcf.lambda, ChannelPresets{}.pcf.lambda);
+    // Not given, --antilag keeps the presets' detector; --antilag-gamma then overrides the preset's constant.
+    const char* preset_gamma[] = {"rrc-sample", "--antilag-gamma", "1"};
+    o = parse_options(3, preset_gamma);
+    EXPECT_EQ(o.channels.pcf.antilag, 1u);
+    EXPECT_EQ(o.channels.pcf.antilag_gamma, 1.0f);
+    EXPECT_EQ(o.channels.pcf.antilag_threshold, ChannelPresets{}.pcf.antilag_threshold);
+    EXPECT_EQ(o.channels.env.antilag, 0u);
+    const char* no_antilag[] = {"rrc-sample", "--antilag", "none"};
+    o = parse_options(3, no_antilag);
+    for (const ChannelSettings& c : {o.channels.pcf, o.channels.env, o.channels.soft}) {
+        EXPECT_EQ(c.antilag, 0u);
+        EXPECT_EQ(c.antilag_gamma, 0.0f) << "the library refuses the members without the detector";
+    }
     const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
     o = parse_options(5, fills);
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
@@ -496,14 +509,23 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.pcf.fill_prior, 0.0f) << "pcf and env have no fallback image";
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
-    EXPECT_EQ(p.pcf.lambda, 0.7f);
+    EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 1u);
+    EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(p.pcf.fill_age, 4u);
+    EXPECT_EQ(p.pcf.antilag, 1u);
+    EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
+    EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);
     EXPECT_EQ(p.env.rectify, 0u);
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.8f);
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
-    for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.antilag, 0u);
+    for (const ChannelSettings& c : {p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins on pcf only";
+    const char* bare[] = {"rrc-sample"};
+    const Options defaults = parse_options(1, bare);
+    EXPECT_EQ(defaults.channels.pcf.antilag, 1u) << "the options keep the presets' detector";
+    EXPECT_EQ(defaults.channels.pcf.antilag_gamma, 0.25f);
 
     const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
                                                        {"rrc-sample", "--lambda", "1"},
@@ -524,7 +546,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--pcf-smoothstep", "0.5"},
                                                        {"rrc-sample", "--fill-radius", "5"},
                                                        {"rrc-sample", "--antilag", "fog"},
-                                                       {"rrc-sample", "--antilag-threshold", "0.3"},
+                                                       {"rrc-sample", "--antilag", "none", "--antilag-threshold", "0.3"},
+                                                       {"rrc-sample", "--antilag", "pcf,nope"},
                                                        {"rrc-sample", "--antilag", "pcf", "--antilag-gamma", "17"},
                                                        {"rrc-sample", "--soft-lambda", "1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
