@@ -19,6 +19,7 @@
 // 1e-3 d at the wall (FLOAT32 STANDARD and REVERSED, UNORM24); UNORM16
 // (one step ~1.5e-3 d at d = 10 with near 0.1) and LINEAR (whose test is
 // relative, tau d = 1e-2 d) cannot and are reported only.
+#include "depth_setups.h"
 #include "hit_test_report.h"
 #include "scenes/visibility.h"
 #include "support/rrc_test_context.h"
@@ -29,6 +30,8 @@
 #include <string>
 
 using namespace rrc_test;
+using rrc_visibility::Depth;
+using rrc_visibility::kDepths;
 using rrc_scene::RecallScore;
 using rrc_scene::VisibilityMap;
 
@@ -52,36 +55,12 @@ enum class Scoring {
     SAME_DEPTH,      // plain MOTION: |d_prev - d| <= tau d / 2
 };
 
-struct Depth {
-    const char* name;
-    rrc_depth_mode mode;
-    rrc_depth_format format;
-    double near_plane, far_plane;
-};
-
 struct RecallCase {
     std::string name;
     Layout layout;
     Depth depth;
     rrc_reprojection source;
     int width, height, frames;
-};
-
-// The depth setups scored (docs/ACCURACY.md, "Hit test against true visibility"): FLOAT32 STANDARD up to far/near 1e4,
-// REVERSED finite and infinite up to 1e9, UNORM16 up to 1e3 STANDARD and 1e4
-// REVERSED, UNORM24, LINEAR.
-const Depth kDepths[] = {
-    {"standard_f32_1e3", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"standard_f32_1e4", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.01, 100.0},
-    {"reversed_f32_1e3", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"reversed_f32_1e9", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 1e-7, 100.0},
-    {"reversed_f32_inf_near_0_1", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, kInf},
-    {"reversed_f32_inf_near_1e_7", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 1e-7, kInf},
-    {"standard_u16_1e3", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM16, 0.1, 100.0},
-    {"reversed_u16_1e4", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_UNORM16, 0.01, 100.0},
-    {"standard_u24_1e4", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM24, 0.01, 100.0},
-    {"reversed_u24_1e4", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_UNORM24, 0.01, 100.0},
-    {"linear", RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
 };
 
 const char* source_name(rrc_reprojection s) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "depth_setups.h"
 #include "peer_scene.h"
 #include "peer_tests.h"
 #include "rrc_reference.h"
@@ -14,30 +15,10 @@ namespace {
 
 using rrc_ref::peers::kAllPeerTests;
 using rrc_ref::peers::PeerTest;
+using rrc_visibility::Depth;
+using rrc_visibility::kDepths;
 
 const double kInf = std::numeric_limits<double>::infinity();
-
-struct Depth {
-    const char* name;
-    rrc_depth_mode mode;
-    rrc_depth_format format;
-    double near_plane, far_plane;
-};
-
-// The depth setups of the visibility suite (hit_test_recall_test.cpp, kDepths).
-const Depth kDepths[] = {
-    {"standard_f32_1e3", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"standard_f32_1e4", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.01, 100.0},
-    {"reversed_f32_1e3", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"reversed_f32_1e9", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 1e-7, 100.0},
-    {"reversed_f32_inf_near_0_1", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, kInf},
-    {"reversed_f32_inf_near_1e_7", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 1e-7, kInf},
-    {"standard_u16_1e3", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM16, 0.1, 100.0},
-    {"reversed_u16_1e4", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_UNORM16, 0.01, 100.0},
-    {"standard_u24_1e4", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM24, 0.01, 100.0},
-    {"reversed_u24_1e4", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_UNORM24, 0.01, 100.0},
-    {"linear", RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-};
 
 // The thin card's depth setups (hit_test_recall_test.cpp, card_cases).
 const Depth kCardDepths[] = {
