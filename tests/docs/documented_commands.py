@@ -29,8 +29,6 @@ EXEMPT = [
     ("docs/OFFLINE.md", r"^rrc-blender-check --hits$"),
     # Prose with a placeholder value T (the fill age), not a command line.
     ("docs/finish/README.md", r"^rrc-sample --soft-fill T$"),
-    # A shell loop: --depth-test $t takes fixed and adaptive, which other lines check.
-    ("docs/ACCURACY.md", r"--depth-test \$t\b"),
 ]
 
 
@@ -42,26 +40,40 @@ def doc_files(root):
     return [f for f in files if os.path.isfile(f)]
 
 
+LOOP = re.compile(r"\bfor (\w+) in (\S+)[^;\n]*; do\b")
+
+
 def snippets(text):
-    """(line number, inline?, text) of each code-block line (continuations joined) and each inline code span."""
+    """(line number, inline?, text) of each code-block line (continuations joined) and each inline
+    code span.  In a code block, a shell loop's variable ($s, ${s}) is replaced by the loop's first
+    value from the loop's line on, so a command inside the loop is checked with a value it takes."""
     out = []
     lines = text.split("\n")
     in_block = False
+    loops = {}
     pending, pending_line = "", 0
+
+    def emit(n, snippet):
+        for var, first in loops.items():
+            snippet = re.sub(r"\$\{?" + var + r"\b\}?", first, snippet)
+        out.append((n, False, snippet))
+
     for n, line in enumerate(lines, 1):
         if line.lstrip().startswith("```"):
             in_block = not in_block
             if pending:
-                out.append((pending_line, False, pending))
+                emit(pending_line, pending)
             pending = ""
+            loops = {}
             continue
         if in_block:
+            loops.update(dict(LOOP.findall(line)))
             if not pending:
                 pending_line = n
             if line.rstrip().endswith("\\"):
                 pending += line.rstrip()[:-1] + " "
                 continue
-            out.append((pending_line, False, pending + line))
+            emit(pending_line, pending + line)
             pending = ""
         else:
             for m in re.finditer(r"``?([^`]+)``?", line):
