@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rrc-sweep --study rectify's plot: lag error (light moving), static
 variance and static RMSE (light fixed) against lambda, rectification off and
-on, one column per application.  Reads DIR/rectify.csv, writes DIR/rectify.png."""
+on and the lag detector on, one column per application.  Reads DIR/rectify.csv, writes DIR/rectify.png."""
 import csv
 import math
 import os
@@ -15,25 +15,37 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main(out):
     with open(os.path.join(out, "rectify.csv")) as f:
-        rows = list(csv.DictReader(f))
+        # rrc-sample's preset rows are one lambda each: the table has them, not the curves.
+        rows = [r for r in csv.DictReader(f) if not r.get("preset")]
     apps = []
     for r in rows:
         if r["app"] not in apps:
             apps.append(r["app"])
     variants = []
     for r in rows:
-        v = (int(r["rectify"]), r["gamma"])
+        v = (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""))
         if v not in variants:
             variants.append(v)
     fig, axes = plt.subplots(3, len(apps), figsize=(4.2 * len(apps), 9.0), squeeze=False)
     speed = rows[0]["light_speed"] if rows else "?"
     for c, app in enumerate(apps):
-        for (on, gamma) in variants:
-            sel = [r for r in rows if r["app"] == app and int(r["rectify"]) == on and r["gamma"] == gamma]
+        for v in variants:
+            (on, gamma, lag_on, lag_gamma) = v
+            sel = [r for r in rows if r["app"] == app and
+                   (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", "")) == v]
+            if not sel:
+                continue
             sel.sort(key=lambda r: float(r["lambda"]))
             lam = [float(r["lambda"]) for r in sel]
-            label = "rectify, γ = %s" % gamma.rstrip("0").rstrip(".") if on else "no rectification"
-            style = "o-" if on else "s--"
+            if lag_on:
+                label = "lag detector, γ_a = %s" % lag_gamma.rstrip("0").rstrip(".")
+                style = "^:"
+            elif on:
+                label = "rectify, γ = %s" % gamma.rstrip("0").rstrip(".")
+                style = "o-"
+            else:
+                label = "neither"
+                style = "s--"
 
             def val(r, key):
                 try:

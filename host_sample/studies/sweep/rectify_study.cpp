@@ -27,21 +27,54 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct StudyConfig {
     App app;
     rrc_sample::ChannelSettings channel;
+    int base = -1;       // the index of the same configuration without its cure
+    std::string preset;  // "" or the preset row's name
 };
 
 std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
     std::vector<StudyConfig> c;
-    for (const App& app : apps_of(sigs))
+    for (const App& app : apps_of(sigs)) {
         for (float lambda : o.lambdas) {
             rrc_sample::ChannelSettings off{lambda, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_BILINEAR, 0};
+            const int base = (int)c.size();
             c.push_back({app, off});
             for (float gamma : o.rectify_gammas) {
                 rrc_sample::ChannelSettings on = off;
                 on.rectify = 1;
                 on.rectify_gamma = gamma;
-                c.push_back({app, on});
+                c.push_back({app, on, base});
             }
+            // The lag detector (docs/CONVENTIONS.md, "The lag detector") on the same FIXED
+            // blend, rectification off: the cure the moving light's lag target is about. Not on
+            // soft, whose one-sample binary blocks make it drop right histories
+            // (docs/PERFORMANCE.md, "The lag detector (0.5): what it buys, measured").
+            if (o.antilag && app.signal != kSignalSoft)
+                for (float gamma : o.antilag_gammas) {
+                    rrc_sample::ChannelSettings on = off;
+                    on.antilag = 1;
+                    on.antilag_gamma = gamma;
+                    on.antilag_threshold = o.antilag_threshold;
+                    c.push_back({app, on, base});
+                }
         }
+        // rrc-sample's preset (testbed/channel_presets.h) with and without the lag detector:
+        // pcf's has it (gamma_a 0.25, T 0.25), env's has not (here with the sweep's rows' setting).
+        if (o.antilag && app.signal != kSignalSoft) {
+            const rrc_sample::ChannelPresets presets;
+            const rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
+            rrc_sample::ChannelSettings without = preset, with = preset;
+            without.antilag = 0;
+            without.antilag_gamma = without.antilag_threshold = 0.0f;
+            if (!with.antilag) {
+                with.antilag = 1;
+                with.antilag_gamma = kSweepAntilagGamma;
+                with.antilag_threshold = kSweepAntilagThreshold;
+            }
+            const int base = (int)c.size();
+            c.push_back({app, without, -1, preset.antilag ? "the preset without the lag detector" : "the preset"});
+            c.push_back({app, with, base, preset.antilag ? "the preset" : "the preset with the lag detector"});
+        }
+    }
     return c;
 }
 
@@ -200,11 +233,13 @@ std::string num(double v, const char* fmt = "%.4g") {
     return b;
 }
 
-const RectifyRow* off_row(const RectifyResult& r, const RectifyRow& row) {
-    for (const RectifyRow& x : r.rows)
-        if (x.app.signal == row.app.signal && x.lambda == row.lambda && !x.rectify) return &x;
-    return nullptr;
+std::string cure_label(const RectifyRow& row) {
+    if (!row.preset.empty()) return row.preset + " (" + blend_label(row.channel.blend) + ", " + filter_label(row.channel) + ")";
+    if (row.antilag) return "lag detector, γ_a = " + num(row.antilag_gamma, "%g") + ", T = " + num(row.antilag_threshold, "%g");
+    return row.rectify ? "rectify, γ = " + num(row.gamma, "%g") : std::string("none");
 }
+
+const RectifyRow* off_row(const RectifyResult& r, const RectifyRow& row) { return row.base >= 0 ? &r.rows[(size_t)row.base] : nullptr; }
 
 }  // namespace
 
@@ -248,6 +283,12 @@ RectifyResult run_rectify_study(const SweepOptions& o, std::ostream* progress) {
         row.lambda = configs[i].channel.lambda;
         row.rectify = configs[i].channel.rectify;
         row.gamma = row.rectify ? configs[i].channel.rectify_gamma : 0.0f;
+        row.antilag = configs[i].channel.antilag;
+        row.antilag_gamma = row.antilag ? configs[i].channel.antilag_gamma : 0.0f;
+        row.antilag_threshold = row.antilag ? configs[i].channel.antilag_threshold : 0.0f;
+        row.channel = configs[i].channel;
+        row.preset = configs[i].preset;
+        row.base = configs[i].base;
         row.lag = lag[i];
         row.still = still[i];
         r.rows.push_back(row);
@@ -275,17 +316,23 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
     };
     {
         std::ofstream f = open("rectify.csv");
-        f << "app,k,lambda,blend,filter,rectify,gamma,light_speed,lag_rmse,lag_bias2,lag_variance,lag_checkpoints,static_variance,"
-             "static_rmse,static_bias2,lag_ratio,variance_ratio,seeds\n";
+        f << "app,k,lambda,blend,filter,rectify,gamma,antilag,antilag_gamma,antilag_threshold,light_speed,lag_rmse,lag_bias2,"
+             "lag_variance,lag_checkpoints,static_variance,static_rmse,static_bias2,lag_ratio,lag_bias2_ratio,variance_ratio,"
+             "static_rmse_ratio,seeds,preset\n";
         for (const RectifyRow& row : r.rows) {
             const RectifyRow* off = off_row(r, row);
             const double lag_ratio = off ? row.lag.rmse / off->lag.rmse : kNaN;
+            const double bias_ratio = off ? row.lag.bias2 / off->lag.bias2 : kNaN;
             const double var_ratio = off ? row.still.variance / off->still.variance : kNaN;
-            f << row.app.name << "," << r.k << "," << num(row.lambda, "%.2f") << ",fixed,bilinear," << row.rectify << ","
-              << num(row.gamma, "%.2f") << "," << num(r.light_speed, "%g") << "," << num(row.lag.rmse, "%.6g") << ","
+            const double rmse_ratio = off ? row.still.rmse / off->still.rmse : kNaN;
+            f << row.app.name << "," << r.k << "," << num(row.lambda, "%.2f") << "," << blend_label(row.channel.blend) << ","
+              << filter_label(row.channel) << "," << row.rectify << ","
+              << num(row.gamma, "%.2f") << "," << row.antilag << "," << num(row.antilag_gamma, "%.2f") << ","
+              << num(row.antilag_threshold, "%.2f") << "," << num(r.light_speed, "%g") << "," << num(row.lag.rmse, "%.6g") << ","
               << num(row.lag.bias2, "%.6g") << "," << num(row.lag.variance, "%.6g") << "," << row.lag.checkpoints << ","
               << num(row.still.variance, "%.6g") << "," << num(row.still.rmse, "%.6g") << "," << num(row.still.bias2, "%.6g") << ","
-              << num(lag_ratio, "%.4f") << "," << num(var_ratio, "%.4f") << "," << row.still.seeds << "\n";
+              << num(lag_ratio, "%.4f") << "," << num(bias_ratio, "%.4f") << "," << num(var_ratio, "%.4f") << ","
+              << num(rmse_ratio, "%.4f") << "," << row.still.seeds << "," << row.preset << "\n";
         }
     }
     std::ofstream f = open("rectify.md");
@@ -313,20 +360,23 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
     for (size_t a = 0; a < r.apps.size(); ++a)
         f << "| " << r.apps[a].name << " | " << r.changed_pixels[a] << " (" << num(100.0 * r.changed_fraction[a], "%.1f") << "%) | "
           << num(r.change_threshold[a], "%.3g") << " | " << num(r.mean_change[a], "%.3g") << " |\n";
-    f << "\n| app | lambda | rectify | lag error | lag ratio | static variance | variance ratio | static RMSE | static bias² |\n"
-      << "|---|---|---|---|---|---|---|---|---|\n";
+    f << "\n| app | lambda | cure | lag error | lag ratio | lag bias² | bias² ratio | static variance | variance ratio | static RMSE | "
+         "RMSE ratio | static bias² |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RectifyRow& row : r.rows) {
         const RectifyRow* off = off_row(r, row);
-        f << "| " << row.app.name << " | " << num(row.lambda, "%.2f") << " | "
-          << (row.rectify ? "on, γ = " + num(row.gamma, "%g") : std::string("off")) << " | " << num(row.lag.rmse, "%.4f") << " | "
-          << (row.rectify && off ? num(row.lag.rmse / off->lag.rmse, "%.2f") : std::string("")) << " | " << num(row.still.variance, "%.3g")
-          << " | " << (row.rectify && off ? num(row.still.variance / off->still.variance, "%.2f") : std::string("")) << " | "
-          << num(row.still.rmse, "%.4f") << " | " << num(row.still.bias2, "%.3g") << " |\n";
+        const bool cured = off != nullptr;
+        auto ratio = [&](double a, double b) { return cured ? num(a / b, "%.2f") : std::string(""); };
+        f << "| " << row.app.name << " | " << num(row.lambda, "%.2f") << " | " << cure_label(row) << " | " << num(row.lag.rmse, "%.4f")
+          << " | " << (cured ? ratio(row.lag.rmse, off->lag.rmse) : "") << " | " << num(row.lag.bias2, "%.3g") << " | "
+          << (cured ? ratio(row.lag.bias2, off->lag.bias2) : "") << " | " << num(row.still.variance, "%.3g") << " | "
+          << (cured ? ratio(row.still.variance, off->still.variance) : "") << " | " << num(row.still.rmse, "%.4f") << " | "
+          << (cured ? ratio(row.still.rmse, off->still.rmse) : "") << " | " << num(row.still.bias2, "%.3g") << " |\n";
     }
     f << "\n## Verdicts (lambda = 0.9: lag error at most half of without, static variance at most 1.5x)\n\n";
     bool any = false;
     for (const RectifyRow& row : r.rows) {
-        if (!row.rectify || std::abs(row.lambda - 0.9f) > 1e-4f) continue;
+        if (!row.rectify || !row.preset.empty() || std::abs(row.lambda - 0.9f) > 1e-4f) continue;
         const RectifyRow* off = off_row(r, row);
         if (!off) continue;
         any = true;
@@ -347,6 +397,29 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
           << (soft ? " (soft: outside the study's targets, shown to say what happens)" : "") << "\n";
     }
     if (!any) f << "- no lambda = 0.9 rows\n";
+    f << "\n## Verdicts, the lag detector (lambda = 0.9: lag bias² on the changed pixels at most half of without, static RMSE at most "
+         "1.1x)\n\n";
+    any = false;
+    for (const RectifyRow& row : r.rows) {
+        if (!row.antilag || (row.preset.empty() && std::abs(row.lambda - 0.9f) > 1e-4f)) continue;
+        const RectifyRow* off = off_row(r, row);
+        if (!off) continue;
+        any = true;
+        const double br = row.lag.bias2 / off->lag.bias2, rr = row.still.rmse / off->still.rmse;
+        f << "- " << row.app.name << ", " << cure_label(row) << ": lag bias² " << num(off->lag.bias2, "%.3g") << " -> "
+          << num(row.lag.bias2, "%.3g");
+        if (std::isnan(br))
+            f << " (no pixel's target changed)";
+        else
+            f << " (x" << num(br, "%.3f") << ", target <= 0.5: " << (br <= 0.5 ? "PASS" : "FAIL") << ")";
+        f << "; static RMSE " << num(off->still.rmse, "%.4f") << " -> " << num(row.still.rmse, "%.4f") << " (x" << num(rr, "%.3f")
+          << ", target <= 1.1: "
+          << (std::isnan(rr) ? "n/a"
+              : rr <= 1.1    ? "PASS"
+                             : "FAIL")
+          << "); lag error " << num(off->lag.rmse, "%.4f") << " -> " << num(row.lag.rmse, "%.4f") << "\n";
+    }
+    if (!any) f << "- no lambda = 0.9 rows with the lag detector\n";
 }
 
 }  // namespace rrc_sweep

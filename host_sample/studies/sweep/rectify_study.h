@@ -3,7 +3,8 @@
 // rrc's accumulated signal lags behind the moving light's target on the
 // pixels whose target changed, and, with the light fixed, the ensemble
 // variance; each row with history rectification off and on
-// (docs/CONVENTIONS.md, "Rectification").
+// (docs/CONVENTIONS.md, "Rectification"), and with the lag detector on
+// (docs/CONVENTIONS.md, "The lag detector").
 #pragma once
 
 #include "ensemble.h"
@@ -21,6 +22,11 @@ struct RectifyRow {
     float lambda = 0.0f;
     uint32_t rectify = 0;
     float gamma = 0.0f;  // 0 when rectify is off
+    uint32_t antilag = 0;
+    float antilag_gamma = 0.0f, antilag_threshold = 0.0f;  // 0 when antilag is off
+    rrc_sample::ChannelSettings channel;                    // every setting of the row's channel
+    std::string preset;  // "" a study row; else which rrc-sample preset row (rectify_study.cpp, study_configs)
+    int base = -1;       // the index in rows of the same row without its cure; -1 for a row without one
     Metrics lag;         // light moving: against its target, on the changed pixels only (rmse = the lag error)
     Metrics still;       // light fixed: every scored pixel (variance = the static variance)
 };

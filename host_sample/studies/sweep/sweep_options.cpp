@@ -3,6 +3,8 @@
 #include "options.h"
 #include "scene.h"
 
+#include <rrc/rrc.h>
+
 
 namespace rrc_sweep {
 namespace {
@@ -56,6 +58,9 @@ std::string sweep_usage() {
            "                           its defaults unless given: --size 192x128 --checkpoints 23,4 --lambdas 0.6,0.8,0.9\n"
            "                           --taps 4 --light-speed 1 --motion still --out out/rectify\n"
            "  --rectify-gammas LIST    the study's rectify-on rows, one per gamma (default 0.5,1,1.5)\n"
+           "  --antilag-gammas LIST    the study's lag-detector rows (pcf, env), one per gamma_a (default 1,0.75,0.25;\n"
+           "                           --no-antilag drops them)\n"
+           "  --antilag-threshold T    their threshold T (default 0.25)\n"
            "  --change-threshold T     the study's changed pixels (pcf, soft): the target moved by more than T since the\n"
            "                           frame before (default 0.05); env's: by more than 3 sigma of its target's noise\n"
            "  --bias-maps              also the signed bias maps (seed mean - target) of every row at every checkpoint\n"
@@ -101,6 +106,10 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.change_threshold = c.number(0.0f, 10.0f);
         else if (c.option("--rectify-gammas"))
             o.rectify_gammas = c.numbers(0.01f, 8.0f);
+        else if (c.option("--antilag-gammas"))
+            o.antilag_gammas = c.numbers(0.01f, RRC_MAX_ANTILAG_GAMMA);
+        else if (c.option("--antilag-threshold"))
+            o.antilag_threshold = c.number(0.01f, RRC_MAX_ANTILAG_THRESHOLD);
         else if (c.option("--soft-caps")) {
             o.soft_caps.clear();
             for (long cap : c.integers(1, 65535)) o.soft_caps.push_back((uint32_t)cap);

@@ -251,7 +251,7 @@ TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
     EXPECT_NEAR(scene.light_angle(20), glm::radians(30.0f), 1e-6);
 }
 
-TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationCutsTheLag) {
+TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetectorCutTheLag) {
     SweepOptions o;
     o.study = "rectify";
     o.width = 96;
@@ -263,6 +263,8 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationCutsTheLag) {
     o.rrc_taps = {4};
     o.lambdas = {0.9f};
     o.rectify_gammas = {1.0f};
+    o.antilag_gammas = {0.75f};
+    o.antilag_threshold = 0.25f;
     o.signals = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv;
     o.light_speed = 1.0f;
     o.motion = "still";
@@ -272,23 +274,34 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationCutsTheLag) {
     const RectifyResult r = run_rectify_study(o, nullptr);
     EXPECT_EQ(r.validation_messages, 0u);
     ASSERT_EQ(r.apps.size(), 2u);
-    ASSERT_EQ(r.rows.size(), 4u);  // pcf, env x off, on
+    ASSERT_EQ(r.rows.size(), 10u);  // pcf, env x off, rectified, lag detector, the preset without and with its cure
     // The targets follow the light: the sun's turn moves pcf's shadow edges, some pixels change and most do not.
     EXPECT_GT(r.changed_pixels[0], 20u);
     EXPECT_LT(r.changed_fraction[0], 0.5);
     for (const RectifyRow& row : r.rows) {
-        SCOPED_TRACE(std::string(row.app.name) + (row.rectify ? " rectified" : ""));
+        SCOPED_TRACE(std::string(row.app.name) + (row.rectify ? " rectified" : "") + (row.antilag ? " lag detector" : ""));
         EXPECT_EQ(row.still.seeds, 3);
         EXPECT_GT(row.still.variance, 0.0);
         if (row.app.signal != rrc_sample::kSignalPcf) continue;
         EXPECT_EQ(row.lag.checkpoints, 2);
         // Nothing else moves, so the error on the changed pixels is rrc's lag: well above the fixed light's.
-        if (!row.rectify) EXPECT_GT(row.lag.rmse, 2.0 * row.still.rmse);
+        if (!row.rectify && !row.antilag) EXPECT_GT(row.lag.rmse, 2.0 * row.still.rmse);
     }
-    const RectifyRow &off = r.rows[0], &on = r.rows[1];
-    ASSERT_TRUE(off.app.signal == rrc_sample::kSignalPcf && !off.rectify && on.rectify);
+    const RectifyRow &off = r.rows[0], &on = r.rows[1], &lag = r.rows[2];
+    ASSERT_TRUE(off.app.signal == rrc_sample::kSignalPcf && !off.rectify && !off.antilag && on.rectify && !on.antilag);
+    ASSERT_TRUE(lag.app.signal == rrc_sample::kSignalPcf && lag.antilag && !lag.rectify);
+    EXPECT_EQ(lag.antilag_gamma, 0.75f);
     EXPECT_LT(on.lag.rmse, 0.9 * off.lag.rmse) << "rectification at lambda 0.9 must cut pcf's lag behind the moving light";
     EXPECT_LT(on.still.variance, 1.5 * off.still.variance) << "and keep its static variance";
+    // docs/PERFORMANCE.md, "History rectification": the lag detector on the moving light (x0.46 at the
+    // study's 192x128 and 8 seeds; x0.67 on this small frame, where shadow edges are a larger share).
+    EXPECT_LT(lag.lag.bias2, 0.8 * off.lag.bias2) << "the lag detector at lambda 0.9 must cut pcf's lag bias behind the moving light";
+    EXPECT_LT(lag.still.rmse, 1.1 * off.still.rmse) << "and keep its static RMSE";
+    // rrc-sample's pcf preset (its lag detector on) against the same channel without it.
+    const RectifyRow &bare = r.rows[3], &preset = r.rows[4];
+    ASSERT_TRUE(bare.preset.size() && preset.preset.size() && preset.base == 3 && bare.base == -1);
+    EXPECT_TRUE(preset.antilag && !bare.antilag && preset.channel.filter == RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's lag detector must halve its lag bias behind the moving light";
 }
 
 }  // namespace
