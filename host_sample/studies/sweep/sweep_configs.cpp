@@ -2,6 +2,8 @@
 
 #include "scene.h"
 
+#include <cstdio>
+
 namespace rrc_sweep {
 
 std::vector<App> apps_of(uint32_t signals) {
@@ -66,6 +68,13 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     a.antilag_threshold = kSweepAntilagThreshold;
                     run.configs.push_back({app, a});
                 }
+            // rrc-sample's pcf preset (testbed/channel_presets.h: Catmull-Rom, rectified, the
+            // narrow lag detector, the fill below age 4), which no row above spells: the targets
+            // under motion are its (docs/PERFORMANCE.md, "Targets under motion"). env's and
+            // soft's presets are rows above (age-aware lambda 0.8; soft's with the fill at 8 and
+            // cap 64, here without the PCSS fallback the sweep's frames do not carry).
+            if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
+                run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
         }
         runs.push_back(run);
     }
@@ -105,6 +114,12 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     if (c.rectify) s += "+rectify";
     if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
     if (c.antilag) s += "+antilag";
+    // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
+    if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {
+        char b[48];
+        std::snprintf(b, sizeof b, "%g/%g", (double)c.antilag_gamma, (double)c.antilag_threshold);
+        s += b;
+    }
     return s;
 }
 

@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -215,11 +216,19 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
     o.rrc_taps = {4};
     o.lambdas = {0.8f, 0.9f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
-    int pcf = 0, env = 0;
+    int pcf = 0, env = 0, presets = 0;
+    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
     for (const RrcRun& run : rrc_runs(o, all))
         for (const RrcConfig& c : run.configs) {
             if (!c.channel.antilag) continue;
             ASSERT_NE(c.app.signal, (uint32_t)rrc_sample::kSignalSoft) << "the detector drops right soft histories";
+            if (c.channel.filter == RRC_HISTORY_FILTER_CATMULL_ROM) {  // rrc-sample's pcf preset, spelled out once
+                EXPECT_EQ(c.app.signal, (uint32_t)rrc_sample::kSignalPcf);
+                EXPECT_EQ(std::memcmp(&c.channel, &preset, sizeof preset), 0);
+                EXPECT_EQ(filter_label(c.channel), "catmull-rom+rectify+fill4+antilag0.25/0.25");
+                presets++;
+                continue;
+            }
             EXPECT_EQ(c.channel.blend, RRC_BLEND_AGE_AWARE);
             EXPECT_EQ(c.channel.filter, RRC_HISTORY_FILTER_BILINEAR);
             EXPECT_EQ(c.channel.antilag_gamma, kSweepAntilagGamma);
@@ -231,6 +240,7 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
         }
     EXPECT_EQ(pcf, 2);
     EXPECT_EQ(env, 2);
+    EXPECT_EQ(presets, 1);
     const char* argv[] = {"rrc-sweep", "--no-antilag"};
     const SweepOptions off = parse_sweep_options(2, argv);
     EXPECT_FALSE(off.antilag);
