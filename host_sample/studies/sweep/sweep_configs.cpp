@@ -117,7 +117,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {
         char b[48];
-        std::snprintf(b, sizeof b, "%g/%g", (double)c.antilag_gamma, (double)c.antilag_threshold);
+        std::snprintf(b, sizeof b, "_g%g_t%g", (double)c.antilag_gamma, (double)c.antilag_threshold);
         s += b;
     }
     return s;
