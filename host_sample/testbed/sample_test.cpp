@@ -510,9 +510,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.9f);
-    EXPECT_EQ(p.pcf.rectify, 1u);
+    EXPECT_EQ(p.pcf.rectify, 0u);
     EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
-    EXPECT_EQ(p.pcf.fill_age, 4u);
+    EXPECT_EQ(p.pcf.fill_age, 2u);
     EXPECT_EQ(p.pcf.antilag, 1u);
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
     EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);

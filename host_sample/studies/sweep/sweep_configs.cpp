@@ -68,8 +68,8 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     a.antilag_threshold = kSweepAntilagThreshold;
                     run.configs.push_back({app, a});
                 }
-            // rrc-sample's pcf preset (testbed/channel_presets.h: Catmull-Rom, rectified, the
-            // narrow lag detector, the fill below age 4), which no row above spells: the targets
+            // rrc-sample's pcf preset (testbed/channel_presets.h: Catmull-Rom, the narrow lag
+            // detector, the fill below age 2), which no row above spells: the targets
             // under motion are its (docs/PERFORMANCE.md, "Targets under motion"). env's and
             // soft's presets are rows above (age-aware lambda 0.8; soft's with the fill at 8 and
             // cap 64, here without the PCSS fallback the sweep's frames do not carry).

@@ -225,7 +225,7 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
             if (c.channel.filter == RRC_HISTORY_FILTER_CATMULL_ROM) {  // rrc-sample's pcf preset, spelled out once
                 EXPECT_EQ(c.app.signal, (uint32_t)rrc_sample::kSignalPcf);
                 EXPECT_EQ(std::memcmp(&c.channel, &preset, sizeof preset), 0);
-                EXPECT_EQ(filter_label(c.channel), "catmull-rom+rectify+fill4+antilag_g0.25_t0.25");
+                EXPECT_EQ(filter_label(c.channel), "catmull-rom+fill2+antilag_g0.25_t0.25");
                 presets++;
                 continue;
             }
