@@ -26,7 +26,13 @@ struct ChannelSettings {
     uint32_t antilag = 0;
     float antilag_gamma = 0.0f;
     float antilag_threshold = 0.0f;
+    // 0.6 the blur bound (docs/CONVENTIONS.md, "The blur bound"), px^2; 0 = off.
+    float blur_bound = 0.0f;
 };
+
+/** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2: the best of
+ *  docs/PERFORMANCE.md, "The blur bound: what it buys, measured" (pcf bilinear and soft, 256x160). */
+constexpr float kSampleBlurBound = 0.5f;
 
 /** The sample's presets, one per application, chosen at the sample's own k (4 taps for pcf
  *  and env, one light point for soft) on its default moving-camera scene: the lowest RMSE

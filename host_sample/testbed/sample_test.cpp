@@ -502,6 +502,23 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
         EXPECT_EQ(c.antilag, 0u);
         EXPECT_EQ(c.antilag_gamma, 0.0f) << "the library refuses the members without the detector";
     }
+    // The blur bound (0.6) on the listed channels only, B given or the sample's.
+    const char* bound[] = {"rrc-sample", "--blur-bound", "pcf,soft", "--blur-bound-px2", "0.25"};
+    o = parse_options(5, bound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, 0.25f);
+    EXPECT_EQ(o.channels.env.blur_bound, 0.0f);
+    EXPECT_EQ(o.channels.soft.blur_bound, 0.25f);
+    const char* bound_default[] = {"rrc-sample", "--blur-bound", "env"};
+    o = parse_options(3, bound_default);
+    EXPECT_EQ(o.channels.env.blur_bound, kSampleBlurBound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, 0.0f);
+    const char* no_bound[] = {"rrc-sample", "--blur-bound", "none"};
+    o = parse_options(3, no_bound);
+    for (const ChannelSettings& c : {o.channels.pcf, o.channels.env, o.channels.soft}) EXPECT_EQ(c.blur_bound, 0.0f);
+    // Not given: the presets' bound (channel_presets.h).
+    o = parse_options(1, no_bound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
+    EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
     const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
     o = parse_options(5, fills);
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
@@ -549,6 +566,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--antilag", "none", "--antilag-threshold", "0.3"},
                                                        {"rrc-sample", "--antilag", "pcf,nope"},
                                                        {"rrc-sample", "--antilag", "pcf", "--antilag-gamma", "17"},
+                                                       {"rrc-sample", "--blur-bound", "fog"},
+                                                       {"rrc-sample", "--blur-bound", "none", "--blur-bound-px2", "0.5"},
+                                                       {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "65"},
+                                                       {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "0"},
                                                        {"rrc-sample", "--soft-lambda", "1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }

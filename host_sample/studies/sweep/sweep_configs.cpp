@@ -2,6 +2,8 @@
 
 #include "scene.h"
 
+#include <cstdio>
+
 namespace rrc_sweep {
 
 std::vector<App> apps_of(uint32_t signals) {
@@ -66,6 +68,17 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     a.antilag_threshold = kSweepAntilagThreshold;
                     run.configs.push_back({app, a});
                 }
+            // The blur bound (docs/CONVENTIONS.md, "The blur bound"), each row the twin of
+            // a row without it: pcf the rectified finishing row, env the plain age-aware
+            // bilinear row, soft the fill row (age cap 64, T = 8).
+            if (o.blur_bound)
+                for (float lambda : o.lambdas) {
+                    rrc_sample::ChannelSettings b{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+                    if (app.signal == rrc_sample::kSignalPcf) b.rectify = 1;
+                    if (app.signal == rrc_sample::kSignalSoft) b.age_cap = 64, b.fill_age = 8;
+                    b.blur_bound = kSweepBlurBound;
+                    run.configs.push_back({app, b});
+                }
         }
         runs.push_back(run);
     }
@@ -105,6 +118,11 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     if (c.rectify) s += "+rectify";
     if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
     if (c.antilag) s += "+antilag";
+    if (c.blur_bound > 0.0f) {
+        char b[32];
+        std::snprintf(b, sizeof b, "+blur%g", (double)c.blur_bound);
+        s += b;
+    }
     return s;
 }
 

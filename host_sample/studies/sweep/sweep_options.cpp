@@ -46,6 +46,8 @@ std::string sweep_usage() {
            "                           env rectified, soft with the spatial fill, fill_age 8, no fallback)\n"
            "  --no-antilag             no rows for the lag detector (age-aware, gamma_a 1, threshold 0.25: pcf rectified,\n"
            "                           env; never soft)\n"
+           "  --no-blur-bound          no rows for the blur bound (age-aware, bilinear, B 0.5 px^2: pcf rectified, env,\n"
+           "                           soft with the fill rows' settings)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -112,6 +114,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.finishing = false;
         else if (c.flag("--no-antilag"))
             o.antilag = false;
+        else if (c.flag("--no-blur-bound"))
+            o.blur_bound = false;
         else if (c.option("--signals"))
             o.signals = rrc_sample::signal_bits(c);
         else if (c.option("--motion"))

@@ -204,6 +204,14 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
         ASSERT_NE(cured, nullptr) << signal;
         EXPECT_LT(cured->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
     }
+    // The blur bound's rows (on by default) run, under validation, and still accumulate.
+    for (uint32_t signal : {1u, 2u, 4u}) {
+        const RrcRow* bounded = nullptr;
+        for (const RrcRow& row : r.rrc)
+            if (row.config.app.signal == signal && row.config.channel.blur_bound > 0.0f) bounded = &row;
+        ASSERT_NE(bounded, nullptr) << signal;
+        EXPECT_LT(bounded->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
+    }
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
@@ -236,6 +244,38 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
     EXPECT_FALSE(off.antilag);
     for (const RrcRun& run : rrc_runs(off, all))
         for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.antilag, 0u);
+}
+
+TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
+    SweepOptions o;
+    o.rrc_taps = {4};
+    o.lambdas = {0.8f, 0.9f};
+    const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
+    int bounded = 0;
+    const std::vector<RrcRun> runs = rrc_runs(o, all);
+    for (const RrcRun& run : runs)
+        for (const RrcConfig& c : run.configs) {
+            if (c.channel.blur_bound == 0.0f) continue;
+            ++bounded;
+            EXPECT_EQ(c.channel.blur_bound, kSweepBlurBound);
+            EXPECT_EQ(c.channel.blend, RRC_BLEND_AGE_AWARE);
+            EXPECT_EQ(c.channel.filter, RRC_HISTORY_FILTER_BILINEAR) << "the bound never acts on Catmull-Rom";
+            EXPECT_EQ(c.channel.antilag, 0u);
+            // Its twin: the same row without the bound, in the same run.
+            rrc_sample::ChannelSettings twin = c.channel;
+            twin.blur_bound = 0.0f;
+            int twins = 0;
+            for (const RrcConfig& d : run.configs)
+                twins += d.app.signal == c.app.signal && filter_label(d.channel) == filter_label(twin) && d.channel.lambda == twin.lambda &&
+                         d.channel.blend == twin.blend && d.channel.age_cap == twin.age_cap && d.channel.blur_bound == 0.0f;
+            EXPECT_EQ(twins, 1) << c.app.name << " " << filter_label(c.channel) << " lambda " << c.channel.lambda;
+        }
+    EXPECT_EQ(bounded, 6);  // pcf, env and soft at two lambdas
+    const char* argv[] = {"rrc-sweep", "--no-blur-bound"};
+    const SweepOptions off = parse_sweep_options(2, argv);
+    EXPECT_FALSE(off.blur_bound);
+    for (const RrcRun& run : rrc_runs(off, all))
+        for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.blur_bound, 0.0f);
 }
 
 TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
