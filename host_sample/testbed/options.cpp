@@ -128,7 +128,7 @@ std::string usage() {
            "  --antilag-threshold T    its relative gap that drops the history (default: as --antilag-gamma; the\n"
            "                           library's is 0.5)\n"
            "  --blur-bound LIST        the blur bound on exactly these channels (pcf,env,soft, or none; default: the\n"
-           "                           presets'): a bilinear or Gaussian history's age is capped so its stationary\n"
+           "                           presets', none yet): a bilinear or Gaussian history's age is capped so its stationary\n"
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"

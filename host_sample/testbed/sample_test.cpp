@@ -529,6 +529,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 1u);
     EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    for (const ChannelSettings& c : {p.pcf, p.env, p.soft})
+        EXPECT_EQ(c.blur_bound, 0.0f) << "no preset has the blur bound yet (docs/PERFORMANCE.md, \"The blur bound: what it buys, measured\")";
     EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.pcf.antilag, 1u);
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
