@@ -39,20 +39,26 @@ constexpr float kSampleBlurBound = 0.5f;
  *  against the fixed target (docs/PERFORMANCE.md, "Presets chosen from the fronts", where
  *  each value's figure is), a cure or finishing step only where it wins at 256x160 and at
  *  1024x640 (rrc-sample's accumulated RMSE, mean over seeds 0..3).  pcf: lambda 0.9,
- *  rectified, the lag detector with a narrow box (gamma_a 0.25, T 0.25), Catmull-Rom
- *  history and the spatial fill below age 4 (0.0387 against 0.0427 for the former preset at
+ *  rectified, the lag detector with a narrow box (gamma_a 0.25, T 0.25), the spatial fill
+ *  below age 4 and, until the blur bound, Catmull-Rom history (0.0387 against 0.0427 for the former preset at
  *  256x160, 0.0242 against 0.0331 at 1024x640).  soft with the spatial fill (the sample
  *  passes its PCSS estimate as the fallback, --fill-prior); the lag detector makes soft
  *  worse and changes nothing on env, which stay without.  AGE_AWARE everywhere: the same as
- *  FIXED on old pixels, the running mean on new ones. */
+ *  FIXED on old pixels, the running mean on new ones.  The blur bound (0.6) wins at both sizes
+ *  together with the fill (docs/PERFORMANCE.md, "The blur bound: what it buys, measured"):
+ *  pcf with a bilinear history and B = 0.25 px^2 (0.0366 against 0.0387 at 256x160, 0.0217
+ *  against 0.0242 at 1024x640; the bound never acts on Catmull-Rom), soft with B = 0.5 px^2
+ *  (0.0572 against 0.0606, 0.0577 against 0.0595). */
 struct ChannelPresets {
-    ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 0, /*confidence*/ 0, /*rectify*/ 1,
+    ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 1,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 1, /*antilag_gamma*/ 0.25f,
-                        /*antilag_threshold*/ 0.25f};
+                        /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
     ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
-                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8};
+                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
+                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
+                         /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.5f};
 };
 
 }  // namespace rrc_sample

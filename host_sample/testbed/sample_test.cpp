@@ -208,6 +208,9 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
 TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     Options o = tiny("fill_off");
     o.channels.soft.fill_age = 0;  // the preset fills: this run is the one without
+    // The sample's age image follows rrc's rule from the mask alone (shaders/age.comp): no
+    // shortened age (the preset's blur bound), or "age >= T" below would not mean "not filled".
+    o.channels.soft.blur_bound = 0.0f;
     o.channels.soft.fill_prior = 0.0f;
     o.validation = false;
     o.signals = kSignalSoft;
@@ -528,9 +531,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 1u);
-    EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
-    for (const ChannelSettings& c : {p.pcf, p.env, p.soft})
-        EXPECT_EQ(c.blur_bound, 0.0f) << "no preset has the blur bound yet (docs/PERFORMANCE.md, \"The blur bound: what it buys, measured\")";
+    EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_BILINEAR) << "the blur bound acts on bilinear histories only";
+    EXPECT_EQ(p.pcf.blur_bound, 0.25f);
+    EXPECT_EQ(p.soft.blur_bound, 0.5f);
+    EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.pcf.antilag, 1u);
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
