@@ -139,10 +139,24 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         }
     }
 
+    // -- the blur bound (docs/CONVENTIONS.md, "The blur bound"): the fetch's
+    //    blur b, the larger per-axis second moment of its weights about the
+    //    fetch point (BILINEAR f(1 - f); GAUSSIAN adds its 2g = sigma_b^2),
+    //    caps the age at floor(B / b), so the stationary blur n b stays within B.
+    if (CH_(_BLUR_BOUND)) {
+        vec2 bxy = g.taps.f * (1.0 - g.taps.f);
+        if (CH_(_FILTER) == RRC_HISTORY_FILTER_GAUSSIAN) bxy += 2.0 * CH_(_BLUR_G);
+        float b = max(bxy.x, bxy.y);
+        // b below the fp32 normal range is no blur (and keeps B / b in the division's exact range).
+        float ratio = b >= RRC_FLT_MIN ? CH_(_BLUR_BOUND_PX2) / b : RRC_FLT_MAX;
+        n_blend = min(n_blend, uint(min(floor(ratio), float(RRC_MAX_AGE_CAP))));
+    }
+
     // -- the table of docs/CONVENTIONS.md
     float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
     // A shortened age caps lambda_eff at n_a/(n_a + 1) (0: the sample alone).
-    if (CH_(_ANTILAG)) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
+    const bool SHORTENED_ = CH_(_ANTILAG) || CH_(_BLUR_BOUND);
+    if (SHORTENED_) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;
     if (CH_(_CONFIDENCE)) {

@@ -80,6 +80,20 @@ RRC_SLOTS2(bool, ANTILAG, ANTILAG, false)
 RRC_SLOTS2(float, ANTILAG_GAMMA, ANTILAG_GAMMA, 2.0)
 RRC_SLOTS2(float, ANTILAG_THRESHOLD, ANTILAG_THRESHOLD, 0.5)
 #undef RRC_SLOTS2
+// 0.6, the blur bound (docs/CONVENTIONS.md, "The blur bound"): the third range,
+// RRC_SPEC_CHANNEL3(property, slot).
+#define RRC_SLOTS3(T, NAME, property, off)                                                  \
+    layout(constant_id = RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_##property, 0)) const T CH0_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_##property, 1)) const T CH1_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_##property, 2)) const T CH2_##NAME = off; \
+    layout(constant_id = RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_##property, 3)) const T CH3_##NAME = off;
+#ifdef RRC_WITHOUT_BLUR_BOUND  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(bool, BLUR_BOUND, false)
+#else
+RRC_SLOTS3(bool, BLUR_BOUND, BLUR_BOUND, false)
+#endif
+RRC_SLOTS3(float, BLUR_BOUND_PX2, BLUR_BOUND_PX2, 0.0)
+#undef RRC_SLOTS3
 #undef RRC_SLOTS_OFF
 // Slot selectors: called with a literal slot, they fold to one constant.
 #define RRC_SLOT_SELECT(T, name) \
@@ -101,6 +115,8 @@ RRC_SLOT_SELECT(float, FILL_PRIOR)
 RRC_SLOT_SELECT(bool, ANTILAG)
 RRC_SLOT_SELECT(float, ANTILAG_GAMMA)
 RRC_SLOT_SELECT(float, ANTILAG_THRESHOLD)
+RRC_SLOT_SELECT(bool, BLUR_BOUND)
+RRC_SLOT_SELECT(float, BLUR_BOUND_PX2)
 
 // Which channel slots write the host's output and age images in this pass
 // (interop, and the standalone fill's displayed values): chosen by the frame

@@ -63,6 +63,13 @@
 #define RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD 9  // float T_a
 #define RRC_CHANNEL2_PROPERTY_COUNT 10             // ids 56..95: below RRC_SPEC_GROUP_SIZE_X
 #define RRC_SPEC_CHANNEL2(property, slot) (56 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+// 0.6 per-channel constants: the second range is full (96 would meet
+// RRC_SPEC_GROUP_SIZE_X), so a third range above the group size: property k
+// of slot c has id 104 + 4*k + c.
+#define RRC_CHANNEL3_PROPERTY_BLUR_BOUND 0      // bool: the blur bound acts (B > 0 and a BILINEAR or GAUSSIAN filter)
+#define RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2 1  // float B, px^2 (docs/CONVENTIONS.md, "The blur bound")
+#define RRC_CHANNEL3_PROPERTY_COUNT 2           // ids 104..111
+#define RRC_SPEC_CHANNEL3(property, slot) (104 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
 // The lag detector's darkness term: added to the relative gap's denominator so
 // that a history and a signal both near 0 do not make a large relative gap
 // (docs/CONVENTIONS.md, "The lag detector").

@@ -191,6 +191,8 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
         spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG, slot), ch.antilag ? 1u : 0u);
         spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_GAMMA, slot), ch.antilag_gamma);
         spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD, slot), ch.antilag_threshold);
+        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND, slot), ch.blur_bound_active() ? 1u : 0u);
+        spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2, slot), ch.blur_bound);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -32,6 +32,13 @@ struct ChannelConfig {
     bool antilag = false;
     float antilag_gamma = RRC_DEFAULT_ANTILAG_GAMMA;
     float antilag_threshold = RRC_DEFAULT_ANTILAG_THRESHOLD;
+    // 0.6 the blur bound (docs/CONVENTIONS.md, "The blur bound"): B in px^2, 0 = off.
+    float blur_bound = 0.0f;
+    // The kernel caps ages only where the fetch blurs: BILINEAR and GAUSSIAN
+    // (NEAREST and CATMULL_ROM have b = 0, so their code is compiled out).
+    bool blur_bound_active() const {
+        return blur_bound > 0.0f && (filter == RRC_HISTORY_FILTER_BILINEAR || filter == RRC_HISTORY_FILTER_GAUSSIAN);
+    }
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
     bool fill() const { return fill_age != 0; }
     bool fallback() const { return fill_prior > 0.0f; }

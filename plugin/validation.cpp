@@ -107,6 +107,13 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s sets antilag_gamma or antilag_threshold but antilag is 0", what);
     out.antilag_gamma = c.antilag_gamma == 0.0f ? RRC_DEFAULT_ANTILAG_GAMMA : c.antilag_gamma;
     out.antilag_threshold = c.antilag_threshold == 0.0f ? RRC_DEFAULT_ANTILAG_THRESHOLD : c.antilag_threshold;
+    // 0.6: the blur bound (docs/CONVENTIONS.md, "The blur bound").
+    if (!(c.blur_bound >= 0.0f && c.blur_bound <= RRC_MAX_BLUR_BOUND))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_bound is %g, must be in [0, %g] px^2 (0 = off)", what, (double)c.blur_bound,
+             (double)RRC_MAX_BLUR_BOUND);
+    if (c.blur_bound > 0.0f && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and blur_bound: a shading cache never blends, so it has no age to cap", what);
+    out.blur_bound = c.blur_bound;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the

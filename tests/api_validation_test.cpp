@@ -118,6 +118,14 @@ std::vector<DescCase> desc_cases() {
          "channels[1].antilag_threshold"},
         {"antilag_gamma_without_antilag", [](D&, C& c) { c[0].antilag_gamma = 2.0f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0]"},
         {"antilag_threshold_without_antilag", [](D&, C& c) { c[1].antilag_threshold = 0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1]"},
+        // The blur bound (0.6).
+        {"blur_bound_negative", [](D&, C& c) { c[0].blur_bound = -0.5f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_bound"},
+        {"blur_bound_large", [](D&, C& c) { c[1].blur_bound = RRC_MAX_BLUR_BOUND * 1.5f; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[1].blur_bound"},
+        {"blur_bound_nan", [](D&, C& c) { c[1].blur_bound = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].blur_bound"},
+        {"blur_bound_inf", [](D&, C& c) { c[0].blur_bound = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_bound"},
+        {"blur_bound_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].blur_bound = 1.0f; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0]"},
         // The shading cache (0.3): channel 0 made REUSE where a case needs one.
         {"reuse_with_confidence", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].confidence = 1; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},

@@ -169,3 +169,8 @@ TEST(ConstantsInDocs, AntilagDefaults) {
                         {{"docs/CONVENTIONS.md", "`RRC_DEFAULT_ANTILAG_THRESHOLD` = "}});
     expect_value<float>("RRC_MAX_ANTILAG_THRESHOLD", RRC_MAX_ANTILAG_THRESHOLD, {{"docs/CONVENTIONS.md", "`RRC_MAX_ANTILAG_THRESHOLD` = "}});
 }
+
+// 0.6: the blur bound's limit, as docs/CONVENTIONS.md states it.
+TEST(ConstantsInDocs, BlurBoundLimit) {
+    expect_value<float>("RRC_MAX_BLUR_BOUND", RRC_MAX_BLUR_BOUND, {{"docs/CONVENTIONS.md", "`RRC_MAX_BLUR_BOUND` = "}});
+}

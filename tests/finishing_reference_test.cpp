@@ -103,6 +103,7 @@ struct Mutant {
 struct CaseStats {
     int64_t compared = 0, skipped = 0, hits = 0, refreshed = 0, rectified = 0, rectified_refreshed = 0;
     int64_t shortened = 0, dropped = 0, uncertain = 0;  // the lag detector: n_a < n_prev, n_a = 0, n_a within fp32 error of a step
+    int64_t capped = 0, blur_uncertain = 0;             // the blur bound: N < n_prev, the stored age within fp32 error of a step
     double max_fp32_err = 0, max_fp16_steps = 0;
     std::vector<int64_t> caught;  // per mutant
 };
@@ -167,9 +168,15 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
                     ++st.shortened;
                     st.dropped += rc.antilag_age[i] == 0;
                 }
+                st.capped += rc.blur_capped[i];
                 // n_a sits on a step of floor(c n_prev) within the fp32 error: either age is right.
                 if (rc.antilag_uncertain[i]) {
                     ++st.uncertain;
+                    continue;
+                }
+                // B / b sits on a step of its floor within the fp32 error: either age is right.
+                if (rc.blur_uncertain[i]) {
+                    ++st.blur_uncertain;
                     continue;
                 }
                 if (k.age[ch][i] != rc.age[i])
@@ -210,11 +217,12 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
     }
     std::printf(
         "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n"
-        "%-24s antilag: shortened %lld dropped %lld uncertain %lld\n",
+        "%-24s antilag: shortened %lld dropped %lld uncertain %lld; blur bound: capped %lld uncertain %lld\n",
         name, (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.refreshed, (long long)st.rectified,
         (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps, "", (long long)st.shortened, (long long)st.dropped,
-        (long long)st.uncertain);
+        (long long)st.uncertain, (long long)st.capped, (long long)st.blur_uncertain);
     EXPECT_LE(st.uncertain, st.shortened / 20 + 5) << name << ": too many pixels with an uncertain lag-detector age";
+    EXPECT_LE(st.blur_uncertain, st.capped / 20 + 5) << name << ": too many pixels with an uncertain blur-bound age";
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
     EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 3) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
@@ -360,6 +368,39 @@ TEST_P(Antilag, MatchesTheReference) {
 INSTANTIATE_TEST_SUITE_P(Threshold, Antilag, ::testing::Values(0.25f, 0.5f),
                          [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.25f ? std::string("t0_25") : std::string("t0_5"); });
 
+// ---- The blur bound ----------------------------------------------------------------
+
+rrc_channel_desc blur_bounded(rrc_channel_desc d, float B) {
+    d.blur_bound = B;
+    return d;
+}
+
+class BlurBound : public ::testing::TestWithParam<float> {};
+
+// The jittered, moving scene fetches history at fractions all over (0, 1): the
+// bound caps ages wherever B / b is below them, and the kernel's ages and values
+// must match the reference's, each blend mode, 1 and 4 components, fp16 and fp32,
+// BILINEAR and GAUSSIAN, with confidence, with the lag detector and rectification.
+TEST_P(BlurBound, MatchesTheReference) {
+    const float B = GetParam();
+    const std::vector<rrc_channel_desc> chs = {
+        blur_bounded(channel("b1h", 1, 0.9f, kFp16, RRC_BLEND_AGE_AWARE, kBil), B),
+        blur_bounded(channel("b1f", 1, 0.9f, kFp32, RRC_BLEND_FIXED, kBil, 0, 1), B),  // with confidence
+        blur_bounded(antilagged(rectified(gaussian(channel("b4h", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 0.0f), 1.0f), 1.5f, 0.25f),
+                     B),
+        blur_bounded(antilagged(channel("b4f", 4, 0.9f, kFp32, RRC_BLEND_AGE_AWARE, kBil), 3.0f, 0.25f), B),
+    };
+    std::vector<Mutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c)
+        mutants.push_back({std::string(chs[c].name) + " without the bound", c, [](rrc_channel_desc& d) { d.blur_bound = 0.0f; }});
+    mutants.push_back({"b1h half the bound", 0, [B](rrc_channel_desc& d) { d.blur_bound = 0.5f * B; }});
+    const std::string name = "blur_bound_" + std::to_string(B);
+    CaseStats st = run_accumulating(name.c_str(), chs, mutants, true);
+    EXPECT_GT(st.capped, 300) << "the blur bound hardly capped any history";
+}
+INSTANTIATE_TEST_SUITE_P(Bound, BlurBound, ::testing::Values(0.5f, 1.0f),
+                         [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.5f ? std::string("b0_5") : std::string("b1"); });
+
 // ---- The spatial fill -------------------------------------------------------------
 
 rrc_channel_desc filled(rrc_channel_desc d, uint32_t T, uint32_t r, float P) {
@@ -390,7 +431,8 @@ TEST_P(Fill, DisplaysTheFillOfTheUnfilledHistory) {
     const rrc_depth_mode mode = GetParam();
     const std::vector<rrc_channel_desc> chs = {
         filled(channel("mean1", 1, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil), 4, 1, 0.0f),
-        filled(channel("mean4", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 8, 2, 4.0f),
+        // The blur bound keeps capped pixels young; the fill must stay display-only there too.
+        blur_bounded(filled(channel("mean4", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 8, 2, 4.0f), 0.5f),
         filled(channel("reuse1", 1, 0.0f, kFp16, RRC_BLEND_REUSE, kBil), 8, 1, 4.0f),
         filled(channel("reuse4", 4, 0.0f, kFp32, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_NEAREST), 4, 2, 0.0f),
     };

@@ -26,28 +26,40 @@ struct ChannelSettings {
     uint32_t antilag = 0;
     float antilag_gamma = 0.0f;
     float antilag_threshold = 0.0f;
+    // 0.6 the blur bound (docs/CONVENTIONS.md, "The blur bound"), px^2; 0 = off.
+    float blur_bound = 0.0f;
 };
+
+/** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2: the best of
+ *  docs/PERFORMANCE.md, "The blur bound: what it buys, measured" (pcf bilinear and soft, 256x160). */
+constexpr float kSampleBlurBound = 0.5f;
 
 /** The sample's presets, one per application, chosen at the sample's own k (4 taps for pcf
  *  and env, one light point for soft) on its default moving-camera scene: the lowest RMSE
  *  against the fixed target (docs/PERFORMANCE.md, "Presets chosen from the fronts", where
  *  each value's figure is), a cure or finishing step only where it wins at 256x160 and at
  *  1024x640 (rrc-sample's accumulated RMSE, mean over seeds 0..3).  pcf: lambda 0.9, the
- *  lag detector with a narrow box (gamma_a 0.25, T 0.25), Catmull-Rom history and the
- *  spatial fill below age 2, not rectified (0.0357 against 0.0387 for the 0.5 preset,
- *  rectified and filled below age 4, at 256x160; 0.0230 against 0.0242 at 1024x640;
- *  docs/PERFORMANCE.md, "Chosen again from the preset's bias by region").  soft with the spatial fill (the sample
+ *  lag detector with a narrow box (gamma_a 0.25, T 0.25), the spatial fill below age 4, a
+ *  bilinear history with the blur bound B = 0.25 px^2, not rectified (0.0365 at 256x160 and
+ *  0.0212 at 1024x640, against 0.0387 and 0.0242 for the 0.5 preset: Catmull-Rom, rectified;
+ *  docs/PERFORMANCE.md, "Chosen again with the blur bound and the bias by region (0.6)").
+ *  soft with the spatial fill (the sample
  *  passes its PCSS estimate as the fallback, --fill-prior); the lag detector makes soft
  *  worse and changes nothing on env, which stay without.  AGE_AWARE everywhere: the same as
- *  FIXED on old pixels, the running mean on new ones. */
+ *  FIXED on old pixels, the running mean on new ones.  The blur bound (0.6) wins at both sizes
+ *  together with the fill (docs/PERFORMANCE.md, "The blur bound: what it buys, measured"; it
+ *  never acts on Catmull-Rom): soft with B = 0.5 px^2 (0.0572 against 0.0606, 0.0577
+ *  against 0.0595). */
 struct ChannelPresets {
-    ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 0, /*confidence*/ 0, /*rectify*/ 0,
-                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2, /*fill_radius*/ 0,
+    ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
+                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 1, /*antilag_gamma*/ 0.25f,
-                        /*antilag_threshold*/ 0.25f};
+                        /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
     ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
-                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8};
+                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
+                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
+                         /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.5f};
 };
 
 }  // namespace rrc_sample

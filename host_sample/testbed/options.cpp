@@ -127,11 +127,16 @@ std::string usage() {
            "                           --antilag is not given, else the library's, 2)\n"
            "  --antilag-threshold T    its relative gap that drops the history (default: as --antilag-gamma; the\n"
            "                           library's is 0.5)\n"
+           "  --blur-bound LIST        the blur bound on exactly these channels (pcf,env,soft, or none; default: the\n"
+           "                           presets', pcf 0.25 and soft 0.5 px^2): a bilinear or Gaussian history's age is capped so its stationary\n"
+           "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
+           "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
+           "                           when --blur-bound is not given, else 0.5)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
-           "                           pixels younger than T frames (default: pcf 2, the preset; env 0; 0 = off)\n"
+           "                           pixels younger than T frames (default: pcf 4, the preset; env 0; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
-           "  --history-filter F       every channel's history resampling: bilinear (default; pcf's preset catmull_rom),\n"
+           "  --history-filter F       every channel's history resampling: bilinear (default, the presets'),\n"
            "                           catmull_rom or nearest;\n"
            "                           gaussian: the pcf channel's only (the others stay bilinear)\n"
            "  --pcf-pattern P          disk (default: k taps uniform over the filter disk, unbiased for the exact disk\n"
@@ -154,6 +159,9 @@ Options parse_options(int argc, const char* const* argv) {
     // The signals whose channel gets the lag detector; not given: the presets' (channel_presets.h).
     std::optional<uint32_t> antilag;
     float antilag_gamma = 0.0f, antilag_threshold = 0.0f;
+    // The signals whose channel gets the blur bound; not given: the presets' (channel_presets.h).
+    std::optional<uint32_t> blur_bound;
+    float blur_bound_px2 = 0.0f;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
         if (c.option("--scene"))
@@ -200,6 +208,17 @@ Options parse_options(int argc, const char* const* argv) {
             }
             antilag = bits;
         }
+        else if (c.option("--blur-bound")) {
+            // "none": no channel (the presets' bound off); else the listed ones.
+            uint32_t bits = 0;
+            for (const std::string& name : c.names()) {
+                uint32_t s = 0;
+                if (name != "none" && !rrc_host::enum_value(kSignalNames, name, s)) c.fail("expected pcf, env, soft or none");
+                bits |= s;
+            }
+            blur_bound = bits;
+        } else if (c.option("--blur-bound-px2"))
+            blur_bound_px2 = c.number(1e-6f, RRC_MAX_BLUR_BOUND);
         else if (c.option("--antilag-gamma"))
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))
@@ -293,6 +312,22 @@ Options parse_options(int argc, const char* const* argv) {
                                 : antilag_threshold > 0.0f ? antilag_threshold
                                 : from_preset             ? ch->antilag_threshold
                                                           : 0.0f;
+    }
+    // Not given, --blur-bound keeps the presets' channels and B (--blur-bound-px2 overrides it);
+    // given, the listed channels get the given B or kSampleBlurBound.
+    uint32_t preset_bound_bits = 0;
+    for (auto [bit, ch] : {std::pair<uint32_t, const ChannelSettings*>{kSignalPcf, &presets.pcf}, {kSignalEnv, &presets.env},
+                           {kSignalSoft, &presets.soft}})
+        if (ch->blur_bound > 0.0f) preset_bound_bits |= bit;
+    const uint32_t bound_bits = blur_bound ? *blur_bound : preset_bound_bits;
+    if (bound_bits == 0 && blur_bound_px2 > 0.0f) throw OptionError("--blur-bound-px2 needs --blur-bound");
+    for (auto [bit, ch] : {std::pair<uint32_t, ChannelSettings*>{kSignalPcf, &o.channels.pcf}, {kSignalEnv, &o.channels.env},
+                           {kSignalSoft, &o.channels.soft}}) {
+        const bool from_preset = !blur_bound && ch->blur_bound > 0.0f;
+        ch->blur_bound = !(bound_bits & bit)       ? 0.0f
+                         : blur_bound_px2 > 0.0f  ? blur_bound_px2
+                         : from_preset            ? ch->blur_bound
+                                                  : kSampleBlurBound;
     }
     // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)

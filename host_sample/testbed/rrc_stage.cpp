@@ -30,6 +30,7 @@ std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPrese
         d.antilag = c.antilag;
         d.antilag_gamma = c.antilag ? c.antilag_gamma : 0.0f;
         d.antilag_threshold = c.antilag ? c.antilag_threshold : 0.0f;
+        d.blur_bound = c.blur_bound;
         return d;
     };
     std::vector<rrc_channel_desc> c;

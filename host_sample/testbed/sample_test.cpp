@@ -208,6 +208,9 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
 TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     Options o = tiny("fill_off");
     o.channels.soft.fill_age = 0;  // the preset fills: this run is the one without
+    // The sample's age image follows rrc's rule from the mask alone (shaders/age.comp): no
+    // shortened age (the preset's blur bound), or "age >= T" below would not mean "not filled".
+    o.channels.soft.blur_bound = 0.0f;
     o.channels.soft.fill_prior = 0.0f;
     o.validation = false;
     o.signals = kSignalSoft;
@@ -502,6 +505,23 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
         EXPECT_EQ(c.antilag, 0u);
         EXPECT_EQ(c.antilag_gamma, 0.0f) << "the library refuses the members without the detector";
     }
+    // The blur bound (0.6) on the listed channels only, B given or the sample's.
+    const char* bound[] = {"rrc-sample", "--blur-bound", "pcf,soft", "--blur-bound-px2", "0.25"};
+    o = parse_options(5, bound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, 0.25f);
+    EXPECT_EQ(o.channels.env.blur_bound, 0.0f);
+    EXPECT_EQ(o.channels.soft.blur_bound, 0.25f);
+    const char* bound_default[] = {"rrc-sample", "--blur-bound", "env"};
+    o = parse_options(3, bound_default);
+    EXPECT_EQ(o.channels.env.blur_bound, kSampleBlurBound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, 0.0f);
+    const char* no_bound[] = {"rrc-sample", "--blur-bound", "none"};
+    o = parse_options(3, no_bound);
+    for (const ChannelSettings& c : {o.channels.pcf, o.channels.env, o.channels.soft}) EXPECT_EQ(c.blur_bound, 0.0f);
+    // Not given: the presets' bound (channel_presets.h).
+    o = parse_options(1, no_bound);
+    EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
+    EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
     const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
     o = parse_options(5, fills);
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
@@ -511,8 +531,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 0u);
-    EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
-    EXPECT_EQ(p.pcf.fill_age, 2u);
+    EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_BILINEAR) << "the blur bound acts on bilinear histories only";
+    EXPECT_EQ(p.pcf.blur_bound, 0.25f);
+    EXPECT_EQ(p.soft.blur_bound, 0.5f);
+    EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
+    EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.pcf.antilag, 1u);
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
     EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);
@@ -549,6 +572,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--antilag", "none", "--antilag-threshold", "0.3"},
                                                        {"rrc-sample", "--antilag", "pcf,nope"},
                                                        {"rrc-sample", "--antilag", "pcf", "--antilag-gamma", "17"},
+                                                       {"rrc-sample", "--blur-bound", "fog"},
+                                                       {"rrc-sample", "--blur-bound", "none", "--blur-bound-px2", "0.5"},
+                                                       {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "65"},
+                                                       {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "0"},
                                                        {"rrc-sample", "--soft-lambda", "1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }

@@ -113,7 +113,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 5, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 6, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -233,6 +233,7 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_MAX_ANTILAG_GAMMA 16.0f
 #define RRC_DEFAULT_ANTILAG_THRESHOLD 0.5f    /* rrc_channel_desc.antilag_threshold (0.5) */
 #define RRC_MAX_ANTILAG_THRESHOLD 2.0f        /* the relative gap is below 2 */
+#define RRC_MAX_BLUR_BOUND 64.0f              /* rrc_channel_desc.blur_bound (0.6), px^2: a blur of 8 px standard deviation */
 #define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
@@ -291,6 +292,16 @@ typedef struct rrc_channel_desc {
     uint32_t antilag;
     float antilag_gamma;     /* the box's half width in sigmas, in (0, RRC_MAX_ANTILAG_GAMMA]; 0 = default */
     float antilag_threshold; /* the relative gap at which the history is dropped, in (0, RRC_MAX_ANTILAG_THRESHOLD]; 0 = default */
+    /* ---- 0.6: the blur bound (docs/CONVENTIONS.md, "The blur bound") ---- */
+    /* B > 0: the resampling blur a stationary history may accumulate, in
+     * px^2 per axis, in [0, RRC_MAX_BLUR_BOUND]; 0 = off.  On a blend, the
+     * history's age is capped at floor(B / b), b the second moment of this
+     * fetch's resampling weights (BILINEAR: f(1 - f); GAUSSIAN: plus
+     * blur_sigma^2; NEAREST and CATMULL_ROM: 0, never capped), so that the
+     * recursive filter's stationary blur lambda_eff/(1 - lambda_eff) * b
+     * stays within B (Yang et al. 2009).  Accumulating blends only (REUSE
+     * refuses it). */
+    float blur_bound;
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {

@@ -46,11 +46,15 @@ Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, con
     double lam = lambda_eff(ch, prev.age);
     const double* h = prev.rectified ? prev.h_rect : prev.h;  // only the blend formula uses the clamped H
     unsigned age = std::min(prev.age + 1u, ch.age_cap);
-    // The lag detector shortens the age of the blend row only (docs/CONVENTIONS.md, "The lag detector").
-    if (prev.antilag && prev.age_antilag < prev.age) {
-        const double na = prev.age_antilag;
+    // The lag detector and the blur bound shorten the age of the blend row only
+    // (docs/CONVENTIONS.md, "The lag detector", "The blur bound"): the smaller age wins.
+    unsigned shortened = prev.age;
+    if (prev.antilag) shortened = std::min(shortened, prev.age_antilag);
+    if (prev.blur_bounded) shortened = std::min(shortened, prev.age_blur);
+    if (shortened < prev.age) {
+        const double na = shortened;
         lam = std::min(lam, na / (na + 1.0));
-        age = std::min(prev.age_antilag + 1u, ch.age_cap);
+        age = std::min(shortened + 1u, ch.age_cap);
     }
     Update u;
     u.age = age;

@@ -28,6 +28,10 @@ struct Resampled {
     // `age` (n_a <= age; lambda_eff capped at n_a/(n_a + 1) where n_a < age).
     bool antilag = false;
     unsigned age_antilag = 0;
+    // The blur bound (finish.h): the age cap N; the blend row uses min(n_a, N)
+    // the same way (docs/CONVENTIONS.md, "The blur bound").
+    bool blur_bounded = false;
+    unsigned age_blur = 0;
 };
 
 struct Update {

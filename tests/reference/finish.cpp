@@ -117,6 +117,62 @@ void gaussian_weights(double t, double g, double w[4]) {
     w[3] = g * t;
 }
 
+double resampling_blur(const ChannelParams& ch, double f) {
+    // The weights' second moment about the fetch point f, tap by tap.
+    if (ch.filter == RRC_HISTORY_FILTER_BILINEAR) return (1.0 - f) * f * f + f * (1.0 - f) * (1.0 - f);
+    if (ch.filter == RRC_HISTORY_FILTER_GAUSSIAN) {
+        double w[4];
+        gaussian_weights(f, ch.blur_g, w);
+        double m = 0.0;
+        for (int i = 0; i < 4; ++i) m += w[i] * (i - 1 - f) * (i - 1 - f);
+        return m;
+    }
+    return 0.0;  // NEAREST moves, Catmull-Rom reproduces quadratics: no second moment
+}
+
+namespace {
+
+// The range of one axis's blur over sample coordinates q +- e.  The fraction
+// of q - 0.5 runs from frac(p0) to frac(p1), wrapping through 1 = 0 where the
+// floor differs; the moment is concave in f (a parabola peaking at 1/2) and
+// equal at f = 0 and f -> 1, so its extremes lie at the ends, at 0 and at 1/2.
+void blur_range(const ChannelParams& ch, double q, double e, double& lo, double& hi) {
+    const double p0 = q - 0.5 - e, p1 = q - 0.5 + e;
+    const double f0 = p0 - std::floor(p0), f1 = p1 - std::floor(p1);
+    const double b0 = resampling_blur(ch, f0), b1 = resampling_blur(ch, f1);
+    lo = std::min(b0, b1);
+    hi = std::max(b0, b1);
+    if (std::floor(p0) != std::floor(p1)) {
+        lo = std::min(lo, resampling_blur(ch, 0.0));
+        if (std::floor(p1) - std::floor(p0) > 1.0 || f0 <= 0.5 || f1 >= 0.5) hi = std::max(hi, resampling_blur(ch, 0.5));
+    } else if (f0 <= 0.5 && f1 >= 0.5) {
+        hi = std::max(hi, resampling_blur(ch, 0.5));
+    }
+}
+
+// N = floor(B / b) capped at RRC_MAX_AGE_CAP; a b below the fp32 normal range is no blur.
+unsigned blur_cap(double B, double b) {
+    if (!(b >= 0x1p-126)) return RRC_MAX_AGE_CAP;
+    return static_cast<unsigned>(std::min(std::floor(B / b), static_cast<double>(RRC_MAX_AGE_CAP)));
+}
+
+}  // namespace
+
+BlurBound blur_bound_age(const ChannelParams& ch, double qx, double qy, double q_err) {
+    BlurBound r;
+    const auto frac = [](double q) { return (q - 0.5) - std::floor(q - 0.5); };
+    r.b = std::max(resampling_blur(ch, frac(qx)), resampling_blur(ch, frac(qy)));
+    r.age = blur_cap(ch.blur_bound, r.b);
+    double xlo, xhi, ylo, yhi;
+    blur_range(ch, qx, q_err, xlo, xhi);
+    blur_range(ch, qy, q_err, ylo, yhi);
+    // fp32: b's products and sums, and B / b, each within a relative 2e-6.
+    const double slack = 2e-6;
+    r.age_lo = blur_cap(ch.blur_bound, std::max(xhi, yhi) * (1.0 + slack));
+    r.age_hi = blur_cap(ch.blur_bound, std::max(xlo, ylo) * (1.0 - slack));
+    return r;
+}
+
 double fill_depth_proxy(rrc_depth_mode mode, double z) {
     switch (mode) {
         case RRC_DEPTH_MODE_STANDARD: return 1.0 / (1.0 - z);

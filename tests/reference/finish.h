@@ -60,6 +60,27 @@ struct Antilag {
 // box's mu and sigma (rectify_box; its gamma is not used).
 Antilag antilag_age(const ChannelParams& ch, const RectifyBox& box, const double* h, unsigned n_prev);
 
+// ---- The blur bound -----------------------------------------------------------
+
+struct BlurBound {
+    double b = 0.0;          // the fetch's blur: max over axes of its weights' second moment, px^2
+    unsigned age = 65535;    // N = floor(B / b), at most RRC_MAX_AGE_CAP (b = 0: no cap)
+    // The caps an fp32 evaluation can give: N over the fraction within the
+    // sample position's bound (q_err on each axis; a fraction whose floor may
+    // differ takes both sides) and b, B / b within 4 ulp.  age_lo <= age <= age_hi.
+    unsigned age_lo = 65535, age_hi = 65535;
+};
+
+// The second moment about the fetch point of one axis's resampling weights at
+// fraction f (taps at -1, 0, 1, 2 relative to floor(q - 0.5)): BILINEAR
+// f(1 - f), GAUSSIAN f(1 - f) + 2g (the moment summed over gaussian_weights),
+// NEAREST and CATMULL_ROM 0 (docs/CONVENTIONS.md, "The blur bound").
+double resampling_blur(const ChannelParams& ch, double f);
+
+// The age cap of a blend whose history is fetched at q = (qx, qy) (the
+// previous frame's sample coordinate), each known within q_err.
+BlurBound blur_bound_age(const ChannelParams& ch, double qx, double qy, double q_err);
+
 // ---- The Gaussian history filter -------------------------------------------
 
 // Per-axis weights of taps i0 - 1 .. i0 + 2 for fraction t: the 3-tap blur

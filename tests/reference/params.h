@@ -31,6 +31,8 @@ struct ChannelParams {
     bool antilag = false;
     double antilag_gamma = 2.0;      // gamma_a
     double antilag_threshold = 0.5;  // T_a
+    // 0.6 the blur bound (docs/CONVENTIONS.md "The blur bound"): B in px^2, 0 = off.
+    double blur_bound = 0.0;
 };
 
 struct Params {

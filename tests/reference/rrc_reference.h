@@ -70,6 +70,14 @@ struct ChannelResult {
     std::vector<uint16_t> antilag_age;      // W*H
     std::vector<uint8_t> antilag_uncertain;  // W*H
     std::vector<double> antilag_c;          // W*H
+    // The blur bound (reference/finish.h): where it applied, the cap N (else
+    // 65535), whether it capped the age (N < n_prev), whether an fp32
+    // evaluation could give another age (the smaller of N and the lag
+    // detector's n_a, against n_prev), and b.
+    std::vector<uint16_t> blur_age;      // W*H
+    std::vector<uint8_t> blur_capped;     // W*H
+    std::vector<uint8_t> blur_uncertain;  // W*H
+    std::vector<double> blur_b;           // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
     // not rounded to fp16); empty otherwise.

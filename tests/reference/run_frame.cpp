@@ -68,6 +68,10 @@ FrameResult allocate(const Params& p) {
         c.antilag_age.assign(n, 0);
         c.antilag_uncertain.assign(n, 0);
         c.antilag_c.assign(n, 1.0);
+        c.blur_age.assign(n, RRC_MAX_AGE_CAP);
+        c.blur_uncertain.assign(n, 0);
+        c.blur_capped.assign(n, 0);
+        c.blur_b.assign(n, 0.0);
         r.channels.push_back(std::move(c));
     }
     return r;
@@ -210,6 +214,18 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                         res.channels[c].antilag_age[px] = static_cast<uint16_t>(a.age);
                         res.channels[c].antilag_uncertain[px] = a.age_lo != a.age_hi;
                         res.channels[c].antilag_c[px] = a.c;
+                    }
+                    // The blur bound: the same case, from the fetch's fraction.
+                    if (ch.blur_bound > 0.0 && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
+                        const BlurBound bb = blur_bound_age(ch, t.qx.v, t.qy.v, std::max(t.qx.err, t.qy.err) * scale);
+                        r.blur_bounded = true;
+                        r.age_blur = bb.age;
+                        res.channels[c].blur_age[px] = static_cast<uint16_t>(bb.age);
+                        res.channels[c].blur_b[px] = bb.b;
+                        res.channels[c].blur_capped[px] = bb.age < r.age;
+                        // The stored age min(min(n_a, N), n_prev) + 1 may differ where N is uncertain.
+                        const unsigned other = r.antilag ? r.age_antilag : r.age;
+                        res.channels[c].blur_uncertain[px] = std::min(other, bb.age_lo) != std::min(other, bb.age_hi);
                     }
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;

@@ -62,6 +62,11 @@ if(NOT interface MATCHES "RRC_SPEC_CHANNEL2\\(property, slot\\) \\(([0-9]+) \\+"
   message(FATAL_ERROR "rrc_kernel_interface.h defines no RRC_SPEC_CHANNEL2")
 endif()
 set(ID_CHANNEL2_FIRST ${CMAKE_MATCH_1})
+# 0.6's third range (RRC_SPEC_CHANNEL3, RRC_CHANNEL3_PROPERTY_*).
+if(NOT interface MATCHES "RRC_SPEC_CHANNEL3\\(property, slot\\) \\(([0-9]+) \\+")
+  message(FATAL_ERROR "rrc_kernel_interface.h defines no RRC_SPEC_CHANNEL3")
+endif()
+set(ID_CHANNEL3_FIRST ${CMAKE_MATCH_1})
 function(rrc_slot_ids prefix first property out)
   rrc_define(${prefix}_${property} k)
   set(ids "")
@@ -78,9 +83,10 @@ endforeach()
 foreach(p RECTIFY FILL_AGE ANTILAG)
   rrc_slot_ids(RRC_CHANNEL2_PROPERTY ${ID_CHANNEL2_FIRST} ${p} IDS_${p})
 endforeach()
+rrc_slot_ids(RRC_CHANNEL3_PROPERTY ${ID_CHANNEL3_FIRST} BLUR_BOUND IDS_BLUR_BOUND)
 
 # Feature -> its spec ids and the value that turns it on.
-set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG)
+set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG BLUR_BOUND)
 set(F_NOCACHE_IDS ${ID_HAS_NOCACHE})
 set(F_INTEROP_IDS ${ID_INTEROP})
 set(F_ADAPTIVE_IDS ${ID_ADAPTIVE})
@@ -91,6 +97,7 @@ set(F_HOST_AGE_IDS ${ID_HOST_AGE_MASK})
 set(F_RECTIFY_IDS ${IDS_RECTIFY})
 set(F_FILL_IDS ${IDS_FILL_AGE})
 set(F_ANTILAG_IDS ${IDS_ANTILAG})
+set(F_BLUR_BOUND_IDS ${IDS_BLUR_BOUND})
 foreach(f IN LISTS features)
   set(F_${f}_ON true)
 endforeach()
@@ -106,7 +113,10 @@ list(GET IDS_BLEND 1 slot1_blend)
 # defaults: what rrc_create's defaults specialise (every feature off).
 set(base_names defaults interop all_on)
 set(BASE_defaults_SET "")
+# BLUR_BOUND (0.6) is checked in all_on only: this check is the suite's slowest,
+# and all_on is the strictest base (every other feature's code beside it).
 set(BASE_defaults_FEATURES ${features})
+list(REMOVE_ITEM BASE_defaults_FEATURES BLUR_BOUND)
 # interop: host images, REVERSED depth, two channels: slot 0 the default
 # packed fp16 scalar, slot 1 RGBA fp32, Catmull-Rom, AGE_AWARE.
 set(BASE_interop_SET ${ID_INTEROP}:true ${ID_DEPTH_MODE}:1 ${ID_CHANNEL_COUNT}:2

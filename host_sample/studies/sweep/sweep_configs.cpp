@@ -68,11 +68,22 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     a.antilag_threshold = kSweepAntilagThreshold;
                     run.configs.push_back({app, a});
                 }
-            // rrc-sample's pcf preset (testbed/channel_presets.h: Catmull-Rom, the narrow lag
-            // detector, the fill below age 2), which no row above spells: the targets
-            // under motion are its (docs/PERFORMANCE.md, "Targets under motion"). env's and
-            // soft's presets are rows above (age-aware lambda 0.8; soft's with the fill at 8 and
-            // cap 64, here without the PCSS fallback the sweep's frames do not carry).
+            // The blur bound (docs/CONVENTIONS.md, "The blur bound"), each row the twin of
+            // a row without it: pcf the rectified finishing row, env the plain age-aware
+            // bilinear row, soft the fill row (age cap 64, T = 8).
+            if (o.blur_bound)
+                for (float lambda : o.lambdas) {
+                    rrc_sample::ChannelSettings b{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+                    if (app.signal == rrc_sample::kSignalPcf) b.rectify = 1;
+                    if (app.signal == rrc_sample::kSignalSoft) b.age_cap = 64, b.fill_age = 8;
+                    b.blur_bound = kSweepBlurBound;
+                    run.configs.push_back({app, b});
+                }
+            // rrc-sample's pcf preset (testbed/channel_presets.h), which no row above spells:
+            // the targets under motion are its (docs/PERFORMANCE.md, "Targets under motion").
+            // env's preset is a row above (age-aware lambda 0.8), soft's nearly (the fill row
+            // at 8 and cap 64 with the blur bound, here without the PCSS fallback the sweep's
+            // frames do not carry).
             if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
                 run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
         }
@@ -118,6 +129,11 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {
         char b[48];
         std::snprintf(b, sizeof b, "_g%g_t%g", (double)c.antilag_gamma, (double)c.antilag_threshold);
+        s += b;
+    }
+    if (c.blur_bound > 0.0f) {
+        char b[32];
+        std::snprintf(b, sizeof b, "+blur%g", (double)c.blur_bound);
         s += b;
     }
     return s;

@@ -49,6 +49,8 @@ std::string sweep_usage() {
            "  --no-antilag             no rows for the lag detector (age-aware, gamma_a 1, threshold 0.25: pcf rectified,\n"
            "                           env; never soft) and no row for rrc-sample's pcf preset (also dropped by\n"
            "                           --no-finishing)\n"
+           "  --no-blur-bound          no rows for the blur bound (age-aware, bilinear, B 0.5 px^2: pcf rectified, env,\n"
+           "                           soft with the fill rows' settings)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -122,6 +124,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.finishing = false;
         else if (c.flag("--no-antilag"))
             o.antilag = false;
+        else if (c.flag("--no-blur-bound"))
+            o.blur_bound = false;
         else if (c.option("--signals"))
             o.signals = rrc_sample::signal_bits(c);
         else if (c.option("--motion"))

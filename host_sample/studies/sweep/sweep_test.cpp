@@ -205,6 +205,14 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
         ASSERT_NE(cured, nullptr) << signal;
         EXPECT_LT(cured->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
     }
+    // The blur bound's rows (on by default) run, under validation, and still accumulate.
+    for (uint32_t signal : {1u, 2u, 4u}) {
+        const RrcRow* bounded = nullptr;
+        for (const RrcRow& row : r.rrc)
+            if (row.config.app.signal == signal && row.config.channel.blur_bound > 0.0f) bounded = &row;
+        ASSERT_NE(bounded, nullptr) << signal;
+        EXPECT_LT(bounded->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
+    }
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
@@ -222,10 +230,9 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
         for (const RrcConfig& c : run.configs) {
             if (!c.channel.antilag) continue;
             ASSERT_NE(c.app.signal, (uint32_t)rrc_sample::kSignalSoft) << "the detector drops right soft histories";
-            if (c.channel.filter == RRC_HISTORY_FILTER_CATMULL_ROM) {  // rrc-sample's pcf preset, spelled out once
+            if (std::memcmp(&c.channel, &preset, sizeof preset) == 0) {  // rrc-sample's pcf preset, spelled out once
                 EXPECT_EQ(c.app.signal, (uint32_t)rrc_sample::kSignalPcf);
-                EXPECT_EQ(std::memcmp(&c.channel, &preset, sizeof preset), 0);
-                EXPECT_EQ(filter_label(c.channel), "catmull-rom+fill2+antilag_g0.25_t0.25");
+                EXPECT_NE(filter_label(c.channel).find("+antilag_g0.25_t0.25"), std::string::npos) << "its detector's own settings";
                 presets++;
                 continue;
             }
@@ -246,6 +253,42 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
     EXPECT_FALSE(off.antilag);
     for (const RrcRun& run : rrc_runs(off, all))
         for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.antilag, 0u);
+}
+
+TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
+    SweepOptions o;
+    o.rrc_taps = {4};
+    o.lambdas = {0.8f, 0.9f};
+    const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
+    int bounded = 0;
+    // rrc-sample's pcf preset row is the preset whatever it holds (--no-antilag drops it).
+    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
+    auto is_preset = [&](const RrcConfig& c) { return std::memcmp(&c.channel, &preset, sizeof preset) == 0; };
+    const std::vector<RrcRun> runs = rrc_runs(o, all);
+    for (const RrcRun& run : runs)
+        for (const RrcConfig& c : run.configs) {
+            if (c.channel.blur_bound == 0.0f || is_preset(c)) continue;
+            ++bounded;
+            EXPECT_EQ(c.channel.blur_bound, kSweepBlurBound);
+            EXPECT_EQ(c.channel.blend, RRC_BLEND_AGE_AWARE);
+            EXPECT_EQ(c.channel.filter, RRC_HISTORY_FILTER_BILINEAR) << "the bound never acts on Catmull-Rom";
+            EXPECT_EQ(c.channel.antilag, 0u);
+            // Its twin: the same row without the bound, in the same run.
+            rrc_sample::ChannelSettings twin = c.channel;
+            twin.blur_bound = 0.0f;
+            int twins = 0;
+            for (const RrcConfig& d : run.configs)
+                twins += d.app.signal == c.app.signal && filter_label(d.channel) == filter_label(twin) && d.channel.lambda == twin.lambda &&
+                         d.channel.blend == twin.blend && d.channel.age_cap == twin.age_cap && d.channel.blur_bound == 0.0f;
+            EXPECT_EQ(twins, 1) << c.app.name << " " << filter_label(c.channel) << " lambda " << c.channel.lambda;
+        }
+    EXPECT_EQ(bounded, 6);  // pcf, env and soft at two lambdas
+    const char* argv[] = {"rrc-sweep", "--no-blur-bound"};
+    const SweepOptions off = parse_sweep_options(2, argv);
+    EXPECT_FALSE(off.blur_bound);
+    for (const RrcRun& run : rrc_runs(off, all))
+        for (const RrcConfig& c : run.configs)
+            if (!is_preset(c)) EXPECT_EQ(c.channel.blur_bound, 0.0f);
 }
 
 TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
@@ -310,7 +353,8 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     // rrc-sample's pcf preset (its lag detector on) against the same channel without it.
     const RectifyRow &bare = r.rows[3], &preset = r.rows[4];
     ASSERT_TRUE(bare.preset.size() && preset.preset.size() && preset.base == 3 && bare.base == -1);
-    EXPECT_TRUE(preset.antilag && !bare.antilag && preset.channel.filter == RRC_HISTORY_FILTER_CATMULL_ROM);
+    const rrc_sample::ChannelSettings pcf_preset = rrc_sample::ChannelPresets{}.pcf;
+    EXPECT_TRUE(preset.antilag && !bare.antilag && std::memcmp(&preset.channel, &pcf_preset, sizeof pcf_preset) == 0);
     EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's lag detector must halve its lag bias behind the moving light";
 }
 

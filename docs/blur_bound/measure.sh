@@ -1,0 +1,23 @@
+#!/bin/sh
+# The blur bound's rows of docs/PERFORMANCE.md ("The blur bound: what it buys,
+# measured"): each configuration's rrc-sample "RMSE accumulated" (and the 4k
+# brute force) averaged over --seed 0..3, one signal a run.
+#   docs/blur_bound/measure.sh SIZE SIGNAL "OPTIONS" ...   (run from the repository root)
+# prints one table row per OPTIONS string (quote each; "" = the preset).
+set -e
+size=$1 signal=$2
+shift 2
+bin=${RRC_SAMPLE:-build/release/bin/rrc-sample}
+out=${OUT:-/tmp/rrc_blur_bound}
+for opts in "$@"; do
+    acc=0 bf=0
+    for s in 0 1 2 3; do
+        dir=$out/$(echo "$size $signal $opts $s" | tr -c 'A-Za-z0-9.\n' _)
+        # shellcheck disable=SC2086
+        $bin --size "$size" --frames 60 --reference-every 10 --no-images --quiet --seed $s --signals "$signal" $opts --out "$dir" >/dev/null
+        row=$(grep "^| $signal | " "$dir/summary.md" | head -1)
+        acc=$(echo "$row" | awk -F'|' -v a="$acc" '{print a + $5}')
+        bf=$(echo "$row" | awk -F'|' -v a="$bf" '{print a + $4}')
+    done
+    echo "$size $signal $opts" | awk -v a="$acc" -v b="$bf" '{printf "| %s | %.4f | %.4f | %.2fx |\n", $0, a / 4, b / 4, a / b}'
+done
