@@ -33,7 +33,7 @@
 # builds of every module are equal, and the instruction counts with the
 # feature on are reported (where "on" equals "off", the feature has no code
 # in that base and module).
-cmake_minimum_required(VERSION 3.16)
+cmake_minimum_required(VERSION 3.21)  # file(COPY_FILE)
 
 foreach(var GLSLANG SPIRV_OPT SPIRV_REMAP SPIRV_DIS KERNEL_DIR INCLUDE_DIR WORK_DIR)
   if(NOT DEFINED ${var})
@@ -163,7 +163,17 @@ endfunction()
 
 # Specialise <src>.spv with the "id:value" list, optimise, canonicalise:
 # <dst>.spv and its disassembly <dst>.dis; <count_out> = its instruction count.
+# The same <src> with the same list gives the same module (the tools are
+# deterministic): it is made once and copied, e.g. the `defaults` base's
+# specialised module of a pass, the same for every feature checked there.
 function(rrc_specialise src dst settings count_out)
+  string(MD5 key "${src} ${settings}")
+  if(DEFINED made_${key})
+    file(COPY_FILE ${WORK_DIR}/${made_${key}}.spv ${WORK_DIR}/${dst}.spv)
+    file(COPY_FILE ${WORK_DIR}/${made_${key}}.dis ${WORK_DIR}/${dst}.dis)
+    set(${count_out} ${count_${key}} PARENT_SCOPE)
+    return()
+  endif()
   set(args "")
   if(settings)
     string(REPLACE ";" " " pairs "${settings}")
@@ -180,6 +190,8 @@ function(rrc_specialise src dst settings count_out)
     message(FATAL_ERROR "${dst}: no instructions")
   endif()
   set(${count_out} ${n} PARENT_SCOPE)
+  set(made_${key} ${dst} PARENT_SCOPE)
+  set(count_${key} ${n} PARENT_SCOPE)
 endfunction()
 
 # ---- The check ---------------------------------------------------------------

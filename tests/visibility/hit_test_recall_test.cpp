@@ -26,7 +26,6 @@
 #include "support/scene_frames.h"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
 using namespace rrc_test;
@@ -37,7 +36,6 @@ using rrc_scene::VisibilityMap;
 
 namespace {
 
-const double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRecallTarget = 0.995;
 
 // Which scene a case renders (every one with Halton jitter: the sample a
@@ -241,17 +239,9 @@ struct CardCase {
 };
 
 std::vector<CardCase> card_cases() {
-    const Depth depths[] = {
-        {"standard_f32", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-        {"reversed_f32", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-        {"reversed_f32_inf", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, kInf},
-        {"standard_u24", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM24, 0.1, 100.0},
-        {"standard_u16", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM16, 0.1, 100.0},
-        {"linear", RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    };
     std::vector<CardCase> c;
-    for (double angle : {0.0, 60.0, 80.0}) {
-        for (const Depth& d : depths) {
+    for (double angle : rrc_visibility::kCardAngles) {
+        for (const Depth& d : rrc_visibility::kCardDepths) {
             const bool resolves = d.format != RRC_DEPTH_FORMAT_UNORM16 && d.mode != RRC_DEPTH_MODE_LINEAR;
             for (rrc_reprojection s : {RRC_REPROJECTION_PREV_CLIP, RRC_REPROJECTION_MOTION_DEPTH}) {
                 // MOTION_DEPTH carries the same expected depth as PREV_CLIP: one depth setup is enough.

@@ -1,7 +1,6 @@
 #include "peer_comparison.h"
 
 #include <cmath>
-#include <limits>
 
 #include "depth_setups.h"
 #include "peer_scene.h"
@@ -16,19 +15,9 @@ namespace {
 using rrc_ref::peers::kAllPeerTests;
 using rrc_ref::peers::PeerTest;
 using rrc_visibility::Depth;
+using rrc_visibility::kCardAngles;
+using rrc_visibility::kCardDepths;
 using rrc_visibility::kDepths;
-
-const double kInf = std::numeric_limits<double>::infinity();
-
-// The thin card's depth setups (hit_test_recall_test.cpp, card_cases).
-const Depth kCardDepths[] = {
-    {"standard_f32", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"reversed_f32", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-    {"reversed_f32_inf", RRC_DEPTH_MODE_REVERSED, RRC_DEPTH_FORMAT_FLOAT32, 0.1, kInf},
-    {"standard_u24", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM24, 0.1, 100.0},
-    {"standard_u16", RRC_DEPTH_MODE_STANDARD, RRC_DEPTH_FORMAT_UNORM16, 0.1, 100.0},
-    {"linear", RRC_DEPTH_MODE_LINEAR, RRC_DEPTH_FORMAT_FLOAT32, 0.1, 100.0},
-};
 
 rrc_scene::SceneConfig config_of(const Depth& d) {
     rrc_scene::SceneConfig sc = rrc_test::scene_config(96, 64, d.mode, d.format, d.far_plane);
@@ -90,7 +79,7 @@ std::vector<CaseSpec> comparison_cases() {
         if (i == 1) s.config.camera_path = rrc_scene::CameraPath::GRAZING;
         c.push_back(s);
     }
-    for (double angle : {0.0, 60.0, 80.0})
+    for (double angle : kCardAngles)
         for (const Depth& d : kCardDepths) {
             CaseSpec s{"card_" + std::to_string(int(angle)) + "deg_prev_clip_" + d.name, config_of(d), 4, {}};
             s.config.jitter = false;  // as the visibility suite's card (scene_config's default)
