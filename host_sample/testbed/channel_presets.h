@@ -49,13 +49,15 @@ constexpr float kSampleBlurBound = 0.5f;
  *  FIXED on old pixels, the running mean on new ones.  The blur bound (0.6) wins at both sizes
  *  together with the fill (docs/PERFORMANCE.md, "The blur bound: what it buys, measured"; it
  *  never acts on Catmull-Rom): soft with B = 0.5 px^2 (0.0572 against 0.0606, 0.0577
- *  against 0.0595). */
+ *  against 0.0595).  env with the spatial fill below age 4, no fallback (0.0430 against
+ *  0.0471 at 256x160, 0.0604 against 0.0612 at 1024x640). */
 struct ChannelPresets {
     ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 1, /*antilag_gamma*/ 0.25f,
                         /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
-    ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+    ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
+                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4};
     ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,

@@ -134,7 +134,7 @@ std::string usage() {
            "                           when --blur-bound is not given, else 0.5)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
-           "                           pixels younger than T frames (default: pcf 4, the preset; env 0; 0 = off)\n"
+           "                           pixels younger than T frames (default: 4 on both, the presets; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default, the presets'),\n"
            "                           catmull_rom or nearest;\n"

@@ -540,6 +540,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
     EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);
     EXPECT_EQ(p.env.rectify, 0u);
+    EXPECT_EQ(p.env.fill_age, 4u);
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.8f);

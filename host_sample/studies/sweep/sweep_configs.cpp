@@ -81,9 +81,9 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                 }
             // rrc-sample's pcf preset (testbed/channel_presets.h), which no row above spells:
             // the targets under motion are its (docs/PERFORMANCE.md, "Targets under motion").
-            // env's preset is a row above (age-aware lambda 0.8), soft's nearly (the fill row
-            // at 8 and cap 64 with the blur bound, here without the PCSS fallback the sweep's
-            // frames do not carry).
+            // env's preset (lambda 0.8 with the fill below age 4) is not a row; soft's nearly is
+            // (the fill row at 8 and cap 64 with the blur bound, here without the PCSS fallback
+            // the sweep's frames do not carry).
             if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
                 run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
         }
