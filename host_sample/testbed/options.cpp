@@ -52,6 +52,19 @@ uint32_t signal_bits(rrc_host::ArgCursor& c) {
     return bits;
 }
 
+namespace {
+/** A per-channel option's list: signal names, or "none" for no channel (the presets' setting off). */
+uint32_t signal_bits_or_none(rrc_host::ArgCursor& c) {
+    uint32_t bits = 0;
+    for (const std::string& name : c.names()) {
+        uint32_t s = 0;
+        if (name != "none" && !rrc_host::enum_value(kSignalNames, name, s)) c.fail("expected pcf, env, soft or none");
+        bits |= s;
+    }
+    return bits;
+}
+}  // namespace
+
 std::string signal_list(uint32_t s) {
     std::string out;
     if (s & kSignalPcf) out += "pcf,";
@@ -198,26 +211,11 @@ Options parse_options(int argc, const char* const* argv) {
                 ch->rectify = g > 0.0f ? 1u : 0u;
                 ch->rectify_gamma = g == RRC_DEFAULT_RECTIFY_GAMMA ? 0.0f : g;
             }
-        } else if (c.option("--antilag")) {
-            // "none": no channel (the presets' detector off); else the listed ones.
-            uint32_t bits = 0;
-            for (const std::string& name : c.names()) {
-                uint32_t s = 0;
-                if (name != "none" && !rrc_host::enum_value(kSignalNames, name, s)) c.fail("expected pcf, env, soft or none");
-                bits |= s;
-            }
-            antilag = bits;
-        }
-        else if (c.option("--blur-bound")) {
-            // "none": no channel (the presets' bound off); else the listed ones.
-            uint32_t bits = 0;
-            for (const std::string& name : c.names()) {
-                uint32_t s = 0;
-                if (name != "none" && !rrc_host::enum_value(kSignalNames, name, s)) c.fail("expected pcf, env, soft or none");
-                bits |= s;
-            }
-            blur_bound = bits;
-        } else if (c.option("--blur-bound-px2"))
+        } else if (c.option("--antilag"))
+            antilag = signal_bits_or_none(c);
+        else if (c.option("--blur-bound"))
+            blur_bound = signal_bits_or_none(c);
+        else if (c.option("--blur-bound-px2"))
             blur_bound_px2 = c.number(1e-6f, RRC_MAX_BLUR_BOUND);
         else if (c.option("--antilag-gamma"))
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
