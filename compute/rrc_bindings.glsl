@@ -68,5 +68,7 @@
 #define RRC_DECLARE_QUADS layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
 // FILL_LIST: the fill list (rrc_list.glsl)
 #define RRC_DECLARE_FILL_LIST layout(std430, set = 0, binding = RRC_BINDING_FILL_LIST) buffer FillList { uint words[]; } u_fill;
+// VIEW: the view lobe's camera (rrc_kernel_interface.h), read only
+#define RRC_DECLARE_VIEW layout(std430, set = 0, binding = RRC_BINDING_VIEW) readonly buffer View { mat4 Q; vec4 d; } u_view;
 
 #endif

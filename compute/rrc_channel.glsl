@@ -152,10 +152,16 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         n_blend = min(n_blend, uint(min(floor(ratio), float(RRC_MAX_AGE_CAP))));
     }
 
+    // -- the view-dependent history (docs/CONVENTIONS.md, "The view-dependent
+    //    history"): the pixel's view turn theta caps the age at floor(alpha / theta),
+    //    so the history's mean offset in view direction stays within alpha.
+    if (CH_(_VIEW_LOBE) && view_theta >= RRC_FLT_MIN)
+        n_blend = min(n_blend, uint(min(floor(CH_(_VIEW_LOBE_RAD) / view_theta), float(RRC_MAX_AGE_CAP))));
+
     // -- the table of docs/CONVENTIONS.md
     float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
     // A shortened age caps lambda_eff at n_a/(n_a + 1) (0: the sample alone).
-    const bool SHORTENED_ = CH_(_ANTILAG) || CH_(_BLUR_BOUND);
+    const bool SHORTENED_ = CH_(_ANTILAG) || CH_(_BLUR_BOUND) || CH_(_VIEW_LOBE);
     if (SHORTENED_) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;

@@ -93,6 +93,13 @@ RRC_SLOTS_OFF(bool, BLUR_BOUND, false)
 RRC_SLOTS3(bool, BLUR_BOUND, BLUR_BOUND, false)
 #endif
 RRC_SLOTS3(float, BLUR_BOUND_PX2, BLUR_BOUND_PX2, 0.0)
+// 0.7, the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): the same range.
+#ifdef RRC_WITHOUT_VIEW_LOBE  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(bool, VIEW_LOBE, false)
+#else
+RRC_SLOTS3(bool, VIEW_LOBE, VIEW_LOBE, false)
+#endif
+RRC_SLOTS3(float, VIEW_LOBE_RAD, VIEW_LOBE_RAD, 0.0)
 #undef RRC_SLOTS3
 #undef RRC_SLOTS_OFF
 // Slot selectors: called with a literal slot, they fold to one constant.
@@ -117,6 +124,8 @@ RRC_SLOT_SELECT(float, ANTILAG_GAMMA)
 RRC_SLOT_SELECT(float, ANTILAG_THRESHOLD)
 RRC_SLOT_SELECT(bool, BLUR_BOUND)
 RRC_SLOT_SELECT(float, BLUR_BOUND_PX2)
+RRC_SLOT_SELECT(bool, VIEW_LOBE)
+RRC_SLOT_SELECT(float, VIEW_LOBE_RAD)
 
 // Which channel slots write the host's output and age images in this pass
 // (interop, and the standalone fill's displayed values): chosen by the frame

@@ -68,7 +68,10 @@
 // of slot c has id 104 + 4*k + c.
 #define RRC_CHANNEL3_PROPERTY_BLUR_BOUND 0      // bool: the blur bound acts (B > 0 and a BILINEAR or GAUSSIAN filter)
 #define RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2 1  // float B, px^2 (docs/CONVENTIONS.md, "The blur bound")
-#define RRC_CHANNEL3_PROPERTY_COUNT 2           // ids 104..111
+// 0.7, the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): the same range.
+#define RRC_CHANNEL3_PROPERTY_VIEW_LOBE 2       // bool: the view lobe acts (alpha > 0)
+#define RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD 3   // float alpha, radians
+#define RRC_CHANNEL3_PROPERTY_COUNT 4           // ids 104..119
 #define RRC_SPEC_CHANNEL3(property, slot) (104 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
 // The lag detector's darkness term: added to the relative gap's denominator so
 // that a history and a signal both near 0 do not make a large relative gap
@@ -137,6 +140,14 @@
 // "The spatial fill"): a count, a VkDispatchIndirectCommand of groups of
 // RRC_FILL_LIST_PER_GROUP pixels, then one word x | y << 16 a pixel.
 #define RRC_BINDING_FILL_LIST 32
+// The view buffer (library-owned, RRC_SPEC_VIEW_LOBE contexts only): this
+// frame's camera for the view lobe, std430 { mat4 Q; vec4 d; }: Q =
+// translate(-C) * inverse(VP_cur) (the pixel's clip position to its surface
+// point relative to the eye, homogeneous), d.xyz = C_prev - C; formed in
+// double on the CPU and written by the frame's own commands
+// (plugin/accumulator_core.cpp).  Bound to every per-pixel pass.
+#define RRC_BINDING_VIEW 33
+#define RRC_VIEW_BUFFER_FLOATS 20
 #define RRC_FILL_LIST_COUNT 0u
 #define RRC_FILL_LIST_DISPATCH 1u
 #define RRC_FILL_LIST_FIRST 4u

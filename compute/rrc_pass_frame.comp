@@ -25,6 +25,7 @@ RRC_PASS_FRAME_BINDINGS(RRC_DECLARE)
 #include "rrc_mask.glsl"
 #include "rrc_cache.glsl"
 #include "rrc_list.glsl"
+#include "rrc_view_lobe.glsl"
 
 // The frame's statistics: an optional interop output, its own pipeline
 // variant (plugin/accumulate_pipeline.h, KernelVariant): off, its code is compiled out.
@@ -66,6 +67,12 @@ const bool FILL1 = CH_COUNT > 1u && CH1_FILL_AGE != 0u;
 const bool FILL2 = CH_COUNT > 2u && CH2_FILL_AGE != 0u;
 const bool FILL3 = CH_COUNT > 3u && CH3_FILL_AGE != 0u;
 const bool FILL_ANY = FILL0 || FILL1 || FILL2 || FILL3;
+// Some channel has a view lobe: the pixel's view turn is formed once for all (rrc_view_lobe.glsl).
+const bool VIEW0 = CH_COUNT > 0u && CH0_VIEW_LOBE;
+const bool VIEW1 = CH_COUNT > 1u && CH1_VIEW_LOBE;
+const bool VIEW2 = CH_COUNT > 2u && CH2_VIEW_LOBE;
+const bool VIEW3 = CH_COUNT > 3u && CH3_VIEW_LOBE;
+const bool VIEW_ANY = VIEW0 || VIEW1 || VIEW2 || VIEW3;
 
 // One pixel, every channel: FUSED, RESOLVE, CLASSIFY (the mask; with
 // ALL_REUSE the HITs' channels too) and RESOLVE_LISTED (the listed pixels
@@ -96,6 +103,12 @@ void rrc_pixel_at(ivec2 px, bool store) {
     // Which pass writes this pixel's channels: classify the HITs, resolve_listed the rest.
     bool channel_store = PHASE == RRC_PHASE_CLASSIFY ? store && hit_cached : LISTED ? store && !hit_cached : store;
     bool young = false;  // some channel with a fill has n < fill_age here (set by rrc_channel.glsl)
+    // The view turn theta, once for every slot with a view lobe (rrc_view_lobe.glsl), where the
+    // channels blend: not in classify, which writes only REUSE channels (they have no lobe).
+    float view_theta = 0.0;
+    if (VIEW_ANY && PHASE != RRC_PHASE_CLASSIFY) {
+        if (hit_any) view_theta = rrc_view_turn(px, size);
+    }
 
 #define RRC_CH 0
 #include "rrc_channel.glsl"

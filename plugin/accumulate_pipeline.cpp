@@ -19,8 +19,10 @@ uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC
 // clear of the whole-dispatch ones.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
 static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
-static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_BINDING_STATS + 1 && RRC_BINDING_FILL_LIST == RRC_BINDING_QUADS + 1,
+static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_BINDING_STATS + 1 && RRC_BINDING_FILL_LIST == RRC_BINDING_QUADS + 1 &&
+                  RRC_BINDING_VIEW == RRC_BINDING_FILL_LIST + 1,
               "the buffers follow every image binding, in a row");
+constexpr uint32_t kBufferBindings = RRC_BINDING_VIEW - RRC_BINDING_STATS + 1;
 static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) &&
                   RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X,
               "the shading cache's ids sit between the channel ids and the workgroup-size ids");
@@ -58,7 +60,7 @@ PassModule pass_module(uint32_t pass) {
 }
 #undef RRC_PASS_MODULE
 
-bool is_buffer_binding(Binding b) { return b == RRC_BINDING_STATS || b == RRC_BINDING_QUADS || b == RRC_BINDING_FILL_LIST; }
+bool is_buffer_binding(Binding b) { return b >= RRC_BINDING_STATS && b <= RRC_BINDING_VIEW; }
 VkDescriptorType descriptor_type(Binding b) {
     return is_buffer_binding(b)    ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
            : is_sampled_binding(b) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
@@ -193,6 +195,8 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
         spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD, slot), ch.antilag_threshold);
         spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND, slot), ch.blur_bound_active() ? 1u : 0u);
         spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2, slot), ch.blur_bound);
+        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE, slot), ch.view_lobe > 0.0f ? 1u : 0u);
+        spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD, slot), ch.view_lobe);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -240,7 +244,7 @@ DescriptorSets AccumulatePipeline::allocate_set() {
 
 void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorViews& v) const {
     VkDescriptorImageInfo infos[RRC_PASS_COUNT][kBindingCount][RRC_MAX_CHANNELS];
-    VkDescriptorBufferInfo buffers[RRC_PASS_COUNT][3];
+    VkDescriptorBufferInfo buffers[RRC_PASS_COUNT][kBufferBindings];
     std::vector<VkWriteDescriptorSet> writes;
     for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
         const PassModule m = pass_module(pass);
@@ -259,9 +263,12 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
                 } else if (b == RRC_BINDING_QUADS) {
                     if (!v.quads) fail(RRC_ERROR_UNSUPPORTED, "internal: the quad list binding has no buffer");
                     info = {v.quads, v.quads_offset, v.quads_range};
-                } else {
+                } else if (b == RRC_BINDING_FILL_LIST) {
                     if (!v.fill_list) fail(RRC_ERROR_UNSUPPORTED, "internal: the fill list binding has no buffer");
                     info = {v.fill_list, 0, VK_WHOLE_SIZE};
+                } else {
+                    if (!v.view_buffer) fail(RRC_ERROR_UNSUPPORTED, "internal: the view binding has no buffer");
+                    info = {v.view_buffer, 0, RRC_VIEW_BUFFER_FLOATS * sizeof(float)};
                 }
                 w.pBufferInfo = &info;
             } else {

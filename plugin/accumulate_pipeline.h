@@ -40,6 +40,7 @@ struct DescriptorViews {
     VkBuffer quads = VK_NULL_HANDLE;  // RRC_BINDING_QUADS: classify's list (the host's, the library's, or a placeholder)
     VkDeviceSize quads_offset = 0, quads_range = VK_WHOLE_SIZE;
     VkBuffer fill_list = VK_NULL_HANDLE;  // RRC_BINDING_FILL_LIST: the library's
+    VkBuffer view_buffer = VK_NULL_HANDLE;  // RRC_BINDING_VIEW: the library's (a placeholder without a view lobe)
 };
 
 // The pass module (RRC_PASS_*) that runs a phase (RRC_PHASE_*).

@@ -26,6 +26,8 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     fill_list_ = HostBuffer(*dev_, fill_words * sizeof(uint32_t),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             /*device_local=*/true);
+    view_buffer_ = HostBuffer(*dev_, RRC_VIEW_BUFFER_FLOATS * sizeof(float),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, /*device_local=*/true);
 }
 
 AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
@@ -39,6 +41,7 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
     v.stats = stats_placeholder_.buffer;
     v.quads = quads_placeholder_.buffer;
     v.fill_list = fill_list_.buffer;
+    v.view_buffer = view_buffer_.buffer;
     for (uint32_t s = 0; s < view.channels.size(); ++s) bind_history(v, s, *source.channels[s], sp, *view.channels[s], p);
     return v;
 }
@@ -98,6 +101,24 @@ void AccumulatorCore::record_plan(VkCommandBuffer cmd, const FramePlan& plan, co
                                         nullptr);
                 break;
             }
+            case PlanStep::Op::WriteView: {
+                // The previous frame's passes finish reading the camera before it changes.
+                VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+                b.buffer = view_buffer_.buffer;
+                b.size = VK_WHOLE_SIZE;
+                b.srcAccessMask = VK_ACCESS_SHADER_READ_BIT;
+                b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0,
+                                        nullptr);
+                const ViewBuffer view = make_view_buffer(frame);
+                vk.vkCmdUpdateBuffer(cmd, view_buffer_.buffer, 0, sizeof view, &view);
+                b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0,
+                                        nullptr);
+                break;
+            }
             case PlanStep::Op::Barrier: {
                 VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
                 b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -131,7 +152,8 @@ void AccumulatorCore::advance(ViewState& view, uint32_t count, uint64_t last_fra
 }
 
 size_t AccumulatorCore::memory_bytes() const {
-    size_t bytes = mask_.bytes() + (config_.fill_mask() ? fill_list_.size : 0);  // the fill list (a placeholder without a fill)
+    size_t bytes = mask_.bytes() + (config_.fill_mask() ? fill_list_.size : 0)  // the fill list (a placeholder without a fill)
+                   + (config_.view_lobe() ? view_buffer_.size : 0);
     for (const ViewState& v : views_) {
         bytes += v.depth[0].bytes() + v.depth[1].bytes() + v.object_id[0].bytes() + v.object_id[1].bytes();
         for (const auto& c : v.channels) bytes += c->bytes();

@@ -95,6 +95,7 @@ private:
     HostBuffer stats_placeholder_;  // bound when no frame statistics are asked for
     HostBuffer quads_placeholder_;  // bound where no quad list is written
     HostBuffer fill_list_;          // the spatial fill's pixels (rrc_kernel_interface.h); a placeholder without a fill
+    HostBuffer view_buffer_;        // the view lobe's camera (rrc_kernel_interface.h, RRC_BINDING_VIEW); never written without one
 };
 
 }  // namespace rrc

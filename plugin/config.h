@@ -39,6 +39,8 @@ struct ChannelConfig {
     bool blur_bound_active() const {
         return blur_bound > 0.0f && (filter == RRC_HISTORY_FILTER_BILINEAR || filter == RRC_HISTORY_FILTER_GAUSSIAN);
     }
+    // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): alpha in radians, 0 = off.
+    float view_lobe = 0.0f;
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
     bool fill() const { return fill_age != 0; }
     bool fallback() const { return fill_prior > 0.0f; }
@@ -74,6 +76,12 @@ struct ContextConfig {
         uint32_t m = 0;
         for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].fill() ? 1u << i : 0u;
         return m;
+    }
+    // A channel has a view lobe: every frame carries the camera (the view buffer, rrc_kernel_interface.h).
+    bool view_lobe() const {
+        for (const ChannelConfig& c : channels)
+            if (c.view_lobe > 0.0f) return true;
+        return false;
     }
     uint32_t reuse_mask() const {             // bit c: channel c is REUSE
         uint32_t m = 0;

@@ -1,6 +1,7 @@
 #include "frame_constants.h"
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace rrc {
@@ -31,6 +32,19 @@ FramePushConstants make_frame_constants(const ContextConfig& c, const Frame& f, 
     // The refresh clock in 64-bit: the kernel sees only t mod n (docs/CONVENTIONS.md, "Refresh policies").
     pc.refresh_phase = (uint32_t)(f.frame_index % c.refresh_period);
     return pc;
+}
+
+ViewBuffer make_view_buffer(const Frame& f) {
+    // In double, relative to the eye, so the fp32 result keeps the digits of
+    // P - C even far from the world origin (docs/CONVENTIONS.md, "The view-dependent history").
+    const glm::dvec3 C = glm::make_vec3(f.camera_position), C_prev = glm::make_vec3(f.prev_camera_position);
+    const glm::dmat4 Q = glm::translate(glm::dmat4(1.0), -C) * glm::inverse(glm::make_mat4(f.view_proj));
+    ViewBuffer v{};
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) v.Q[col * 4 + row] = (float)Q[col][row];
+    const glm::dvec3 d = C_prev - C;
+    for (int k = 0; k < 3; ++k) v.d[k] = (float)d[k];
+    return v;
 }
 
 }  // namespace rrc

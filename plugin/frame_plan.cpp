@@ -29,6 +29,12 @@ PlanStep clear_fill_list() {
     return s;
 }
 
+PlanStep write_view() {
+    PlanStep s;
+    s.op = PlanStep::Op::WriteView;
+    return s;
+}
+
 const char* phase_name(uint32_t phase) {
     switch (phase) {
         case RRC_PHASE_FUSED: return "FUSED";
@@ -108,6 +114,9 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
         steps.push_back(list);
     };
 
+    // The frame's camera for the view lobe: written by the calls that carry a
+    // frame (resolve reads what classify wrote).
+    if (c.view_lobe() && r.call != PlanCall::Resolve) steps.push_back(write_view());
     switch (r.call) {
         case PlanCall::Run: {
             plan.frame_set_host_mask = r.host_mask;
@@ -170,6 +179,7 @@ std::string describe_plan(const FramePlan& plan, const ContextConfig& c) {
     for (const PlanStep& s : plan.steps) {
         switch (s.op) {
             case PlanStep::Op::ClearFillList: out += "  clear fill list {0, 0, 1, 1} (transfer; barriers before and after)\n"; break;
+            case PlanStep::Op::WriteView: out += "  write view buffer from the frame's camera (transfer; barriers before and after)\n"; break;
             case PlanStep::Op::Barrier:
                 out += s.to_indirect ? "  barrier: compute writes -> compute reads and indirect command read\n"
                                      : "  barrier: compute writes -> compute reads\n";

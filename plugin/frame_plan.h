@@ -38,6 +38,7 @@ enum class PlanGrid { Pixels, Quads, QuadList, FillList };
 struct PlanStep {
     enum class Op {
         ClearFillList,  // the fill list's count and dispatch to {0, 0, 1, 1} (a transfer, with its barriers)
+        WriteView,      // the view buffer from the frame's camera (a transfer, with its barriers; contexts with a view lobe)
         Barrier,        // the previous pass's writes to the next pass's reads (and, to_indirect, its indirect read)
         Dispatch,
     } op = Op::Dispatch;

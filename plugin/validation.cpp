@@ -114,6 +114,13 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (c.blur_bound > 0.0f && out.reuse())
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and blur_bound: a shading cache never blends, so it has no age to cap", what);
     out.blur_bound = c.blur_bound;
+    // 0.7: the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history").
+    if (!(c.view_lobe >= 0.0f && c.view_lobe <= RRC_MAX_VIEW_LOBE))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.view_lobe is %g, must be in [0, %g] radians (0 = off)", what, (double)c.view_lobe,
+             (double)RRC_MAX_VIEW_LOBE);
+    if (c.view_lobe > 0.0f && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and view_lobe: a shading cache never blends, so it has no age to cap", what);
+    out.view_lobe = c.view_lobe;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the
@@ -346,11 +353,22 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(f.view_proj[i]) || !std::isfinite(f.prev_view_proj[i]))
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj/prev_view_proj[%d] is not finite", i);
+    }
+    if (c.view_lobe()) {
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(f.view_proj[i]))
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj[%d] is not finite (a channel has a view_lobe)", i);
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(f.camera_position[i]) || !std::isfinite(f.prev_camera_position[i]))
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.camera_position/prev_camera_position[%d] is not finite (a channel has a view_lobe)", i);
+    }
+    if (c.reprojection == RRC_REPROJECTION_CAMERA || c.view_lobe()) {
         // The library inverts view_proj (frame_constants.cpp): a singular one
         // would turn every pixel into NaN silently.
         const double det = determinant4(f.view_proj);
         if (!(std::fabs(det) > 0.0) || !std::isfinite(det))
-            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj is singular (determinant %g): CAMERA reprojection inverts it", det);
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.view_proj is singular (determinant %g): %s inverts it", det,
+                 c.reprojection == RRC_REPROJECTION_CAMERA ? "CAMERA reprojection" : "the view lobe");
     }
     for (int i = 0; i < 2; ++i)
         if (!finite(f.jitter[i]) || !finite(f.prev_jitter[i]) || std::fabs(f.jitter[i]) > 1.0f || std::fabs(f.prev_jitter[i]) > 1.0f)

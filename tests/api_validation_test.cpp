@@ -126,6 +126,13 @@ std::vector<DescCase> desc_cases() {
         {"blur_bound_inf", [](D&, C& c) { c[0].blur_bound = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].blur_bound"},
         {"blur_bound_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].blur_bound = 1.0f; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},
+        // The view lobe (0.7).
+        {"view_lobe_negative", [](D&, C& c) { c[0].view_lobe = -0.01f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].view_lobe"},
+        {"view_lobe_large", [](D&, C& c) { c[1].view_lobe = 4.0f; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].view_lobe"},
+        {"view_lobe_nan", [](D&, C& c) { c[1].view_lobe = kNaN; }, RRC_ERROR_INVALID_ARGUMENT, "channels[1].view_lobe"},
+        {"view_lobe_inf", [](D&, C& c) { c[0].view_lobe = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].view_lobe"},
+        {"view_lobe_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].view_lobe = 0.1f; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0]"},
         // The shading cache (0.3): channel 0 made REUSE where a case needs one.
         {"reuse_with_confidence", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].confidence = 1; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},
@@ -324,6 +331,52 @@ TEST(Api, WrongOutputDescriptionsAreRefused) {
     o.channel_count = 0;
     EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(rrc_last_error()).find("view_proj"), std::string::npos);
+}
+
+// A view lobe (0.7) reads the frame's camera whatever the source: a PREV_CLIP
+// frame without an invertible view_proj, or with a non-finite eye, is refused
+// naming the field, and the refused frame leaves the history as it was.
+TEST(Api, AViewLobeNeedsTheFramesCamera) {
+    std::vector<rrc_channel_desc> channels = {channel("env", 1, 0.8f)};
+    channels[0].view_lobe = 0.05f;
+    Context ctx(context_desc(4, 4, channels));
+    ASSERT_TRUE(ctx);
+    std::vector<float> depth(16, 0.5f), s(16, 1.0f), clip(16 * 4);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            float* c = &clip[(j * 4 + i) * 4];
+            c[0] = (i + 0.5f) / 2.0f - 1.0f, c[1] = (j + 0.5f) / 2.0f - 1.0f, c[2] = 0.5f, c[3] = 1.0f;
+        }
+    rrc_channel_input in = channel_input(s.data());
+    rrc_frame_desc f = frame_desc();
+    f.depth = depth.data();
+    f.reprojection = clip.data();
+    f.channel_count = 1;
+    f.channels = &in;
+    std::vector<uint16_t> age(16);
+    rrc_channel_output co = rrc_host::rrc_struct<rrc_channel_output>(RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
+    co.age = age.data();
+    rrc_frame_output o = rrc_host::rrc_struct<rrc_frame_output>(RRC_STRUCT_TYPE_FRAME_OUTPUT);
+    o.channel_count = 1;
+    o.channels = &co;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT) << "view_proj all zero";
+    EXPECT_NE(std::string(rrc_last_error()).find("frame.view_proj"), std::string::npos) << rrc_last_error();
+    for (int i = 0; i < 16; i += 5) f.view_proj[i] = 1.0;
+    f.camera_position[0] = f.prev_camera_position[0] = 5.0;  // the eye did not move: theta = 0 caps nothing
+    ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(age, std::vector<uint16_t>(16, 2));
+    f.prev_camera_position[0] = 0.0, f.prev_camera_position[1] = 5.0;
+    f.prev_camera_position[2] = std::numeric_limits<double>::quiet_NaN();
+    std::fill(age.begin(), age.end(), 0xEEEE);
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("camera_position"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(age, std::vector<uint16_t>(16, 0xEEEE)) << "a refused frame writes nothing";
+    f.prev_camera_position[2] = 0.0;
+    ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    // The eyes sit 5 units apart beside a surface ~1 unit away: theta is
+    // about 1.4 rad, far wider than the lobe, so every history is dropped.
+    EXPECT_EQ(age, std::vector<uint16_t>(16, 1)) << "the refused frame left the history (age 2) and the lobe caps it at 0";
 }
 
 TEST(Api, DeviceNameIsQueryable) {

@@ -174,3 +174,8 @@ TEST(ConstantsInDocs, AntilagDefaults) {
 TEST(ConstantsInDocs, BlurBoundLimit) {
     expect_value<float>("RRC_MAX_BLUR_BOUND", RRC_MAX_BLUR_BOUND, {{"docs/CONVENTIONS.md", "`RRC_MAX_BLUR_BOUND` = "}});
 }
+
+// 0.7: the view lobe's limit, as docs/CONVENTIONS.md states it.
+TEST(ConstantsInDocs, ViewLobeLimit) {
+    expect_value<float>("RRC_MAX_VIEW_LOBE", RRC_MAX_VIEW_LOBE, {{"docs/CONVENTIONS.md", "`RRC_MAX_VIEW_LOBE` = "}});
+}

@@ -104,6 +104,8 @@ struct CaseStats {
     int64_t compared = 0, skipped = 0, hits = 0, refreshed = 0, rectified = 0, rectified_refreshed = 0;
     int64_t shortened = 0, dropped = 0, uncertain = 0;  // the lag detector: n_a < n_prev, n_a = 0, n_a within fp32 error of a step
     int64_t capped = 0, blur_uncertain = 0;             // the blur bound: N < n_prev, the stored age within fp32 error of a step
+    int64_t view_capped = 0, view_uncertain = 0;        // the view lobe: n_v < n_prev, the stored age within fp32 error of a step
+    double max_theta = 0.0;                             // the view lobe: the largest view turn it saw
     double max_fp32_err = 0, max_fp16_steps = 0;
     std::vector<int64_t> caught;  // per mutant
 };
@@ -111,7 +113,7 @@ struct CaseStats {
 // Runs `channels` on the scene for kFrames frames, comparing every frame with
 // the reference from the kernel's previous state; returns the statistics.
 CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>& channels, const std::vector<Mutant>& mutants,
-                           bool changing_signal, const Policy* policy = nullptr) {
+                           bool changing_signal, const Policy* policy = nullptr, bool camera_positions = false) {
     CaseStats st;
     st.caught.assign(mutants.size(), 0);
     // A few invalid samples: rectification leaves such taps out of its box.
@@ -141,6 +143,11 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
         in.frame = scene.render(t);
         if (changing_signal) change_signal(in.frame, t);
         make_frame_inputs(in, source, channels);
+        if (camera_positions) {
+            // The view lobe's eyes (docs/CONVENTIONS.md, "The view-dependent history").
+            const glm::dvec3 eye = scene.camera(t).eye, prev_eye = scene.camera(std::max(t - 1, 0)).eye;
+            for (int k = 0; k < 3; ++k) in.desc.camera_position[k] = eye[k], in.desc.prev_camera_position[k] = prev_eye[k];
+        }
         FrameResult k = ctx.run(in.desc);
         rrc_ref::FrameResult r = rrc_ref::run_frame(ctx.desc(), prev, in.desc);
         std::vector<rrc_ref::FrameResult> mr;
@@ -169,6 +176,13 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
                     st.dropped += rc.antilag_age[i] == 0;
                 }
                 st.capped += rc.blur_capped[i];
+                st.view_capped += rc.view_capped[i];
+                st.max_theta = std::max(st.max_theta, rc.view_theta[i]);
+                // alpha / theta sits on a step of its floor within the fp32 error: either age is right.
+                if (rc.view_uncertain[i]) {
+                    ++st.view_uncertain;
+                    continue;
+                }
                 // n_a sits on a step of floor(c n_prev) within the fp32 error: either age is right.
                 if (rc.antilag_uncertain[i]) {
                     ++st.uncertain;
@@ -217,12 +231,15 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
     }
     std::printf(
         "%-24s compared %lld skipped %lld hits %lld refreshed %lld rectified %lld (refreshed %lld) max fp32 err %.3g max fp16 steps %.3g\n"
-        "%-24s antilag: shortened %lld dropped %lld uncertain %lld; blur bound: capped %lld uncertain %lld\n",
+        "%-24s antilag: shortened %lld dropped %lld uncertain %lld; blur bound: capped %lld uncertain %lld; view lobe: capped %lld "
+        "uncertain %lld max theta %.3g\n",
         name, (long long)st.compared, (long long)st.skipped, (long long)st.hits, (long long)st.refreshed, (long long)st.rectified,
         (long long)st.rectified_refreshed, st.max_fp32_err, st.max_fp16_steps, "", (long long)st.shortened, (long long)st.dropped,
-        (long long)st.uncertain, (long long)st.capped, (long long)st.blur_uncertain);
+        (long long)st.uncertain, (long long)st.capped, (long long)st.blur_uncertain, (long long)st.view_capped,
+        (long long)st.view_uncertain, st.max_theta);
     EXPECT_LE(st.uncertain, st.shortened / 20 + 5) << name << ": too many pixels with an uncertain lag-detector age";
     EXPECT_LE(st.blur_uncertain, st.capped / 20 + 5) << name << ": too many pixels with an uncertain blur-bound age";
+    EXPECT_LE(st.view_uncertain, st.view_capped / 20 + 5) << name << ": too many pixels with an uncertain view-lobe age";
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
     EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 3) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
@@ -400,6 +417,39 @@ TEST_P(BlurBound, MatchesTheReference) {
 }
 INSTANTIATE_TEST_SUITE_P(Bound, BlurBound, ::testing::Values(0.5f, 1.0f),
                          [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.5f ? std::string("b0_5") : std::string("b1"); });
+
+// ---- The view-dependent history ------------------------------------------------------
+
+rrc_channel_desc lobed(rrc_channel_desc d, float alpha) {
+    d.view_lobe = alpha;
+    return d;
+}
+
+class ViewLobeKernel : public ::testing::TestWithParam<float> {};
+
+// The orbiting camera turns the view direction to every surface point by a
+// different angle each frame (nearer points turn more): the lobe caps ages
+// wherever alpha / theta is below them, and the kernel's ages and values must
+// match the reference's, each blend mode, 1 and 4 components, fp16 and fp32,
+// with confidence, with the lag detector and the blur bound beside it.
+TEST_P(ViewLobeKernel, MatchesTheReference) {
+    const float alpha = GetParam();
+    const std::vector<rrc_channel_desc> chs = {
+        lobed(channel("v1h", 1, 0.9f, kFp16, RRC_BLEND_AGE_AWARE, kBil), alpha),
+        lobed(channel("v1f", 1, 0.9f, kFp32, RRC_BLEND_FIXED, kBil, 0, 1), alpha),  // with confidence
+        lobed(antilagged(channel("v4h", 4, 0.0f, kFp16, RRC_BLEND_RUNNING_MEAN, kBil, 16), 1.5f, 0.25f), alpha),
+        lobed(blur_bounded(channel("v4f", 4, 0.9f, kFp32, RRC_BLEND_AGE_AWARE, kBil), 1.0f), alpha),
+    };
+    std::vector<Mutant> mutants;
+    for (size_t c = 0; c < chs.size(); ++c)
+        mutants.push_back({std::string(chs[c].name) + " without the lobe", c, [](rrc_channel_desc& d) { d.view_lobe = 0.0f; }});
+    mutants.push_back({"v1h half the lobe", 0, [alpha](rrc_channel_desc& d) { d.view_lobe = 0.5f * alpha; }});
+    const std::string name = "view_lobe_" + std::to_string(alpha);
+    CaseStats st = run_accumulating(name.c_str(), chs, mutants, true, nullptr, /*camera_positions=*/true);
+    EXPECT_GT(st.view_capped, 300) << "the view lobe hardly capped any history";
+}
+INSTANTIATE_TEST_SUITE_P(Lobe, ViewLobeKernel, ::testing::Values(0.01f, 0.04f),
+                         [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.01f ? std::string("a0_01") : std::string("a0_04"); });
 
 // ---- The spatial fill -------------------------------------------------------------
 

@@ -113,7 +113,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 6, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 7, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -234,6 +234,7 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_DEFAULT_ANTILAG_THRESHOLD 0.5f    /* rrc_channel_desc.antilag_threshold (0.5) */
 #define RRC_MAX_ANTILAG_THRESHOLD 2.0f        /* the relative gap is below 2 */
 #define RRC_MAX_BLUR_BOUND 64.0f              /* rrc_channel_desc.blur_bound (0.6), px^2: a blur of 8 px standard deviation */
+#define RRC_MAX_VIEW_LOBE 3.14159265f         /* rrc_channel_desc.view_lobe (0.7), radians: pi */
 #define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
@@ -302,6 +303,19 @@ typedef struct rrc_channel_desc {
      * stays within B (Yang et al. 2009).  Accumulating blends only (REUSE
      * refuses it). */
     float blur_bound;
+    /* ---- 0.7: the view-dependent history (docs/CONVENTIONS.md, "The
+     *      view-dependent history") ---- */
+    /* alpha > 0: the signal depends on the view direction (a reflection, a
+     * specular lobe) with an angular width of alpha radians, in [0,
+     * RRC_MAX_VIEW_LOBE]; 0 = off.  On a blend, with theta the angle by which
+     * the view direction to the pixel's surface point turned since the frame
+     * reprojected from, the history's age is capped at floor(alpha / theta),
+     * so that its samples' mean offset in view direction stays within alpha
+     * (in the manner of NRD's parallax-limited specular accumulation).  Every
+     * frame then carries view_proj and both camera positions
+     * (rrc_frame_desc, 0.7), whatever the reprojection source.
+     * Accumulating blends only (REUSE refuses it). */
+    float view_lobe;
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {
@@ -439,7 +453,7 @@ typedef struct rrc_frame_desc {
     const float* depth;        /* width*height, in the context's depth mode; required */
     const float* reprojection; /* PREV_CLIP: 4 floats a pixel; MOTION: 2; MOTION_DEPTH: 3;
                                   CAMERA: ignored (NULL) */
-    double view_proj[16];      /* CAMERA: current view-projection, column-major (GLM), Vulkan clip */
+    double view_proj[16];      /* CAMERA, and any frame of a context with a view_lobe (0.7): current view-projection, column-major (GLM), Vulkan clip */
     double prev_view_proj[16]; /* CAMERA: previous frame's */
     float jitter[2];           /* this frame's sample offset from the pixel centre, pixels, x right y down */
     float prev_jitter[2];      /* the previous frame's */
@@ -453,6 +467,10 @@ typedef struct rrc_frame_desc {
     uint32_t view;           /* the view this frame is: 0..view_count-1; its state becomes this frame */
     uint32_t reproject_from; /* 0: the view's own previous frame; v + 1: view v's latest frame (another
                                 eye, the sub-frame before), which must have one (else every pixel misses) */
+    /* ---- 0.7: read only when a channel has a view_lobe; then view_proj (above) is
+     *      required whatever the reprojection source ---- */
+    double camera_position[3];      /* this frame's eye, world space (the space view_proj maps from) */
+    double prev_camera_position[3]; /* the eye of the frame reprojected from (reproject_from's) */
 } rrc_frame_desc;
 
 typedef struct rrc_frame_stats {

@@ -153,6 +153,9 @@ typedef struct rrc_vulkan_frame_desc {
      * Classify then moves the output, age and mask images as resolve does.
      * rrc_vulkan_record_frame ignores it. */
     uint32_t split_outputs;
+    /* ---- 0.7 ---- */
+    double camera_position[3];      /* as rrc_frame_desc.camera_position */
+    double prev_camera_position[3]; /* as rrc_frame_desc.prev_camera_position */
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */

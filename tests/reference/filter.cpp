@@ -51,6 +51,7 @@ Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, con
     unsigned shortened = prev.age;
     if (prev.antilag) shortened = std::min(shortened, prev.age_antilag);
     if (prev.blur_bounded) shortened = std::min(shortened, prev.age_blur);
+    if (prev.view_capped) shortened = std::min(shortened, prev.age_view);
     if (shortened < prev.age) {
         const double na = shortened;
         lam = std::min(lam, na / (na + 1.0));

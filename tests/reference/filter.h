@@ -32,6 +32,10 @@ struct Resampled {
     // the same way (docs/CONVENTIONS.md, "The blur bound").
     bool blur_bounded = false;
     unsigned age_blur = 0;
+    // The view lobe (view_lobe.h): the cap n_v, the same way
+    // (docs/CONVENTIONS.md, "The view-dependent history").
+    bool view_capped = false;
+    unsigned age_view = 0;
 };
 
 struct Update {

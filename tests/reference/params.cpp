@@ -72,6 +72,7 @@ Params resolve(const rrc_context_desc& ctx) {
         ch.antilag_gamma = d.antilag_gamma != 0.0f ? d.antilag_gamma : RRC_DEFAULT_ANTILAG_GAMMA;
         ch.antilag_threshold = d.antilag_threshold != 0.0f ? d.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD;
         ch.blur_bound = d.blur_bound;
+        ch.view_lobe = d.view_lobe;
         p.channels.push_back(ch);
     }
     return p;

@@ -33,6 +33,8 @@ struct ChannelParams {
     double antilag_threshold = 0.5;  // T_a
     // 0.6 the blur bound (docs/CONVENTIONS.md "The blur bound"): B in px^2, 0 = off.
     double blur_bound = 0.0;
+    // 0.7 the view-dependent history (docs/CONVENTIONS.md "The view-dependent history"): alpha in radians, 0 = off.
+    double view_lobe = 0.0;
 };
 
 struct Params {

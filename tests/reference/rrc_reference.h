@@ -78,6 +78,13 @@ struct ChannelResult {
     std::vector<uint8_t> blur_capped;     // W*H
     std::vector<uint8_t> blur_uncertain;  // W*H
     std::vector<double> blur_b;           // W*H
+    // The view lobe (reference/view_lobe.h): where it applied, the cap n_v
+    // (else 65535), whether it capped the age (n_v < n_prev), whether an fp32
+    // evaluation could give another stored age, and theta (radians).
+    std::vector<uint16_t> view_age;      // W*H
+    std::vector<uint8_t> view_capped;     // W*H
+    std::vector<uint8_t> view_uncertain;  // W*H
+    std::vector<double> view_theta;       // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
     // not rounded to fp16); empty otherwise.

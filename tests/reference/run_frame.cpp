@@ -14,6 +14,7 @@
 #include "params.h"
 #include "reproject.h"
 #include "rrc_reference.h"
+#include "view_lobe.h"
 
 namespace rrc_ref {
 
@@ -72,6 +73,10 @@ FrameResult allocate(const Params& p) {
         c.blur_uncertain.assign(n, 0);
         c.blur_capped.assign(n, 0);
         c.blur_b.assign(n, 0.0);
+        c.view_age.assign(n, RRC_MAX_AGE_CAP);
+        c.view_capped.assign(n, 0);
+        c.view_uncertain.assign(n, 0);
+        c.view_theta.assign(n, 0.0);
         r.channels.push_back(std::move(c));
     }
     return r;
@@ -226,6 +231,20 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                         // The stored age min(min(n_a, N), n_prev) + 1 may differ where N is uncertain.
                         const unsigned other = r.antilag ? r.age_antilag : r.age;
                         res.channels[c].blur_uncertain[px] = std::min(other, bb.age_lo) != std::min(other, bb.age_hi);
+                    }
+                    // The view lobe: the same case, from the view turn at the pixel's surface point.
+                    if (ch.view_lobe > 0.0 && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
+                        const ViewTurn vt = view_turn(p, frame, i, j, d);
+                        const ViewLobe vl = view_lobe_cap(ch.view_lobe, vt, r.age);
+                        r.view_capped = true;
+                        r.age_view = vl.age;
+                        res.channels[c].view_age[px] = static_cast<uint16_t>(std::min<unsigned>(vl.age, RRC_MAX_AGE_CAP));
+                        res.channels[c].view_theta[px] = vt.theta;
+                        res.channels[c].view_capped[px] = vl.age < r.age;
+                        unsigned other = r.age;
+                        if (r.antilag) other = std::min(other, r.age_antilag);
+                        if (r.blur_bounded) other = std::min(other, r.age_blur);
+                        res.channels[c].view_uncertain[px] = std::min(other, vl.age_lo) != std::min(other, vl.age_hi);
                     }
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;

@@ -1,8 +1,14 @@
 #include "view_lobe.h"
 
+#include "params.h"
+
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 namespace rrc_ref {
 
@@ -36,6 +42,63 @@ ViewLobe view_lobe_age(double lobe, const double P[3], const double C[3], const 
     if (v.theta == 0.0) return v;
     v.r = lobe / v.theta;
     v.age = static_cast<unsigned>(std::min(std::floor(v.r), static_cast<double>(n_prev)));
+    return v;
+}
+
+ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, double d) {
+    ViewTurn t;
+    const glm::dmat4 inv = glm::inverse(glm::make_mat4(frame.view_proj));
+    const double x = 2.0 * (i + 0.5 + frame.jitter[0]) / p.width - 1.0;
+    const double y = 2.0 * (j + 0.5 + frame.jitter[1]) / p.height - 1.0;
+    glm::dvec4 c(x, y, d, 1.0);
+    if (p.mode == RRC_DEPTH_MODE_LINEAR) {
+        const glm::dvec4 row3(inv[0][3], inv[1][3], inv[2][3], inv[3][3]);
+        const double a = row3.x * x + row3.y * y + row3.w;
+        c = glm::dvec4(x * d, y * d, (1.0 - d * a) / row3.z, d);
+    }
+    const glm::dvec4 X = inv * c;
+    if (X.w == 0.0) return t;
+    const glm::dvec3 P = glm::dvec3(X) / X.w;
+    const glm::dvec3 C = glm::make_vec3(frame.camera_position), Cp = glm::make_vec3(frame.prev_camera_position);
+    const glm::dvec3 a = P - C, b = P - Cp;
+    const double la = glm::length(a), lb = glm::length(b);
+    if (!std::isfinite(la) || !std::isfinite(lb) || !(la > 0.0) || !(lb > 0.0)) return t;
+    t.theta = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+    if (t.theta < FLT_MIN) t.theta = 0.0;  // the kernel's threshold: below the fp32 normal range caps nothing
+    // The kernel forms a = (Q c).xyz / (Q c).w in fp32, Q = translate(-C) inverse(VP) rounded:
+    // each component off by a few ulps of the sum of |products|, relative to |a|; theta
+    // ~ |a x d| / |a|^2 moves by that error times |d| / |a|^2, plus a few ulps of itself
+    // (atan, length).  A generous constant: an uncertain pixel is only compared loosely.
+    const glm::dmat4 Q = glm::dmat4(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 1, 0), glm::dvec4(-C, 1.0)) * inv;
+    double S = 0.0;
+    for (int row = 0; row < 3; ++row) {
+        double sum = 0.0;
+        for (int col = 0; col < 4; ++col) sum += std::fabs(Q[col][row] * c[col]);
+        S = std::max(S, sum);
+    }
+    S /= std::fabs(X.w);
+    const double e_a = 64.0 * std::ldexp(1.0, -24) * (S + la);
+    t.err = e_a * glm::length(Cp - C) / (la * la) * 4.0 + 64.0 * std::ldexp(1.0, -24) * t.theta;
+    return t;
+}
+
+ViewLobe view_lobe_cap(double lobe, const ViewTurn& turn, unsigned n_prev) {
+    ViewLobe v;
+    v.theta = turn.theta;
+    v.age = v.age_lo = v.age_hi = n_prev;
+    v.r = std::numeric_limits<double>::infinity();
+    auto cap = [&](double theta) {
+        if (!(theta >= FLT_MIN)) return n_prev;
+        return static_cast<unsigned>(std::min(std::floor(lobe / theta), static_cast<double>(n_prev)));
+    };
+    if (turn.theta == 0.0) {
+        v.age_lo = cap(turn.err);  // an fp32 theta up to err may cap
+        return v;
+    }
+    v.r = lobe / turn.theta;
+    v.age = cap(turn.theta);
+    v.age_lo = cap(turn.theta + turn.err);
+    v.age_hi = cap(turn.theta - turn.err);
     return v;
 }
 
