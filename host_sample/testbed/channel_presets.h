@@ -28,6 +28,8 @@ struct ChannelSettings {
     float antilag_threshold = 0.0f;
     // 0.6 the blur bound (docs/CONVENTIONS.md, "The blur bound"), px^2; 0 = off.
     float blur_bound = 0.0f;
+    // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"), radians; 0 = off.
+    float view_lobe = 0.0f;
 };
 
 /** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2: the best of

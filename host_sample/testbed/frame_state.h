@@ -62,6 +62,7 @@ struct FrameState {
     FrameUniforms uniforms;
     std::vector<GpuObject> objects;
     glm::dmat4 view_proj, prev_view_proj;  // for rrc's CAMERA source
+    glm::dvec3 eye, prev_eye;              // the camera's positions, for rrc's view lobe (rrc_frame_desc.camera_position)
 };
 
 /** The state of frame `index` (time index / fps); frame 0's "previous" is itself. */

@@ -145,6 +145,10 @@ std::string usage() {
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"
+           "  --env-view-lobe A        the view-dependent history on the env channel: its age is capped at\n"
+           "                           floor(A/theta), theta the turn of the view direction to the pixel's surface\n"
+           "                           point since the last frame, A in radians in [0, pi] (default 0 = off, the\n"
+           "                           preset; docs/CONVENTIONS.md, \"The view-dependent history\")\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
            "                           pixels younger than T frames (default: 4 on both, the presets; 0 = off)\n"
@@ -217,6 +221,8 @@ Options parse_options(int argc, const char* const* argv) {
             blur_bound = signal_bits_or_none(c);
         else if (c.option("--blur-bound-px2"))
             blur_bound_px2 = c.number(1e-6f, RRC_MAX_BLUR_BOUND);
+        else if (c.option("--env-view-lobe"))
+            o.channels.env.view_lobe = c.number(0.0f, RRC_MAX_VIEW_LOBE);
         else if (c.option("--antilag-gamma"))
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))

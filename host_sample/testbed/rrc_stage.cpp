@@ -31,6 +31,7 @@ std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPrese
         d.antilag_gamma = c.antilag ? c.antilag_gamma : 0.0f;
         d.antilag_threshold = c.antilag ? c.antilag_threshold : 0.0f;
         d.blur_bound = c.blur_bound;
+        d.view_lobe = c.view_lobe;
         return d;
     };
     std::vector<rrc_channel_desc> c;
@@ -116,6 +117,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
         f.view_proj[i] = state.view_proj[i / 4][i % 4];  // column-major, as GLM stores it
         f.prev_view_proj[i] = state.prev_view_proj[i / 4][i % 4];
     }
+    for (int k = 0; k < 3; ++k) f.camera_position[k] = state.eye[k], f.prev_camera_position[k] = state.prev_eye[k];
     f.channel_count = (uint32_t)ch.size();
     f.channels = ch.data();
     if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS)

@@ -37,6 +37,7 @@ std::string channel_line(const rrc_channel_desc& c) {
         l += ", anti-lag (gamma " + std::to_string(c.antilag_gamma > 0.0f ? c.antilag_gamma : RRC_DEFAULT_ANTILAG_GAMMA).substr(0, 4) +
              ", threshold " + std::to_string(c.antilag_threshold > 0.0f ? c.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD).substr(0, 5) + ")";
     if (c.blur_bound > 0.0f) l += ", blur bound " + std::to_string(c.blur_bound).substr(0, 5) + " px^2";
+    if (c.view_lobe > 0.0f) l += ", view lobe " + std::to_string(c.view_lobe).substr(0, 6) + " rad";
     if (c.fill_age)
         l += ", fill below age " + std::to_string(c.fill_age) + " (radius " + std::to_string(c.fill_radius ? c.fill_radius : RRC_DEFAULT_FILL_RADIUS) +
              ", fallback weight " + std::to_string(c.fill_prior).substr(0, 4) + ")";

@@ -54,6 +54,33 @@ const SignalErrors* find(const FrameRecord& f, const std::string& signal) {
     return nullptr;
 }
 
+// The view lobe (0.7) on the Vulkan path: rrc-sample hands each frame's eyes
+// (rrc_vulkan_frame_desc.camera_position), the library writes them into its view
+// buffer by the frame's own commands under synchronization validation, and a lobe
+// far narrower than the camera's turn (about 0.01 rad a frame) drops every
+// history: on cache hits the env output is then this frame's samples, while
+// without the lobe it is not.
+TEST(RrcSample, EnvViewLobeReachesTheKernelOnTheVulkanPath) {
+    Options o = tiny("view_lobe");
+    o.signals = kSignalEnv;
+    o.channels.env.fill_age = 0;  // the displayed value is the history itself
+    o.channels.env.view_lobe = 1e-4f;
+    RunResult r = run_sample(o, nullptr);
+    EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    ASSERT_TRUE(r.frames[5].checkpoint);
+    const SignalErrors* e = find(r.frames[5], "env");
+    ASSERT_NE(e, nullptr);
+    ASSERT_GT(e->raw_hits.pixels, 20u);
+    EXPECT_NEAR(e->accumulated_hits.rmse, e->raw_hits.rmse, 1e-3 * e->raw_hits.rmse) << "the lobe must drop the history on every hit";
+    o = tiny("view_lobe_off");
+    o.signals = kSignalEnv;
+    o.channels.env.fill_age = 0;
+    RunResult off = run_sample(o, nullptr);
+    const SignalErrors* f = find(off.frames[5], "env");
+    ASSERT_NE(f, nullptr);
+    EXPECT_LT(f->accumulated_hits.rmse, 0.9 * f->raw_hits.rmse) << "without the lobe the history accumulates";
+}
+
 TEST(RrcSample, ShortSequenceUnderValidationLayer) {
     const Options o = tiny("validation");
     RunResult r = run_sample(o, nullptr);
@@ -522,6 +549,14 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     o = parse_options(1, no_bound);
     EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
     EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
+    // The view lobe (0.7): env only, off in the presets.
+    EXPECT_EQ(o.channels.env.view_lobe, 0.0f);
+    const char* lobe[] = {"rrc-sample", "--env-view-lobe", "0.0245"};
+    o = parse_options(3, lobe);
+    EXPECT_EQ(o.channels.env.view_lobe, 0.0245f);
+    EXPECT_EQ(o.channels.pcf.view_lobe, 0.0f);
+    const char* bad_lobe[] = {"rrc-sample", "--env-view-lobe", "4"};
+    EXPECT_THROW(parse_options(3, bad_lobe), OptionError) << "above pi";
     const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
     o = parse_options(5, fills);
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
