@@ -124,4 +124,37 @@ TEST(PlanTable, ShadingCacheResolveAndFillAreIndirect) {
     EXPECT_EQ(p.steps[3].set, rrc::PlanSet::Next);
 }
 
+// A view lobe (docs/CONVENTIONS.md, "The view-dependent history"): the calls
+// that carry a frame write the view buffer first; resolve reads what classify
+// wrote; without a lobe no plan writes it.
+TEST(FramePlan, AViewLobeWritesTheViewBufferBeforeTheFramesPasses) {
+    rrc::ContextConfig c;
+    c.width = 64, c.height = 32;
+    rrc::ChannelConfig ch;
+    ch.blend = RRC_BLEND_AGE_AWARE;
+    c.channels = {ch};
+    auto writes_view = [](const rrc::FramePlan& p) {
+        for (const rrc::PlanStep& s : p.steps)
+            if (s.op == rrc::PlanStep::Op::WriteView) return true;
+        return false;
+    };
+    for (rrc::PlanCall call : {rrc::PlanCall::Run, rrc::PlanCall::Classify, rrc::PlanCall::Resolve}) {
+        rrc::PlanRequest r;
+        r.call = call;
+        EXPECT_FALSE(writes_view(rrc::make_plan(c, r))) << "no lobe";
+    }
+    c.channels[0].view_lobe = 0.05f;
+    for (rrc::PlanCall call : {rrc::PlanCall::Run, rrc::PlanCall::Classify}) {
+        rrc::PlanRequest r;
+        r.call = call;
+        const rrc::FramePlan p = rrc::make_plan(c, r);
+        ASSERT_FALSE(p.steps.empty());
+        EXPECT_EQ(p.steps[0].op, rrc::PlanStep::Op::WriteView) << "before every dispatch";
+        EXPECT_NE(rrc::describe_plan(p, c).find("write view buffer"), std::string::npos);
+    }
+    rrc::PlanRequest r;
+    r.call = rrc::PlanCall::Resolve;
+    EXPECT_FALSE(writes_view(rrc::make_plan(c, r))) << "resolve keeps classify's camera";
+}
+
 }  // namespace
