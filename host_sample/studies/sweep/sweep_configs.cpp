@@ -79,6 +79,15 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     b.blur_bound = kSweepBlurBound;
                     run.configs.push_back({app, b});
                 }
+            // The view lobe (docs/CONVENTIONS.md, "The view-dependent history"), env only
+            // (the one view-dependent signal): each row the twin of the plain age-aware
+            // bilinear row.
+            if (o.view_lobe && app.signal == rrc_sample::kSignalEnv)
+                for (float lambda : o.lambdas) {
+                    rrc_sample::ChannelSettings v{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
+                    v.view_lobe = kSweepViewLobe;
+                    run.configs.push_back({app, v});
+                }
             // rrc-sample's pcf preset (testbed/channel_presets.h), which no row above spells:
             // the targets under motion are its (docs/PERFORMANCE.md, "Targets under motion").
             // env's preset (lambda 0.8 with the fill below age 4) is not a row; soft's nearly is
@@ -134,6 +143,11 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     if (c.blur_bound > 0.0f) {
         char b[32];
         std::snprintf(b, sizeof b, "+blur%g", (double)c.blur_bound);
+        s += b;
+    }
+    if (c.view_lobe > 0.0f) {
+        char b[32];
+        std::snprintf(b, sizeof b, "+lobe%g", (double)c.view_lobe);
         s += b;
     }
     return s;

@@ -57,6 +57,10 @@ constexpr float kSweepAntilagThreshold = 0.25f;
 /** The blur bound's rows (--no-blur-bound drops them): B in px^2, the best of docs/PERFORMANCE.md,
  *  "The blur bound: what it buys, measured" (pcf bilinear and soft at 256x160). */
 constexpr float kSweepBlurBound = 0.5f;
+/** The view lobe's rows (--no-view-lobe drops them; env only): alpha in radians, the lobe whose age
+ *  cap is 1 on the mirror sphere under the default camera (docs/PERFORMANCE.md, "The view lobe in
+ *  the kernel (0.7), measured"). */
+constexpr float kSweepViewLobe = 0.0245f;
 /** The taps the rotated pattern's fixed point set has (its brute force is rotations of it). */
 constexpr int kRotatedBaseTaps = 4;
 

@@ -89,6 +89,7 @@ struct Engine {
         state.uniforms.camera_pos = glm::vec4(glm::vec3(eye.uniforms.camera_pos), state.uniforms.camera_pos.w);
         state.view_proj = eye.view_proj;
         state.prev_view_proj = eye.prev_view_proj;
+        state.eye = eye.eye, state.prev_eye = eye.prev_eye;
         gpu_scene.update(state);
         return state;
     }

@@ -51,6 +51,8 @@ std::string sweep_usage() {
            "                           --no-finishing)\n"
            "  --no-blur-bound          no rows for the blur bound (age-aware, bilinear, B 0.5 px^2: pcf rectified, env,\n"
            "                           soft with the fill rows' settings)\n"
+           "  --no-view-lobe           no rows for the view lobe (env only: age-aware, bilinear, alpha 0.0245 rad; its\n"
+           "                           age cap is 1 on the mirror sphere)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -126,6 +128,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.antilag = false;
         else if (c.flag("--no-blur-bound"))
             o.blur_bound = false;
+        else if (c.flag("--no-view-lobe"))
+            o.view_lobe = false;
         else if (c.option("--signals"))
             o.signals = rrc_sample::signal_bits(c);
         else if (c.option("--motion"))

@@ -213,6 +213,14 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
         ASSERT_NE(bounded, nullptr) << signal;
         EXPECT_LT(bounded->metrics.variance, 0.5 * brute_row(r, signal, 4)->metrics.variance) << signal;
     }
+    // The view lobe's row (on by default; env) runs under validation: the sweep's frames carry
+    // the eyes (rrc_stage.cpp), and a history capped at age 1 still halves the variance of 4 taps.
+    const RrcRow* lobed = nullptr;
+    for (const RrcRow& row : r.rrc)
+        if (row.config.app.signal == 2u && row.config.channel.view_lobe > 0.0f) lobed = &row;
+    ASSERT_NE(lobed, nullptr);
+    EXPECT_LT(lobed->metrics.variance, 0.75 * brute_row(r, 2u, 4)->metrics.variance);
+    EXPECT_GE(lobed->metrics.variance, rrc_row(r, 2u, 4, 0.6f, RRC_BLEND_AGE_AWARE)->metrics.variance) << "a cap can only shorten the history";
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
@@ -289,6 +297,33 @@ TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
     for (const RrcRun& run : rrc_runs(off, all))
         for (const RrcConfig& c : run.configs)
             if (!is_preset(c)) EXPECT_EQ(c.channel.blur_bound, 0.0f);
+}
+
+TEST(SweepConfigs, ViewLobeRowsAreEnvTwinsOfThePlainAgeAwareRows) {
+    SweepOptions o;
+    o.rrc_taps = {4};
+    o.lambdas = {0.8f, 0.9f};
+    const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
+    int lobed = 0;
+    for (const RrcRun& run : rrc_runs(o, all))
+        for (const RrcConfig& c : run.configs) {
+            if (c.channel.view_lobe == 0.0f) continue;
+            ++lobed;
+            EXPECT_EQ(c.app.signal, rrc_sample::kSignalEnv) << "the one view-dependent signal";
+            EXPECT_EQ(c.channel.view_lobe, kSweepViewLobe);
+            EXPECT_EQ(filter_label(c.channel), "bilinear+lobe0.0245");
+            int twins = 0;
+            for (const RrcConfig& d : run.configs)
+                twins += d.app.signal == c.app.signal && filter_label(d.channel) == "bilinear" && d.channel.lambda == c.channel.lambda &&
+                         d.channel.blend == RRC_BLEND_AGE_AWARE;
+            EXPECT_EQ(twins, 1) << "lambda " << c.channel.lambda;
+        }
+    EXPECT_EQ(lobed, 2);
+    const char* argv[] = {"rrc-sweep", "--no-view-lobe"};
+    const SweepOptions off = parse_sweep_options(2, argv);
+    EXPECT_FALSE(off.view_lobe);
+    for (const RrcRun& run : rrc_runs(off, all))
+        for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.view_lobe, 0.0f);
 }
 
 TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
