@@ -32,6 +32,15 @@ struct ChannelSettings {
     float view_lobe = 0.0f;
 };
 
+/** env's view lobe (docs/CONVENTIONS.md, "The view-dependent history"), in pixels of the
+ *  camera's vertical angle: alpha = kEnvViewLobePixels * fov_y / height radians (0.0245 at
+ *  1024x640, 0.098 at 256x160).  A bump-mapped mirror's signal at a pixel averages the
+ *  reflection over the pixel's footprint, so its angular width scales with the footprint: at
+ *  1024x640 the lobe caps the sphere's history at age 1 (the camera turns the view by about
+ *  0.012 rad a frame), at 256x160 at about 8, which changes nothing at lambda 0.8.  Measured
+ *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
+constexpr float kEnvViewLobePixels = 18.0f;
+
 /** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2: the best of
  *  docs/PERFORMANCE.md, "The blur bound: what it buys, measured" (pcf bilinear and soft, 256x160). */
 constexpr float kSampleBlurBound = 0.5f;
@@ -51,15 +60,17 @@ constexpr float kSampleBlurBound = 0.5f;
  *  FIXED on old pixels, the running mean on new ones.  The blur bound (0.6) wins at both sizes
  *  together with the fill (docs/PERFORMANCE.md, "The blur bound: what it buys, measured"; it
  *  never acts on Catmull-Rom): soft with B = 0.5 px^2 (0.0572 against 0.0606, 0.0577
- *  against 0.0595).  env with the spatial fill below age 4, no fallback (0.0430 against
- *  0.0471 at 256x160, 0.0604 against 0.0612 at 1024x640). */
+ *  against 0.0595).  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
+ *  size) and the spatial fill below age 2, no fallback: 0.0435 at 256x160 and 0.0486 at
+ *  1024x640, against 0.0430 and 0.0604 for 0.6's env (the fill below age 4, no lobe); below
+ *  age 4 the fill would show every pixel the lobe caps at age 1 filled (0.1016 at 1024x640). */
 struct ChannelPresets {
     ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 1, /*antilag_gamma*/ 0.25f,
                         /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
-                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4};
+                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2};
     ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,

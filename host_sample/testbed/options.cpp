@@ -145,13 +145,15 @@ std::string usage() {
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"
-           "  --env-view-lobe A        the view-dependent history on the env channel: its age is capped at\n"
+           "  --env-view-lobe-px P     the view-dependent history on the env channel: its age is capped at\n"
            "                           floor(A/theta), theta the turn of the view direction to the pixel's surface\n"
-           "                           point since the last frame, A in radians in [0, pi] (default 0 = off, the\n"
-           "                           preset; docs/CONVENTIONS.md, \"The view-dependent history\")\n"
+           "                           point since the last frame, A = P pixels of the camera's vertical angle\n"
+           "                           (P * fov_y / height; default 18, the preset: 0.0245 rad at 640 rows; 0 = off;\n"
+           "                           docs/CONVENTIONS.md, \"The view-dependent history\")\n"
+           "  --env-view-lobe A        the same lobe given in radians, in [0, pi] (0 = off)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
-           "                           pixels younger than T frames (default: 4 on both, the presets; 0 = off)\n"
+           "                           pixels younger than T frames (default: 4 on pcf, 2 on env, the presets; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
            "  --history-filter F       every channel's history resampling: bilinear (default, the presets'),\n"
            "                           catmull_rom or nearest;\n"
@@ -221,8 +223,13 @@ Options parse_options(int argc, const char* const* argv) {
             blur_bound = signal_bits_or_none(c);
         else if (c.option("--blur-bound-px2"))
             blur_bound_px2 = c.number(1e-6f, RRC_MAX_BLUR_BOUND);
-        else if (c.option("--env-view-lobe"))
+        else if (c.option("--env-view-lobe")) {
             o.channels.env.view_lobe = c.number(0.0f, RRC_MAX_VIEW_LOBE);
+            o.env_view_lobe_px = 0.0f;
+        } else if (c.option("--env-view-lobe-px")) {
+            o.env_view_lobe_px = c.number(0.0f, 1e4f);
+            o.channels.env.view_lobe = 0.0f;
+        }
         else if (c.option("--antilag-gamma"))
             antilag_gamma = c.number(0.0f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))

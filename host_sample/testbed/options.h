@@ -28,6 +28,10 @@ struct Options {
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
     // Without --soft-fill the three fill options are parsed but rrc gets no fill members.
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
+    // env's view lobe (channel_presets.h): in pixels of the camera's vertical angle (run_sample
+    // turns it into radians with the scene's fov and --size); --env-view-lobe A sets radians
+    // instead (channels.env.view_lobe), and then this is 0.
+    float env_view_lobe_px = kEnvViewLobePixels;
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
     float fps = 30.0f;                       // animation time step = 1/fps

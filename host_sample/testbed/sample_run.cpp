@@ -81,6 +81,8 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.depth_test = o.depth_test;
     rs.soft_prior = o.soft_prior;
     rs.channels = o.channels;
+    // env's view lobe in pixels of the vertical angle (channel_presets.h, kEnvViewLobePixels).
+    if (o.env_view_lobe_px > 0.0f) rs.channels.env.view_lobe = o.env_view_lobe_px * scene.camera(0.0).fov_y / (float)o.height;
     rs.pcf_display.smoothstep = o.pcf_smoothstep;
     rs.pcf_display.e0 = o.pcf_smooth_e0, rs.pcf_display.e1 = o.pcf_smooth_e1;
     rs.pcf_display.threshold = o.pcf_threshold;

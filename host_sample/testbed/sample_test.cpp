@@ -65,6 +65,7 @@ TEST(RrcSample, EnvViewLobeReachesTheKernelOnTheVulkanPath) {
     o.signals = kSignalEnv;
     o.channels.env.fill_age = 0;  // the displayed value is the history itself
     o.channels.env.view_lobe = 1e-4f;
+    o.env_view_lobe_px = 0.0f;  // the lobe in radians, not the preset's pixels
     RunResult r = run_sample(o, nullptr);
     EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
     ASSERT_TRUE(r.frames[5].checkpoint);
@@ -75,6 +76,7 @@ TEST(RrcSample, EnvViewLobeReachesTheKernelOnTheVulkanPath) {
     o = tiny("view_lobe_off");
     o.signals = kSignalEnv;
     o.channels.env.fill_age = 0;
+    o.env_view_lobe_px = 0.0f;
     RunResult off = run_sample(o, nullptr);
     const SignalErrors* f = find(off.frames[5], "env");
     ASSERT_NE(f, nullptr);
@@ -549,12 +551,17 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     o = parse_options(1, no_bound);
     EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
     EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
-    // The view lobe (0.7): env only, off in the presets.
-    EXPECT_EQ(o.channels.env.view_lobe, 0.0f);
+    // The view lobe (0.7): env only, the preset's in pixels of the vertical angle until radians are given.
+    EXPECT_EQ(o.env_view_lobe_px, kEnvViewLobePixels);
     const char* lobe[] = {"rrc-sample", "--env-view-lobe", "0.0245"};
     o = parse_options(3, lobe);
     EXPECT_EQ(o.channels.env.view_lobe, 0.0245f);
+    EXPECT_EQ(o.env_view_lobe_px, 0.0f);
     EXPECT_EQ(o.channels.pcf.view_lobe, 0.0f);
+    const char* lobe_px[] = {"rrc-sample", "--env-view-lobe", "0.5", "--env-view-lobe-px", "0"};
+    o = parse_options(5, lobe_px);
+    EXPECT_EQ(o.channels.env.view_lobe, 0.0f) << "the last one given wins: off";
+    EXPECT_EQ(o.env_view_lobe_px, 0.0f);
     const char* bad_lobe[] = {"rrc-sample", "--env-view-lobe", "4"};
     EXPECT_THROW(parse_options(3, bad_lobe), OptionError) << "above pi";
     const char* fills[] = {"rrc-sample", "--pcf-fill", "4", "--env-fill", "6"};
@@ -575,7 +582,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
     EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);
     EXPECT_EQ(p.env.rectify, 0u);
-    EXPECT_EQ(p.env.fill_age, 4u);
+    EXPECT_EQ(p.env.fill_age, 2u) << "below the lobe's age cap + 1 at 1024x640 (channel_presets.h)";
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.8f);
