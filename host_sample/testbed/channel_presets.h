@@ -36,8 +36,9 @@ struct ChannelSettings {
  *  camera's vertical angle: alpha = kEnvViewLobePixels * fov_y / height radians (0.0245 at
  *  1024x640, 0.098 at 256x160).  A bump-mapped mirror's signal at a pixel averages the
  *  reflection over the pixel's footprint, so its angular width scales with the footprint: at
- *  1024x640 the lobe caps the sphere's history at age 1 (the camera turns the view by about
- *  0.012 rad a frame), at 256x160 at about 8, which changes nothing at lambda 0.8.  Measured
+ *  1024x640 the lobe caps the sphere's history at age 1 (the camera turns the view to its
+ *  points by 0.012-0.022 rad a frame), at 256x160 at 4 to 7, which changes nothing at lambda
+ *  0.8.  Measured
  *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
 constexpr float kEnvViewLobePixels = 18.0f;
 
