@@ -20,6 +20,7 @@ struct ChannelConfig {
     bool rectify = false;   // 0.4: history rectification (reads 8 more samples; no byte the roof counts)
     uint32_t fill_age = 0;  // 0.4: the spatial fill, no fallback (a second dispatch; no byte the roof counts)
     uint32_t fill_radius = 0;  // 0: the library's default
+    float view_lobe = 0.0f;    // 0.7: the view-dependent history's lobe, radians (the view turn a pixel; no byte the roof counts)
 };
 
 struct Config {

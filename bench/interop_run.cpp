@@ -87,6 +87,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
         f.view_proj[i] = pf.view_proj[i / 4][i % 4];  // column-major, as GLM stores it
         f.prev_view_proj[i] = pf.prev_view_proj[i / 4][i % 4];
     }
+    for (int k = 0; k < 3; ++k) f.camera_position[k] = pf.eye[k], f.prev_camera_position[k] = pf.prev_eye[k];
     f.channel_count = (uint32_t)channels_.size();
     f.channels = channels_.data();
     if (with_stats) f.stats_buffer = stats_.buffer;

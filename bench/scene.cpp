@@ -17,10 +17,11 @@ glm::dmat4 projection(double aspect) {
     return reverse * p;
 }
 
+// 6 cm sideways between the poses: a few pixels of motion at 1080p.
+glm::dvec3 eye_of(int pose) { return glm::dvec3(-0.03 + 0.06 * pose, 1.6, 5.0); }
+
 glm::dmat4 view_proj(int pose, double aspect) {
-    // 6 cm sideways between the poses: a few pixels of motion at 1080p.
-    const glm::dvec3 eye(-0.03 + 0.06 * pose, 1.6, 5.0);
-    return projection(aspect) * glm::lookAtRH(eye, glm::dvec3(0.0, 0.2, 0.0), glm::dvec3(0.0, 1.0, 0.0));
+    return projection(aspect) * glm::lookAtRH(eye_of(pose), glm::dvec3(0.0, 0.2, 0.0), glm::dvec3(0.0, 1.0, 0.0));
 }
 
 struct Sphere {
@@ -72,6 +73,7 @@ void render_pose(const Config& cfg, int pose, PoseFrame& f) {
     const double aspect = (double)W / (double)H;
     f.view_proj = view_proj(pose, aspect);
     f.prev_view_proj = view_proj(1 - pose, aspect);
+    f.eye = eye_of(pose), f.prev_eye = eye_of(1 - pose);
     const glm::dmat4 inv = glm::inverse(f.view_proj);
     const uint32_t n = floats_per_pixel(cfg.source);
     f.depth.assign((size_t)W * H, 0.0f);

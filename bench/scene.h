@@ -22,6 +22,7 @@ struct PoseFrame {
     std::vector<float> reprojection;  // W*H*n, n = floats_per_pixel(source) (empty for CAMERA)
     std::vector<uint32_t> object_id;  // W*H (only with object ids): 0 sky, 1 plane, 2 and 3 the spheres
     glm::dmat4 view_proj{1.0}, prev_view_proj{1.0};
+    glm::dvec3 eye{0.0}, prev_eye{0.0};  // the poses' eyes (rrc_frame_desc.camera_position, for the view lobe)
 };
 
 struct SceneInputs {

@@ -65,6 +65,7 @@ double StandaloneBench::run_frame() {
         f.view_proj[i] = pf.view_proj[i / 4][i % 4];
         f.prev_view_proj[i] = pf.prev_view_proj[i / 4][i % 4];
     }
+    for (int k = 0; k < 3; ++k) f.camera_position[k] = pf.eye[k], f.prev_camera_position[k] = pf.prev_eye[k];
     f.nocache = scene_.nocache.empty() ? nullptr : scene_.nocache.data();
     f.object_id = pf.object_id.empty() ? nullptr : pf.object_id.data();
     f.channel_count = (uint32_t)ins.size();

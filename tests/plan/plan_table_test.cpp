@@ -30,6 +30,7 @@ rrc::ContextConfig context_config(const rrc_bench::Config& b) {
         ch.fp16 = bc.precision != RRC_HISTORY_FP32;
         ch.blend = b.shading_cache != rrc_bench::Config::Cache::Off ? RRC_BLEND_REUSE : RRC_BLEND_FIXED;
         ch.fill_age = bc.fill_age;
+        ch.view_lobe = bc.view_lobe;
         if (bc.fill_radius) ch.fill_radius = bc.fill_radius;
         c.channels.push_back(ch);
     }
