@@ -25,24 +25,26 @@ bool view_lobe_world_position(const double m[16], double x, double y, double z, 
     return true;
 }
 
+namespace {
+
+// The angle between a and b from atan2(|a x b|, a . b): accurate for the small
+// angles that matter here, where acos of the normalised dot product loses half
+// the digits.  0 where either is zero or not finite (no view direction), or
+// below the fp32 normal range (the kernel's threshold: no turn).
+double view_angle(const glm::dvec3& a, const glm::dvec3& b) {
+    const double la = glm::length(a), lb = glm::length(b);
+    if (!std::isfinite(la) || !std::isfinite(lb) || !(la > 0.0) || !(lb > 0.0)) return 0.0;
+    const double theta = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+    return theta < FLT_MIN ? 0.0 : theta;
+}
+
+}  // namespace
+
 ViewLobe view_lobe_age(double lobe, const double P[3], const double C[3], const double C_prev[3], unsigned n_prev) {
-    ViewLobe v;
-    v.age = n_prev;
-    v.r = std::numeric_limits<double>::infinity();
-    double a[3], b[3];
-    for (int k = 0; k < 3; ++k) a[k] = P[k] - C[k], b[k] = P[k] - C_prev[k];
-    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    const double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-    if (!(la > 0.0) || !(lb > 0.0)) return v;
-    // The angle from atan2(|a x b|, a . b): accurate for the small angles that
-    // matter here, where acos of the normalised dot product loses half the digits.
-    const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
-    const double cross = std::sqrt(cx * cx + cy * cy + cz * cz), dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    v.theta = std::atan2(cross, dot);
-    if (v.theta == 0.0) return v;
-    v.r = lobe / v.theta;
-    v.age = static_cast<unsigned>(std::min(std::floor(v.r), static_cast<double>(n_prev)));
-    return v;
+    const glm::dvec3 p = glm::make_vec3(P);
+    ViewTurn t;
+    t.theta = view_angle(p - glm::make_vec3(C), p - glm::make_vec3(C_prev));
+    return view_lobe_cap(lobe, t, n_prev);
 }
 
 ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, double d) {
@@ -60,11 +62,10 @@ ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, d
     if (X.w == 0.0) return t;
     const glm::dvec3 P = glm::dvec3(X) / X.w;
     const glm::dvec3 C = glm::make_vec3(frame.camera_position), Cp = glm::make_vec3(frame.prev_camera_position);
-    const glm::dvec3 a = P - C, b = P - Cp;
-    const double la = glm::length(a), lb = glm::length(b);
-    if (!std::isfinite(la) || !std::isfinite(lb) || !(la > 0.0) || !(lb > 0.0)) return t;
-    t.theta = std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-    if (t.theta < FLT_MIN) t.theta = 0.0;  // the kernel's threshold: below the fp32 normal range caps nothing
+    const glm::dvec3 a = P - C;
+    const double la = glm::length(a);
+    t.theta = view_angle(a, P - Cp);
+    if (!std::isfinite(la) || !(la > 0.0) || !std::isfinite(glm::length(P - Cp)) || !(glm::length(P - Cp) > 0.0)) return t;
     // The kernel forms a = (Q c).xyz / (Q c).w in fp32, Q = translate(-C) inverse(VP) rounded:
     // each component off by a few ulps of the sum of |products|, relative to |a|; theta
     // ~ |a x d| / |a|^2 moves by that error times |d| / |a|^2, plus a few ulps of itself
