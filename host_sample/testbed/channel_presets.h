@@ -42,6 +42,10 @@ struct ChannelSettings {
  *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
 constexpr float kEnvViewLobePixels = 18.0f;
 
+/** The PCSS fallback's weight in soft's fill, in samples (rrc_channel_desc.fill_prior): rrc-sample's
+ *  --fill-prior default, and the sweep's soft preset row's (host_sample/studies/sweep/README.md). */
+constexpr float kSampleFillPrior = 4.0f;
+
 /** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2: the best of
  *  docs/PERFORMANCE.md, "The blur bound: what it buys, measured" (pcf bilinear and soft, 256x160). */
 constexpr float kSampleBlurBound = 0.5f;

@@ -23,7 +23,7 @@ struct Options {
     float epsilon_scale = 0.0f;         // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
     uint32_t depth_test = 0;            // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
     float soft_prior = 4.0f;            // PCSS fallback weight, in samples (see README.md)
-    float fill_prior = 4.0f;            // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
+    float fill_prior = kSampleFillPrior;  // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
     uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
     // Without --soft-fill the three fill options are parsed but rrc gets no fill members.

@@ -32,7 +32,7 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
             // The finishing steps (docs/CONVENTIONS.md, "Finishing steps"), on the
             // presets' blend: rectification (pcf, env; gamma 1), the Gaussian
             // history (pcf, the chapter's blur), the spatial fill (soft, T = 8,
-            // no fallback: the sweep's frames carry none).
+            // no fallback; the soft preset row below adds rrc-sample's).
             if (o.finishing)
                 for (float lambda : o.lambdas) {
                     rrc_sample::ChannelSettings c{lambda, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0};
@@ -88,13 +88,19 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     v.view_lobe = kSweepViewLobe;
                     run.configs.push_back({app, v});
                 }
-            // rrc-sample's pcf preset (testbed/channel_presets.h), which no row above spells:
-            // the targets under motion are its (docs/PERFORMANCE.md, "Targets under motion").
-            // env's preset (lambda 0.8 with the fill below age 4) is not a row; soft's nearly is
-            // (the fill row at 8 and cap 64 with the blur bound, here without the PCSS fallback
-            // the sweep's frames do not carry).
+            // rrc-sample's pcf and soft presets (testbed/channel_presets.h), which no row above
+            // spells: the targets under motion are theirs (docs/PERFORMANCE.md, "Targets under
+            // motion").  soft's is the blur bound's fill row with rrc-sample's PCSS estimate as
+            // the fill's fallback, worth kSampleFillPrior samples (README.md, "The soft preset
+            // row": its centre-light map and PCSS pass are timed with its rrc pass).  env's
+            // preset (the view lobe scaled to the size) is not a row.
             if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
                 run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
+            if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
+                rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
+                preset.fill_prior = rrc_sample::kSampleFillPrior;
+                run.configs.push_back({app, preset});
+            }
         }
         runs.push_back(run);
     }
@@ -133,6 +139,11 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     std::string s = filter_label(c.filter);
     if (c.rectify) s += "+rectify";
     if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
+    if (c.fill_prior > 0.0f) {  // the fill's fallback: rrc-sample's PCSS estimate, worth this many samples
+        char b[32];
+        std::snprintf(b, sizeof b, "+pcss%g", (double)c.fill_prior);
+        s += b;
+    }
     if (c.antilag) s += "+antilag";
     // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {

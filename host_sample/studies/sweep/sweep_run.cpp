@@ -7,6 +7,7 @@
 #include "frame_state.h"
 #include "gpu.h"
 #include "metrics.h"
+#include "post.h"
 #include "raster.h"
 #include "readback.h"
 #include "rrc_stage.h"
@@ -285,6 +286,15 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
             for (const RrcConfig& c : run.configs)
                 stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
+            // The soft preset row's fill fallback (sweep_configs.cpp): rrc-sample's PCSS estimate from the
+            // light centre's map (post.h, record_pcss), recorded in that row's own timed pass before its
+            // dispatch, so that the row's rrc time holds the map and the estimate.
+            std::unique_ptr<rrc_sample::PostPasses> pcss;
+            for (size_t i = 0; i < stages.size() && !pcss; ++i)
+                if (run.configs[i].channel.fill_prior > 0.0f)
+                    pcss.reset(new rrc_sample::PostPasses(gpu, e.gpu_scene, e.gbuffer.images(), e.maps, stages[i]->mask(),
+                                                          stages[i]->accumulated(), e.signals.raw(), e.signals.reference(), o.width,
+                                                          o.height, true));
             // The sharing probe: each application's default channel alone, then all of them in one context.
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> probe;
             const bool probing = run.pattern == 0 && apps_of(sigs).size() > 1;
@@ -346,8 +356,16 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                             else
                                 e.signals.record(c, a.signal, state, sampling);
                         }));
-                    for (auto& st : stages)
-                        stage_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
+                    for (size_t i = 0; i < stages.size(); ++i)
+                        stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
+                            const bool fallback = run.configs[i].channel.fill_prior > 0.0f;
+                            if (fallback) {
+                                e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
+                                pcss->record_pcss(c, 0);
+                            }
+                            stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr,
+                                              fallback ? &pcss->soft_pcss() : nullptr);
+                        }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
                     if (timed) {  // its output is not read here

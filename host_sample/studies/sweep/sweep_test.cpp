@@ -170,7 +170,7 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     o.reference_samples = 256;
     o.rrc_taps = {4};
     o.brute_taps = {1, 4, 16};
-    o.lambdas = {0.6f};
+    o.lambdas = {0.6f, 0.8f};  // 0.8: soft's preset row and its twin without the fallback
     o.soft_caps = {16};
     o.catmull_rom = false;
     o.validation = true;
@@ -221,6 +221,15 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     ASSERT_NE(lobed, nullptr);
     EXPECT_LT(lobed->metrics.variance, 0.75 * brute_row(r, 2u, 4)->metrics.variance);
     EXPECT_GE(lobed->metrics.variance, rrc_row(r, 2u, 4, 0.6f, RRC_BLEND_AGE_AWARE)->metrics.variance) << "a cap can only shorten the history";
+    // rrc-sample's soft preset row runs its PCSS fallback under validation, and the fallback
+    // helps: the same row without it (the blur bound's fill row at lambda 0.8) has a larger RMSE.
+    const RrcRow *preset = nullptr, *without = nullptr;
+    for (const RrcRow& row : r.rrc)
+        if (row.config.app.signal == 4u && row.config.channel.fill_age && row.config.channel.blur_bound > 0.0f &&
+            std::abs(row.config.channel.lambda - 0.8f) < 1e-6f)
+            (row.config.channel.fill_prior > 0.0f ? preset : without) = &row;
+    ASSERT_TRUE(preset && without);
+    EXPECT_LT(preset->metrics.rmse, without->metrics.rmse);
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
@@ -269,9 +278,12 @@ TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
     o.lambdas = {0.8f, 0.9f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
     int bounded = 0;
-    // rrc-sample's pcf preset row is the preset whatever it holds (--no-antilag drops it).
+    // rrc-sample's pcf and soft preset rows are the presets whatever they hold (--no-antilag drops
+    // pcf's, --no-finishing both); soft's is the one row with a fill fallback.
     const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
-    auto is_preset = [&](const RrcConfig& c) { return std::memcmp(&c.channel, &preset, sizeof preset) == 0; };
+    auto is_preset = [&](const RrcConfig& c) {
+        return std::memcmp(&c.channel, &preset, sizeof preset) == 0 || c.channel.fill_prior > 0.0f;
+    };
     const std::vector<RrcRun> runs = rrc_runs(o, all);
     for (const RrcRun& run : runs)
         for (const RrcConfig& c : run.configs) {
@@ -324,6 +336,28 @@ TEST(SweepConfigs, ViewLobeRowsAreEnvTwinsOfThePlainAgeAwareRows) {
     EXPECT_FALSE(off.view_lobe);
     for (const RrcRun& run : rrc_runs(off, all))
         for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.view_lobe, 0.0f);
+}
+
+TEST(SweepConfigs, SoftPresetRowIsTheSamplesPresetWithItsPcssFallback) {
+    SweepOptions o;
+    o.rrc_taps = {1, 4};
+    o.lambdas = {0.6f};
+    const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
+    rrc_sample::ChannelSettings expected = rrc_sample::ChannelPresets{}.soft;
+    expected.fill_prior = rrc_sample::kSampleFillPrior;
+    int rows = 0;
+    for (const RrcRun& run : rrc_runs(o, all))
+        for (const RrcConfig& c : run.configs) {
+            if (c.channel.fill_prior == 0.0f) continue;
+            ++rows;
+            EXPECT_EQ(c.app.signal, rrc_sample::kSignalSoft) << "the one signal rrc-sample gives a fallback";
+            EXPECT_EQ(std::memcmp(&c.channel, &expected, sizeof expected), 0) << "rrc-sample's soft preset, --fill-prior at its default";
+            EXPECT_EQ(filter_label(c.channel), "bilinear+fill8+pcss4+blur0.5");
+        }
+    EXPECT_EQ(rows, 2);  // one per k, at the preset's own lambda whatever --lambdas holds
+    const char* argv[] = {"rrc-sweep", "--no-finishing"};
+    for (const RrcRun& run : rrc_runs(parse_sweep_options(2, argv), all))
+        for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.fill_prior, 0.0f);
 }
 
 TEST(MovingLight, TurnsTheSunAboutTheVerticalAtTheStatedSpeed) {
