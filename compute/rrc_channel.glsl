@@ -153,8 +153,9 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     }
 
     // -- the view-dependent history (docs/CONVENTIONS.md, "The view-dependent
-    //    history"): the pixel's view turn theta caps the age at floor(alpha / theta),
-    //    so the history's mean offset in view direction stays within alpha.
+    //    history"): the pixel's view turn theta plus the lighting's turn phi
+    //    (view_theta) caps the age at floor(alpha / (theta + phi)), so the
+    //    history's mean offset in reflected direction stays within alpha.
     if (CH_(_VIEW_LOBE) && view_theta >= RRC_FLT_MIN)
         n_blend = min(n_blend, uint(min(floor(CH_(_VIEW_LOBE_RAD) / view_theta), float(RRC_MAX_AGE_CAP))));
 

@@ -143,7 +143,8 @@
 // The view buffer (library-owned, RRC_SPEC_VIEW_LOBE contexts only): this
 // frame's camera for the view lobe, std430 { mat4 Q; vec4 d; }: Q =
 // translate(-C) * inverse(VP_cur) (the pixel's clip position to its surface
-// point relative to the eye, homogeneous), d.xyz = C_prev - C; formed in
+// point relative to the eye, homogeneous), d.xyz = C_prev - C, d.w = the
+// lighting's turn phi (rrc_frame_desc.lighting_turn, 0.8); formed in
 // double on the CPU and written by the frame's own commands
 // (plugin/accumulator_core.cpp).  Bound to every per-pixel pass.
 #define RRC_BINDING_VIEW 33

@@ -105,9 +105,10 @@ void rrc_pixel_at(ivec2 px, bool store) {
     bool young = false;  // some channel with a fill has n < fill_age here (set by rrc_channel.glsl)
     // The view turn theta, once for every slot with a view lobe (rrc_view_lobe.glsl), where the
     // channels blend: not in classify, which writes only REUSE channels (they have no lobe).
+    // The lighting's turn phi adds to it (docs/CONVENTIONS.md, "The view-dependent history").
     float view_theta = 0.0;
     if (VIEW_ANY && PHASE != RRC_PHASE_CLASSIFY) {
-        if (hit_any) view_theta = rrc_view_turn(px, size);
+        if (hit_any) view_theta = rrc_view_turn(px, size) + u_view.d.w;
     }
 
 #define RRC_CH 0

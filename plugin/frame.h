@@ -36,6 +36,7 @@ struct Frame {
     uint32_t source() const { return reproject_from ? reproject_from - 1 : view; }
     double view_proj[16] = {}, prev_view_proj[16] = {};
     double camera_position[3] = {}, prev_camera_position[3] = {};  // 0.7: read where a channel has a view lobe
+    float lighting_turn = 0.0f;                                     // 0.8: phi, added to the view turn
     float jitter[2] = {}, prev_jitter[2] = {};
     uint32_t channel_count = 0;
     std::array<FrameChannel, RRC_MAX_CHANNELS> channels{};

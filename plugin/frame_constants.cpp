@@ -44,6 +44,7 @@ ViewBuffer make_view_buffer(const Frame& f) {
         for (int row = 0; row < 4; ++row) v.Q[col * 4 + row] = (float)Q[col][row];
     const glm::dvec3 d = C_prev - C;
     for (int k = 0; k < 3; ++k) v.d[k] = (float)d[k];
+    v.d[3] = f.lighting_turn;  // phi, added to every pixel's view turn
     return v;
 }
 

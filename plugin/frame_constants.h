@@ -11,7 +11,7 @@ namespace rrc {
 FramePushConstants make_frame_constants(const ContextConfig& config, const Frame& frame, bool prev_valid);
 
 // The view buffer's contents (compute/rrc_kernel_interface.h, RRC_BINDING_VIEW):
-// Q = translate(-C) * inverse(VP_cur), column-major, then C_prev - C and 0.
+// Q = translate(-C) * inverse(VP_cur), column-major, then C_prev - C and the lighting's turn phi.
 struct ViewBuffer {
     float Q[16];
     float d[4];

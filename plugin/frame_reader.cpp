@@ -22,6 +22,7 @@ Frame read_common(const D* caller, FramePath path, D& d) {
     std::memcpy(f.prev_view_proj, d.prev_view_proj, sizeof f.prev_view_proj);
     std::memcpy(f.camera_position, d.camera_position, sizeof f.camera_position);
     std::memcpy(f.prev_camera_position, d.prev_camera_position, sizeof f.prev_camera_position);
+    f.lighting_turn = d.lighting_turn;
     std::memcpy(f.jitter, d.jitter, sizeof f.jitter);
     std::memcpy(f.prev_jitter, d.prev_jitter, sizeof f.prev_jitter);
     f.channel_count = d.channel_count;

@@ -362,6 +362,11 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
             if (!std::isfinite(f.camera_position[i]) || !std::isfinite(f.prev_camera_position[i]))
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.camera_position/prev_camera_position[%d] is not finite (a channel has a view_lobe)", i);
     }
+    // The lighting's turn (0.8) adds to every view lobe's view turn: an angle like the lobe.
+    if (!(f.lighting_turn >= 0.0f && f.lighting_turn <= RRC_MAX_VIEW_LOBE))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.lighting_turn %g is not in [0, RRC_MAX_VIEW_LOBE] radians", (double)f.lighting_turn);
+    if (f.lighting_turn != 0.0f && !c.view_lobe())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.lighting_turn is %g but no channel has a view_lobe to apply it to", (double)f.lighting_turn);
     if (c.reprojection == RRC_REPROJECTION_CAMERA || c.view_lobe()) {
         // The library inverts view_proj (frame_constants.cpp): a singular one
         // would turn every pixel into NaN silently.

@@ -379,6 +379,52 @@ TEST(Api, AViewLobeNeedsTheFramesCamera) {
     EXPECT_EQ(age, std::vector<uint16_t>(16, 1)) << "the refused frame left the history (age 2) and the lobe caps it at 0";
 }
 
+TEST(Api, TheLightingsTurnAddsToTheViewTurnAndIsRefusedOutOfRange) {
+    std::vector<rrc_channel_desc> channels = {channel("env", 1, 0.8f)};
+    channels[0].view_lobe = 0.05f;
+    Context ctx(context_desc(4, 4, channels));
+    std::vector<rrc_channel_desc> plain_channels = {channel("s", 1, 0.8f)};
+    Context plain(context_desc(4, 4, plain_channels));
+    ASSERT_TRUE(ctx && plain);
+    std::vector<float> depth(16, 0.5f), s(16, 1.0f), clip(16 * 4);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            float* c = &clip[(j * 4 + i) * 4];
+            c[0] = (i + 0.5f) / 2.0f - 1.0f, c[1] = (j + 0.5f) / 2.0f - 1.0f, c[2] = 0.5f, c[3] = 1.0f;
+        }
+    rrc_channel_input in = channel_input(s.data());
+    rrc_frame_desc f = frame_desc();
+    f.depth = depth.data();
+    f.reprojection = clip.data();
+    f.channel_count = 1;
+    f.channels = &in;
+    for (int i = 0; i < 16; i += 5) f.view_proj[i] = 1.0;
+    f.camera_position[0] = f.prev_camera_position[0] = 5.0;  // the eye did not move: theta = 0
+    std::vector<uint16_t> age(16);
+    rrc_channel_output co = rrc_host::rrc_struct<rrc_channel_output>(RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
+    co.age = age.data();
+    rrc_frame_output o = rrc_host::rrc_struct<rrc_frame_output>(RRC_STRUCT_TYPE_FRAME_OUTPUT);
+    o.channel_count = 1;
+    o.channels = &co;
+    for (int t = 0; t < 4; ++t) ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(age, std::vector<uint16_t>(16, 4)) << "a still eye and still lighting cap nothing";
+    for (float bad : {-0.01f, 3.5f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        f.lighting_turn = bad;
+        std::fill(age.begin(), age.end(), 0xEEEE);
+        EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT) << bad;
+        EXPECT_NE(std::string(rrc_last_error()).find("frame.lighting_turn"), std::string::npos) << rrc_last_error();
+        EXPECT_EQ(age, std::vector<uint16_t>(16, 0xEEEE)) << "a refused frame writes nothing";
+    }
+    // theta = 0, phi = alpha / 2.5: the cap floor(alpha / phi) = 2 on the history of age 4
+    // the refused frames left; the stored age is 2 + 1.
+    f.lighting_turn = 0.02f;
+    ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(age, std::vector<uint16_t>(16, 3));
+    // A turn without a view lobe to apply it to is a mistake, not ignored.
+    EXPECT_EQ(rrc_frame_run(plain.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(rrc_last_error()).find("no channel has a view_lobe"), std::string::npos) << rrc_last_error();
+}
+
 TEST(Api, DeviceNameIsQueryable) {
     std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
     Context ctx(context_desc(4, 4, channels));

@@ -106,6 +106,7 @@ struct CaseStats {
     int64_t capped = 0, blur_uncertain = 0;             // the blur bound: N < n_prev, the stored age within fp32 error of a step
     int64_t view_capped = 0, view_uncertain = 0;        // the view lobe: n_v < n_prev, the stored age within fp32 error of a step
     double max_theta = 0.0;                             // the view lobe: the largest view turn it saw
+    int64_t turn_caught = 0;                            // the lighting's turn: values the reference without it gets wrong
     double max_fp32_err = 0, max_fp16_steps = 0;
     std::vector<int64_t> caught;  // per mutant
 };
@@ -113,7 +114,7 @@ struct CaseStats {
 // Runs `channels` on the scene for kFrames frames, comparing every frame with
 // the reference from the kernel's previous state; returns the statistics.
 CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>& channels, const std::vector<Mutant>& mutants,
-                           bool changing_signal, const Policy* policy = nullptr, bool camera_positions = false) {
+                           bool changing_signal, const Policy* policy = nullptr, bool camera_positions = false, float lighting_turn = 0.0f) {
     CaseStats st;
     st.caught.assign(mutants.size(), 0);
     // A few invalid samples: rectification leaves such taps out of its box.
@@ -148,10 +149,15 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
             const glm::dvec3 eye = scene.camera(t).eye, prev_eye = scene.camera(std::max(t - 1, 0)).eye;
             for (int k = 0; k < 3; ++k) in.desc.camera_position[k] = eye[k], in.desc.prev_camera_position[k] = prev_eye[k];
         }
+        // The lighting's turn (0.8), a different one each frame; the wrong variant ignores it.
+        in.desc.lighting_turn = lighting_turn * (t % 3 + 1) / 3.0f;
+        rrc_frame_desc still = in.desc;
+        still.lighting_turn = 0.0f;
         FrameResult k = ctx.run(in.desc);
         rrc_ref::FrameResult r = rrc_ref::run_frame(ctx.desc(), prev, in.desc);
         std::vector<rrc_ref::FrameResult> mr;
         for (size_t m = 0; m < mutants.size(); ++m) mr.push_back(rrc_ref::run_frame(mutant_desc[m], prev, in.desc));
+        const rrc_ref::FrameResult r_still = lighting_turn > 0.0f ? rrc_ref::run_frame(ctx.desc(), prev, still) : rrc_ref::FrameResult{};
         for (size_t i = 0; i < n; ++i) {
             // Pixels whose hit decision or nearest texel sits within fp32 error of a threshold.
             if (r.near_threshold[i] || r.near_nearest_edge[i]) {
@@ -226,6 +232,16 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
                 }
                 st.caught[mu] += caught;
             }
+            for (size_t ch = 0; ch < channels.size() && lighting_turn > 0.0f; ++ch) {
+                const uint32_t m = channels[ch].components;
+                const bool fp16 = channels[ch].precision == RRC_HISTORY_FP16;
+                bool caught = false;
+                for (uint32_t q = 0; q < m && !caught; ++q) {
+                    const double tol = value_tolerance(r.channels[ch], prev, ch, m, i, q, fp16, r, in.desc.prev_jitter);
+                    caught = std::fabs(r_still.channels[ch].out[m * i + q] - r.channels[ch].out[m * i + q]) > 2 * tol;
+                }
+                st.turn_caught += caught;
+            }
         }
         prev = kernel_state(in.frame.depth, k);
     }
@@ -240,6 +256,8 @@ CaseStats run_accumulating(const char* name, const std::vector<rrc_channel_desc>
     EXPECT_LE(st.uncertain, st.shortened / 20 + 5) << name << ": too many pixels with an uncertain lag-detector age";
     EXPECT_LE(st.blur_uncertain, st.capped / 20 + 5) << name << ": too many pixels with an uncertain blur-bound age";
     EXPECT_LE(st.view_uncertain, st.view_capped / 20 + 5) << name << ": too many pixels with an uncertain view-lobe age";
+    if (lighting_turn > 0.0f)
+        std::printf("  wrong variant %-32s would fail on %lld values\n", "the lighting's turn ignored", (long long)st.turn_caught);
     EXPECT_GT(st.compared, (int64_t)n * kFrames * 9 / 10) << name << ": too few pixels compared";
     EXPECT_GT(st.hits + st.refreshed, (int64_t)n * kFrames / 3) << name << ": too few hits";
     for (size_t mu = 0; mu < mutants.size(); ++mu) {
@@ -450,6 +468,20 @@ TEST_P(ViewLobeKernel, MatchesTheReference) {
 }
 INSTANTIATE_TEST_SUITE_P(Lobe, ViewLobeKernel, ::testing::Values(0.01f, 0.04f),
                          [](const ::testing::TestParamInfo<float>& i) { return i.param == 0.01f ? std::string("a0_01") : std::string("a0_04"); });
+
+// The lighting's turn phi (0.8) adds to every pixel's view turn (docs/CONVENTIONS.md,
+// "The view-dependent history"): phi of the scene's largest view turns, varied per
+// frame, so that caps move at every pixel; a variant that ignores phi must be caught.
+TEST(ViewLobeKernelTurn, TheLightingsTurnAddsToTheViewTurn) {
+    const float alpha = 0.04f, phi = 0.015f;
+    const std::vector<rrc_channel_desc> chs = {
+        lobed(channel("t1h", 1, 0.9f, kFp16, RRC_BLEND_AGE_AWARE, kBil), alpha),
+        lobed(channel("t4f", 4, 0.9f, kFp32, RRC_BLEND_FIXED, kBil), alpha),
+    };
+    CaseStats st = run_accumulating("lighting_turn", chs, {}, true, nullptr, /*camera_positions=*/true, phi);
+    EXPECT_GT(st.view_capped, 300) << "the view lobe hardly capped any history";
+    EXPECT_GT(st.turn_caught, 300) << "ignoring the lighting's turn changed too few values to be tested";
+}
 
 // ---- The spatial fill -------------------------------------------------------------
 

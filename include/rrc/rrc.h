@@ -113,7 +113,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 7, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 8, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -471,6 +471,13 @@ typedef struct rrc_frame_desc {
      *      required whatever the reprojection source ---- */
     double camera_position[3];      /* this frame's eye, world space (the space view_proj maps from) */
     double prev_camera_position[3]; /* the eye of the frame reprojected from (reproject_from's) */
+    /* ---- 0.8 (a 0.7 caller's size ends before this: read as zero) ---- */
+    /* phi >= 0, radians, at most RRC_MAX_VIEW_LOBE: how far the distant lighting the
+     * view lobes' channels reflect (a sky, an environment map) turned since the frame
+     * reprojected from; 0 = still.  Their caps then use theta + phi
+     * (docs/CONVENTIONS.md, "The view-dependent history").  Non-zero in a frame of a
+     * context without a view_lobe is RRC_ERROR_INVALID_ARGUMENT. */
+    float lighting_turn;
 } rrc_frame_desc;
 
 typedef struct rrc_frame_stats {

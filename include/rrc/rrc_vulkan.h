@@ -156,6 +156,8 @@ typedef struct rrc_vulkan_frame_desc {
     /* ---- 0.7 ---- */
     double camera_position[3];      /* as rrc_frame_desc.camera_position */
     double prev_camera_position[3]; /* as rrc_frame_desc.prev_camera_position */
+    /* ---- 0.8 ---- */
+    float lighting_turn; /* as rrc_frame_desc.lighting_turn (rrc.h) */
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */

@@ -42,7 +42,7 @@ const rrc_abi_entry kLayout02[] = {
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
-    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 7, 0)) << "rule 6: the current header is 0.7.0";
+    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 8, 0)) << "rule 6: the current header is 0.8.0";
     EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), 0u);
     EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 4u) << "the library must be at least as new as its header";
 }
@@ -101,6 +101,8 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_channel_desc, view_lobe), offsetof(rrc_channel_desc, blur_bound) + sizeof(float));  // 0.7 after 0.6
     EXPECT_GE(offsetof(rrc_frame_desc, camera_position), offsetof(rrc_frame_desc, reproject_from) + sizeof(uint32_t));  // 0.7 after 0.3
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, camera_position), offsetof(rrc_vulkan_frame_desc, split_outputs) + sizeof(uint32_t));
+    EXPECT_GE(offsetof(rrc_frame_desc, lighting_turn), offsetof(rrc_frame_desc, prev_camera_position) + 3 * sizeof(double));  // 0.8
+    EXPECT_GE(offsetof(rrc_vulkan_frame_desc, lighting_turn), offsetof(rrc_vulkan_frame_desc, prev_camera_position) + 3 * sizeof(double));
     EXPECT_GE(offsetof(rrc_channel_input, fallback), size01("rrc_channel_input"));
     EXPECT_GE(offsetof(rrc_vulkan_channel_images, fallback), size01("rrc_vulkan_channel_images"));
     EXPECT_EQ(sizeof(rrc_vulkan_frame_stats), 32u);
@@ -408,6 +410,11 @@ TEST_P(FrameLevelStruct, RulesOneToFour) {
     expect_accepted(fs.hooks(shape(s01, fs.array ? 0 : s01), {}, -1), "0.1 size");
     // Rule 1 / 2: larger with a zero tail (arrays: strided by sizeof + 16).
     expect_accepted(fs.hooks(shape(big), {}, -1), "sizeof + 16, zero tail");
+    // A 0.7 caller's frame ends before the lighting's turn (0.8), in a buffer of exactly that size.
+    if (fs.name == std::string("frame_desc")) {
+        const uint32_t s07 = (uint32_t)offsetof(rrc_frame_desc, lighting_turn);
+        expect_accepted(fs.hooks(shape(s07, s07), {}, -1), "0.7 size");
+    }
     // Garbage right after the struct (arrays: after the last element) is never read.
     if (!fs.array) {
         Shape g = shape(full, full + 64);

@@ -38,16 +38,7 @@ double view_angle(const glm::dvec3& a, const glm::dvec3& b) {
     return theta < FLT_MIN ? 0.0 : theta;
 }
 
-}  // namespace
-
-ViewLobe view_lobe_age(double lobe, const double P[3], const double C[3], const double C_prev[3], unsigned n_prev) {
-    const glm::dvec3 p = glm::make_vec3(P);
-    ViewTurn t;
-    t.theta = view_angle(p - glm::make_vec3(C), p - glm::make_vec3(C_prev));
-    return view_lobe_cap(lobe, t, n_prev);
-}
-
-ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, double d) {
+ViewTurn view_turn_of_eyes(const Params& p, const rrc_frame_desc& frame, int i, int j, double d) {
     ViewTurn t;
     const glm::dmat4 inv = glm::inverse(glm::make_mat4(frame.view_proj));
     const double x = 2.0 * (i + 0.5 + frame.jitter[0]) / p.width - 1.0;
@@ -80,6 +71,25 @@ ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, d
     S /= std::fabs(X.w);
     const double e_a = 64.0 * std::ldexp(1.0, -24) * (S + la);
     t.err = e_a * glm::length(Cp - C) / (la * la) * 4.0 + 64.0 * std::ldexp(1.0, -24) * t.theta;
+    return t;
+}
+
+}  // namespace
+
+ViewLobe view_lobe_age(double lobe, const double P[3], const double C[3], const double C_prev[3], unsigned n_prev) {
+    const glm::dvec3 p = glm::make_vec3(P);
+    ViewTurn t;
+    t.theta = view_angle(p - glm::make_vec3(C), p - glm::make_vec3(C_prev));
+    return view_lobe_cap(lobe, t, n_prev);
+}
+
+ViewTurn view_turn(const Params& p, const rrc_frame_desc& frame, int i, int j, double d) {
+    // The lighting's turn phi adds to the view's (0 where the view's is undefined); the
+    // kernel's fp32 sum rounds once more.
+    ViewTurn t = view_turn_of_eyes(p, frame, i, j, d);
+    const double phi = frame.lighting_turn;
+    t.theta += phi;
+    if (phi > 0.0) t.err += 2.0 * std::ldexp(1.0, -24) * t.theta;
     return t;
 }
 

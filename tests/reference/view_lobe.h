@@ -29,9 +29,10 @@ struct ViewLobe {
 // The view turn at pixel (i, j) of depth d (docs/CONVENTIONS.md): its sample
 // position (the centre plus this frame's jitter) and depth to P through
 // inverse(view_proj) (LINEAR depth: the point of the pixel's ray whose clip w
-// is d, as the CAMERA source), then theta between P - C and P - C_prev.
-// theta = 0 where it is undefined (P not finite, on either eye) or below
-// the fp32 normal range; err bounds the fp32 kernel's error of theta.
+// is d, as the CAMERA source), then theta between P - C and P - C_prev,
+// plus the frame's lighting_turn phi (0.8).  The eyes' part is 0 where it is
+// undefined (P not finite, on either eye) or below the fp32 normal range;
+// err bounds the fp32 kernel's error of theta + phi.
 struct ViewTurn {
     double theta = 0.0;
     double err = 0.0;
