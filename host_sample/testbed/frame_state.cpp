@@ -101,6 +101,7 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& s, int ind
     st.prev_view_proj = glm::dmat4(pvp);
     st.eye = glm::dvec3(scene.camera(t).eye);
     st.prev_eye = glm::dvec3(scene.camera(tp).eye);
+    st.lighting_turn = std::abs(scene.light_angle(index) - scene.light_angle(std::max(index - 1, 0)));
 
     const float sun_texel = 2.0f * scene.sun_extent / (float)s.sun_map;
     // The moving light (Scene::light_speed): the sun and, through bump.z, the environment map turn together.

@@ -63,6 +63,7 @@ struct FrameState {
     std::vector<GpuObject> objects;
     glm::dmat4 view_proj, prev_view_proj;  // for rrc's CAMERA source
     glm::dvec3 eye, prev_eye;              // the camera's positions, for rrc's view lobe (rrc_frame_desc.camera_position)
+    float lighting_turn = 0.0f;            // radians the environment map turned since the previous frame (rrc_frame_desc.lighting_turn)
 };
 
 /** The state of frame `index` (time index / fps); frame 0's "previous" is itself. */

@@ -118,6 +118,11 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
         f.prev_view_proj[i] = state.prev_view_proj[i / 4][i % 4];
     }
     for (int k = 0; k < 3; ++k) f.camera_position[k] = state.eye[k], f.prev_camera_position[k] = state.prev_eye[k];
+    // The environment map's turn adds to the view lobes' view turn (docs/CONVENTIONS.md, "The
+    // view-dependent history"); rrc refuses it without a lobe.
+    const bool lobe = ((settings_.signals & kSignalPcf) && p.pcf.view_lobe > 0.0f) || ((settings_.signals & kSignalEnv) && p.env.view_lobe > 0.0f) ||
+                      ((settings_.signals & kSignalSoft) && p.soft.view_lobe > 0.0f);
+    if (lobe && settings_.lighting_turn) f.lighting_turn = state.lighting_turn;
     f.channel_count = (uint32_t)ch.size();
     f.channels = ch.data();
     if (rrc_vulkan_record_frame(ctx_, &f) != RRC_SUCCESS)

@@ -26,6 +26,8 @@ struct RrcSettings {
     float near_plane = 0.1f, far_plane = 200.0f;
     ChannelPresets channels;
     bool use_object_id = true;  // rrc_context_desc.use_object_id: the G-buffer's object id image goes to rrc
+    // With a view lobe: each frame's lighting_turn (FrameState, the environment map's turn) goes to rrc.
+    bool lighting_turn = true;
 };
 
 /** The channel descriptions for the signals, in the order pcf, env, soft. */

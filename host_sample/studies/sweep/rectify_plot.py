@@ -23,21 +23,25 @@ def main(out):
             apps.append(r["app"])
     variants = []
     for r in rows:
-        v = (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""))
+        v = (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""), int(r.get("lighting_turn", "0")))
         if v not in variants:
             variants.append(v)
     fig, axes = plt.subplots(3, len(apps), figsize=(4.2 * len(apps), 9.0), squeeze=False)
     speed = rows[0]["light_speed"] if rows else "?"
     for c, app in enumerate(apps):
         for v in variants:
-            (on, gamma, lag_on, lag_gamma) = v
+            (on, gamma, lag_on, lag_gamma, turn) = v
             sel = [r for r in rows if r["app"] == app and
-                   (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", "")) == v]
+                   (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""),
+                    int(r.get("lighting_turn", "0"))) == v]
             if not sel:
                 continue
             sel.sort(key=lambda r: float(r["lambda"]))
             lam = [float(r["lambda"]) for r in sel]
-            if lag_on:
+            if turn:
+                label = "view lobe with the lighting's turn"
+                style = "d-."
+            elif lag_on:
                 label = "lag detector, γ_a = %s" % lag_gamma.rstrip("0").rstrip(".")
                 style = "^:"
             elif on:

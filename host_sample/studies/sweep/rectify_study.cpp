@@ -29,7 +29,14 @@ struct StudyConfig {
     rrc_sample::ChannelSettings channel;
     int base = -1;       // the index of the same configuration without its cure
     std::string preset;  // "" or the preset row's name
+    bool lighting_turn = true;  // with a view lobe: the frames carry the environment map's turn (rrc_stage.h)
 };
+
+/** A view lobe of `pixels` of the vertical angle at the study's size, in radians (rrc-sample's rule,
+ *  channel_presets.h, kEnvViewLobePixels). */
+float study_view_lobe(const SweepOptions& o, float pixels) {
+    return pixels * rrc_sample::Scene::make(o.scene).camera(0.0).fov_y / (float)o.height;
+}
 
 std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
     std::vector<StudyConfig> c;
@@ -56,12 +63,25 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                     on.antilag_threshold = o.antilag_threshold;
                     c.push_back({app, on, base});
                 }
+            // The view lobe with the lighting's turn (docs/CONVENTIONS.md, "The view-dependent
+            // history"): env only, one row per --lobe-pixels (rrc-sample's lobe by default); the
+            // frames carry the environment map's turn, so the cap acts only while the light moves.
+            if (o.view_lobe && app.signal == kSignalEnv)
+                for (float px : o.lobe_pixels) {
+                    rrc_sample::ChannelSettings on = off;
+                    on.view_lobe = study_view_lobe(o, px);
+                    c.push_back({app, on, base});
+                }
         }
         // rrc-sample's preset (testbed/channel_presets.h) with and without the lag detector:
         // pcf's has it (gamma_a 0.25, T 0.25), env's has not (here with the sweep's rows' setting).
         if (o.antilag && app.signal != kSignalSoft) {
             const rrc_sample::ChannelPresets presets;
-            const rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
+            rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
+            // env's preset has rrc-sample's lobe for the size (sample_run.cpp); its first two rows
+            // leave the lighting's turn out, so that under the still camera the lobe caps nothing.
+            const bool lobe = app.signal == kSignalEnv && o.view_lobe;
+            if (lobe) preset.view_lobe = study_view_lobe(o, rrc_sample::kEnvViewLobePixels);
             rrc_sample::ChannelSettings without = preset, with = preset;
             without.antilag = 0;
             without.antilag_gamma = without.antilag_threshold = 0.0f;
@@ -71,8 +91,9 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                 with.antilag_threshold = kSweepAntilagThreshold;
             }
             const int base = (int)c.size();
-            c.push_back({app, without, -1, preset.antilag ? "the preset without the lag detector" : "the preset"});
-            c.push_back({app, with, base, preset.antilag ? "the preset" : "the preset with the lag detector"});
+            c.push_back({app, without, -1, preset.antilag ? "the preset without the lag detector" : "the preset", !lobe});
+            c.push_back({app, with, base, preset.antilag ? "the preset" : "the preset with the lag detector", !lobe});
+            if (lobe) c.push_back({app, without, base, "the preset with the lighting's turn", true});
         }
     }
     return c;
@@ -172,7 +193,11 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
 
     // ---- rrc: one context per configuration, all fed the same signals, frame by frame and seed by seed.
     std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
-    for (const StudyConfig& c : configs) stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
+    for (const StudyConfig& c : configs) {
+        rrc_sample::RrcSettings s = e.rrc_settings(c.app.signal, c.channel);
+        s.lighting_turn = c.lighting_turn;
+        stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
+    }
     rrc_sample::Readback rb(gpu);
     std::vector<int> slots;
     for (size_t i = 0; i < stages.size(); ++i) slots.push_back(rb.add(signal_image(stages[i]->accumulated(), configs[i].app.signal)));
@@ -236,6 +261,7 @@ std::string num(double v, const char* fmt = "%.4g") {
 std::string cure_label(const RectifyRow& row) {
     if (!row.preset.empty()) return row.preset + " (" + blend_label(row.channel.blend) + ", " + filter_label(row.channel) + ")";
     if (row.antilag) return "lag detector, γ_a = " + num(row.antilag_gamma, "%g") + ", T = " + num(row.antilag_threshold, "%g");
+    if (row.lighting_turn) return "view lobe α = " + num(row.channel.view_lobe, "%.4g") + " rad with the lighting's turn";
     return row.rectify ? "rectify, γ = " + num(row.gamma, "%g") : std::string("none");
 }
 
@@ -288,6 +314,7 @@ RectifyResult run_rectify_study(const SweepOptions& o, std::ostream* progress) {
         row.antilag_threshold = row.antilag ? configs[i].channel.antilag_threshold : 0.0f;
         row.channel = configs[i].channel;
         row.preset = configs[i].preset;
+        row.lighting_turn = configs[i].channel.view_lobe > 0.0f && configs[i].lighting_turn;
         row.base = configs[i].base;
         row.lag = lag[i];
         row.still = still[i];
@@ -318,7 +345,7 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
         std::ofstream f = open("rectify.csv");
         f << "app,k,lambda,blend,filter,rectify,gamma,antilag,antilag_gamma,antilag_threshold,light_speed,lag_rmse,lag_bias2,"
              "lag_variance,lag_checkpoints,static_variance,static_rmse,static_bias2,lag_ratio,lag_bias2_ratio,variance_ratio,"
-             "static_rmse_ratio,seeds,preset\n";
+             "static_rmse_ratio,seeds,preset,lighting_turn\n";
         for (const RectifyRow& row : r.rows) {
             const RectifyRow* off = off_row(r, row);
             const double lag_ratio = off ? row.lag.rmse / off->lag.rmse : kNaN;
@@ -332,7 +359,7 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
               << num(row.lag.bias2, "%.6g") << "," << num(row.lag.variance, "%.6g") << "," << row.lag.checkpoints << ","
               << num(row.still.variance, "%.6g") << "," << num(row.still.rmse, "%.6g") << "," << num(row.still.bias2, "%.6g") << ","
               << num(lag_ratio, "%.4f") << "," << num(bias_ratio, "%.4f") << "," << num(var_ratio, "%.4f") << ","
-              << num(rmse_ratio, "%.4f") << "," << row.still.seeds << "," << row.preset << "\n";
+              << num(rmse_ratio, "%.4f") << "," << row.still.seeds << "," << row.preset << "," << (row.lighting_turn ? 1 : 0) << "\n";
         }
     }
     std::ofstream f = open("rectify.md");
@@ -397,11 +424,11 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
           << (soft ? " (soft: outside the study's targets, shown to say what happens)" : "") << "\n";
     }
     if (!any) f << "- no lambda = 0.9 rows\n";
-    f << "\n## Verdicts, the lag detector (lambda = 0.9: lag bias² on the changed pixels at most half of without, static RMSE at most "
-         "1.1x)\n\n";
+    f << "\n## Verdicts, the lag detector and the view lobe with the lighting's turn (lambda = 0.9: lag bias² on the changed pixels at "
+         "most half of without, static RMSE at most 1.1x)\n\n";
     any = false;
     for (const RectifyRow& row : r.rows) {
-        if (!row.antilag || (row.preset.empty() && std::abs(row.lambda - 0.9f) > 1e-4f)) continue;
+        if (!(row.antilag || row.lighting_turn) || (row.preset.empty() && std::abs(row.lambda - 0.9f) > 1e-4f)) continue;
         const RectifyRow* off = off_row(r, row);
         if (!off) continue;
         any = true;
@@ -419,7 +446,7 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
                              : "FAIL")
           << "); lag error " << num(off->lag.rmse, "%.4f") << " -> " << num(row.lag.rmse, "%.4f") << "\n";
     }
-    if (!any) f << "- no lambda = 0.9 rows with the lag detector\n";
+    if (!any) f << "- no lambda = 0.9 rows with the lag detector or the lighting's turn\n";
 }
 
 }  // namespace rrc_sweep

@@ -3,8 +3,9 @@
 // rrc's accumulated signal lags behind the moving light's target on the
 // pixels whose target changed, and, with the light fixed, the ensemble
 // variance; each row with history rectification off and on
-// (docs/CONVENTIONS.md, "Rectification"), and with the lag detector on
-// (docs/CONVENTIONS.md, "The lag detector").
+// (docs/CONVENTIONS.md, "Rectification"), with the lag detector on
+// (docs/CONVENTIONS.md, "The lag detector"), and env with the view lobe fed
+// the lighting's turn (docs/CONVENTIONS.md, "The view-dependent history").
 #pragma once
 
 #include "ensemble.h"
@@ -26,6 +27,7 @@ struct RectifyRow {
     float antilag_gamma = 0.0f, antilag_threshold = 0.0f;  // 0 when antilag is off
     rrc_sample::ChannelSettings channel;                    // every setting of the row's channel
     std::string preset;  // "" a study row; else which rrc-sample preset row (rectify_study.cpp, study_configs)
+    bool lighting_turn = false;  // a view lobe whose frames carry the environment map's turn (rrc_frame_desc.lighting_turn)
     int base = -1;       // the index in rows of the same row without its cure; -1 for a row without one
     Metrics lag;         // light moving: against its target, on the changed pixels only (rmse = the lag error)
     Metrics still;       // light fixed: every scored pixel (variance = the static variance)

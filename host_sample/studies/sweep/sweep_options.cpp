@@ -67,6 +67,8 @@ std::string sweep_usage() {
            "  --antilag-gammas LIST    the study's lag-detector rows (pcf, env), one per gamma_a (default 1,0.75,0.25;\n"
            "                           --no-antilag drops them)\n"
            "  --antilag-threshold T    their threshold T (default 0.25)\n"
+           "  --lobe-pixels LIST       the study's env rows with the view lobe fed the lighting's turn, one per lobe in\n"
+           "                           pixels of the vertical angle (default 18, rrc-sample's; --no-view-lobe drops them)\n"
            "  --change-threshold T     the study's changed pixels (pcf, soft): the target moved by more than T since the\n"
            "                           frame before (default 0.05); env's: by more than 3 sigma of its target's noise\n"
            "  --bias-maps              also the signed bias maps (seed mean - target) of every row at every checkpoint\n"
@@ -112,6 +114,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.change_threshold = c.number(0.0f, 10.0f);
         else if (c.option("--rectify-gammas"))
             o.rectify_gammas = c.numbers(0.01f, 8.0f);
+        else if (c.option("--lobe-pixels"))
+            o.lobe_pixels = c.numbers(0.01f, 1e4f);
         else if (c.option("--antilag-gammas"))
             o.antilag_gammas = c.numbers(0.01f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))

@@ -387,6 +387,7 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     o.rectify_gammas = {1.0f};
     o.antilag_gammas = {0.75f};
     o.antilag_threshold = 0.25f;
+    o.lobe_pixels = {4.0f};  // alpha = 4 fov_y / 64 = 0.054 rad: at 1 degree a frame the lobe caps env's age at 3
     o.signals = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv;
     o.light_speed = 1.0f;
     o.motion = "still";
@@ -396,7 +397,9 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     const RectifyResult r = run_rectify_study(o, nullptr);
     EXPECT_EQ(r.validation_messages, 0u);
     ASSERT_EQ(r.apps.size(), 2u);
-    ASSERT_EQ(r.rows.size(), 10u);  // pcf, env x off, rectified, lag detector, the preset without and with its cure
+    // pcf, env x off, rectified, lag detector, the preset without and with its cure; env also the view
+    // lobe with the lighting's turn, and its preset (whose lobe is rrc-sample's) with the turn.
+    ASSERT_EQ(r.rows.size(), 12u);
     // The targets follow the light: the sun's turn moves pcf's shadow edges, some pixels change and most do not.
     EXPECT_GT(r.changed_pixels[0], 20u);
     EXPECT_LT(r.changed_fraction[0], 0.5);
@@ -425,6 +428,20 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     const rrc_sample::ChannelSettings pcf_preset = rrc_sample::ChannelPresets{}.pcf;
     EXPECT_TRUE(preset.antilag && !bare.antilag && std::memcmp(&preset.channel, &pcf_preset, sizeof pcf_preset) == 0);
     EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's lag detector must halve its lag bias behind the moving light";
+    // env's view lobe fed the lighting's turn (docs/CONVENTIONS.md, "The view-dependent history"):
+    // with the light fixed phi = 0 and the still camera turns nothing, so the row is its base bit
+    // for bit; with the light moving the cap at 3 shortens the history (lambda 0.9 -> 0.75), and
+    // the changed pixels' variance rises (x1.29 here: 19 changed pixels, many of them young rim
+    // pixels whose history is short anyway).
+    const RectifyRow& env_off = r.rows[5];
+    const RectifyRow& lobe = r.rows[8];
+    ASSERT_TRUE(env_off.app.signal == rrc_sample::kSignalEnv && !env_off.rectify && !env_off.antilag && env_off.channel.view_lobe == 0.0f);
+    ASSERT_TRUE(lobe.app.signal == rrc_sample::kSignalEnv && lobe.lighting_turn && lobe.channel.view_lobe > 0.0f && lobe.base == 5);
+    EXPECT_EQ(lobe.still.rmse, env_off.still.rmse) << "no turn, no cap";
+    EXPECT_EQ(lobe.still.variance, env_off.still.variance);
+    EXPECT_NE(lobe.lag.rmse, env_off.lag.rmse) << "the lighting's turn must cap the history while the light moves";
+    EXPECT_GT(lobe.lag.variance, 1.15 * env_off.lag.variance) << "a capped history is a shorter one";
+    EXPECT_TRUE(r.rows[11].lighting_turn && !r.rows[9].lighting_turn && r.rows[11].base == 9);
 }
 
 }  // namespace
