@@ -336,29 +336,41 @@ TEST(Api, WrongOutputDescriptionsAreRefused) {
 // A view lobe (0.7) reads the frame's camera whatever the source: a PREV_CLIP
 // frame without an invertible view_proj, or with a non-finite eye, is refused
 // naming the field, and the refused frame leaves the history as it was.
+// One 4x4 PREV_CLIP frame of a still surface at depth 0.5 (each pixel's own
+// clip position), one channel of constant samples, its age read back.
+struct StillFrame {
+    std::vector<float> depth = std::vector<float>(16, 0.5f), s = std::vector<float>(16, 1.0f), clip = std::vector<float>(16 * 4);
+    std::vector<uint16_t> age = std::vector<uint16_t>(16);
+    rrc_channel_input in;
+    rrc_frame_desc f = frame_desc();
+    rrc_channel_output co = rrc_host::rrc_struct<rrc_channel_output>(RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
+    rrc_frame_output o = rrc_host::rrc_struct<rrc_frame_output>(RRC_STRUCT_TYPE_FRAME_OUTPUT);
+    StillFrame() : in(channel_input(s.data())) {
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                float* c = &clip[(j * 4 + i) * 4];
+                c[0] = (i + 0.5f) / 2.0f - 1.0f, c[1] = (j + 0.5f) / 2.0f - 1.0f, c[2] = 0.5f, c[3] = 1.0f;
+            }
+        f.depth = depth.data();
+        f.reprojection = clip.data();
+        f.channel_count = 1;
+        f.channels = &in;
+        co.age = age.data();
+        o.channel_count = 1;
+        o.channels = &co;
+    }
+    StillFrame(const StillFrame&) = delete;
+};
+
 TEST(Api, AViewLobeNeedsTheFramesCamera) {
     std::vector<rrc_channel_desc> channels = {channel("env", 1, 0.8f)};
     channels[0].view_lobe = 0.05f;
     Context ctx(context_desc(4, 4, channels));
     ASSERT_TRUE(ctx);
-    std::vector<float> depth(16, 0.5f), s(16, 1.0f), clip(16 * 4);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-            float* c = &clip[(j * 4 + i) * 4];
-            c[0] = (i + 0.5f) / 2.0f - 1.0f, c[1] = (j + 0.5f) / 2.0f - 1.0f, c[2] = 0.5f, c[3] = 1.0f;
-        }
-    rrc_channel_input in = channel_input(s.data());
-    rrc_frame_desc f = frame_desc();
-    f.depth = depth.data();
-    f.reprojection = clip.data();
-    f.channel_count = 1;
-    f.channels = &in;
-    std::vector<uint16_t> age(16);
-    rrc_channel_output co = rrc_host::rrc_struct<rrc_channel_output>(RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
-    co.age = age.data();
-    rrc_frame_output o = rrc_host::rrc_struct<rrc_frame_output>(RRC_STRUCT_TYPE_FRAME_OUTPUT);
-    o.channel_count = 1;
-    o.channels = &co;
+    StillFrame still;
+    rrc_frame_desc& f = still.f;
+    rrc_frame_output& o = still.o;
+    std::vector<uint16_t>& age = still.age;
     EXPECT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_ERROR_INVALID_ARGUMENT) << "view_proj all zero";
     EXPECT_NE(std::string(rrc_last_error()).find("frame.view_proj"), std::string::npos) << rrc_last_error();
     for (int i = 0; i < 16; i += 5) f.view_proj[i] = 1.0;
@@ -386,26 +398,12 @@ TEST(Api, TheLightingsTurnAddsToTheViewTurnAndIsRefusedOutOfRange) {
     std::vector<rrc_channel_desc> plain_channels = {channel("s", 1, 0.8f)};
     Context plain(context_desc(4, 4, plain_channels));
     ASSERT_TRUE(ctx && plain);
-    std::vector<float> depth(16, 0.5f), s(16, 1.0f), clip(16 * 4);
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-            float* c = &clip[(j * 4 + i) * 4];
-            c[0] = (i + 0.5f) / 2.0f - 1.0f, c[1] = (j + 0.5f) / 2.0f - 1.0f, c[2] = 0.5f, c[3] = 1.0f;
-        }
-    rrc_channel_input in = channel_input(s.data());
-    rrc_frame_desc f = frame_desc();
-    f.depth = depth.data();
-    f.reprojection = clip.data();
-    f.channel_count = 1;
-    f.channels = &in;
+    StillFrame still;
+    rrc_frame_desc& f = still.f;
+    rrc_frame_output& o = still.o;
+    std::vector<uint16_t>& age = still.age;
     for (int i = 0; i < 16; i += 5) f.view_proj[i] = 1.0;
     f.camera_position[0] = f.prev_camera_position[0] = 5.0;  // the eye did not move: theta = 0
-    std::vector<uint16_t> age(16);
-    rrc_channel_output co = rrc_host::rrc_struct<rrc_channel_output>(RRC_STRUCT_TYPE_CHANNEL_OUTPUT);
-    co.age = age.data();
-    rrc_frame_output o = rrc_host::rrc_struct<rrc_frame_output>(RRC_STRUCT_TYPE_FRAME_OUTPUT);
-    o.channel_count = 1;
-    o.channels = &co;
     for (int t = 0; t < 4; ++t) ASSERT_EQ(rrc_frame_run(ctx.get(), &f, &o), RRC_SUCCESS) << rrc_last_error();
     EXPECT_EQ(age, std::vector<uint16_t>(16, 4)) << "a still eye and still lighting cap nothing";
     for (float bad : {-0.01f, 3.5f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
