@@ -137,7 +137,8 @@ void OutputWriter::write(const FrameOutput& f) const {
             add_layer(img, "pcss", s.pcss, 1);
         }
         img.uint_channels["rrc.mask"] = std::vector<uint32_t>(f.mask.begin(), f.mask.end());
-        img.uint_channels["age"] = std::vector<uint32_t>(f.age.begin(), f.age.end());
+        img.uint_channels["age"] = std::vector<uint32_t>(f.age.begin(), f.age.end());  // the track age
+        img.uint_channels["rrc.age"] = std::vector<uint32_t>(s.age.begin(), s.age.end());  // the channel's, from rrc
         img.attributes["rrc.signal"] = name;
         rrc_exr::write_exr(numbered(exr, name, f.index, ".exr"), img);
     };

@@ -34,7 +34,7 @@ float PcfDisplay::apply(float v) const {
 }
 
 PostPasses::PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask,
-                       const SignalImages& acc, const SignalImages& raw, const SignalImages& ref, uint32_t w, uint32_t h, bool soft_fill,
+                       const Image& soft_age, const SignalImages& acc, const SignalImages& raw, const SignalImages& ref, uint32_t w, uint32_t h, bool soft_fill,
                        const PcfDisplay& pcf_display)
     : gpu_(gpu), width_(w), height_(h), pcf_display_(pcf_display) {
     const VkImageUsageFlags use = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -62,7 +62,7 @@ PostPasses::PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const 
         fallback_.bind_image(p, 3, maps.lamp_centre.view, RO);
         fallback_.bind_image(p, 4, acc.soft.view, GEN);
         fallback_.bind_image(p, 5, mask.view, GEN);
-        fallback_.bind_image(p, 6, age_[p].view, GEN);
+        fallback_.bind_image(p, 6, soft_age.view, GEN);  // rrc's: the samples the history holds
         fallback_.bind_image(p, 7, shown_.view, GEN);
         fallback_.bind_image(p, 8, pcss_.view, GEN);
     }

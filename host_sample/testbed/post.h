@@ -23,14 +23,16 @@ struct PcfDisplay {
 
 class PostPasses {
 public:
-    PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask,
+    /** soft_age: rrc's age of the soft channel (RrcStage::age), the n of the --soft-prior blend. */
+    PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const ShadowMaps& maps, const Image& mask, const Image& soft_age,
                const SignalImages& accumulated, const SignalImages& raw, const SignalImages& reference, uint32_t width, uint32_t height,
                bool soft_fill = false, const PcfDisplay& pcf_display = {});
     ~PostPasses();
     PostPasses(const PostPasses&) = delete;
     PostPasses& operator=(const PostPasses&) = delete;
 
-    /** Age (frame parity selects the ping-pong side) and, with soft shadows, the fallback. */
+    /** The track age (age.comp: consecutive hits, frame parity selects the ping-pong side) and, with
+     *  soft shadows, the fallback. */
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);

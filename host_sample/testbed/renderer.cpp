@@ -38,13 +38,15 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s)
     const RrcSettings rs{
         w, h, s.signals, s.reprojection, s.epsilon_scale, s.depth_test, scene.near_plane, scene.far_plane, s.channels, s.use_object_id};
     rrc_.reset(new RrcStage(gpu, rs));
-    post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->accumulated(), signals_->raw(),
+    post_.reset(new PostPasses(gpu, *gpu_scene_, gbuffer_->images(), maps_, rrc_->mask(), rrc_->age(kSignalSoft), rrc_->accumulated(), signals_->raw(),
                                signals_->reference(), w, h, s.channels.soft.fill_age > 0, s.pcf_display));
 
     readback_.reset(new Readback(gpu));
     Readback& r = *readback_;
     slot_.mask = r.add(rrc_->mask());
     for (uint32_t p = 0; p < 2; ++p) slot_.age[p] = r.add(post_->age(p));
+    const uint32_t bit[3] = {kSignalPcf, kSignalEnv, kSignalSoft};
+    for (int k = 0; k < 3; ++k) slot_.rrc_age[k] = r.add(rrc_->age(bit[k]));
     for (uint32_t c = 0; c < 3; ++c) slot_.colour[c] = r.add(post_->colour((ComposeInput)c));
     const SignalImages* sets[4] = {&signals_->raw(), &rrc_->accumulated(), &signals_->reference(), &signals_->brute_force()};
     int* slots[4] = {slot_.raw, slot_.acc, slot_.ref, slot_.brute};
@@ -129,7 +131,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     }
     std::vector<int> slots = {slot_.mask, slot_.age[parity_], slot_.colour[0], slot_.shown,
                               slot_.pcss, slot_.position,     slot_.normal,    slot_.prev_clip};
-    for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]);
+    for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]), slots.push_back(slot_.rrc_age[k]);
     if (confidence) slots.push_back(slot_.confidence);
     if (confidence && checkpoint) slots.push_back(slot_.weighted);
     if (checkpoint)
@@ -190,6 +192,7 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
         sd[k]->components = k == 1 ? 4 : 1;
         sd[k]->raw = copy_of<float>(r.data(slot_.raw[k]), r.bytes(slot_.raw[k]));
         sd[k]->accumulated = copy_of<float>(r.data(slot_.acc[k]), r.bytes(slot_.acc[k]));
+        sd[k]->age = copy_of<uint16_t>(r.data(slot_.rrc_age[k]), r.bytes(slot_.rrc_age[k]));
         if (out.checkpoint) {
             sd[k]->reference = copy_of<float>(r.data(slot_.ref[k]), r.bytes(slot_.ref[k]));
             sd[k]->brute_force = copy_of<float>(r.data(slot_.brute[k]), r.bytes(slot_.brute[k]));

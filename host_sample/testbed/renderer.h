@@ -45,6 +45,7 @@ struct FrameTimings {
 struct SignalData {
     int components = 1;
     std::vector<float> raw, accumulated, reference;  // reference: checkpoints only
+    std::vector<uint16_t> age;                       // rrc's age of the channel (rrc_vulkan_channel_images.age)
     std::vector<float> brute_force;                  // checkpoints: 4x the per-frame samples
     std::vector<float> shown, pcss;                  // soft only: the --soft-prior display, the fallback
     std::vector<float> display;                      // pcf with a PcfDisplay remap: what is shown (the remapped accumulated)
@@ -57,7 +58,7 @@ struct FrameOutput {
     bool checkpoint = false;
     int width = 0, height = 0;
     std::vector<uint8_t> mask;                   // rrc's mask bits
-    std::vector<uint16_t> age;                   // the host's age map
+    std::vector<uint16_t> age;                   // the track age (age.comp): consecutive hits, whatever the channels
     std::array<std::vector<uint8_t>, 3> colour;  // RGBA8: accumulated; raw, reference (checkpoints)
     std::vector<float> position;                 // G-buffer world position, RGBA
     std::vector<uint16_t> object;                // G-buffer object index + 1, 0 background (the visibility oracle)
@@ -96,7 +97,8 @@ private:
     std::unique_ptr<PostPasses> post_;
     std::unique_ptr<Readback> readback_;
     struct Slots {
-        int mask, age[2], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip, confidence, weighted;
+        int mask, age[2], rrc_age[3], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip, confidence,
+            weighted;
     } slot_{};
     rrc_host::FencedCommands commands_;
     rrc_host::TimestampQueries queries_;  // kStampCount

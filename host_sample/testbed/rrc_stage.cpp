@@ -50,7 +50,9 @@ RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
     out_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, s.width, s.height, use, "env accumulated");
     out_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, s.width, s.height, use, "soft accumulated");
     mask_ = gpu.create_image(VK_FORMAT_R8_UINT, s.width, s.height, use, "rrc mask");
-    gpu.init_storage_images({&out_.pcf, &out_.env, &out_.soft, &mask_});
+    const char* age_names[3] = {"pcf age", "env age", "soft age"};
+    for (int k = 0; k < 3; ++k) ages_[k] = gpu.create_image(VK_FORMAT_R16_UINT, s.width, s.height, use, age_names[k]);
+    gpu.init_storage_images({&out_.pcf, &out_.env, &out_.soft, &mask_, &ages_[0], &ages_[1], &ages_[2]});
 
     rrc_context_desc d = rrc_host::context_desc(s.width, s.height, channels_);
     d.depth_mode = RRC_DEPTH_MODE_REVERSED;  // the G-buffer's D32 reversed-z attachment
@@ -71,7 +73,7 @@ RrcStage::RrcStage(Gpu& gpu, const RrcSettings& s) : gpu_(gpu), settings_(s) {
 
 RrcStage::~RrcStage() {
     rrc_context_destroy(ctx_);  // the device is idle (the renderer waited)
-    for (Image* i : {&out_.pcf, &out_.env, &out_.soft, &mask_}) gpu_.destroy(*i);
+    for (Image* i : {&out_.pcf, &out_.env, &out_.soft, &mask_, &ages_[0], &ages_[1], &ages_[2]}) gpu_.destroy(*i);
 }
 
 uint64_t RrcStage::memory_bytes() const {
@@ -84,10 +86,12 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
                       bool reset, const Image* pcf_confidence, const Image* soft_fallback) {
     const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
     std::vector<rrc_vulkan_channel_images> ch;
-    auto add = [&](const Image& in, const Image& out, const ChannelSettings& cs, const Image* confidence, const Image* fallback) {
+    auto add = [&](const Image& in, const Image& out, const Image& age, const ChannelSettings& cs, const Image* confidence,
+                   const Image* fallback) {
         auto c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         c.samples = view_of(in, GEN);
         c.output = view_of(out, GEN);
+        c.age = view_of(age, GEN);
         if (cs.confidence) {
             if (!confidence) throw std::runtime_error("rrc_stage: a confidence channel needs its confidence image");
             c.confidence = view_of(*confidence, GEN);
@@ -99,9 +103,9 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
         ch.push_back(c);
     };
     const ChannelPresets& p = settings_.channels;
-    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf, p.pcf, pcf_confidence, nullptr);
-    if (settings_.signals & kSignalEnv) add(samples.env, out_.env, p.env, nullptr, nullptr);
-    if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft, p.soft, nullptr, soft_fallback);
+    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf, ages_[0], p.pcf, pcf_confidence, nullptr);
+    if (settings_.signals & kSignalEnv) add(samples.env, out_.env, ages_[1], p.env, nullptr, nullptr);
+    if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft, ages_[2], p.soft, nullptr, soft_fallback);
 
     auto f = rrc_host::rrc_struct<rrc_vulkan_frame_desc>(RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
     f.command_buffer = cmd;

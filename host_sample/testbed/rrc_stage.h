@@ -48,6 +48,9 @@ public:
                 bool reset, const Image* pcf_confidence = nullptr, const Image* soft_fallback = nullptr);
 
     const SignalImages& accumulated() const { return out_; }
+    /** rrc's age of each channel after the frame (R16_UINT; rrc_vulkan_channel_images.age): the
+     *  samples its history holds, shortened where a cure shortened it (docs/CONVENTIONS.md). */
+    const Image& age(uint32_t signal) const { return signal == kSignalPcf ? ages_[0] : signal == kSignalEnv ? ages_[1] : ages_[2]; }
     const Image& mask() const { return mask_; }
     const std::vector<rrc_channel_desc>& channels() const { return channels_; }
     uint64_t memory_bytes() const;
@@ -58,6 +61,7 @@ private:
     std::vector<rrc_channel_desc> channels_;
     rrc_context* ctx_ = nullptr;
     SignalImages out_;
+    Image ages_[3];  // pcf, env, soft
     Image mask_;
 };
 

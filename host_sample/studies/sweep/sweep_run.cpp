@@ -293,7 +293,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (size_t i = 0; i < stages.size() && !pcss; ++i)
                 if (run.configs[i].channel.fill_prior > 0.0f)
                     pcss.reset(new rrc_sample::PostPasses(gpu, e.gpu_scene, e.gbuffer.images(), e.maps, stages[i]->mask(),
-                                                          stages[i]->accumulated(), e.signals.raw(), e.signals.reference(), o.width,
+                                                          stages[i]->age(kSignalSoft), stages[i]->accumulated(), e.signals.raw(), e.signals.reference(), o.width,
                                                           o.height, true));
             // The sharing probe: each application's default channel alone, then all of them in one context.
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> probe;
