@@ -91,7 +91,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
         auto c = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         c.samples = view_of(in, GEN);
         c.output = view_of(out, GEN);
-        c.age = view_of(age, GEN);
+        if (settings_.ages) c.age = view_of(age, GEN);
         if (cs.confidence) {
             if (!confidence) throw std::runtime_error("rrc_stage: a confidence channel needs its confidence image");
             c.confidence = view_of(*confidence, GEN);

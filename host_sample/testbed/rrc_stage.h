@@ -28,6 +28,8 @@ struct RrcSettings {
     bool use_object_id = true;  // rrc_context_desc.use_object_id: the G-buffer's object id image goes to rrc
     // With a view lobe: each frame's lighting_turn (FrameState, the environment map's turn) goes to rrc.
     bool lighting_turn = true;
+    // rrc writes each channel's age into age() (an optional output, which costs a store a pixel).
+    bool ages = true;
 };
 
 /** The channel descriptions for the signals, in the order pcf, env, soft. */

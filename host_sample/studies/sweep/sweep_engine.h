@@ -129,6 +129,7 @@ struct Engine {
         s.signals = signals;
         s.near_plane = scene.near_plane;
         s.far_plane = scene.far_plane;
+        s.ages = false;  // no row reads them: rrc's time is the channel's without the optional age output
         return s;
     }
     /** The same for one signal, its channel set to `channel` (a configuration the sweep or the study tries). */
