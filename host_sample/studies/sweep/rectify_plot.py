@@ -13,6 +13,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def variant(r):
+    """One curve: rectification and its gamma, the lag detector and its gamma_a, and for the
+    rows fed the lighting's turn the view lobe's alpha (the filter column's "lobeA")."""
+    lobe = ""
+    if int(r.get("lighting_turn", "0")):
+        lobe = next((p[4:] for p in r["filter"].split("+") if p.startswith("lobe")), "0")
+    return (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""), lobe)
+
+
 def main(out):
     with open(os.path.join(out, "rectify.csv")) as f:
         # rrc-sample's preset rows are one lambda each: the table has them, not the curves.
@@ -23,23 +32,21 @@ def main(out):
             apps.append(r["app"])
     variants = []
     for r in rows:
-        v = (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""), int(r.get("lighting_turn", "0")))
+        v = variant(r)
         if v not in variants:
             variants.append(v)
     fig, axes = plt.subplots(3, len(apps), figsize=(4.2 * len(apps), 9.0), squeeze=False)
     speed = rows[0]["light_speed"] if rows else "?"
     for c, app in enumerate(apps):
         for v in variants:
-            (on, gamma, lag_on, lag_gamma, turn) = v
-            sel = [r for r in rows if r["app"] == app and
-                   (int(r["rectify"]), r["gamma"], int(r.get("antilag", "0")), r.get("antilag_gamma", ""),
-                    int(r.get("lighting_turn", "0"))) == v]
+            (on, gamma, lag_on, lag_gamma, lobe) = v
+            sel = [r for r in rows if r["app"] == app and variant(r) == v]
             if not sel:
                 continue
             sel.sort(key=lambda r: float(r["lambda"]))
             lam = [float(r["lambda"]) for r in sel]
-            if turn:
-                label = "view lobe with the lighting's turn"
+            if lobe:
+                label = "view lobe α = %.3g rad, lighting's turn" % float(lobe)
                 style = "d-."
             elif lag_on:
                 label = "lag detector, γ_a = %s" % lag_gamma.rstrip("0").rstrip(".")
