@@ -42,6 +42,15 @@ struct ChannelSettings {
  *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
 constexpr float kEnvViewLobePixels = 18.0f;
 
+/** pcf's fill window by image height (rrc_channel_desc.fill_radius): the window's half width is in
+ *  pixels, so against the scene's shadow edges it is four times as wide at 256x160 as at
+ *  1024x640.  On the sample's moving scene the 3x3 window (radius 1) wins below 320 rows and the
+ *  library's 5x5 (radius 2) from 320 rows up (rrc-sweep's pcf preset row, 4 seeds: 0.0336
+ *  against 0.0363 at 256x160; 0.0278 against 0.0271 at 512x320, 0.0227 against 0.0212 at
+ *  1024x640; docs/PERFORMANCE.md, "The pcf fill's window by size"). */
+constexpr uint32_t kPcfSmallFillRadius = 1;
+constexpr uint32_t kPcfSmallFillBelowRows = 320;
+
 /** The PCSS fallback's weight in soft's fill, in samples (rrc_channel_desc.fill_prior): rrc-sample's
  *  --fill-prior default, and the sweep's soft preset row's (host_sample/studies/sweep/README.md). */
 constexpr float kSampleFillPrior = 4.0f;
@@ -55,10 +64,12 @@ constexpr float kSampleBlurBound = 0.5f;
  *  against the fixed target (docs/PERFORMANCE.md, "Presets chosen from the fronts", where
  *  each value's figure is), a cure or finishing step only where it wins at 256x160 and at
  *  1024x640 (rrc-sample's accumulated RMSE, mean over seeds 0..3).  pcf: lambda 0.9, the
- *  lag detector with a narrow box (gamma_a 0.25, T 0.25), the spatial fill below age 4, a
- *  bilinear history with the blur bound B = 0.25 px^2, not rectified (0.0365 at 256x160 and
+ *  lag detector with a narrow box (gamma_a 0.25, T 0.25), the spatial fill below age 4 (its
+ *  window by size: pcf_preset below), a
+ *  bilinear history with the blur bound B = 0.25 px^2, not rectified (0.0338 at 256x160 and
  *  0.0212 at 1024x640, against 0.0387 and 0.0242 for the 0.5 preset: Catmull-Rom, rectified;
- *  docs/PERFORMANCE.md, "Chosen again with the blur bound and the bias by region (0.6)").
+ *  docs/PERFORMANCE.md, "Chosen again with the blur bound and the bias by region (0.6)" and
+ *  "The pcf fill's window by size").
  *  soft with the spatial fill (the sample
  *  passes its PCSS estimate as the fallback, --fill-prior); the lag detector makes soft
  *  worse and changes nothing on env, which stay without.  AGE_AWARE everywhere: the same as
@@ -81,5 +92,14 @@ struct ChannelPresets {
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
                          /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.5f};
 };
+
+/** rrc-sample's pcf preset at an image height: ChannelPresets::pcf with the fill window of
+ *  kPcfSmallFillRadius below kPcfSmallFillBelowRows rows (0, the library's 2, from there up).
+ *  The sweep's and the rectification study's preset rows are this at their own size. */
+inline ChannelSettings pcf_preset(uint32_t height) {
+    ChannelSettings pcf = ChannelPresets{}.pcf;
+    pcf.fill_radius = height < kPcfSmallFillBelowRows ? kPcfSmallFillRadius : 0u;
+    return pcf;
+}
 
 }  // namespace rrc_sample

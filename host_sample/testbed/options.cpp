@@ -118,7 +118,9 @@ std::string usage() {
            "  --soft-fill T            rrc's spatial fill on the soft channel for pixels younger than T frames (fill_age;\n"
            "                           default 8, the preset; 0 = off); the display then shows rrc's output, not the\n"
            "                           --soft-prior blend\n"
-           "  --fill-radius R          the fill's window half width (default 0: the library's, 2)\n"
+           "  --fill-radius R          the soft fill's window half width (default 0: the library's, 2)\n"
+           "  --pcf-fill-radius R      the pcf fill's window half width (default: the preset's, 1 below 320 rows and\n"
+           "                           the library's 2 from there up; 0 = the library's)\n"
            "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
            "                           fallback image (default 4; 0 = no fallback)\n"
@@ -261,6 +263,8 @@ Options parse_options(int argc, const char* const* argv) {
             o.channels.soft.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
         else if (c.option("--fill-radius"))
             o.fill_radius = (uint32_t)c.integer(0, RRC_MAX_FILL_RADIUS);
+        else if (c.option("--pcf-fill-radius"))
+            o.pcf_fill_radius = (int)c.integer(0, RRC_MAX_FILL_RADIUS);
         else if (c.option("--fill-depth-tolerance"))
             o.fill_depth_tolerance = c.number(0.0f, 1e6f);
         else if (c.option("--fill-prior"))
@@ -304,6 +308,12 @@ Options parse_options(int argc, const char* const* argv) {
     o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
     o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
     o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
+    // pcf's window: the preset's for the size (channel_presets.h, pcf_preset) unless given; rrc
+    // refuses a window without a fill, so --pcf-fill 0 leaves it at 0 and refuses one given.
+    if (o.channels.pcf.fill_age == 0 && o.pcf_fill_radius > 0) throw OptionError("--pcf-fill-radius needs the pcf fill (--pcf-fill T > 0)");
+    o.channels.pcf.fill_radius = o.channels.pcf.fill_age == 0 ? 0u
+                                 : o.pcf_fill_radius >= 0  ? (uint32_t)o.pcf_fill_radius
+                                                           : pcf_preset(o.height).fill_radius;
     // Not given, --antilag keeps the presets' channels and constants (--antilag-gamma/-threshold
     // override them); given, the listed channels get the given constants or the library's.
     const ChannelPresets presets;

@@ -25,6 +25,7 @@ struct Options {
     float soft_prior = 4.0f;            // PCSS fallback weight, in samples (see README.md)
     float fill_prior = kSampleFillPrior;  // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
     uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
+    int pcf_fill_radius = -1;           // --pcf-fill-radius (-1: the preset's for --size, channel_presets.h pcf_preset)
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
     // Without --soft-fill the three fill options are parsed but rrc gets no fill members.
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap

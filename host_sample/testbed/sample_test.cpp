@@ -612,6 +612,21 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
     EXPECT_EQ(o.channels.env.fill_age, 6u);
     EXPECT_EQ(o.channels.pcf.fill_prior, 0.0f) << "pcf and env have no fallback image";
+    // pcf's fill window by size (channel_presets.h, pcf_preset): 3x3 below 320 rows, the library's from there.
+    EXPECT_EQ(o.channels.pcf.fill_radius, 1u) << "the default 256x160";
+    const char* big[] = {"rrc-sample", "--size", "1024x640"};
+    EXPECT_EQ(parse_options(3, big).channels.pcf.fill_radius, 0u);
+    const char* just_below[] = {"rrc-sample", "--size", "512x319"};
+    EXPECT_EQ(parse_options(3, just_below).channels.pcf.fill_radius, 1u);
+    const char* given[] = {"rrc-sample", "--pcf-fill-radius", "3"};
+    EXPECT_EQ(parse_options(3, given).channels.pcf.fill_radius, 3u);
+    EXPECT_EQ(parse_options(3, given).channels.soft.fill_radius, 0u) << "--fill-radius is soft's";
+    const char* no_pcf_fill[] = {"rrc-sample", "--pcf-fill", "0"};
+    EXPECT_EQ(parse_options(3, no_pcf_fill).channels.pcf.fill_radius, 0u) << "rrc refuses a window without a fill";
+    const char* window_without_fill[] = {"rrc-sample", "--pcf-fill", "0", "--pcf-fill-radius", "1"};
+    EXPECT_THROW(parse_options(5, window_without_fill), OptionError);
+    const char* too_wide[] = {"rrc-sample", "--pcf-fill-radius", "5"};
+    EXPECT_THROW(parse_options(3, too_wide), OptionError) << "above RRC_MAX_FILL_RADIUS";
     // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.9f);

@@ -77,7 +77,7 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
         // pcf's has it (gamma_a 0.25, T 0.25), env's has not (here with the sweep's rows' setting).
         if (o.antilag && app.signal != kSignalSoft) {
             const rrc_sample::ChannelPresets presets;
-            rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
+            rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? rrc_sample::pcf_preset(o.height) : presets.env;
             // env's preset has rrc-sample's lobe for the size (sample_run.cpp); its first two rows
             // leave the lighting's turn out, so that under the still camera the lobe caps nothing.
             const bool lobe = app.signal == kSignalEnv && o.view_lobe;

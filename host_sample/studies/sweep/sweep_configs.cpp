@@ -95,7 +95,7 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
             // row": its centre-light map and PCSS pass are timed with its rrc pass).  env's
             // preset (the view lobe scaled to the size) is not a row.
             if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
-                run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
+                run.configs.push_back({app, rrc_sample::pcf_preset(o.height)});
             if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
                 rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
                 preset.fill_prior = rrc_sample::kSampleFillPrior;
@@ -139,6 +139,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
     std::string s = filter_label(c.filter);
     if (c.rectify) s += "+rectify";
     if (c.fill_age) s += "+fill" + std::to_string(c.fill_age);
+    if (c.fill_age && c.fill_radius) s += "r" + std::to_string(c.fill_radius);  // a window other than the library's
     if (c.fill_prior > 0.0f) {  // the fill's fallback: rrc-sample's PCSS estimate, worth this many samples
         char b[32];
         std::snprintf(b, sizeof b, "+pcss%g", (double)c.fill_prior);

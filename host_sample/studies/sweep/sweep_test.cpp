@@ -242,7 +242,7 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
     o.lambdas = {0.8f, 0.9f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
     int pcf = 0, env = 0, presets = 0;
-    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
+    const rrc_sample::ChannelSettings preset = rrc_sample::pcf_preset(o.height);
     for (const RrcRun& run : rrc_runs(o, all))
         for (const RrcConfig& c : run.configs) {
             if (!c.channel.antilag) continue;
@@ -250,6 +250,7 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
             if (std::memcmp(&c.channel, &preset, sizeof preset) == 0) {  // rrc-sample's pcf preset, spelled out once
                 EXPECT_EQ(c.app.signal, (uint32_t)rrc_sample::kSignalPcf);
                 EXPECT_NE(filter_label(c.channel).find("+antilag_g0.25_t0.25"), std::string::npos) << "its detector's own settings";
+                EXPECT_NE(filter_label(c.channel).find("+fill4r1+"), std::string::npos) << "its 3x3 fill window below 320 rows";
                 presets++;
                 continue;
             }
@@ -280,7 +281,7 @@ TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
     int bounded = 0;
     // rrc-sample's pcf and soft preset rows are the presets whatever they hold (--no-antilag drops
     // pcf's, --no-finishing both); soft's is the one row with a fill fallback.
-    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
+    const rrc_sample::ChannelSettings preset = rrc_sample::pcf_preset(o.height);
     auto is_preset = [&](const RrcConfig& c) {
         return std::memcmp(&c.channel, &preset, sizeof preset) == 0 || c.channel.fill_prior > 0.0f;
     };
@@ -425,7 +426,7 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     // rrc-sample's pcf preset (its lag detector on) against the same channel without it.
     const RectifyRow &bare = r.rows[3], &preset = r.rows[4];
     ASSERT_TRUE(bare.preset.size() && preset.preset.size() && preset.base == 3 && bare.base == -1);
-    const rrc_sample::ChannelSettings pcf_preset = rrc_sample::ChannelPresets{}.pcf;
+    const rrc_sample::ChannelSettings pcf_preset = rrc_sample::pcf_preset(o.height);
     EXPECT_TRUE(preset.antilag && !bare.antilag && std::memcmp(&preset.channel, &pcf_preset, sizeof pcf_preset) == 0);
     EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's lag detector must halve its lag bias behind the moving light";
     // env's view lobe fed the lighting's turn (docs/CONVENTIONS.md, "The view-dependent history"):
