@@ -39,6 +39,14 @@
 #                 (0.25,0,0.15 for the sphere: right and up)
 #   pillars=N     N static upright cylinders between the camera and the
 #                 scene (0): under a strafe they uncover what lies behind them
+#   jitter=none|filter   filter: the camera is shifted by a sub-pixel offset
+#                 each frame, Halton (2, 3) drawn through the Blackman-Harris
+#                 pixel filter of jitter_width= px (1.5, Cycles' default and
+#                 the reference's), so that a frame's first sample, which
+#                 Cycles puts at the (shifted) pixel centre, sweeps the
+#                 filter over the frames; scene.json gives each frame's
+#                 "jitter" in pixels, x right, y down.  Cycles' Vector pass
+#                 leaves the shift out (unjittered vectors)
 import bpy
 import json
 import math
@@ -50,7 +58,7 @@ keys = dict(a.split("=", 1) for a in argv if "=" in a)
 argv = [a for a in argv if "=" not in a]
 keys_given = dict(keys)
 unknown = set(keys) - {"seed", "size", "offset", "filter", "bounces", "camera", "cam_x0", "cam_speed", "pan", "mover",
-                       "mover_vel", "spin", "pillars"}
+                       "mover_vel", "spin", "pillars", "jitter", "jitter_width"}
 if unknown:
     sys.exit("render_check_scene.py: unknown option(s) " + ", ".join(sorted(unknown)))
 out_dir = os.path.abspath(argv[0] if argv else "blender_check")
@@ -69,8 +77,11 @@ mover_kind = keys.get("mover", "sphere")
 mover_vel = [float(v) for v in keys.get("mover_vel", "0.25,0,0.15").split(",")]
 spin = float(keys.get("spin", "0"))
 pillars = int(keys.get("pillars", "0"))
-if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube") or len(mover_vel) != 3:
-    sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube, mover_vel=X,Y,Z")
+jitter_kind = keys.get("jitter", "none")
+jitter_width = float(keys.get("jitter_width", "1.5"))  # the reference's filter, whatever this render's filter=
+if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube") or len(mover_vel) != 3 \
+        or jitter_kind not in ("none", "filter"):
+    sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube, mover_vel=X,Y,Z, jitter=none|filter")
 os.makedirs(out_dir, exist_ok=True)
 
 W, H = int(size[0]), int(size[1])
@@ -198,6 +209,16 @@ else:
     keyed(cam, {f: (cam_x0 + cam_speed * f, -9.0, 3.0) for f in keys},
           {f: (math.radians(73.0), 0.0, math.radians(pan * (f - mid))) for f in keys})
 
+# jitter=filter: the camera's sub-pixel offset of frame f is jitter_camera.py's (the Halton
+# (2, 3) point f + 1 drawn through the pixel filter), so that Cycles' first sample, which lies
+# at the pixel centre (docs/OFFLINE.md, section 7), sweeps the filter over the frames as a
+# many-sample render's samples do.
+jitters = {f: (0.0, 0.0) for f in range(0, frames + 2)}
+if jitter_kind == "filter":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import jitter_camera
+    jitters = jitter_camera.key_jitter(cam_data, range(0, frames + 2), jitter_width, W, H)
+
 sun = bpy.data.lights.new("Sun", type='SUN')
 sun.energy = 1.5
 sun.angle = math.radians(15.0)  # soft shadows: noisy penumbrae at few samples
@@ -220,6 +241,7 @@ for f in range(0, frames + 2):
     proj = cam_eval.calc_matrix_camera(depsgraph, x=W, y=H, scale_x=1.0, scale_y=1.0)
     info["frames"][str(f)] = {
         "camera_world": mat(cam_eval.matrix_world),
+        "jitter": list(jitters[f]),
         "projection": mat(proj),
         "objects": {o.name: {"index": o.pass_index, "world": mat(o.evaluated_get(depsgraph).matrix_world)}
                     for o in statics + [sphere]},
