@@ -459,6 +459,15 @@ TEST(AccumulateOptions, SignalSpecs) {
     ASSERT_TRUE(rrc_cli::parse_signal_spec("a:lambda=0,max_age=65535,history=fp16,filter=bilinear,blend=fixed", s, err)) << err;
     EXPECT_EQ(s.lambda, 0.0f);
     EXPECT_EQ(s.max_age, 65535u);
+    EXPECT_EQ(s.fill_age, 0u);
+
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("c:fill=4,fill_radius=3,fill_tolerance=0.05", s, err)) << err;
+    EXPECT_EQ(s.fill_age, 4u);
+    EXPECT_EQ(s.fill_radius, 3u);
+    EXPECT_FLOAT_EQ(s.fill_depth_tolerance, 0.05f);
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("c:max_age=8,fill=9", s, err)) << err;
+    EXPECT_EQ(s.fill_age, 9u);
+    EXPECT_EQ(s.fill_radius, 0u);
 
     struct Bad {
         const char* spec;
@@ -485,6 +494,15 @@ TEST(AccumulateOptions, SignalSpecs) {
                                                    {"s:max_age=65536", "max_age"},
                                                    {"s:max_age=-3", "max_age"},
                                                    {"s:max_age=1.5", "max_age"},
+                                                   {"s:fill=0", "fill"},
+                                                   {"s:fill=2.5", "fill"},
+                                                   {"s:max_age=8,fill=10", "max_age + 1"},
+                                                   {"s:fill=4,fill_radius=0", "fill_radius"},
+                                                   {"s:fill=4,fill_radius=5", "fill_radius"},
+                                                   {"s:fill_radius=2", "needs fill"},
+                                                   {"s:fill_tolerance=0.1", "needs fill"},
+                                                   {"s:fill=4,fill_tolerance=0", "fill_tolerance"},
+                                                   {"s:fill=4,fill_tolerance=2", "fill_tolerance"},
                                                    {"mv", "reserved"},
                                                    {"prevclip", "reserved"},
                                                    {"nocache", "reserved"},
@@ -1011,6 +1029,7 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_FLOAT_EQ(rrc_cli::kBlenderPresetLambda, 0.8f);
     EXPECT_EQ(rrc_cli::kBlenderPresetBlend, RRC_BLEND_AGE_AWARE);
     EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(rrc_cli::kBlenderPresetFillAge, 4u);
 
     TempDir dir;
     rrc_exr::ExrImage img;
@@ -1030,15 +1049,19 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_FLOAT_EQ(layout.signals[0].options.lambda, 0.8f);
     EXPECT_EQ(layout.signals[0].options.blend, RRC_BLEND_AGE_AWARE);
     EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(layout.signals[0].options.fill_age, 4u);
     EXPECT_EQ(layout.signals[0].options.history, RRC_HISTORY_FP16);  // the tool's default
     EXPECT_EQ(layout.signals[0].options.max_age, 255u);
     std::vector<rrc_channel_desc> channels;
-    rrc_cli::make_context_desc(o, layout, channels);
+    const rrc_context_desc preset_desc = rrc_cli::make_context_desc(o, layout, channels);
     ASSERT_EQ(channels.size(), 1u);
     EXPECT_FLOAT_EQ(channels[0].lambda, 0.8f);
     EXPECT_EQ(channels[0].blend, RRC_BLEND_AGE_AWARE);
     EXPECT_EQ(channels[0].filter, RRC_HISTORY_FILTER_CATMULL_ROM);
-    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.8,blend=age_aware,filter=catmull_rom"), std::string::npos);
+    EXPECT_EQ(channels[0].fill_age, 4u);
+    EXPECT_EQ(channels[0].fill_radius, 0u);  // the library's default window
+    EXPECT_EQ(rrc_validate_context_desc(&preset_desc), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.8,blend=age_aware,filter=catmull_rom,fill=4"), std::string::npos);
 
     // Explicit signals: the tool's defaults where no key is given, the keys where they are.
     o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined", "--signal", "ViewLayer.Shadow:lambda=0.7,filter=nearest"}).options;
@@ -1050,6 +1073,14 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_FLOAT_EQ(layout.signals[1].options.lambda, 0.7f);
     EXPECT_EQ(layout.signals[1].options.blend, RRC_BLEND_FIXED);
     EXPECT_EQ(layout.signals[1].options.filter, RRC_HISTORY_FILTER_NEAREST);
+    EXPECT_EQ(layout.signals[0].options.fill_age, 0u);
+    o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined:fill=8,fill_radius=1,fill_tolerance=0.01"}).options;
+    layout = rrc_cli::discover_layout(info, path, o);
+    rrc_cli::make_context_desc(o, layout, channels);
+    ASSERT_EQ(channels.size(), 1u);
+    EXPECT_EQ(channels[0].fill_age, 8u);
+    EXPECT_EQ(channels[0].fill_radius, 1u);
+    EXPECT_FLOAT_EQ(channels[0].fill_depth_tolerance, 0.01f);
 
     // Without the preset the automatic signals keep the tool's defaults too.
     const rrc_cli::SignalOptions plain;

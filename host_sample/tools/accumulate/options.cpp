@@ -90,6 +90,7 @@ SignalOptions blender_preset_signal(const std::string& layer) {
     s.lambda = kBlenderPresetLambda;
     s.blend = kBlenderPresetBlend;
     s.filter = kBlenderPresetFilter;
+    s.fill_age = kBlenderPresetFillAge;
     return s;
 }
 
@@ -160,11 +161,33 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
                     return false;
                 }
                 s.max_age = static_cast<uint32_t>(v);
+            } else if (key == "fill" || key == "fill_radius") {
+                const int64_t hi = key == "fill" ? static_cast<int64_t>(RRC_MAX_AGE_CAP) + 1 : static_cast<int64_t>(RRC_MAX_FILL_RADIUS);
+                int64_t v = 0;
+                if (!parse_int(value, v) || v < 1 || v > hi) {
+                    error = where + key + " must be an integer in [1, " + std::to_string(hi) + "], got " + quoted(value);
+                    return false;
+                }
+                (key == "fill" ? s.fill_age : s.fill_radius) = static_cast<uint32_t>(v);
+            } else if (key == "fill_tolerance") {
+                if (!parse_float(value, s.fill_depth_tolerance) || !(s.fill_depth_tolerance > 0.0f && s.fill_depth_tolerance <= 1.0f)) {
+                    error = where + "fill_tolerance must be a number in (0, 1], got " + quoted(value);
+                    return false;
+                }
             } else {
-                error = where + "unknown key " + quoted(key) + " (expected lambda, blend, filter, history, max_age)";
+                error = where + "unknown key " + quoted(key) +
+                        " (expected lambda, blend, filter, history, max_age, fill, fill_radius, fill_tolerance)";
                 return false;
             }
         }
+    }
+    if ((s.fill_radius != 0 || s.fill_depth_tolerance != 0.0f) && s.fill_age == 0) {
+        error = where + (s.fill_radius != 0 ? "fill_radius" : "fill_tolerance") + std::string(" needs fill=T");
+        return false;
+    }
+    if (s.fill_age > s.max_age + 1) {
+        error = where + "fill (" + std::to_string(s.fill_age) + ") must be at most max_age + 1 (" + std::to_string(s.max_age + 1) + ")";
+        return false;
     }
     out = s;
     return true;
@@ -365,7 +388,14 @@ Signals:
                          most 4).  Keys: lambda=0.6 (history weight, [0,1)),
                          blend=fixed|age_aware|running_mean (fixed),
                          filter=nearest|bilinear|catmull_rom|gaussian (bilinear),
-                         history=fp16|fp32 (fp16), max_age=1..65535 (255).
+                         history=fp16|fp32 (fp16), max_age=1..65535 (255),
+                         fill=T (off): pixels younger than T samples are
+                         shown as a depth-aware mean of their neighbours'
+                         histories (docs/CONVENTIONS.md, "The spatial
+                         fill"; display only: the history keeps its own
+                         samples), fill_radius=1..4 (2: a 5x5 window),
+                         fill_tolerance=(0,1] (0.005: the relative depth
+                         difference at which a neighbour still counts).
                          Without --signal every layer of the first frame is
                          accumulated except the depth, motion, prevclip and
                          nocache channels' layers.  A layer is NAME.Y (or any
@@ -426,9 +456,9 @@ missing channel, library error, validation message), 2 a bad command line.
     std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
     for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
     char preset_signal[96];
-    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s", static_cast<double>(kBlenderPresetLambda),
+    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u", static_cast<double>(kBlenderPresetLambda),
                   rrc_host::enum_name(rrc_host::kBlendNames, kBlenderPresetBlend),
-                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter));
+                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter), kBlenderPresetFillAge);
     const std::string marker = "@PRESET_SIGNAL@";
     for (std::size_t p; (p = text.find(marker)) != std::string::npos;) text.replace(p, marker.size(), preset_signal);
     return text;

@@ -28,6 +28,9 @@ constexpr float kBlenderPresetTau = 0.04f;
 constexpr float kBlenderPresetLambda = 0.8f;
 constexpr rrc_blend kBlenderPresetBlend = RRC_BLEND_AGE_AWARE;
 constexpr rrc_history_filter kBlenderPresetFilter = RRC_HISTORY_FILTER_CATMULL_ROM;
+/** ... with the spatial fill below age 4 (fill=4, the library's 5x5 window): it won on every
+ *  sequence of docs/OFFLINE.md, section 7, "The spatial fill and a jittered camera". */
+constexpr uint32_t kBlenderPresetFillAge = 4;
 
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {
@@ -37,6 +40,10 @@ struct SignalOptions {
     rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR; /* filter=nearest|bilinear|catmull_rom */
     rrc_history_precision history = RRC_HISTORY_FP16;        /* history=fp16|fp32 */
     uint32_t max_age = 255;                                  /* max_age=1..65535 */
+    /* The spatial fill for young pixels (docs/CONVENTIONS.md, "The spatial fill"); 0 = off / the library's default. */
+    uint32_t fill_age = 0;              /* fill=1..max_age+1 */
+    uint32_t fill_radius = 0;           /* fill_radius=1..RRC_MAX_FILL_RADIUS, needs fill */
+    float fill_depth_tolerance = 0.0f;  /* fill_tolerance=(0, 1], needs fill */
 };
 
 struct Options {
@@ -120,8 +127,8 @@ const std::vector<std::string>& value_options();
 std::string usage_text();
 
 /** The signal --preset blender accumulates when no --signal is given: `layer`
- *  (<view layer>.Combined) with kBlenderPresetLambda, kBlenderPresetBlend and
- *  kBlenderPresetFilter, the other keys the tool's defaults. */
+ *  (<view layer>.Combined) with kBlenderPresetLambda, kBlenderPresetBlend,
+ *  kBlenderPresetFilter and kBlenderPresetFillAge, the other keys the tool's defaults. */
 SignalOptions blender_preset_signal(const std::string& layer);
 
 /** "NAME[:key=value,...]"; on failure returns false and sets error. */

@@ -426,6 +426,9 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
         if (s.options.layer.size() >= RRC_MAX_NAME) throw CliError("layer name " + quoted(s.options.layer) + " is too long for rrc");
         channels.push_back(rrc_host::channel(s.options.layer.c_str(), s.rrc_components, s.options.lambda, s.options.history,
                                              s.options.blend, s.options.filter, s.options.max_age, s.confidence ? 1u : 0u));
+        channels.back().fill_age = s.options.fill_age;
+        channels.back().fill_radius = s.options.fill_radius;
+        channels.back().fill_depth_tolerance = s.options.fill_depth_tolerance;
     }
 
     rrc_context_desc d = rrc_host::context_desc(static_cast<uint32_t>(layout.width), static_cast<uint32_t>(layout.height), channels);

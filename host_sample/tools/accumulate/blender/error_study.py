@@ -407,6 +407,8 @@ def main():
                     help="render the 1- and 2-spp sequences (and the centre-sampled image) with the camera jittered "
                          "through the pixel filter (render_check_scene.py jitter=filter); the reference and the "
                          "brute-force sequences of 4 spp and more stay unjittered")
+    ap.add_argument("--jitter-width", type=float, default=1.5,
+                    help="with --jitter: the Blackman-Harris width the jitter is drawn through, pixels (1.5, the reference's filter)")
     args = ap.parse_args()
     args.rrc_dir = "rrc"
     work = os.path.abspath(args.work)
@@ -420,12 +422,12 @@ def main():
         sys.exit("--spps must hold 4 (the error is a ratio to the 4-spp RMSE)")
     with open(os.path.join(work, "study.json"), "w") as fp:
         json.dump({"size": args.size, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp, "spps": spps,
-                   "scene_args": args.scene_args, "seeds": args.seeds, "jitter": args.jitter}, fp, indent=1)
+                   "scene_args": args.scene_args, "seeds": args.seeds, "jitter": args.jitter and args.jitter_width}, fp, indent=1)
 
     # 1. Renders and their times.
     # --jitter: the sequences rrc accumulates move their first sample over the
     # pixel filter from frame to frame (docs/OFFLINE.md, section 7).
-    jit = ["jitter=filter"] if args.jitter else []
+    jit = (["jitter=filter"] + (["jitter_width=%g" % args.jitter_width] if args.jitter_width != 1.5 else [])) if args.jitter else []
     renders = {spp: render(work, "spp%d" % spp, spp, 0, args, jit if spp <= 2 else []) for spp in spps}
     ref = render(work, "ref", args.ref_spp, args.ref_seed, args)
     # What a frame's sample 0 converges to: the pixel-centre image (filter width 0.01 px),
@@ -546,7 +548,7 @@ def main():
                 (spp, d["config"], d["mse"], d["variance"], d["blur_lag"], d["centre"],
                  "; seeds: bias^2 %.3e variance %.3e" % (d["bias2_seeds"], d["variance_seeds"]) if "seeds" in d else ""))
 
-    results = {"size": args.size, "scene_args": args.scene_args, "jitter": args.jitter, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
+    results = {"size": args.size, "scene_args": args.scene_args, "jitter": args.jitter and args.jitter_width, "frames": args.frames, "from": args.first, "ref_spp": args.ref_spp,
                "time_fit": fit, "times": {str(k): {kk: float(vv) for kk, vv in v.items()} for k, v in times.items()},
                "brute": {str(k): v for k, v in brute.items()}, "sweep": sweep, "preset_default": preset_default,
                "decomposition": decomp, "centre_check": centre_check, "aliasing": aliasing,
@@ -563,6 +565,8 @@ def evaluate(args, work):
         st = json.load(fp)
     args.size, args.frames, args.first, args.scene_args = st["size"], st["frames"], st["from"], st["scene_args"]
     args.jitter = st.get("jitter", False)
+    if args.jitter is True:  # a study.json written before --jitter-width
+        args.jitter = 1.5
     if args.spp not in st["spps"]:
         sys.exit("no %d-spp sequence in %s (it has %s)" % (args.spp, work, st["spps"]))
     args.rrc_dir = os.path.join("evaluate", args.evaluate)
@@ -577,7 +581,7 @@ def evaluate(args, work):
         log("%s: RMSE %.5f = %.3fx 4 spp; MSE %.3e = variance %.3e + blur/lag %.3e + centre sampling %.3e" %
             (text, d["rmse"], d["ratio_to_4spp"], d["mse"], d["variance"], d["blur_lag"], d["centre"]))
     L = ["Sequence %s (%s, %d frames, render_check_scene.py %s%s), %d spp, error over frames %d..%d" %
-         (work, args.size, args.frames, args.scene_args or "(the check scene)", " jitter=filter" if args.jitter else "",
+         (work, args.size, args.frames, args.scene_args or "(the check scene)", " jitter=filter jitter_width=%g" % args.jitter if args.jitter else "",
           args.spp, args.first, args.frames), "",
          "Command: " + " ".join(sys.argv), "",
          "rrc-accumulate --preset blender %s [--signal SPEC]; 4-spp RMSE %.5f" % (args.rrc_args, brute4), "",
@@ -599,8 +603,8 @@ def write_markdown(work, R):
     L = []
     L.append("Sequence: %s, %d frames, render_check_scene.py %s; reference %d spp%s" %
              (R["size"], R["frames"], R.get("scene_args") or "(the check scene)", R["ref_spp"],
-              "; the 1- and 2-spp sequences and the centre-sampled image jittered through the pixel filter (jitter=filter)"
-              if R.get("jitter") else ""))
+              "; the 1- and 2-spp sequences and the centre-sampled image jittered through a %g-px Blackman-Harris filter"
+              " (jitter=filter)" % R["jitter"] if R.get("jitter") else ""))
     L.append("")
     L.append("Per-frame times (medians over frames 2.. of the %s, the reference's own; seconds): total = path tracing + fixed" %
              ("timing renders" if R.get("timing_renders", True) else "sequences' own renders"))
