@@ -1026,9 +1026,9 @@ TEST(AccumulateTool, ObjectIdChannel) {
 // tool's defaults and its own keys.
 TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     // The values section 7 documents: a change here is a change there.
-    EXPECT_FLOAT_EQ(rrc_cli::kBlenderPresetLambda, 0.8f);
+    EXPECT_FLOAT_EQ(rrc_cli::kBlenderPresetLambda, 0.85f);
     EXPECT_EQ(rrc_cli::kBlenderPresetBlend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(rrc_cli::kBlenderPresetFillAge, 4u);
 
     TempDir dir;
@@ -1046,22 +1046,22 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     rrc_cli::SequenceLayout layout = rrc_cli::discover_layout(info, path, o);
     ASSERT_EQ(layout.signals.size(), 1u);
     EXPECT_EQ(layout.signals[0].options.layer, "ViewLayer.Combined");
-    EXPECT_FLOAT_EQ(layout.signals[0].options.lambda, 0.8f);
+    EXPECT_FLOAT_EQ(layout.signals[0].options.lambda, 0.85f);
     EXPECT_EQ(layout.signals[0].options.blend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(layout.signals[0].options.fill_age, 4u);
     EXPECT_EQ(layout.signals[0].options.history, RRC_HISTORY_FP16);  // the tool's default
     EXPECT_EQ(layout.signals[0].options.max_age, 255u);
     std::vector<rrc_channel_desc> channels;
     const rrc_context_desc preset_desc = rrc_cli::make_context_desc(o, layout, channels);
     ASSERT_EQ(channels.size(), 1u);
-    EXPECT_FLOAT_EQ(channels[0].lambda, 0.8f);
+    EXPECT_FLOAT_EQ(channels[0].lambda, 0.85f);
     EXPECT_EQ(channels[0].blend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(channels[0].filter, RRC_HISTORY_FILTER_CATMULL_ROM);
+    EXPECT_EQ(channels[0].filter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(channels[0].fill_age, 4u);
     EXPECT_EQ(channels[0].fill_radius, 0u);  // the library's default window
     EXPECT_EQ(rrc_validate_context_desc(&preset_desc), RRC_SUCCESS) << rrc_last_error();
-    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.8,blend=age_aware,filter=catmull_rom,fill=4"), std::string::npos);
+    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.85,blend=age_aware,filter=bilinear,fill=4"), std::string::npos);
 
     // Explicit signals: the tool's defaults where no key is given, the keys where they are.
     o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined", "--signal", "ViewLayer.Shadow:lambda=0.7,filter=nearest"}).options;

@@ -308,7 +308,7 @@ CANDIDATES = ([("fixed", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("age_aware", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("running_mean", c) for c in (4, 8, 16, 32, 64, 255)])
 FILTERS = ("bilinear", "catmull_rom")
-PRESET = ("age_aware", 0.8, "catmull_rom")  # --preset blender's signal (options.h), marked in the figure
+PRESET = ("age_aware", 0.85, "bilinear")  # --preset blender's signal (options.h) less its fill=4, marked in the figure
 
 
 def mean_sq(a, b, frames):
@@ -407,8 +407,9 @@ def main():
                     help="render the 1- and 2-spp sequences (and the centre-sampled image) with the camera jittered "
                          "through the pixel filter (render_check_scene.py jitter=filter); the reference and the "
                          "brute-force sequences of 4 spp and more stay unjittered")
-    ap.add_argument("--jitter-width", type=float, default=1.5,
-                    help="with --jitter: the Blackman-Harris width the jitter is drawn through, pixels (1.5, the reference's filter)")
+    ap.add_argument("--jitter-width", type=float, default=1.0,
+                    help="with --jitter: the Blackman-Harris width the jitter is drawn through, pixels (1, jitter_camera.py's "
+                         "default for the reference's 1.5-px filter)")
     args = ap.parse_args()
     args.rrc_dir = "rrc"
     work = os.path.abspath(args.work)
@@ -427,7 +428,7 @@ def main():
     # 1. Renders and their times.
     # --jitter: the sequences rrc accumulates move their first sample over the
     # pixel filter from frame to frame (docs/OFFLINE.md, section 7).
-    jit = (["jitter=filter"] + (["jitter_width=%g" % args.jitter_width] if args.jitter_width != 1.5 else [])) if args.jitter else []
+    jit = ["jitter=filter", "jitter_width=%g" % args.jitter_width] if args.jitter else []
     renders = {spp: render(work, "spp%d" % spp, spp, 0, args, jit if spp <= 2 else []) for spp in spps}
     ref = render(work, "ref", args.ref_spp, args.ref_seed, args)
     # What a frame's sample 0 converges to: the pixel-centre image (filter width 0.01 px),

@@ -8,22 +8,30 @@
 # Cycles puts a frame's first sample at the pixel centre whatever the seed, so
 # an accumulated 1-sample sequence averages point samples of the image.  This
 # shifts the scene camera each frame f of the scene's range by the Halton
-# (2, 3) point f + 1, drawn through Cycles' Blackman-Harris pixel filter of
-# width W pixels (default: the scene's own filter width, Cycles' 1.5): over
-# the frames the first sample sweeps the filter as a many-sample render's
-# samples do.  The shift is keyed with constant interpolation on top of the
+# (2, 3) point f + 1, drawn through a Blackman-Harris filter of width W
+# pixels (Cycles' pixel filter, narrowed): over the frames the first sample
+# sweeps the pixel as a many-sample render's samples sweep the filter.  The
+# default W is JITTER_SHARE (2/3) of the scene's filter width, 1 px for
+# Cycles' 1.5: rrc's resampled history adds its own blur, and on the
+# 320x180 sequences of docs/OFFLINE.md, section 7, 1 px beat the full 1.5.  The shift is keyed with constant interpolation on top of the
 # camera's own (static) shift_x / shift_y; Cycles' Vector pass leaves the
 # shift out, so the vectors stay unjittered.  Give rrc-accumulate no jitter
 # (no --camera "jitter"): each jittered frame is a sample of the filtered
 # pixel, which is what the history holds.
 #
-#   --width W     the filter width in pixels (Blackman-Harris, as Cycles)
+#   --width W     the jitter's Blackman-Harris width in pixels (default
+#                 2/3 of the scene's filter width)
 #   --save        save the .blend (otherwise only this Blender session has it)
 #   --json FILE   write {"frame": [x, y], ...}: each frame's offset in pixels,
 #                 x right, y down
 import json
 import math
 import sys
+
+# The jitter's width as a share of the pixel filter's (docs/OFFLINE.md, section 7, "The
+# spatial fill and a jittered camera": 1 px against 1.5 px took strafe_b from 0.921x to
+# 0.829x the 4-sample RMSE with the preset, strafe_a from 0.809x to 0.816x).
+JITTER_SHARE = 2.0 / 3.0
 
 
 def halton(i, base):
@@ -87,14 +95,14 @@ def main(argv):
     import argparse
     import bpy
     ap = argparse.ArgumentParser(prog="jitter_camera.py", description="key a sub-pixel camera jitter (see the file's head)")
-    ap.add_argument("--width", type=float, help="Blackman-Harris filter width in pixels (default: the scene's)")
+    ap.add_argument("--width", type=float, help="the jitter's Blackman-Harris width in pixels (default: 2/3 of the scene's filter)")
     ap.add_argument("--save", action="store_true", help="save the .blend")
     ap.add_argument("--json", help="write each frame's offset (pixels, x right, y down)")
     args = ap.parse_args(argv)
     scene = bpy.context.scene
     if scene.camera is None:
         sys.exit("jitter_camera.py: the scene has no camera")
-    width = args.width if args.width is not None else scene.cycles.filter_width
+    width = args.width if args.width is not None else JITTER_SHARE * scene.cycles.filter_width
     if not width > 0:
         sys.exit("jitter_camera.py: the filter width must be > 0 (got %g)" % width)
     if scene.cycles.pixel_filter_type != 'BLACKMAN_HARRIS':
@@ -106,7 +114,7 @@ def main(argv):
         offsets = key_jitter(scene.camera.data, range(scene.frame_start, scene.frame_end + 1), width, W, H)
     except ValueError as e:
         sys.exit("jitter_camera.py: " + str(e))
-    print("jitter_camera.py: keyed frames %d-%d of camera '%s' (%dx%d, filter %.3g px)"
+    print("jitter_camera.py: keyed frames %d-%d of camera '%s' (%dx%d), offsets drawn through a %.3g-px Blackman-Harris filter"
           % (scene.frame_start, scene.frame_end, scene.camera.name, W, H, width))
     if args.json:
         with open(args.json, "w") as fp:

@@ -40,9 +40,9 @@
 #   pillars=N     N static upright cylinders between the camera and the
 #                 scene (0): under a strafe they uncover what lies behind them
 #   jitter=none|filter   filter: the camera is shifted by a sub-pixel offset
-#                 each frame, Halton (2, 3) drawn through the Blackman-Harris
-#                 pixel filter of jitter_width= px (1.5, Cycles' default and
-#                 the reference's), so that a frame's first sample, which
+#                 each frame, Halton (2, 3) drawn through a Blackman-Harris
+#                 filter of jitter_width= px (1: jitter_camera.py's default,
+#                 2/3 of the reference's 1.5), so that a frame's first sample, which
 #                 Cycles puts at the (shifted) pixel centre, sweeps the
 #                 filter over the frames; scene.json gives each frame's
 #                 "jitter" in pixels, x right, y down.  Cycles' Vector pass
@@ -78,7 +78,7 @@ mover_vel = [float(v) for v in keys.get("mover_vel", "0.25,0,0.15").split(",")]
 spin = float(keys.get("spin", "0"))
 pillars = int(keys.get("pillars", "0"))
 jitter_kind = keys.get("jitter", "none")
-jitter_width = float(keys.get("jitter_width", "1.5"))  # the reference's filter, whatever this render's filter=
+jitter_width = float(keys.get("jitter_width", "1"))  # jitter_camera.py's default for the reference's 1.5 px, whatever filter= is
 if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube") or len(mover_vel) != 3 \
         or jitter_kind not in ("none", "filter"):
     sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube, mover_vel=X,Y,Z, jitter=none|filter")
