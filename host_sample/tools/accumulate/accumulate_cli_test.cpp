@@ -468,6 +468,23 @@ TEST(AccumulateOptions, SignalSpecs) {
     ASSERT_TRUE(rrc_cli::parse_signal_spec("c:max_age=8,fill=9", s, err)) << err;
     EXPECT_EQ(s.fill_age, 9u);
     EXPECT_EQ(s.fill_radius, 0u);
+    EXPECT_EQ(s.rectify, 0u);
+    EXPECT_EQ(s.antilag, 0u);
+    EXPECT_EQ(s.blur_bound, 0.0f);
+
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("c:rectify=on,rectify_gamma=1.5,antilag=on,antilag_gamma=0.25,antilag_threshold=2,blur_bound=64",
+                                           s, err))
+        << err;
+    EXPECT_EQ(s.rectify, 1u);
+    EXPECT_FLOAT_EQ(s.rectify_gamma, 1.5f);
+    EXPECT_EQ(s.antilag, 1u);
+    EXPECT_FLOAT_EQ(s.antilag_gamma, 0.25f);
+    EXPECT_FLOAT_EQ(s.antilag_threshold, 2.0f);
+    EXPECT_FLOAT_EQ(s.blur_bound, 64.0f);
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("c:rectify=off,antilag=off,blur_bound=0.25", s, err)) << err;
+    EXPECT_EQ(s.rectify, 0u);
+    EXPECT_EQ(s.antilag, 0u);
+    EXPECT_FLOAT_EQ(s.blur_bound, 0.25f);
 
     struct Bad {
         const char* spec;
@@ -503,6 +520,22 @@ TEST(AccumulateOptions, SignalSpecs) {
                                                    {"s:fill_tolerance=0.1", "needs fill"},
                                                    {"s:fill=4,fill_tolerance=0", "fill_tolerance"},
                                                    {"s:fill=4,fill_tolerance=2", "fill_tolerance"},
+                                                   {"s:rectify=1", "on or off"},
+                                                   {"s:antilag=yes", "on or off"},
+                                                   {"s:rectify_gamma=1", "needs rectify=on"},
+                                                   {"s:rectify=off,rectify_gamma=1", "needs rectify=on"},
+                                                   {"s:rectify=on,rectify_gamma=0", "rectify_gamma"},
+                                                   {"s:rectify=on,rectify_gamma=16.5", "rectify_gamma"},
+                                                   {"s:antilag_gamma=1", "needs antilag=on"},
+                                                   {"s:antilag_threshold=0.5", "needs antilag=on"},
+                                                   {"s:antilag=on,antilag_gamma=17", "antilag_gamma"},
+                                                   {"s:antilag=on,antilag_threshold=0", "antilag_threshold"},
+                                                   {"s:antilag=on,antilag_threshold=2.5", "antilag_threshold"},
+                                                   {"s:blur_bound=0", "blur_bound"},
+                                                   {"s:blur_bound=-1", "blur_bound"},
+                                                   {"s:blur_bound=65", "blur_bound"},
+                                                   {"s:blur_bound=nan", "blur_bound"},
+                                                   {"s:blur_bound=inf", "blur_bound"},
                                                    {"mv", "reserved"},
                                                    {"prevclip", "reserved"},
                                                    {"nocache", "reserved"},
@@ -1074,6 +1107,7 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_EQ(layout.signals[1].options.blend, RRC_BLEND_FIXED);
     EXPECT_EQ(layout.signals[1].options.filter, RRC_HISTORY_FILTER_NEAREST);
     EXPECT_EQ(layout.signals[0].options.fill_age, 0u);
+    EXPECT_EQ(layout.signals[0].options.rectify, 0u);
     o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined:fill=8,fill_radius=1,fill_tolerance=0.01"}).options;
     layout = rrc_cli::discover_layout(info, path, o);
     rrc_cli::make_context_desc(o, layout, channels);
@@ -1081,6 +1115,24 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_EQ(channels[0].fill_age, 8u);
     EXPECT_EQ(channels[0].fill_radius, 1u);
     EXPECT_FLOAT_EQ(channels[0].fill_depth_tolerance, 0.01f);
+    EXPECT_EQ(channels[0].rectify, 0u);
+    EXPECT_EQ(channels[0].antilag, 0u);
+    EXPECT_EQ(channels[0].blur_bound, 0.0f);
+    // The cures reach the channel, and the library accepts them as given.
+    o = parse_with({"--preset", "blender", "--signal",
+                    "ViewLayer.Combined:lambda=0.85,blend=age_aware,rectify=on,rectify_gamma=1.5,antilag=on,antilag_gamma=0.5,"
+                    "antilag_threshold=0.25,blur_bound=0.5"})
+            .options;
+    layout = rrc_cli::discover_layout(info, path, o);
+    const rrc_context_desc cured = rrc_cli::make_context_desc(o, layout, channels);
+    ASSERT_EQ(channels.size(), 1u);
+    EXPECT_EQ(channels[0].rectify, 1u);
+    EXPECT_FLOAT_EQ(channels[0].rectify_gamma, 1.5f);
+    EXPECT_EQ(channels[0].antilag, 1u);
+    EXPECT_FLOAT_EQ(channels[0].antilag_gamma, 0.5f);
+    EXPECT_FLOAT_EQ(channels[0].antilag_threshold, 0.25f);
+    EXPECT_FLOAT_EQ(channels[0].blur_bound, 0.5f);
+    EXPECT_EQ(rrc_validate_context_desc(&cured), RRC_SUCCESS) << rrc_last_error();
 
     // Without the preset the automatic signals keep the tool's defaults too.
     const rrc_cli::SignalOptions plain;

@@ -174,15 +174,47 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
                     error = where + "fill_tolerance must be a number in (0, 1], got " + quoted(value);
                     return false;
                 }
+            } else if (key == "rectify" || key == "antilag") {
+                if (value != "on" && value != "off") {
+                    error = where + key + " must be on or off, got " + quoted(value);
+                    return false;
+                }
+                (key == "rectify" ? s.rectify : s.antilag) = value == "on" ? 1u : 0u;
+            } else if (key == "rectify_gamma" || key == "antilag_gamma" || key == "antilag_threshold" || key == "blur_bound") {
+                // Each in (0, its maximum]: the library's own range (include/rrc/rrc.h), checked here so that
+                // a typo fails before any file is read.
+                const float hi = key == "rectify_gamma"   ? RRC_MAX_RECTIFY_GAMMA
+                                 : key == "antilag_gamma" ? RRC_MAX_ANTILAG_GAMMA
+                                 : key == "blur_bound"    ? RRC_MAX_BLUR_BOUND
+                                                          : RRC_MAX_ANTILAG_THRESHOLD;
+                float& field = key == "rectify_gamma"   ? s.rectify_gamma
+                               : key == "antilag_gamma" ? s.antilag_gamma
+                               : key == "blur_bound"    ? s.blur_bound
+                                                        : s.antilag_threshold;
+                if (!parse_float(value, field) || !(field > 0.0f && field <= hi)) {
+                    char range[32];
+                    std::snprintf(range, sizeof range, "(0, %g]", static_cast<double>(hi));
+                    error = where + key + " must be a number in " + range + ", got " + quoted(value);
+                    return false;
+                }
             } else {
                 error = where + "unknown key " + quoted(key) +
-                        " (expected lambda, blend, filter, history, max_age, fill, fill_radius, fill_tolerance)";
+                        " (expected lambda, blend, filter, history, max_age, fill, fill_radius, fill_tolerance, rectify, "
+                        "rectify_gamma, antilag, antilag_gamma, antilag_threshold, blur_bound)";
                 return false;
             }
         }
     }
     if ((s.fill_radius != 0 || s.fill_depth_tolerance != 0.0f) && s.fill_age == 0) {
         error = where + (s.fill_radius != 0 ? "fill_radius" : "fill_tolerance") + std::string(" needs fill=T");
+        return false;
+    }
+    if (s.rectify_gamma != 0.0f && !s.rectify) {
+        error = where + "rectify_gamma needs rectify=on";
+        return false;
+    }
+    if ((s.antilag_gamma != 0.0f || s.antilag_threshold != 0.0f) && !s.antilag) {
+        error = where + (s.antilag_gamma != 0.0f ? "antilag_gamma" : "antilag_threshold") + std::string(" needs antilag=on");
         return false;
     }
     if (s.fill_age > s.max_age + 1) {
@@ -396,6 +428,18 @@ Signals:
                          samples), fill_radius=1..4 (2: a 5x5 window),
                          fill_tolerance=(0,1] (0.005: the relative depth
                          difference at which a neighbour still counts).
+                         The cures for error under motion (off; see
+                         docs/CONVENTIONS.md for each): rectify=on|off
+                         (clamp the history to this frame's 3x3
+                         neighbourhood, "Rectification"), rectify_gamma=
+                         (0,16] (1: the box's half width in sigmas);
+                         antilag=on|off (shorten the history where it
+                         left that box, "The lag detector"),
+                         antilag_gamma=(0,16] (2), antilag_threshold=
+                         (0,2] (0.5: the relative gap that drops the
+                         history); blur_bound=(0,64] px^2 (off: cap the
+                         history's age so that its resampling blur stays
+                         within B px^2 per axis, "The blur bound").
                          Without --signal every layer of the first frame is
                          accumulated except the depth, motion, prevclip and
                          nocache channels' layers.  A layer is NAME.Y (or any

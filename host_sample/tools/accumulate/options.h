@@ -46,6 +46,14 @@ struct SignalOptions {
     uint32_t fill_age = 0;              /* fill=1..max_age+1 */
     uint32_t fill_radius = 0;           /* fill_radius=1..RRC_MAX_FILL_RADIUS, needs fill */
     float fill_depth_tolerance = 0.0f;  /* fill_tolerance=(0, 1], needs fill */
+    /* The cures for error under motion (docs/CONVENTIONS.md, "Rectification", "The lag detector",
+     * "The blur bound"); 0 = off / the library's default. */
+    uint32_t rectify = 0;               /* rectify=on|off */
+    float rectify_gamma = 0.0f;         /* rectify_gamma=(0, RRC_MAX_RECTIFY_GAMMA], needs rectify */
+    uint32_t antilag = 0;               /* antilag=on|off */
+    float antilag_gamma = 0.0f;         /* antilag_gamma=(0, RRC_MAX_ANTILAG_GAMMA], needs antilag */
+    float antilag_threshold = 0.0f;     /* antilag_threshold=(0, RRC_MAX_ANTILAG_THRESHOLD], needs antilag */
+    float blur_bound = 0.0f;            /* blur_bound=(0, RRC_MAX_BLUR_BOUND] px^2 */
 };
 
 struct Options {

@@ -429,6 +429,12 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
         channels.back().fill_age = s.options.fill_age;
         channels.back().fill_radius = s.options.fill_radius;
         channels.back().fill_depth_tolerance = s.options.fill_depth_tolerance;
+        channels.back().rectify = s.options.rectify;
+        channels.back().rectify_gamma = s.options.rectify_gamma;
+        channels.back().antilag = s.options.antilag;
+        channels.back().antilag_gamma = s.options.antilag_gamma;
+        channels.back().antilag_threshold = s.options.antilag_threshold;
+        channels.back().blur_bound = s.options.blur_bound;
     }
 
     rrc_context_desc d = rrc_host::context_desc(static_cast<uint32_t>(layout.width), static_cast<uint32_t>(layout.height), channels);
