@@ -1063,6 +1063,7 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_EQ(rrc_cli::kBlenderPresetBlend, RRC_BLEND_AGE_AWARE);
     EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(rrc_cli::kBlenderPresetFillAge, 4u);
+    EXPECT_EQ(rrc_cli::kBlenderPresetRectify, 1u);
 
     TempDir dir;
     rrc_exr::ExrImage img;
@@ -1083,6 +1084,8 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_EQ(layout.signals[0].options.blend, RRC_BLEND_AGE_AWARE);
     EXPECT_EQ(layout.signals[0].options.filter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(layout.signals[0].options.fill_age, 4u);
+    EXPECT_EQ(layout.signals[0].options.rectify, 1u);
+    EXPECT_EQ(layout.signals[0].options.rectify_gamma, 0.0f);  // the library's default
     EXPECT_EQ(layout.signals[0].options.history, RRC_HISTORY_FP16);  // the tool's default
     EXPECT_EQ(layout.signals[0].options.max_age, 255u);
     std::vector<rrc_channel_desc> channels;
@@ -1093,8 +1096,11 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_EQ(channels[0].filter, RRC_HISTORY_FILTER_BILINEAR);
     EXPECT_EQ(channels[0].fill_age, 4u);
     EXPECT_EQ(channels[0].fill_radius, 0u);  // the library's default window
+    EXPECT_EQ(channels[0].rectify, 1u);
+    EXPECT_EQ(channels[0].antilag, 0u);
+    EXPECT_EQ(channels[0].blur_bound, 0.0f);
     EXPECT_EQ(rrc_validate_context_desc(&preset_desc), RRC_SUCCESS) << rrc_last_error();
-    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.85,blend=age_aware,filter=bilinear,fill=4"), std::string::npos);
+    EXPECT_NE(rrc_cli::usage_text().find("lambda=0.85,blend=age_aware,filter=bilinear,fill=4,rectify=on"), std::string::npos);
 
     // Explicit signals: the tool's defaults where no key is given, the keys where they are.
     o = parse_with({"--preset", "blender", "--signal", "ViewLayer.Combined", "--signal", "ViewLayer.Shadow:lambda=0.7,filter=nearest"}).options;

@@ -58,13 +58,14 @@ using namespace rrc_cli_test;
 const std::string kLayer = "ViewLayer.";
 
 // The signal --preset blender accumulates without --signal, spelt out as a
-// --signal (options.h: kBlenderPresetLambda, kBlenderPresetBlend, kBlenderPresetFilter, kBlenderPresetFillAge).
+// --signal (options.h: kBlenderPresetLambda, kBlenderPresetBlend, kBlenderPresetFilter, kBlenderPresetFillAge,
+// kBlenderPresetRectify).
 std::string preset_signal() {
     char lambda[32];
     std::snprintf(lambda, sizeof lambda, "%g", static_cast<double>(rrc_cli::kBlenderPresetLambda));
     return kLayer + "Combined:lambda=" + lambda + ",blend=" + rrc_host::enum_name(rrc_host::kBlendNames, rrc_cli::kBlenderPresetBlend) +
            ",filter=" + rrc_host::enum_name(rrc_host::kHistoryFilterNames, rrc_cli::kBlenderPresetFilter) +
-           ",fill=" + std::to_string(rrc_cli::kBlenderPresetFillAge);
+           ",fill=" + std::to_string(rrc_cli::kBlenderPresetFillAge) + ",rectify=" + (rrc_cli::kBlenderPresetRectify ? "on" : "off");
 }
 
 std::string frame_path(const std::string& pattern, int f) { return rrc_cli::format_frame_path(pattern, f); }

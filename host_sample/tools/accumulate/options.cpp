@@ -91,6 +91,7 @@ SignalOptions blender_preset_signal(const std::string& layer) {
     s.blend = kBlenderPresetBlend;
     s.filter = kBlenderPresetFilter;
     s.fill_age = kBlenderPresetFillAge;
+    s.rectify = kBlenderPresetRectify;
     return s;
 }
 
@@ -500,9 +501,10 @@ missing channel, library error, validation message), 2 a bad command line.
     std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
     for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
     char preset_signal[96];
-    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u", static_cast<double>(kBlenderPresetLambda),
-                  rrc_host::enum_name(rrc_host::kBlendNames, kBlenderPresetBlend),
-                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter), kBlenderPresetFillAge);
+    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u,rectify=%s",
+                  static_cast<double>(kBlenderPresetLambda), rrc_host::enum_name(rrc_host::kBlendNames, kBlenderPresetBlend),
+                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter), kBlenderPresetFillAge,
+                  kBlenderPresetRectify ? "on" : "off");
     const std::string marker = "@PRESET_SIGNAL@";
     for (std::size_t p; (p = text.find(marker)) != std::string::npos;) text.replace(p, marker.size(), preset_signal);
     return text;

@@ -33,6 +33,11 @@ constexpr rrc_history_filter kBlenderPresetFilter = RRC_HISTORY_FILTER_BILINEAR;
  *  camera", where it won on all six renders (centred and jittered first samples); the small
  *  96x64 check scene prefers Catmull-Rom at lambda 0.8 (the same section). */
 constexpr uint32_t kBlenderPresetFillAge = 4;
+/** ... and rectified (rectify=on, the library's gamma 1: docs/CONVENTIONS.md, "Rectification").
+ *  Chosen on the same renders (docs/OFFLINE.md, section 7, "Rectification, and a sequence held
+ *  out"): it lowered the RMSE on all nine of them, the 96x64 check scene's included, and met the
+ *  target on a sequence held out of every choice. */
+constexpr uint32_t kBlenderPresetRectify = 1;
 
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {

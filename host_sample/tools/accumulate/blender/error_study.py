@@ -308,7 +308,7 @@ CANDIDATES = ([("fixed", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("age_aware", l) for l in (0.6, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95)] +
               [("running_mean", c) for c in (4, 8, 16, 32, 64, 255)])
 FILTERS = ("bilinear", "catmull_rom")
-PRESET = ("age_aware", 0.85, "bilinear")  # --preset blender's signal (options.h) less its fill=4, marked in the figure
+PRESET = ("age_aware", 0.85, "bilinear")  # --preset blender's signal (options.h) less its fill=4 and rectify=on, marked in the figure
 
 
 def mean_sq(a, b, frames):
