@@ -30,6 +30,10 @@ struct ChannelSettings {
     float blur_bound = 0.0f;
     // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"), radians; 0 = off.
     float view_lobe = 0.0f;
+    // The host's, not rrc's (never in rrc_channel_desc): soft only, the channel accumulates the
+    // sample less the stable PCSS estimate, which is added back to rrc's output (README.md, "The
+    // soft residual"); with a fill prior, the fallback rrc gets is 0 (the estimate is the prior).
+    uint32_t residual = 0;
 };
 
 /** env's view lobe (docs/CONVENTIONS.md, "The view-dependent history"), in pixels of the
@@ -76,7 +80,11 @@ constexpr float kSampleBlurBound = 0.5f;
  *  FIXED on old pixels, the running mean on new ones.  The blur bound (0.6) wins at both sizes
  *  together with the fill (docs/PERFORMANCE.md, "The blur bound: what it buys, measured"; it
  *  never acts on Catmull-Rom): soft with B = 0.5 px^2 (0.0572 against 0.0606, 0.0577
- *  against 0.0595).  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
+ *  against 0.0595).  Since 0.8's sample soft accumulates the residual against the stable
+ *  PCSS estimate (ChannelSettings::residual, README.md "The soft residual"), which takes
+ *  away most of its lag, and with it a longer history, lambda 0.9 and B = 1 px^2 (0.0488 at
+ *  256x160 and 0.0456 at 1024x640, against 0.0572 and 0.0577; docs/PERFORMANCE.md, "The soft
+ *  residual: what it buys, measured").  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
  *  size) and the spatial fill below age 2, no fallback: 0.0435 at 256x160 and 0.0486 at
  *  1024x640, against 0.0430 and 0.0604 for 0.6's env (the fill below age 4, no lobe); below
  *  age 4 the fill would show every pixel the lobe caps at age 1 filled (0.1016 at 1024x640). */
@@ -87,10 +95,10 @@ struct ChannelPresets {
                         /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2};
-    ChannelSettings soft{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
+    ChannelSettings soft{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
-                         /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.5f};
+                         /*antilag_threshold*/ 0.0f, /*blur_bound*/ 1.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
 };
 
 /** rrc-sample's pcf preset at an image height: ChannelPresets::pcf with the fill window of

@@ -17,6 +17,7 @@ namespace {
 // rrc-sweep's --signals too.
 constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"env", kSignalEnv}, {"soft", kSignalSoft}};
 constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
+constexpr rrc_host::EnumName<uint32_t> kOnOffNames[] = {{"off", 0u}, {"on", 1u}};
 
 }  // namespace
 
@@ -143,7 +144,7 @@ std::string usage() {
            "  --antilag-threshold T    its relative gap that drops the history (default: as --antilag-gamma; the\n"
            "                           library's is 0.5)\n"
            "  --blur-bound LIST        the blur bound on exactly these channels (pcf,env,soft, or none; default: the\n"
-           "                           presets', pcf 0.25 and soft 0.5 px^2): a bilinear or Gaussian history's age is capped so its stationary\n"
+           "                           presets', pcf 0.25 and soft 1 px^2): a bilinear or Gaussian history's age is capped so its stationary\n"
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"
@@ -153,7 +154,11 @@ std::string usage() {
            "                           (P * fov_y / height; default 18, the preset: 0.0245 rad at 640 rows; 0 = off;\n"
            "                           docs/CONVENTIONS.md, \"The view-dependent history\")\n"
            "  --env-view-lobe A        the same lobe given in radians, in [0, pi] (0 = off)\n"
-           "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.8, the preset)\n"
+           "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.9, the preset)\n"
+           "  --soft-residual on|off   the soft channel accumulates its sample less a stable PCSS estimate, which is\n"
+           "                           added back to rrc's output and is the fill's prior (default on, the preset;\n"
+           "                           off: rrc accumulates the sample, PCSS is the fill's fallback; README.md,\n"
+           "                           \"The soft residual\")\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
            "                           pixels younger than T frames (default: 4 on pcf, 2 on env, the presets; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
@@ -242,6 +247,8 @@ Options parse_options(int argc, const char* const* argv) {
             o.channels.env.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
         else if (c.option("--soft-lambda"))
             o.channels.soft.lambda = c.number(0.0f, 0.9999f);
+        else if (c.option("--soft-residual"))
+            o.channels.soft.residual = c.choice(kOnOffNames);
         else if (c.option("--blend"))
             o.channels.pcf.blend = o.channels.env.blend = c.choice(rrc_host::kBlendNames);
         else if (c.option("--history-filter")) {

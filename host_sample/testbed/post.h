@@ -36,6 +36,14 @@ public:
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);
+    /** The soft residual (README.md, "The soft residual"), before rrc: the stable PCSS estimate b
+     *  (its shadow map, lamp_centre, already rendered this frame), then soft_residual() = s - b and
+     *  soft_zero() = 0, rrc's soft samples and fallback. */
+    void record_soft_residual(VkCommandBuffer cmd, uint32_t parity);
+    /** After rrc: its soft output += b, in place (the accumulated image passed at construction). */
+    void record_soft_add_base(VkCommandBuffer cmd);
+    const Image& soft_residual() const { return residual_; }
+    const Image& soft_zero() const { return zero_; }
     void record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input);
 
     const Image& age(uint32_t parity) const { return age_[parity]; }
@@ -47,8 +55,8 @@ private:
     Gpu& gpu_;
     uint32_t width_, height_;
     PcfDisplay pcf_display_;
-    Image age_[2], shown_, pcss_, colour_[3];
-    ComputeKernel age_kernel_, fallback_, compose_;
+    Image age_[2], shown_, pcss_, colour_[3], residual_, zero_;
+    ComputeKernel age_kernel_, fallback_, compose_, residual_kernel_;
 };
 
 }  // namespace rrc_sample

@@ -108,10 +108,20 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     signals_->record(cmd, sig, state, sampling);
     // rrc's soft fill takes the PCSS estimate as its fallback: computed before rrc's dispatch.
     const bool fallback = (sig & kSignalSoft) && s_.channels.soft.fill_prior > 0.0f;
-    if (fallback) post_->record_pcss(cmd, parity_);
+    // The soft residual (README.md, "The soft residual"): rrc accumulates s - b and the
+    // stable estimate b is added back to its output; b also replaces PCSS as the fill's
+    // prior (the residual's fallback is 0).
+    const bool residual = (sig & kSignalSoft) && s_.channels.soft.residual != 0;
+    if (residual)
+        post_->record_soft_residual(cmd, parity_);
+    else if (fallback)
+        post_->record_pcss(cmd, parity_);
     stamp(kSignals);
-    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(),
-                 fallback ? &post_->soft_pcss() : nullptr);
+    SignalImages samples = signals_->raw();
+    if (residual) samples.soft = post_->soft_residual();
+    const Image* soft_fallback = !fallback ? nullptr : residual ? &post_->soft_zero() : &post_->soft_pcss();
+    rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback);
+    if (residual) post_->record_soft_add_base(cmd);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);

@@ -97,7 +97,12 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     try {
         Renderer renderer(gpu, scene, rs);
         run.rrc_memory_bytes = renderer.rrc_memory_bytes();
-        for (const rrc_channel_desc& c : renderer.rrc().channels()) run.channels.push_back(channel_line(c));
+        for (const rrc_channel_desc& c : renderer.rrc().channels()) {
+            run.channels.push_back(channel_line(c));
+            // The host's part of the channel (README.md, "The soft residual"): not in rrc's desc.
+            if (std::string(c.name) == "soft" && o.channels.soft.residual)
+                run.channels.back() += "; fed the residual against the stable PCSS estimate, which is added back";
+        }
         if (progress) {
             *progress << "rrc-sample: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.frames << " frames, signals "
                       << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", depth test "

@@ -274,6 +274,9 @@ TEST(RrcSample, PcfDisplayRemapLeavesHistoryAlone) {
 TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     Options o = tiny("fill_off");
     o.channels.soft.fill_age = 0;  // the preset fills: this run is the one without
+    // The model is the library's fill with the PCSS fallback on the sample itself: the
+    // soft residual (the preset's, which adds its estimate back after rrc) stays off.
+    o.channels.soft.residual = 0;
     // The ages are rrc's own (rrc.age, the age the fill reads): the preset's blur bound stays on.
     o.channels.soft.fill_prior = 0.0f;
     o.validation = false;
@@ -349,6 +352,58 @@ TEST(RrcSample, SoftFillChangesOnlyYoungPixels) {
     std::printf("soft fill: %zu young pixels, the model moves %zu, the kernel %zu of those; %zu near the model\n", young, filled, differ,
                 near_model);
     EXPECT_GT(near_model, young * 9 / 10) << "the fill follows docs/CONVENTIONS.md (tests/reference/finish.h)";
+}
+
+// The soft residual (README.md, "The soft residual"): rrc accumulates s - b and the host
+// adds this frame's b back.  The accumulation is linear and b deterministic, so the
+// output differs from the plain run's by b minus rrc's accumulation of b: 0 on a fresh
+// history (frame 0 shows the sample itself), 0 where b has not changed over a still
+// camera's history, and not 0 where it has (behind the moving torus).
+TEST(RrcSample, SoftResidualAddsBackWhatItTookAway) {
+    Options o = tiny("residual_off");
+    o.validation = false;
+    o.signals = kSignalSoft;
+    o.reference_every = 0;
+    o.write_images = false;
+    o.frames = 10;
+    o.static_camera = true;
+    o.channels.soft.fill_age = 0;  // the fill is not linear in the samples (its weights depend on them)
+    o.channels.soft.fill_prior = 0.0f;
+    o.channels.soft.residual = 0;
+    std::vector<std::vector<float>> plain, raw;
+    std::vector<std::vector<uint8_t>> masks;
+    run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        plain.push_back(f.soft.accumulated);
+        raw.push_back(f.soft.raw);
+        masks.push_back(f.mask);
+    });
+    Options d = o;
+    d.out = o.out + "_on";
+    d.channels.soft.residual = 1;
+    size_t t = 0, fresh = 0, same = 0, moved = 0, pixels = 0;
+    run_sample(d, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+        ASSERT_LT(t, plain.size());
+        ASSERT_EQ(f.soft.raw, raw[t]) << "the same seed: the same samples";
+        ASSERT_EQ(f.mask, masks[t]) << "the residual is the host's: rrc's hits are the same";
+        for (size_t i = 0; i < f.mask.size(); ++i) {
+            if (f.mask[i] & RRC_MASK_BACKGROUND) continue;
+            const float diff = std::fabs(f.soft.accumulated[i] - plain[t][i]);
+            if (t == 0) {
+                ++fresh;
+                ASSERT_LE(std::fabs(f.soft.accumulated[i] - raw[t][i]), 1e-6f) << "pixel " << i << ": (s - b) + b on a fresh history";
+                continue;
+            }
+            ++pixels;
+            same += diff <= 1e-5f;
+            moved += diff > 1e-2f;
+        }
+        ++t;
+    });
+    EXPECT_EQ(t, plain.size());
+    EXPECT_GT(fresh, 0u);
+    std::printf("soft residual: %zu pixels over frames 1..9, %zu as the plain run's, %zu moved by more than 0.01\n", pixels, same, moved);
+    EXPECT_GT(same, pixels / 2) << "where the estimate stands still the residual changes nothing";
+    EXPECT_GT(moved, 0u) << "where it moves (the torus's shadow) the history follows it";
 }
 
 // The oracle against a test that accepts nearly anything: a fixed epsilon of
@@ -633,7 +688,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.rectify, 0u);
     EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_BILINEAR) << "the blur bound acts on bilinear histories only";
     EXPECT_EQ(p.pcf.blur_bound, 0.25f);
-    EXPECT_EQ(p.soft.blur_bound, 0.5f);
+    EXPECT_EQ(p.soft.blur_bound, 1.0f) << "with the residual (channel_presets.h)";
+    EXPECT_EQ(p.soft.residual, 1u);
+    EXPECT_EQ(p.pcf.residual + p.env.residual, 0u) << "the residual is soft's (its stable estimate is PCSS)";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.pcf.antilag, 1u);
@@ -643,11 +700,16 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.env.fill_age, 2u) << "below the lobe's age cap + 1 at 1024x640 (channel_presets.h)";
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
-    EXPECT_EQ(p.soft.lambda, 0.8f);
+    EXPECT_EQ(p.soft.lambda, 0.9f);
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
     for (const ChannelSettings& c : {p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins on pcf only";
     const char* bare[] = {"rrc-sample"};
     const Options defaults = parse_options(1, bare);
+    EXPECT_EQ(defaults.channels.soft.residual, 1u) << "the preset's";
+    const char* residual_off[] = {"rrc-sample", "--soft-residual", "off"};
+    EXPECT_EQ(parse_options(3, residual_off).channels.soft.residual, 0u);
+    const char* residual_on[] = {"rrc-sample", "--soft-residual=on", "--soft-lambda", "0.8"};
+    EXPECT_EQ(parse_options(4, residual_on).channels.soft.residual, 1u);
     EXPECT_EQ(defaults.channels.pcf.antilag, 1u) << "the options keep the presets' detector";
     EXPECT_EQ(defaults.channels.pcf.antilag_gamma, 0.25f);
 
@@ -677,7 +739,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--blur-bound", "none", "--blur-bound-px2", "0.5"},
                                                        {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "65"},
                                                        {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "0"},
-                                                       {"rrc-sample", "--soft-lambda", "1"}};
+                                                       {"rrc-sample", "--soft-lambda", "1"},
+                                                       {"rrc-sample", "--soft-residual", "yes"},
+                                                       {"rrc-sample", "--soft-residual"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

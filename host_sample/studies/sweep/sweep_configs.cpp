@@ -100,6 +100,11 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                 rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
                 preset.fill_prior = rrc_sample::kSampleFillPrior;
                 run.configs.push_back({app, preset});
+                // The preset with its cure off: the same channel fed the sample itself, the PCSS
+                // estimate as the fill's fallback (README.md, "The soft residual").
+                rrc_sample::ChannelSettings plain = preset;
+                plain.residual = 0;
+                if (preset.residual) run.configs.push_back({app, plain});
             }
         }
         runs.push_back(run);
@@ -145,6 +150,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
         std::snprintf(b, sizeof b, "+pcss%g", (double)c.fill_prior);
         s += b;
     }
+    if (c.residual) s += "+residual";  // the host's soft residual against the stable PCSS estimate
     if (c.antilag) s += "+antilag";
     // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {

@@ -286,15 +286,16 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> stages;
             for (const RrcConfig& c : run.configs)
                 stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
-            // The soft preset row's fill fallback (sweep_configs.cpp): rrc-sample's PCSS estimate from the
-            // light centre's map (post.h, record_pcss), recorded in that row's own timed pass before its
-            // dispatch, so that the row's rrc time holds the map and the estimate.
-            std::unique_ptr<rrc_sample::PostPasses> pcss;
-            for (size_t i = 0; i < stages.size() && !pcss; ++i)
-                if (run.configs[i].channel.fill_prior > 0.0f)
-                    pcss.reset(new rrc_sample::PostPasses(gpu, e.gpu_scene, e.gbuffer.images(), e.maps, stages[i]->mask(),
-                                                          stages[i]->age(kSignalSoft), stages[i]->accumulated(), e.signals.raw(), e.signals.reference(), o.width,
-                                                          o.height, true));
+            // The soft preset rows' fill fallback and soft residual (sweep_configs.cpp): rrc-sample's PCSS
+            // estimates from the light centre's map (post.h), recorded in the row's own timed pass around
+            // its dispatch, so that the row's rrc time holds the map and the estimate.  One set of passes
+            // a row: the residual's adds its estimate to that row's own output.
+            std::vector<std::unique_ptr<rrc_sample::PostPasses>> pcss(stages.size());
+            for (size_t i = 0; i < stages.size(); ++i)
+                if (run.configs[i].channel.fill_prior > 0.0f || run.configs[i].channel.residual)
+                    pcss[i].reset(new rrc_sample::PostPasses(gpu, e.gpu_scene, e.gbuffer.images(), e.maps, stages[i]->mask(),
+                                                             stages[i]->age(kSignalSoft), stages[i]->accumulated(), e.signals.raw(),
+                                                             e.signals.reference(), o.width, o.height, true));
             // The sharing probe: each application's default channel alone, then all of them in one context.
             std::vector<std::unique_ptr<rrc_sample::RrcStage>> probe;
             const bool probing = run.pattern == 0 && apps_of(sigs).size() > 1;
@@ -359,12 +360,20 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     for (size_t i = 0; i < stages.size(); ++i)
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
                             const bool fallback = run.configs[i].channel.fill_prior > 0.0f;
-                            if (fallback) {
-                                e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
-                                pcss->record_pcss(c, 0);
-                            }
-                            stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr,
-                                              fallback ? &pcss->soft_pcss() : nullptr);
+                            // As rrc-sample's renderer: the PCSS fallback, or the soft residual
+                            // (testbed README.md, "The soft residual"), whose stable estimate
+                            // is the fill's prior.
+                            const bool residual = run.configs[i].channel.residual != 0;
+                            if (fallback || residual) e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
+                            if (residual)
+                                pcss[i]->record_soft_residual(c, 0);
+                            else if (fallback)
+                                pcss[i]->record_pcss(c, 0);
+                            rrc_sample::SignalImages samples = e.signals.raw();
+                            if (residual) samples.soft = pcss[i]->soft_residual();
+                            const Image* soft_fallback = !fallback ? nullptr : residual ? &pcss[i]->soft_zero() : &pcss[i]->soft_pcss();
+                            stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_fallback);
+                            if (residual) pcss[i]->record_soft_add_base(c);
                         }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));

@@ -221,15 +221,17 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     ASSERT_NE(lobed, nullptr);
     EXPECT_LT(lobed->metrics.variance, 0.75 * brute_row(r, 2u, 4)->metrics.variance);
     EXPECT_GE(lobed->metrics.variance, rrc_row(r, 2u, 4, 0.6f, RRC_BLEND_AGE_AWARE)->metrics.variance) << "a cap can only shorten the history";
-    // rrc-sample's soft preset row runs its PCSS fallback under validation, and the fallback
-    // helps: the same row without it (the blur bound's fill row at lambda 0.8) has a larger RMSE.
+    // rrc-sample's soft preset rows run their PCSS passes under validation (the residual's
+    // before and after rrc, the fallback's before), and the residual helps: the same row fed
+    // the sample itself, with PCSS as the fill's fallback, has a larger RMSE.
     const RrcRow *preset = nullptr, *without = nullptr;
     for (const RrcRow& row : r.rrc)
-        if (row.config.app.signal == 4u && row.config.channel.fill_age && row.config.channel.blur_bound > 0.0f &&
-            std::abs(row.config.channel.lambda - 0.8f) < 1e-6f)
-            (row.config.channel.fill_prior > 0.0f ? preset : without) = &row;
+        if (row.config.app.signal == 4u && row.config.channel.fill_prior > 0.0f)
+            (row.config.channel.residual ? preset : without) = &row;
     ASSERT_TRUE(preset && without);
     EXPECT_LT(preset->metrics.rmse, without->metrics.rmse);
+    EXPECT_NEAR(preset->metrics.variance, without->metrics.variance, 1e-3 * without->metrics.variance)
+        << "b is deterministic: the residual's noise is the sample's (up to fp32 rounding of s - b + b)";
     // The paper's rotated pattern is biased for the disk's area mean (each tap keeps its radius).
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
@@ -339,23 +341,35 @@ TEST(SweepConfigs, ViewLobeRowsAreEnvTwinsOfThePlainAgeAwareRows) {
         for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.view_lobe, 0.0f);
 }
 
-TEST(SweepConfigs, SoftPresetRowIsTheSamplesPresetWithItsPcssFallback) {
+TEST(SweepConfigs, SoftPresetRowsAreTheSamplesPresetWithAndWithoutItsResidual) {
     SweepOptions o;
     o.rrc_taps = {1, 4};
     o.lambdas = {0.6f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
     rrc_sample::ChannelSettings expected = rrc_sample::ChannelPresets{}.soft;
     expected.fill_prior = rrc_sample::kSampleFillPrior;
-    int rows = 0;
+    ASSERT_EQ(expected.residual, 1u) << "the soft preset accumulates the residual (testbed README.md, \"The soft residual\")";
+    rrc_sample::ChannelSettings plain = expected;
+    plain.residual = 0;
+    int rows = 0, presets = 0, plains = 0;
     for (const RrcRun& run : rrc_runs(o, all))
         for (const RrcConfig& c : run.configs) {
             if (c.channel.fill_prior == 0.0f) continue;
             ++rows;
             EXPECT_EQ(c.app.signal, rrc_sample::kSignalSoft) << "the one signal rrc-sample gives a fallback";
-            EXPECT_EQ(std::memcmp(&c.channel, &expected, sizeof expected), 0) << "rrc-sample's soft preset, --fill-prior at its default";
-            EXPECT_EQ(filter_label(c.channel), "bilinear+fill8+pcss4+blur0.5");
+            if (std::memcmp(&c.channel, &expected, sizeof expected) == 0) {
+                ++presets;  // rrc-sample's soft preset, --fill-prior at its default
+                EXPECT_EQ(filter_label(c.channel), "bilinear+fill8+pcss4+residual+blur1");
+            } else if (std::memcmp(&c.channel, &plain, sizeof plain) == 0) {
+                ++plains;  // the same with its cure off: the sample itself accumulated, PCSS the fallback
+                EXPECT_EQ(filter_label(c.channel), "bilinear+fill8+pcss4+blur1");
+            } else {
+                ADD_FAILURE() << "a fallback row that is neither the preset nor its twin: " << filter_label(c.channel);
+            }
         }
-    EXPECT_EQ(rows, 2);  // one per k, at the preset's own lambda whatever --lambdas holds
+    EXPECT_EQ(rows, 4);  // two per k, at the preset's own lambda whatever --lambdas holds
+    EXPECT_EQ(presets, 2);
+    EXPECT_EQ(plains, 2);
     const char* argv[] = {"rrc-sweep", "--no-finishing"};
     for (const RrcRun& run : rrc_runs(parse_sweep_options(2, argv), all))
         for (const RrcConfig& c : run.configs) EXPECT_EQ(c.channel.fill_prior, 0.0f);
