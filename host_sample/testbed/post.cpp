@@ -118,13 +118,20 @@ void PostPasses::record_pcss(VkCommandBuffer cmd, uint32_t parity) {
     compute_to_compute(cmd);
 }
 
-void PostPasses::record_soft_residual(VkCommandBuffer cmd, uint32_t parity) {
+PostPasses::SoftInputs PostPasses::record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft,
+                                                      const Image& raw_soft) {
+    const bool fallback = soft.fill_prior > 0.0f;
+    if (!soft.residual) {
+        if (fallback) record_pcss(cmd, parity);
+        return {&raw_soft, fallback ? &pcss_ : nullptr};
+    }
     const FallbackPush p{0.0f, 2};  // the stable estimate b
     fallback_.dispatch(cmd, parity, &p, width_, height_);
     compute_to_compute(cmd);
-    const uint32_t mode = 0;
+    const uint32_t mode = 0;  // the residual s - b, and the fallback 0
     residual_kernel_.dispatch(cmd, 0, &mode, width_, height_);
     compute_to_compute(cmd);
+    return {&residual_, fallback ? &zero_ : nullptr};
 }
 
 void PostPasses::record_soft_add_base(VkCommandBuffer cmd) {

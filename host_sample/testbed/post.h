@@ -3,6 +3,7 @@
 // and the reference signals, for side-by-side pictures).
 #pragma once
 
+#include "channel_presets.h"
 #include "kernel.h"
 #include "raster.h"
 #include "signals.h"
@@ -36,14 +37,19 @@ public:
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);
-    /** The soft residual (README.md, "The soft residual"), before rrc: the stable PCSS estimate b
-     *  (its shadow map, lamp_centre, already rendered this frame), then soft_residual() = s - b and
-     *  soft_zero() = 0, rrc's soft samples and fallback. */
-    void record_soft_residual(VkCommandBuffer cmd, uint32_t parity);
-    /** After rrc: its soft output += b, in place (the accumulated image passed at construction). */
+    /** What rrc's soft channel reads this frame: its samples and its fill's fallback (null: none). */
+    struct SoftInputs {
+        const Image* samples = nullptr;
+        const Image* fallback = nullptr;
+    };
+    /** Before rrc, as the soft channel's settings ask (the centre map, lamp_centre, already rendered
+     *  this frame): with `soft.residual` (README.md, "The soft residual") the stable PCSS estimate b,
+     *  then the residual s - b as the samples and 0 as the fallback (b is the prior); otherwise the
+     *  sample itself (`raw_soft`) and, with a fill prior, the PCSS estimate as the fallback. */
+    SoftInputs record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft, const Image& raw_soft);
+    /** After rrc, with the residual: its soft output += b, in place (the accumulated image passed at
+     *  construction). */
     void record_soft_add_base(VkCommandBuffer cmd);
-    const Image& soft_residual() const { return residual_; }
-    const Image& soft_zero() const { return zero_; }
     void record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input);
 
     const Image& age(uint32_t parity) const { return age_[parity]; }

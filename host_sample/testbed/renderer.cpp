@@ -106,21 +106,15 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     const bool confidence = s_.channels.pcf.confidence != 0;
     const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence};
     signals_->record(cmd, sig, state, sampling);
-    // rrc's soft fill takes the PCSS estimate as its fallback: computed before rrc's dispatch.
-    const bool fallback = (sig & kSignalSoft) && s_.channels.soft.fill_prior > 0.0f;
-    // The soft residual (README.md, "The soft residual"): rrc accumulates s - b and the
-    // stable estimate b is added back to its output; b also replaces PCSS as the fill's
-    // prior (the residual's fallback is 0).
-    const bool residual = (sig & kSignalSoft) && s_.channels.soft.residual != 0;
-    if (residual)
-        post_->record_soft_residual(cmd, parity_);
-    else if (fallback)
-        post_->record_pcss(cmd, parity_);
+    // soft's inputs to rrc: the sample and the PCSS fallback, or the residual against the stable
+    // PCSS estimate, which is added back after rrc (README.md, "The soft residual").
+    const bool soft = (sig & kSignalSoft) != 0, residual = soft && s_.channels.soft.residual != 0;
+    const PostPasses::SoftInputs soft_in =
+        soft ? post_->record_soft_inputs(cmd, parity_, s_.channels.soft, signals_->raw().soft) : PostPasses::SoftInputs{};
     stamp(kSignals);
     SignalImages samples = signals_->raw();
-    if (residual) samples.soft = post_->soft_residual();
-    const Image* soft_fallback = !fallback ? nullptr : residual ? &post_->soft_zero() : &post_->soft_pcss();
-    rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback);
+    if (soft_in.samples) samples.soft = *soft_in.samples;
+    rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_in.fallback);
     if (residual) post_->record_soft_add_base(cmd);
     stamp(kRrc);
     label(gpu_, cmd, "post");

@@ -359,20 +359,18 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                         }));
                     for (size_t i = 0; i < stages.size(); ++i)
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
-                            const bool fallback = run.configs[i].channel.fill_prior > 0.0f;
                             // As rrc-sample's renderer: the PCSS fallback, or the soft residual
-                            // (testbed README.md, "The soft residual"), whose stable estimate
-                            // is the fill's prior.
-                            const bool residual = run.configs[i].channel.residual != 0;
-                            if (fallback || residual) e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
-                            if (residual)
-                                pcss[i]->record_soft_residual(c, 0);
-                            else if (fallback)
-                                pcss[i]->record_pcss(c, 0);
+                            // (testbed README.md, "The soft residual").
+                            const rrc_sample::ChannelSettings& ch = run.configs[i].channel;
+                            const bool residual = ch.residual != 0;
                             rrc_sample::SignalImages samples = e.signals.raw();
-                            if (residual) samples.soft = pcss[i]->soft_residual();
-                            const Image* soft_fallback = !fallback ? nullptr : residual ? &pcss[i]->soft_zero() : &pcss[i]->soft_pcss();
-                            stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_fallback);
+                            rrc_sample::PostPasses::SoftInputs soft_in;
+                            if (pcss[i]) {
+                                e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
+                                soft_in = pcss[i]->record_soft_inputs(c, 0, ch, samples.soft);
+                                samples.soft = *soft_in.samples;
+                            }
+                            stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_in.fallback);
                             if (residual) pcss[i]->record_soft_add_base(c);
                         }));
                     for (auto& st : probe)
