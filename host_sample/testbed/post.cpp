@@ -123,7 +123,7 @@ PostPasses::SoftInputs PostPasses::record_soft_inputs(VkCommandBuffer cmd, uint3
     const bool fallback = soft.fill_prior > 0.0f;
     if (!soft.residual) {
         if (fallback) record_pcss(cmd, parity);
-        return {&raw_soft, fallback ? &pcss_ : nullptr};
+        return {&raw_soft, fallback ? &pcss_ : nullptr, false};
     }
     const FallbackPush p{0.0f, 2};  // the stable estimate b
     fallback_.dispatch(cmd, parity, &p, width_, height_);
@@ -131,7 +131,7 @@ PostPasses::SoftInputs PostPasses::record_soft_inputs(VkCommandBuffer cmd, uint3
     const uint32_t mode = 0;  // the residual s - b, and the fallback 0
     residual_kernel_.dispatch(cmd, 0, &mode, width_, height_);
     compute_to_compute(cmd);
-    return {&residual_, fallback ? &zero_ : nullptr};
+    return {&residual_, fallback ? &zero_ : nullptr, true};
 }
 
 void PostPasses::record_soft_add_base(VkCommandBuffer cmd) {

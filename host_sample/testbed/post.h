@@ -37,10 +37,12 @@ public:
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);
-    /** What rrc's soft channel reads this frame: its samples and its fill's fallback (null: none). */
+    /** What rrc's soft channel reads this frame: its samples and its fill's fallback (null: none),
+     *  and whether its output needs record_soft_add_base after rrc (the residual). */
     struct SoftInputs {
         const Image* samples = nullptr;
         const Image* fallback = nullptr;
+        bool add_base = false;
     };
     /** Before rrc, as the soft channel's settings ask (the centre map, lamp_centre, already rendered
      *  this frame): with `soft.residual` (README.md, "The soft residual") the stable PCSS estimate b,

@@ -108,14 +108,13 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     signals_->record(cmd, sig, state, sampling);
     // soft's inputs to rrc: the sample and the PCSS fallback, or the residual against the stable
     // PCSS estimate, which is added back after rrc (README.md, "The soft residual").
-    const bool soft = (sig & kSignalSoft) != 0, residual = soft && s_.channels.soft.residual != 0;
     const PostPasses::SoftInputs soft_in =
-        soft ? post_->record_soft_inputs(cmd, parity_, s_.channels.soft, signals_->raw().soft) : PostPasses::SoftInputs{};
+        (sig & kSignalSoft) ? post_->record_soft_inputs(cmd, parity_, s_.channels.soft, signals_->raw().soft) : PostPasses::SoftInputs{};
     stamp(kSignals);
     SignalImages samples = signals_->raw();
     if (soft_in.samples) samples.soft = *soft_in.samples;
     rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_in.fallback);
-    if (residual) post_->record_soft_add_base(cmd);
+    if (soft_in.add_base) post_->record_soft_add_base(cmd);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);

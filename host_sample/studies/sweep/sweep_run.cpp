@@ -361,17 +361,15 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
                             // As rrc-sample's renderer: the PCSS fallback, or the soft residual
                             // (testbed README.md, "The soft residual").
-                            const rrc_sample::ChannelSettings& ch = run.configs[i].channel;
-                            const bool residual = ch.residual != 0;
                             rrc_sample::SignalImages samples = e.signals.raw();
                             rrc_sample::PostPasses::SoftInputs soft_in;
                             if (pcss[i]) {
                                 e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
-                                soft_in = pcss[i]->record_soft_inputs(c, 0, ch, samples.soft);
+                                soft_in = pcss[i]->record_soft_inputs(c, 0, run.configs[i].channel, samples.soft);
                                 samples.soft = *soft_in.samples;
                             }
                             stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_in.fallback);
-                            if (residual) pcss[i]->record_soft_add_base(c);
+                            if (soft_in.add_base) pcss[i]->record_soft_add_base(c);
                         }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
