@@ -60,7 +60,7 @@
 #define RRC_DECLARE_HOST_OBJECT_ID layout(set = 0, binding = RRC_BINDING_HOST_OBJECT_ID) uniform usampler2D s_object_id;
 // CLASSIFIED: classify's mask through a sampler (the storage images are at lavapipe's 64 a stage)
 #define RRC_DECLARE_CLASSIFIED layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
-// FALLBACK: FILL: the host's fallback estimate
+// FALLBACK: the host's fallback estimate: FILL's prior, and a residual's base b (the per-pixel passes and FILL)
 #define RRC_DECLARE_FALLBACK layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];
 // STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch
 #define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;

@@ -20,15 +20,23 @@
 #define REUSE_ (CH_(_BLEND) == RRC_BLEND_REUSE)
 
 // This frame's sample and confidence at texel t (the pixel, or a neighbour for rectification).
-#define LOAD_S(t) (SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], t, 0)        \
-                   : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
-                                            : imageLoad(u_sample4[RRC_CH], t))
+#define LOAD_RAW(t) (SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], t, 0)        \
+                     : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
+                                              : imageLoad(u_sample4[RRC_CH], t))
+// The residual (docs/CONVENTIONS.md, "The residual"): the channel's sample is
+// s - b, b the host's base (the fallback image) at the same texel.
+#define LOAD_B(t) (CH_(_RESIDUAL) ? texelFetch(s_fallback[RRC_CH], t, 0) : vec4(0.0))
+#define LOAD_S(t) (CH_(_RESIDUAL) ? LOAD_RAW(t) - LOAD_B(t) : LOAD_RAW(t))
 #define LOAD_C(t) (!CH_(_CONFIDENCE) ? 1.0 : SAMPLED_INPUTS ? texelFetch(s_confidence[RRC_CH], t, 0).r : imageLoad(u_confidence[RRC_CH], t).r)
 
 if (CHANNELS && RRC_CH < CH_COUNT) {
     // -- the new sample s and its confidence w
     const bool SAMPLE_ = PHASE != RRC_PHASE_CLASSIFY;
-    vec4 s = SAMPLE_ ? LOAD_S(px) : vec4(0.0);
+    // The residual's base at the pixel: subtracted from the sample, added to
+    // the displayed value (a base that is not finite makes the sample invalid
+    // and adds nothing).
+    vec4 b_px = SAMPLE_ ? LOAD_B(px) : vec4(0.0);
+    vec4 s = SAMPLE_ ? (CH_(_RESIDUAL) ? LOAD_RAW(px) - b_px : LOAD_RAW(px)) : vec4(0.0);
     if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
     float w = SAMPLE_ ? LOAD_C(px) : 1.0;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
@@ -217,15 +225,23 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
             imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
         }
         // The host's output (with a fill, its value where the fill does not
-        // run: the fill shows a 1-component value as (v, 0, 0, 0)).
+        // run: the fill shows a 1-component value as (v, 0, 0, 0)); with a
+        // residual, the history's value plus this frame's base.
+        vec4 shown_v = out_v;
+        if (CH_(_RESIDUAL)) {
+            if (CH_(_COMPONENTS) == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
+            shown_v = clamp(out_v + (rrc_finite4(b_px) ? b_px : vec4(0.0)), vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
+        }
         if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u)
-            imageStore(u_host_out[RRC_CH], px, CH_(_FILL_AGE) != 0u && CH_(_COMPONENTS) == 1u ? vec4(out_v.x, 0.0, 0.0, 0.0) : out_v);
+            imageStore(u_host_out[RRC_CH], px, (CH_(_FILL_AGE) != 0u || CH_(_RESIDUAL)) && CH_(_COMPONENTS) == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
         if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
         if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
     }
 }
 
 #undef LOAD_S
+#undef LOAD_RAW
+#undef LOAD_B
 #undef LOAD_C
 #undef UNPACK_H
 #undef REUSE_

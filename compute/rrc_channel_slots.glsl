@@ -100,6 +100,12 @@ RRC_SLOTS_OFF(bool, VIEW_LOBE, false)
 RRC_SLOTS3(bool, VIEW_LOBE, VIEW_LOBE, false)
 #endif
 RRC_SLOTS3(float, VIEW_LOBE_RAD, VIEW_LOBE_RAD, 0.0)
+// 0.9, the residual (docs/CONVENTIONS.md, "The residual"): the same range.
+#ifdef RRC_WITHOUT_RESIDUAL  // the feature's code removed (tests/spirv)
+RRC_SLOTS_OFF(bool, RESIDUAL, false)
+#else
+RRC_SLOTS3(bool, RESIDUAL, RESIDUAL, false)
+#endif
 #undef RRC_SLOTS3
 #undef RRC_SLOTS_OFF
 // Slot selectors: called with a literal slot, they fold to one constant.
@@ -126,6 +132,7 @@ RRC_SLOT_SELECT(bool, BLUR_BOUND)
 RRC_SLOT_SELECT(float, BLUR_BOUND_PX2)
 RRC_SLOT_SELECT(bool, VIEW_LOBE)
 RRC_SLOT_SELECT(float, VIEW_LOBE_RAD)
+RRC_SLOT_SELECT(bool, RESIDUAL)
 
 // Which channel slots write the host's output and age images in this pass
 // (interop, and the standalone fill's displayed values): chosen by the frame

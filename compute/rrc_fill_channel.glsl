@@ -44,7 +44,8 @@ if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
                 wsum += w_q;
             }
         if (CH_(_FILL_PRIOR) > 0.0) {
-            vec4 f = texelFetch(s_fallback[RRC_CH], px, 0);
+            // With a residual the fallback is the base: the prior's residual is 0.
+            vec4 f = CH_(_RESIDUAL) ? vec4(0.0) : texelFetch(s_fallback[RRC_CH], px, 0);
             if (CH_(_COMPONENTS) == 1u) f = vec4(f.x, 0.0, 0.0, 0.0);
             bool f_ok = rrc_finite4(f);
             acc += f_ok ? CH_(_FILL_PRIOR) * f : vec4(0.0);
@@ -53,6 +54,12 @@ if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
         float n = float(n_p);
         float den = n + phi * wsum;
         shown = den > 0.0 ? (n * v_p + phi * acc) / den : v_p;
+    }
+    if (CH_(_RESIDUAL)) {
+        // The residual's displayed value: plus this frame's base (docs/CONVENTIONS.md, "The residual").
+        vec4 b = texelFetch(s_fallback[RRC_CH], px, 0);
+        if (CH_(_COMPONENTS) == 1u) b = vec4(b.x, 0.0, 0.0, 0.0);
+        shown = clamp(shown + (rrc_finite4(b) ? b : vec4(0.0)), vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
     }
     if (rrc_store) imageStore(u_host_out[RRC_CH], px, shown);
 #undef LOAD_WORD

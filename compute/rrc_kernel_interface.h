@@ -71,7 +71,9 @@
 // 0.7, the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): the same range.
 #define RRC_CHANNEL3_PROPERTY_VIEW_LOBE 2       // bool: the view lobe acts (alpha > 0)
 #define RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD 3   // float alpha, radians
-#define RRC_CHANNEL3_PROPERTY_COUNT 4           // ids 104..119
+// 0.9, the residual (docs/CONVENTIONS.md, "The residual"): the same range.
+#define RRC_CHANNEL3_PROPERTY_RESIDUAL 4        // bool: the channel accumulates s - b (b: RRC_BINDING_FALLBACK)
+#define RRC_CHANNEL3_PROPERTY_COUNT 5           // ids 104..123
 #define RRC_SPEC_CHANNEL3(property, slot) (104 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
 // The lag detector's darkness term: added to the relative gap's denominator so
 // that a history and a signal both near 0 do not make a large relative gap

@@ -197,6 +197,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
         spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2, slot), ch.blur_bound);
         spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE, slot), ch.view_lobe > 0.0f ? 1u : 0u);
         spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD, slot), ch.view_lobe);
+        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_RESIDUAL, slot), ch.residual ? 1u : 0u);
     }
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -41,9 +41,14 @@ struct ChannelConfig {
     }
     // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): alpha in radians, 0 = off.
     float view_lobe = 0.0f;
+    // 0.9 the residual (docs/CONVENTIONS.md, "The residual"): the channel accumulates s - b, b its fallback.
+    bool residual = false;
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
     bool fill() const { return fill_age != 0; }
-    bool fallback() const { return fill_prior > 0.0f; }
+    // Frames carry a fallback: the fill's prior, or the residual's base.
+    bool fallback() const { return fill_prior > 0.0f || residual; }
+    // The displayed value differs from the history's: the fill, or the residual's added base.
+    bool displayed() const { return fill() || residual; }
 };
 
 // How the kernel's epsilon is formed: the value of EPS_KIND in
@@ -75,6 +80,11 @@ struct ContextConfig {
     uint32_t fill_mask() const {  // bit c: channel c has a spatial fill
         uint32_t m = 0;
         for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].fill() ? 1u << i : 0u;
+        return m;
+    }
+    uint32_t displayed_mask() const {  // bit c: channel c's displayed value is not its history (ChannelConfig::displayed)
+        uint32_t m = 0;
+        for (size_t i = 0; i < channels.size(); ++i) m |= channels[i].displayed() ? 1u << i : 0u;
         return m;
     }
     // A channel has a view lobe: every frame carries the camera (the view buffer, rrc_kernel_interface.h).

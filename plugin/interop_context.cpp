@@ -206,10 +206,11 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
     DescriptorViews v = core_->library_views(view, p, source, AccumulatorCore::latest(source));
     for (const LiveInput& in : core_->inputs()) {
         if (classify && is_channel_input(in.role)) continue;
-        if (in.role == InputRole::Fallback) continue;  // the fill's (the next set)
+        // The fallback: the fill's (the next set), and a residual's base (this set too).
+        if (in.role == InputRole::Fallback && !config().channels[in.slot].residual) continue;
         const rrc_vulkan_image& img = host_image(f, in);
-        // storage_inputs: where the standalone path binds its own copy (ids are sampled either way)
-        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId;
+        // storage_inputs: where the standalone path binds its own copy (ids and fallbacks are sampled either way)
+        const bool storage = f.storage_inputs && in.role != InputRole::ObjectId && in.role != InputRole::Fallback;
         const Binding b = storage ? in.own_binding : in.host_binding;
         v.view[b][in.slot] = img.view;
         v.layout[b][in.slot] = storage ? VK_IMAGE_LAYOUT_GENERAL : kReadLayout;

@@ -28,7 +28,7 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
     try {
         const uint32_t w = config.width, h = config.height;
         for (const ChannelConfig& c : config.channels)
-            display_.emplace_back(c.fill() ? GpuImage(d, c.components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, w, h)
+            display_.emplace_back(c.displayed() ? GpuImage(d, c.components == 1 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, w, h)
                                            : GpuImage());
         for (const LiveInput& in : core_->inputs()) {
             inputs_.emplace_back(kept_as_history(in.role) ? GpuImage() : GpuImage(d, in.own_format, w, h));
@@ -87,7 +87,8 @@ std::vector<StandaloneContext::Readback> StandaloneContext::readbacks(const Fram
         const ChannelHistory& h = *v.channels[i];
         const FrameOutputs::Channel* co = out.channel_count ? &out.channels[i] : nullptr;
         if (display_[i].image) {
-            // A fill: values are the displayed ones, ages the history's (docs/CONVENTIONS.md, "The spatial fill").
+            // A fill or a residual: values are the displayed ones, ages the history's (docs/CONVENTIONS.md,
+            // "The spatial fill", "The residual").
             r.push_back({&display_[i], co ? (void*)co->values : nullptr});
             uint16_t* ages = co ? co->age : nullptr;
             if (h.packed())
@@ -141,7 +142,7 @@ DescriptorSets StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t so
         const LiveInput& in = core_->inputs()[i];
         d.view[in.own_binding][in.slot] = own_input(v, i, p).view;
     }
-    // A fill's displayed values: the frame's passes write them where the
+    // A fill's or a residual's displayed values: the frame's passes write them where the
     // fill does not run, the fill where it does (docs/PERFORMANCE.md, "The frame plan").
     for (uint32_t s = 0; s < display_.size(); ++s)
         if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;

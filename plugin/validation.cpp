@@ -121,6 +121,10 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (c.view_lobe > 0.0f && out.reuse())
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and view_lobe: a shading cache never blends, so it has no age to cap", what);
     out.view_lobe = c.view_lobe;
+    // 0.9: the residual (docs/CONVENTIONS.md, "The residual").
+    if (c.residual != 0 && out.reuse())
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and residual: a shading cache keeps values, it accumulates no residual", what);
+    out.residual = c.residual != 0;
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the
@@ -410,7 +414,7 @@ void validate_channels(const ContextConfig& c, const Frame& f) {
                  " but channel \"" + c.channels[i].name + "\" has confidence");
         if (c.channels[i].fallback())
             need(f, ch.fallback, ch.fallback_image, RRC_ERROR_MISSING_INPUT, what + ".fallback",
-                 " but channel \"" + c.channels[i].name + "\" has fill_prior > 0");
+                 " but channel \"" + c.channels[i].name + (c.channels[i].residual ? "\" has residual (the fallback is its base)" : "\" has fill_prior > 0"));
         if (vulkan) need(f, (const float*)nullptr, ch.output_image, RRC_ERROR_MISSING_INPUT, what + ".output", name);
         if (vulkan && ch.age_image.image && ch.age_image.format != VK_FORMAT_R16_UINT)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(),

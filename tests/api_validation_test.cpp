@@ -133,6 +133,9 @@ std::vector<DescCase> desc_cases() {
         {"view_lobe_inf", [](D&, C& c) { c[0].view_lobe = kInf; }, RRC_ERROR_INVALID_ARGUMENT, "channels[0].view_lobe"},
         {"view_lobe_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].view_lobe = 0.1f; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},
+        // The residual (0.9).
+        {"residual_with_reuse", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].residual = 1; }, RRC_ERROR_INVALID_ARGUMENT,
+         "channels[0]"},
         // The shading cache (0.3): channel 0 made REUSE where a case needs one.
         {"reuse_with_confidence", [](D&, C& c) { c[0].blend = RRC_BLEND_REUSE, c[0].confidence = 1; }, RRC_ERROR_INVALID_ARGUMENT,
          "channels[0]"},
@@ -210,6 +213,44 @@ TEST(Api, ForeignHandleIsDetectedWithoutDereferencing) {
     EXPECT_EQ(rrc_frame_run(fake, &f, nullptr), RRC_ERROR_INVALID_HANDLE);
     EXPECT_NE(std::string(rrc_last_error()).find("not a live rrc context"), std::string::npos);
     rrc_context_destroy(fake);  // ignored, never freed
+}
+
+// A residual channel (0.9) without a fill still needs its base every frame:
+// refused, outputs untouched, the history kept (docs/CONVENTIONS.md, "The residual").
+TEST(Api, ResidualFrameWithoutItsBaseIsRefused) {
+    const uint32_t W = 16, H = 8;
+    std::vector<rrc_channel_desc> channels = {channel("s", 1, 0.5f)};
+    channels[0].residual = 1;
+    rrc_context_desc d = context_desc(W, H, channels);
+    d.reprojection = RRC_REPROJECTION_PREV_CLIP;
+    Context ctx(d);
+    ASSERT_TRUE(ctx);
+    std::vector<float> depth(W * H, 0.5f), clip = static_prev_clip(W, H, 0.5f), s(W * H, 1.0f), base(W * H, 0.75f);
+    rrc_channel_input in = channel_input(s.data(), nullptr);
+    in.fallback = base.data();
+    rrc_frame_desc f = frame_desc();
+    f.depth = depth.data();
+    f.reprojection = clip.data();
+    f.channel_count = 1;
+    f.channels = &in;
+    FrameResult first = ctx.run(f);
+    EXPECT_EQ(first.values[0], std::vector<float>(W * H, 1.0f)) << "a fresh pixel shows (s - b) + b";
+    rrc_channel_input no_base = in;
+    no_base.fallback = nullptr;
+    rrc_frame_desc bad = f;
+    bad.channels = &no_base;
+    FrameResult refused;
+    BoundOutput o(refused, channels, W * H, OutputFill{0xEE, -7.0f, 77});
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &bad, &o.frame), RRC_ERROR_MISSING_INPUT);
+    EXPECT_NE(std::string(rrc_context_last_error(ctx.get())).find("has residual"), std::string::npos) << rrc_context_last_error(ctx.get());
+    EXPECT_EQ(refused.values[0], std::vector<float>(W * H, -7.0f));
+    EXPECT_EQ(refused.age[0], std::vector<uint16_t>(W * H, 77));
+    EXPECT_EQ(refused.mask, std::vector<uint8_t>(W * H, 0xEE));
+    // The history survived: the next frame blends (s - b) with the residual 0.25 kept, and shows it plus the new base.
+    std::fill(base.begin(), base.end(), 0.5f);
+    FrameResult after = ctx.run(f);
+    EXPECT_EQ(after.age[0], std::vector<uint16_t>(W * H, 2));
+    EXPECT_EQ(after.values[0], std::vector<float>(W * H, 0.5f * 0.25f + 0.5f * 0.5f + 0.5f));
 }
 
 // Frame-level errors on a live context: each refused, outputs untouched.

@@ -30,9 +30,10 @@ struct ChannelSettings {
     float blur_bound = 0.0f;
     // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"), radians; 0 = off.
     float view_lobe = 0.0f;
-    // The host's, not rrc's (never in rrc_channel_desc): soft only, the channel accumulates the
-    // sample less the stable PCSS estimate, which is added back to rrc's output (README.md, "The
-    // soft residual"); with a fill prior, the fallback rrc gets is 0 (the estimate is the prior).
+    // 0.9 the residual (docs/CONVENTIONS.md, "The residual"): the channel accumulates the sample
+    // less the fallback image, its base, and shows the result plus the base; the sample has a base
+    // for soft only, the stable PCSS estimate (README.md, "The soft residual"), which is then also
+    // the fill's prior.
     uint32_t residual = 0;
 };
 

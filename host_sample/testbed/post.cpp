@@ -3,7 +3,6 @@
 #include "rrc_sample_age_comp.h"
 #include "rrc_sample_compose_comp.h"
 #include "rrc_sample_soft_fallback_comp.h"
-#include "rrc_sample_soft_residual_comp.h"
 
 #include <algorithm>
 
@@ -46,18 +45,7 @@ PostPasses::PostPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, const 
     pcss_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use | VK_IMAGE_USAGE_SAMPLED_BIT, "soft pcss");
     const char* names[3] = {"frame accumulated", "frame raw", "frame reference"};
     for (int i = 0; i < 3; ++i) colour_[i] = gpu.create_image(VK_FORMAT_R8G8B8A8_UNORM, w, h, use, names[i]);
-    // The soft residual's: rrc samples both (README.md, "The soft residual").
-    residual_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use | VK_IMAGE_USAGE_SAMPLED_BIT, "soft residual");
-    zero_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use | VK_IMAGE_USAGE_SAMPLED_BIT, "soft residual fallback");
-    gpu.init_storage_images({&age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2], &residual_, &zero_});
-    residual_kernel_ = ComputeKernel(gpu, "soft_residual", rrc_sample_soft_residual_comp, sizeof rrc_sample_soft_residual_comp,
-                                     {UBO, IMG, IMG, IMG, IMG, IMG}, sizeof(uint32_t), 1);
-    residual_kernel_.bind_buffer(0, 0, scene.uniforms());
-    residual_kernel_.bind_image(0, 1, raw.soft.view, GEN);
-    residual_kernel_.bind_image(0, 2, pcss_.view, GEN);  // b: mode 2 of the fallback pass writes it
-    residual_kernel_.bind_image(0, 3, residual_.view, GEN);
-    residual_kernel_.bind_image(0, 4, acc.soft.view, GEN);
-    residual_kernel_.bind_image(0, 5, zero_.view, GEN);
+    gpu.init_storage_images({&age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2]});
 
     age_kernel_ = ComputeKernel(gpu, "age", rrc_sample_age_comp, sizeof rrc_sample_age_comp, {UBO, TEX, IMG, IMG, IMG}, 4, 2);
     fallback_ = ComputeKernel(gpu, "soft_fallback", rrc_sample_soft_fallback_comp, sizeof rrc_sample_soft_fallback_comp,
@@ -97,8 +85,7 @@ PostPasses::~PostPasses() {
     age_kernel_.release();
     fallback_.release();
     compose_.release();
-    residual_kernel_.release();
-    for (Image* i : {&residual_, &zero_, &age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2]}) gpu_.destroy(*i);
+    for (Image* i : {&age_[0], &age_[1], &shown_, &pcss_, &colour_[0], &colour_[1], &colour_[2]}) gpu_.destroy(*i);
 }
 
 void PostPasses::record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior) {
@@ -120,25 +107,15 @@ void PostPasses::record_pcss(VkCommandBuffer cmd, uint32_t parity) {
 
 PostPasses::SoftInputs PostPasses::record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft,
                                                       const Image& raw_soft) {
-    const bool fallback = soft.fill_prior > 0.0f;
-    if (!soft.residual) {
-        if (fallback) record_pcss(cmd, parity);
-        return {&raw_soft, fallback ? &pcss_ : nullptr, false};
+    if (soft.residual) {
+        const FallbackPush p{0.0f, 2};  // the stable estimate b: rrc's base
+        fallback_.dispatch(cmd, parity, &p, width_, height_);
+        compute_to_compute(cmd);
+        return {&raw_soft, &pcss_};
     }
-    const FallbackPush p{0.0f, 2};  // the stable estimate b
-    fallback_.dispatch(cmd, parity, &p, width_, height_);
-    compute_to_compute(cmd);
-    const uint32_t mode = 0;  // the residual s - b, and the fallback 0
-    residual_kernel_.dispatch(cmd, 0, &mode, width_, height_);
-    compute_to_compute(cmd);
-    return {&residual_, fallback ? &zero_ : nullptr, true};
-}
-
-void PostPasses::record_soft_add_base(VkCommandBuffer cmd) {
-    compute_to_compute(cmd);  // rrc's writes of its output (compute) before this pass reads them
-    const uint32_t mode = 1;
-    residual_kernel_.dispatch(cmd, 0, &mode, width_, height_);
-    compute_to_compute(cmd);
+    const bool fallback = soft.fill_prior > 0.0f;
+    if (fallback) record_pcss(cmd, parity);
+    return {&raw_soft, fallback ? &pcss_ : nullptr};
 }
 
 void PostPasses::record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input) {

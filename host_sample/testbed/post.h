@@ -37,21 +37,17 @@ public:
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);
-    /** What rrc's soft channel reads this frame: its samples and its fill's fallback (null: none),
-     *  and whether its output needs record_soft_add_base after rrc (the residual). */
+    /** What rrc's soft channel reads this frame: its samples and its fallback (null: none). */
     struct SoftInputs {
         const Image* samples = nullptr;
         const Image* fallback = nullptr;
-        bool add_base = false;
     };
     /** Before rrc, as the soft channel's settings ask (the centre map, lamp_centre, already rendered
-     *  this frame): with `soft.residual` (README.md, "The soft residual") the stable PCSS estimate b,
-     *  then the residual s - b as the samples and 0 as the fallback (b is the prior); otherwise the
-     *  sample itself (`raw_soft`) and, with a fill prior, the PCSS estimate as the fallback. */
+     *  this frame): the sample itself (`raw_soft`), and as the fallback, with `soft.residual`
+     *  (README.md, "The soft residual") the stable PCSS estimate b, which rrc subtracts from the
+     *  sample and adds to its output (rrc_channel_desc.residual), else, with a fill prior, the
+     *  PCSS estimate. */
     SoftInputs record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft, const Image& raw_soft);
-    /** After rrc, with the residual: its soft output += b, in place (the accumulated image passed at
-     *  construction). */
-    void record_soft_add_base(VkCommandBuffer cmd);
     void record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input);
 
     const Image& age(uint32_t parity) const { return age_[parity]; }
@@ -63,8 +59,8 @@ private:
     Gpu& gpu_;
     uint32_t width_, height_;
     PcfDisplay pcf_display_;
-    Image age_[2], shown_, pcss_, colour_[3], residual_, zero_;
-    ComputeKernel age_kernel_, fallback_, compose_, residual_kernel_;
+    Image age_[2], shown_, pcss_, colour_[3];
+    ComputeKernel age_kernel_, fallback_, compose_;
 };
 
 }  // namespace rrc_sample

@@ -106,15 +106,14 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     const bool confidence = s_.channels.pcf.confidence != 0;
     const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence};
     signals_->record(cmd, sig, state, sampling);
-    // soft's inputs to rrc: the sample and the PCSS fallback, or the residual against the stable
-    // PCSS estimate, which is added back after rrc (README.md, "The soft residual").
+    // soft's inputs to rrc: the sample and the PCSS fallback, or the stable PCSS estimate as the
+    // residual's base, which rrc subtracts and adds back (README.md, "The soft residual").
     const PostPasses::SoftInputs soft_in =
         (sig & kSignalSoft) ? post_->record_soft_inputs(cmd, parity_, s_.channels.soft, signals_->raw().soft) : PostPasses::SoftInputs{};
     stamp(kSignals);
     SignalImages samples = signals_->raw();
     if (soft_in.samples) samples.soft = *soft_in.samples;
     rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_in.fallback);
-    if (soft_in.add_base) post_->record_soft_add_base(cmd);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);

@@ -32,6 +32,7 @@ std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPrese
         d.antilag_threshold = c.antilag ? c.antilag_threshold : 0.0f;
         d.blur_bound = c.blur_bound;
         d.view_lobe = c.view_lobe;
+        d.residual = c.residual;
         return d;
     };
     std::vector<rrc_channel_desc> c;
@@ -96,8 +97,8 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
             if (!confidence) throw std::runtime_error("rrc_stage: a confidence channel needs its confidence image");
             c.confidence = view_of(*confidence, GEN);
         }
-        if (cs.fill_prior > 0.0f) {
-            if (!fallback) throw std::runtime_error("rrc_stage: a fill with a prior needs its fallback image");
+        if (cs.fill_prior > 0.0f || cs.residual) {
+            if (!fallback) throw std::runtime_error("rrc_stage: a fill with a prior or a residual needs its fallback image");
             c.fallback = view_of(*fallback, GEN);
         }
         ch.push_back(c);

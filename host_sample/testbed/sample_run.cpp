@@ -38,6 +38,8 @@ std::string channel_line(const rrc_channel_desc& c) {
              ", threshold " + std::to_string(c.antilag_threshold > 0.0f ? c.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD).substr(0, 5) + ")";
     if (c.blur_bound > 0.0f) l += ", blur bound " + std::to_string(c.blur_bound).substr(0, 5) + " px^2";
     if (c.view_lobe > 0.0f) l += ", view lobe " + std::to_string(c.view_lobe).substr(0, 6) + " rad";
+    // The sample's one base: soft's stable PCSS estimate (README.md, "The soft residual").
+    if (c.residual) l += ", the residual against its base (the stable PCSS estimate)";
     if (c.fill_age)
         l += ", fill below age " + std::to_string(c.fill_age) + " (radius " + std::to_string(c.fill_radius ? c.fill_radius : RRC_DEFAULT_FILL_RADIUS) +
              ", fallback weight " + std::to_string(c.fill_prior).substr(0, 4) + ")";
@@ -97,12 +99,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     try {
         Renderer renderer(gpu, scene, rs);
         run.rrc_memory_bytes = renderer.rrc_memory_bytes();
-        for (const rrc_channel_desc& c : renderer.rrc().channels()) {
-            run.channels.push_back(channel_line(c));
-            // The host's part of the channel (README.md, "The soft residual"): not in rrc's desc.
-            if (std::string(c.name) == "soft" && o.channels.soft.residual)
-                run.channels.back() += "; fed the residual against the stable PCSS estimate, which is added back";
-        }
+        for (const rrc_channel_desc& c : renderer.rrc().channels()) run.channels.push_back(channel_line(c));
         if (progress) {
             *progress << "rrc-sample: scene " << scene.name << ", " << o.width << "x" << o.height << ", " << o.frames << " frames, signals "
                       << signal_list(run.signals) << ", reprojection " << reprojection_name(o.reprojection) << ", depth test "

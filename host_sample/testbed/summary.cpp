@@ -88,12 +88,11 @@ void open_or_throw(std::ofstream& f, const std::string& path) {
 }
 
 /** What the frame's "signals" interval holds (renderer.cpp): the signal passes at k and, with the soft
- *  residual, its stable PCSS estimate and the residual pass, or else, when rrc's soft fill has a prior,
- *  the PCSS fallback, recorded before the interval closes (the residual's add-back is in rrc's interval);
- *  soft's one shadow map a frame is under "shadows". */
+ *  residual, its stable PCSS estimate (rrc's base), or else, when rrc's soft fill has a prior, the PCSS
+ *  fallback, recorded before the interval closes; soft's one shadow map a frame is under "shadows". */
 std::string signals_label(const RunResult& run) {
     const bool soft = (run.signals & kSignalSoft) != 0;
-    if (soft && run.options.channels.soft.residual) return "the signal passes + the soft residual's stable PCSS estimate and residual";
+    if (soft && run.options.channels.soft.residual) return "the signal passes + the soft residual's stable PCSS estimate";
     const bool pcss = soft && run.options.channels.soft.fill_prior > 0.0f;
     return std::string("the signal passes") + (pcss ? " + the soft fill's PCSS fallback" : "");
 }

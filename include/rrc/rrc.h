@@ -113,7 +113,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 8, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 9, 0)
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -316,6 +316,17 @@ typedef struct rrc_channel_desc {
      * (rrc_frame_desc, 0.7), whatever the reprojection source.
      * Accumulating blends only (REUSE refuses it). */
     float view_lobe;
+    /* ---- 0.9: the residual (docs/CONVENTIONS.md, "The residual") ---- */
+    /* Non-zero: the channel accumulates the sample less a base estimate b
+     * the host supplies every frame (rrc_channel_input.fallback,
+     * rrc_vulkan_channel_images.fallback, then required), and shows the
+     * accumulated residual plus this frame's b.  b should be deterministic
+     * (the same inputs give the same b: a noise-free, possibly biased
+     * estimate such as PCSS for a soft shadow): the filter is linear, so the
+     * variance is the sample's own, and the history lags only behind what b
+     * did not follow.  With a fill_prior, b is the fill's prior (a residual
+     * of 0).  Accumulating blends only (REUSE refuses it). */
+    uint32_t residual;
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {
@@ -439,8 +450,9 @@ typedef struct rrc_channel_input {
     const float* samples;    /* width*height*components, interleaved; required */
     const float* confidence; /* width*height weights in [0,1]; required iff the channel has confidence */
     /* ---- 0.4 ---- */
-    const float* fallback; /* width*height*components: the host's estimate for young pixels (soft shadows: PCSS);
-                              required iff the channel's fill_prior > 0, else ignored */
+    const float* fallback; /* width*height*components: the host's estimate for young pixels (soft shadows: PCSS),
+                              and with residual (0.9) the base the residual is taken against;
+                              required iff the channel's fill_prior > 0 or residual, else ignored */
 } rrc_channel_input;
 
 typedef struct rrc_frame_desc {

@@ -80,7 +80,7 @@ typedef struct rrc_vulkan_channel_images {
     /* ---- 0.2 (a 0.1 caller's size ends before this: read as zero) ---- */
     rrc_vulkan_image age; /* optional (image = NULL: none), STORAGE R16_UINT: the channel's age n after this frame */
     /* ---- 0.4 ---- */
-    rrc_vulkan_image fallback; /* required iff the channel's fill_prior > 0: SAMPLED, any float format, .r or .rgba */
+    rrc_vulkan_image fallback; /* required iff the channel's fill_prior > 0 or residual (0.9, the base): SAMPLED, any float format, .r or .rgba */
 } rrc_vulkan_channel_images;
 
 /** What the kernel writes at rrc_vulkan_frame_desc.stats_buffer + stats_offset

@@ -42,7 +42,7 @@ const rrc_abi_entry kLayout02[] = {
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
-    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 8, 0)) << "rule 6: the current header is 0.8.0";
+    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 9, 0)) << "rule 6: the current header is 0.9.0";
     EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), 0u);
     EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 4u) << "the library must be at least as new as its header";
 }
@@ -99,6 +99,7 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_channel_desc, antilag), offsetof(rrc_channel_desc, fill_prior) + sizeof(float));  // 0.5 appends after 0.4
     EXPECT_GE(offsetof(rrc_channel_desc, blur_bound), offsetof(rrc_channel_desc, antilag_threshold) + sizeof(float));  // 0.6 after 0.5
     EXPECT_GE(offsetof(rrc_channel_desc, view_lobe), offsetof(rrc_channel_desc, blur_bound) + sizeof(float));  // 0.7 after 0.6
+    EXPECT_GE(offsetof(rrc_channel_desc, residual), offsetof(rrc_channel_desc, view_lobe) + sizeof(float));  // 0.9 after 0.7
     EXPECT_GE(offsetof(rrc_frame_desc, camera_position), offsetof(rrc_frame_desc, reproject_from) + sizeof(uint32_t));  // 0.7 after 0.3
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, camera_position), offsetof(rrc_vulkan_frame_desc, split_outputs) + sizeof(uint32_t));
     EXPECT_GE(offsetof(rrc_frame_desc, lighting_turn), offsetof(rrc_frame_desc, prev_camera_position) + 3 * sizeof(double));  // 0.8
@@ -564,6 +565,12 @@ TEST(AbiChannelDesc, RulesOneToFour) {
         Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, view_lobe), {}, 0);
         d.channels = a.as<rrc_channel_desc>();
         expect_same_sequence(&d, "0.6 size, exact buffer");
+    }
+    {
+        // A 0.8 caller: its channel descriptors end before the residual (read as zero: off).
+        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, residual), {}, 0);
+        d.channels = a.as<rrc_channel_desc>();
+        expect_same_sequence(&d, "0.8 size, exact buffer");
     }
     {
         Blob a = pack_array(channels, s01 - 1, {}, 0);

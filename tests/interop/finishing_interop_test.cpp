@@ -5,6 +5,8 @@
 // synchronization validation.  The fill is a second dispatch writing the
 // host's output image: the test also checks that it really changed the
 // young pixels (else a fill that never ran would pass) and left the others.
+// Run twice: plain, and with the residual (0.9) on pcf, whose base the
+// frame's pass reads from the host's fallback image as well as the fill.
 #include "interop/scene_images.h"
 #include "support/rrc_test_context.h"
 
@@ -14,9 +16,10 @@ namespace {
 
 const int W = 48, H = 32, kFrames = 6;
 
-// pcf: packed fp16, rectified, filled with a fallback worth 2 samples;
+// pcf: packed fp16, rectified, filled with a fallback worth 2 samples (with
+// `residual`, 0.9, the fallback is its base, read by the frame's pass too);
 // env: fp32 RGBA, Gaussian history with confidence, filled without fallback.
-std::vector<rrc_channel_desc> test_channels(bool fill) {
+std::vector<rrc_channel_desc> test_channels(bool fill, bool residual) {
     std::vector<rrc_channel_desc> c = {channel("pcf", 1, 0.8f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR),
                                        channel("env", 4, 0.7f, RRC_HISTORY_FP32, RRC_BLEND_RUNNING_MEAN, RRC_HISTORY_FILTER_GAUSSIAN, 0, 1)};
     c[0].rectify = 1;
@@ -28,6 +31,7 @@ std::vector<rrc_channel_desc> test_channels(bool fill) {
         c[1].fill_age = 3;
         c[1].fill_radius = 1;
     }
+    c[0].residual = residual ? 1u : 0u;
     return c;
 }
 
@@ -43,13 +47,16 @@ std::vector<float> fallback_of(const rrc_scene::Frame& f) {
     return fb;
 }
 
-TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
+class InteropFinishing : public ::testing::TestWithParam<bool> {};
+
+TEST_P(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
+    const bool residual = GetParam();
     rrc_scene::Scene scene(test_scene());
     std::vector<SceneFrameInputs> inputs(kFrames);
     std::vector<std::vector<float>> fallbacks(kFrames);
     std::vector<FrameResult> expected, unfilled;
     {
-        std::vector<rrc_channel_desc> channels = test_channels(true), plain = test_channels(false);
+        std::vector<rrc_channel_desc> channels = test_channels(true, residual), plain = test_channels(false, residual);
         Context ctx(scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels));
         Context twin(scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, plain));
         ASSERT_TRUE(ctx);
@@ -58,7 +65,7 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
             inputs[t].frame = scene.render(t);
             make_frame_inputs(inputs[t], RRC_REPROJECTION_PREV_CLIP, {1, 4}, {false, true});
             fallbacks[t] = fallback_of(inputs[t].frame);
-            inputs[t].inputs[0].fallback = fallbacks[t].data();  // the twin has no fill_prior: ignored
+            inputs[t].inputs[0].fallback = fallbacks[t].data();  // the twin has no fill_prior: ignored unless a base
             inputs[t].desc.channels = inputs[t].inputs.data();
             expected.push_back(ctx.run(inputs[t].desc));
             unfilled.push_back(twin.run(inputs[t].desc));
@@ -79,7 +86,7 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
     EXPECT_GT(changed, young / 2) << "the fill must change most young pixels";
 
     VulkanHost host;
-    std::vector<rrc_channel_desc> channels = test_channels(true);
+    std::vector<rrc_channel_desc> channels = test_channels(true, residual);
     rrc_context* ctx =
         interop_context(rrc_host::vulkan_device_desc(host, 2), scene_context_desc(test_scene(), RRC_REPROJECTION_PREV_CLIP, channels));
     ASSERT_NE(ctx, nullptr);
@@ -108,5 +115,8 @@ TEST(InteropFinishing, SameBitsAsStandaloneAndTheFillChangesOnlyYoungPixels) {
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << (host.messages().empty() ? "" : host.messages().front());
 }
+
+INSTANTIATE_TEST_SUITE_P(Residual, InteropFinishing, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& i) { return i.param ? "Residual" : "Plain"; });
 
 }  // namespace

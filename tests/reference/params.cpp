@@ -73,6 +73,7 @@ Params resolve(const rrc_context_desc& ctx) {
         ch.antilag_threshold = d.antilag_threshold != 0.0f ? d.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD;
         ch.blur_bound = d.blur_bound;
         ch.view_lobe = d.view_lobe;
+        ch.residual = d.residual != 0;
         p.channels.push_back(ch);
     }
     return p;

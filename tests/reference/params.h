@@ -35,6 +35,8 @@ struct ChannelParams {
     double blur_bound = 0.0;
     // 0.7 the view-dependent history (docs/CONVENTIONS.md "The view-dependent history"): alpha in radians, 0 = off.
     double view_lobe = 0.0;
+    // 0.9 the residual (docs/CONVENTIONS.md "The residual"): the channel filters s - b, b its fallback.
+    bool residual = false;
 };
 
 struct Params {

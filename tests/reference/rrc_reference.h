@@ -87,7 +87,9 @@ struct ChannelResult {
     std::vector<double> view_theta;       // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
-    // not rounded to fp16); empty otherwise.
+    // not rounded to fp16); with a residual (docs/CONVENTIONS.md, "The
+    // residual"), that value (or `out`) plus this frame's base b, a b that is
+    // not finite counting as 0; empty otherwise.
     std::vector<double> shown;  // W*H*components
 };
 

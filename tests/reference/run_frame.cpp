@@ -96,7 +96,8 @@ void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_de
     for (size_t c = 0; c < p.channels.size(); ++c) {
         require(frame.channels[c].samples != nullptr, "channel samples are NULL");
         require(!p.channels[c].confidence || frame.channels[c].confidence, "confidence is NULL");
-        require(!(p.channels[c].fill_age > 0 && p.channels[c].fill_prior > 0.0) || frame.channels[c].fallback, "fallback is NULL");
+        require(!((p.channels[c].fill_age > 0 && p.channels[c].fill_prior > 0.0) || p.channels[c].residual) || frame.channels[c].fallback,
+                "fallback is NULL");
     }
     if (!prev.valid) return;
     require(prev.depth.size() == n, "previous depth size");
@@ -151,6 +152,23 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
     const Camera cam = p.source == RRC_REPROJECTION_CAMERA ? make_camera(frame) : Camera{};
     FrameResult res = allocate(p);
 
+    // The residual (docs/CONVENTIONS.md, "The residual"): a channel's samples
+    // are s - b, formed in fp32 as the kernel forms them (one correctly
+    // rounded subtraction: exact in double, then rounded), so every use of the
+    // sample (the filter, the rectification and lag-detector boxes) reads the
+    // residual.  A b that is not finite makes a sample that is not.
+    const size_t n = static_cast<size_t>(p.width) * p.height;
+    std::vector<rrc_channel_input> inputs(frame.channels, frame.channels + p.channels.size());
+    std::vector<std::vector<float>> residuals(p.channels.size());
+    for (size_t c = 0; c < p.channels.size(); ++c) {
+        if (!p.channels[c].residual) continue;
+        const size_t m = n * p.channels[c].components;
+        residuals[c].resize(m);
+        for (size_t e = 0; e < m; ++e)
+            residuals[c][e] = static_cast<float>(static_cast<double>(frame.channels[c].samples[e]) - frame.channels[c].fallback[e]);
+        inputs[c].samples = residuals[c].data();
+    }
+
     for (int j = 0; j < p.height; ++j) {
         for (int i = 0; i < p.width; ++i) {
             const size_t px = static_cast<size_t>(j) * p.width + i;
@@ -190,7 +208,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
 
             for (size_t c = 0; c < p.channels.size(); ++c) {
                 const ChannelParams& ch = p.channels[c];
-                Sample s = read_sample(ch, frame.channels[c], px);
+                Sample s = read_sample(ch, inputs[c], px);
                 Resampled r;
                 if (pc == PixelCase::hit) r = read_previous(ch, prev.channels[c], p.width, p.height, t);
                 Update u;
@@ -204,7 +222,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                     // sample, a non-empty history), and only the blend formula uses
                     // the clamped H (W' underflowing keeps the resampled H).
                     if (ch.rectify && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
-                        const RectifyBox box = rectify_box(ch, frame.channels[c], p.width, p.height, i, j);
+                        const RectifyBox box = rectify_box(ch, inputs[c], p.width, p.height, i, j);
                         std::copy(r.h, r.h + 4, r.h_rect);
                         r.rectified = true;
                         rectify_history(box, ch.components, r.h_rect, &res.channels[c].rectify_err[px * ch.components]);
@@ -212,7 +230,7 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                     }
                     // The lag detector: the same case, from the unclamped H.
                     if (ch.antilag && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit && s.valid && r.age >= 1) {
-                        const RectifyBox box = rectify_box(ch, frame.channels[c], p.width, p.height, i, j);
+                        const RectifyBox box = rectify_box(ch, inputs[c], p.width, p.height, i, j);
                         const Antilag a = antilag_age(ch, box, r.h, r.age);
                         r.antilag = true;
                         r.age_antilag = a.age;
@@ -265,13 +283,26 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
     count(res);
     // The spatial fill: a second pass over the frame's stored outputs.
     for (size_t c = 0; c < p.channels.size(); ++c) {
-        if (p.channels[c].fill_age == 0) continue;
+        const ChannelParams& ch = p.channels[c];
         ChannelResult& out = res.channels[c];
-        const std::vector<float> stored(out.out.begin(), out.out.end());  // fp32 store (fp16 values are exact)
-        const FillInputs in{stored.data(), out.age.data(), frame.depth, frame.channels[c].fallback};
-        FillOptions fo;
-        fo.error_scale = scale;
-        out.shown = spatial_fill(p, c, in, fo).shown;
+        if (ch.fill_age != 0) {
+            const std::vector<float> stored(out.out.begin(), out.out.end());  // fp32 store (fp16 values are exact)
+            // A residual's prior is its base: a residual of 0.
+            const std::vector<float> zero(ch.residual ? n * ch.components : 0, 0.0f);
+            const FillInputs in{stored.data(), out.age.data(), frame.depth, ch.residual ? zero.data() : frame.channels[c].fallback};
+            FillOptions fo;
+            fo.error_scale = scale;
+            out.shown = spatial_fill(p, c, in, fo).shown;
+        }
+        // The residual's displayed value: plus this frame's base (a b that is not finite adds 0).
+        if (ch.residual) {
+            if (out.shown.empty()) out.shown.assign(out.out.begin(), out.out.end());
+            for (size_t q = 0; q < n; ++q) {
+                bool finite = true;
+                for (unsigned k = 0; k < ch.components; ++k) finite = finite && std::isfinite(frame.channels[c].fallback[q * ch.components + k]);
+                for (unsigned k = 0; k < ch.components && finite; ++k) out.shown[q * ch.components + k] += frame.channels[c].fallback[q * ch.components + k];
+            }
+        }
     }
     return res;
 }

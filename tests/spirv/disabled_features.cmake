@@ -85,9 +85,10 @@ foreach(p RECTIFY FILL_AGE ANTILAG)
 endforeach()
 rrc_slot_ids(RRC_CHANNEL3_PROPERTY ${ID_CHANNEL3_FIRST} BLUR_BOUND IDS_BLUR_BOUND)
 rrc_slot_ids(RRC_CHANNEL3_PROPERTY ${ID_CHANNEL3_FIRST} VIEW_LOBE IDS_VIEW_LOBE)
+rrc_slot_ids(RRC_CHANNEL3_PROPERTY ${ID_CHANNEL3_FIRST} RESIDUAL IDS_RESIDUAL)
 
 # Feature -> its spec ids and the value that turns it on.
-set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG BLUR_BOUND VIEW_LOBE)
+set(features NOCACHE INTEROP ADAPTIVE OBJECT_ID CONFIDENCE STATS HOST_AGE RECTIFY FILL ANTILAG BLUR_BOUND VIEW_LOBE RESIDUAL)
 set(F_NOCACHE_IDS ${ID_HAS_NOCACHE})
 set(F_INTEROP_IDS ${ID_INTEROP})
 set(F_ADAPTIVE_IDS ${ID_ADAPTIVE})
@@ -100,6 +101,7 @@ set(F_FILL_IDS ${IDS_FILL_AGE})
 set(F_ANTILAG_IDS ${IDS_ANTILAG})
 set(F_BLUR_BOUND_IDS ${IDS_BLUR_BOUND})
 set(F_VIEW_LOBE_IDS ${IDS_VIEW_LOBE})
+set(F_RESIDUAL_IDS ${IDS_RESIDUAL})
 foreach(f IN LISTS features)
   set(F_${f}_ON true)
 endforeach()
@@ -115,11 +117,11 @@ list(GET IDS_BLEND 1 slot1_blend)
 # defaults: what rrc_create's defaults specialise (every feature off).
 set(base_names defaults interop all_on)
 set(BASE_defaults_SET "")
-# BLUR_BOUND (0.6) and VIEW_LOBE (0.7) are checked in all_on only: this check
+# BLUR_BOUND (0.6), VIEW_LOBE (0.7) and RESIDUAL (0.9) are checked in all_on only: this check
 # is the suite's slowest, and all_on is the strictest base (every other
 # feature's code beside it).
 set(BASE_defaults_FEATURES ${features})
-list(REMOVE_ITEM BASE_defaults_FEATURES BLUR_BOUND VIEW_LOBE)
+list(REMOVE_ITEM BASE_defaults_FEATURES BLUR_BOUND VIEW_LOBE RESIDUAL)
 # interop: host images, REVERSED depth, two channels: slot 0 the default
 # packed fp16 scalar, slot 1 RGBA fp32, Catmull-Rom, AGE_AWARE.
 set(BASE_interop_SET ${ID_INTEROP}:true ${ID_DEPTH_MODE}:1 ${ID_CHANNEL_COUNT}:2

@@ -121,7 +121,8 @@ struct Engine {
         return ms;
     }
 
-    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are. */
+    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are (soft without
+     *  its residual). */
     rrc_sample::RrcSettings rrc_settings(uint32_t signals) const {
         rrc_sample::RrcSettings s;
         s.width = settings.width;
@@ -130,6 +131,9 @@ struct Engine {
         s.near_plane = scene.near_plane;
         s.far_plane = scene.far_plane;
         s.ages = false;  // no row reads them: rrc's time is the channel's without the optional age output
+        // No base here (rrc-sample's soft preset takes the stable PCSS estimate as its residual's
+        // base): the soft preset rows set their own channel, which turns it back on.
+        s.channels.soft.residual = 0;
         return s;
     }
     /** The same for one signal, its channel set to `channel` (a configuration the sweep or the study tries). */

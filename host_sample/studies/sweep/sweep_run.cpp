@@ -287,9 +287,9 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (const RrcConfig& c : run.configs)
                 stages.emplace_back(new rrc_sample::RrcStage(gpu, e.rrc_settings(c.app.signal, c.channel)));
             // The soft preset rows' fill fallback and soft residual (sweep_configs.cpp): rrc-sample's PCSS
-            // estimates from the light centre's map (post.h), recorded in the row's own timed pass around
+            // estimates from the light centre's map (post.h), recorded in the row's own timed pass before
             // its dispatch, so that the row's rrc time holds the map and the estimate.  One set of passes
-            // a row: the residual's adds its estimate to that row's own output.
+            // a row.
             std::vector<std::unique_ptr<rrc_sample::PostPasses>> pcss(stages.size());
             for (size_t i = 0; i < stages.size(); ++i)
                 if (run.configs[i].channel.fill_prior > 0.0f || run.configs[i].channel.residual)
@@ -369,7 +369,6 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                                 samples.soft = *soft_in.samples;
                             }
                             stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_in.fallback);
-                            if (soft_in.add_base) pcss[i]->record_soft_add_base(c);
                         }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));

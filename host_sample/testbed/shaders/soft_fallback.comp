@@ -26,8 +26,8 @@ layout(set = 0, binding = 8, r32f) uniform writeonly image2D o_pcss;
 // mode 0: PCSS and the displayed blend (after rrc); mode 1: the PCSS estimate only,
 // before rrc, which takes it as the soft channel's fill fallback (--soft-fill).
 // Both modes compute the same estimate (the same per-frame random angle).
-// mode 2: the stable estimate only, the base of the soft residual
-// (soft_residual.comp; README.md, "The soft residual"): every pixel and frame
+// mode 2: the stable estimate only, the base of the soft residual (rrc's
+// rrc_channel_desc.residual; README.md, "The soft residual"): every pixel and frame
 // the same taps (angle 0), each tap bilinear, so it carries no noise that
 // changes from frame to frame and moves continuously with the surface point;
 // 48 search and 64 filter taps, because what b varies by where the shadow does
