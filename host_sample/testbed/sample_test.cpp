@@ -571,8 +571,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* adaptive[] = {"rrc-sample", "--depth-test", "adaptive"};
     EXPECT_EQ(parse_options(3, adaptive).depth_test, (uint32_t)RRC_DEPTH_TEST_ADAPTIVE);
 
-    const char* channels[] = {"rrc-sample",  "--lambda",      "0.9",     "--blend", "fixed", "--history-filter",
-                              "catmull_rom", "--pcf-pattern", "rotated", "--seed",  "3",     "--soft-age-cap",
+    const char* channels[] = {"rrc-sample", "--lambda",      "0.9",     "--blend", "fixed", "--history-filter",
+                              "nearest",    "--pcf-pattern", "rotated", "--seed",  "3",     "--soft-age-cap",
                               "32"};
     o = parse_options((int)(sizeof channels / sizeof *channels), channels);
     EXPECT_EQ(o.channels.pcf.lambda, 0.9f);
@@ -580,7 +580,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.pcf.blend, RRC_BLEND_FIXED);
     EXPECT_EQ(o.channels.env.blend, RRC_BLEND_FIXED);
     EXPECT_EQ(o.channels.soft.blend, ChannelPresets{}.soft.blend) << "--blend is pcf's and env's";
-    EXPECT_EQ(o.channels.soft.filter, RRC_HISTORY_FILTER_CATMULL_ROM) << "--history-filter is every channel's";
+    EXPECT_EQ(o.channels.soft.filter, RRC_HISTORY_FILTER_NEAREST) << "--history-filter is every channel's";
     EXPECT_EQ(o.channels.soft.age_cap, 32u);
     EXPECT_EQ(o.pcf_pattern, 1u);
     EXPECT_EQ(o.seed, 3u);
@@ -688,7 +688,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.rectify, 0u);
     EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_BILINEAR) << "the blur bound acts on bilinear histories only";
     EXPECT_EQ(p.pcf.blur_bound, 0.25f);
-    EXPECT_EQ(p.soft.blur_bound, 1.0f) << "with the residual (channel_presets.h)";
+    EXPECT_EQ(p.soft.filter, RRC_HISTORY_FILTER_CATMULL_ROM) << "with the residual (channel_presets.h)";
+    EXPECT_EQ(p.soft.blur_bound, 0.0f) << "the bound never acts on Catmull-Rom";
     EXPECT_EQ(p.soft.residual, 1u);
     EXPECT_EQ(p.pcf.residual + p.env.residual, 0u) << "the residual is soft's (its stable estimate is PCSS)";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";

@@ -90,10 +90,10 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                 }
             // rrc-sample's pcf and soft presets (testbed/channel_presets.h), which no row above
             // spells: the targets under motion are theirs (docs/PERFORMANCE.md, "Targets under
-            // motion").  soft's is the blur bound's fill row with rrc-sample's PCSS estimate as
-            // the fill's fallback, worth kSampleFillPrior samples (README.md, "The soft preset
-            // row": its centre-light map and PCSS pass are timed with its rrc pass).  env's
-            // preset (the view lobe scaled to the size) is not a row.
+            // motion").  soft's: Catmull-Rom, the fill with rrc-sample's PCSS estimate as its
+            // prior, worth kSampleFillPrior samples, and the residual against the stable estimate
+            // (README.md, "The soft preset rows": its centre-light map and PCSS pass are timed
+            // with its rrc pass).  env's preset (the view lobe scaled to the size) is not a row.
             if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
                 run.configs.push_back({app, rrc_sample::pcf_preset(o.height)});
             if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
@@ -150,7 +150,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
         std::snprintf(b, sizeof b, "+pcss%g", (double)c.fill_prior);
         s += b;
     }
-    if (c.residual) s += "+residual";  // the host's soft residual against the stable PCSS estimate
+    if (c.residual) s += "+residual";  // rrc's residual against the stable PCSS estimate (soft's base)
     if (c.antilag) s += "+antilag";
     // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {
