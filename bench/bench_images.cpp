@@ -108,6 +108,12 @@ BenchImages create_images(VulkanBootstrap& vk, const Config& c, const SceneInput
             zero(vk, w_out);
         }
         b.confidence.push_back(conf);
+        Image base;
+        if (c.channels[ch].residual) {
+            base = make(vk, four ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32_SFLOAT, c, "bench base");
+            upload_floats(vk, base, s.base[ch]);
+        }
+        b.base.push_back(base);
         b.weight_in.push_back(w_in);
         b.weight_out.push_back(w_out);
     }
@@ -133,7 +139,7 @@ BenchImages create_images(VulkanBootstrap& vk, const Config& c, const SceneInput
 void destroy_images(VulkanBootstrap& vk, BenchImages& b) {
     for (PoseImages& p : b.poses)
         for (Image* i : {&p.depth, &p.reprojection, &p.object_id}) vk.destroy(*i);
-    for (auto* list : {&b.samples, &b.confidence, &b.values, &b.age_out, &b.history, &b.age_in, &b.weight_in, &b.weight_out})
+    for (auto* list : {&b.samples, &b.confidence, &b.base, &b.values, &b.age_out, &b.history, &b.age_in, &b.weight_in, &b.weight_out})
         for (Image& i : *list) vk.destroy(i);
     for (Image* i : {&b.nocache, &b.mask, &b.prev_depth, &b.prev_object_id, &b.depth_copy, &b.object_id_copy}) vk.destroy(*i);
     b = BenchImages();

@@ -27,6 +27,7 @@ struct BenchImages {
     PoseImages poses[2];
     std::vector<Image> samples;     // per channel, R32F or RGBA32F (what renderers write; fp16 history or not)
     std::vector<Image> confidence;  // per channel, R32F (empty Image without confidence)
+    std::vector<Image> base;        // per channel, as samples (empty Image without residual): the residual's base
     Image nocache;                  // R8_UINT (with nocache)
     // Outputs written by the kernel and by the roof alike.
     std::vector<Image> values;   // per channel, at channel_format()

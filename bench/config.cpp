@@ -69,6 +69,7 @@ std::vector<Config> full_sweep() {
         {"rectify", "rectify", [](Config& c) { c.channels[0].rectify = true; }},
         // A lobe the poses' 6 cm turn (up to 0.011 rad at 5 m) caps at age 1 or 2: the cap acts on every hit.
         {"view_lobe", "view_lobe", [](Config& c) { c.channels[0].view_lobe = 0.02f; }},
+        {"residual", "residual", [](Config& c) { c.channels[0].residual = true; }},
         {"fill", "fill", [](Config& c) { c.channels[0].fill_age = 8; }},
         {"fill_r1", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 1; }},
         {"fill_r4", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 4; }},
@@ -134,6 +135,7 @@ std::string channels_text(const Config& c) {
         if (ch.rectify) s += "r";
         if (ch.fill_age) s += "F";
         if (ch.view_lobe > 0.0f) s += "V";
+        if (ch.residual) s += "B";
     }
     return s;
 }

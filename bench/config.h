@@ -21,6 +21,7 @@ struct ChannelConfig {
     uint32_t fill_age = 0;  // 0.4: the spatial fill, no fallback (a second dispatch; no byte the roof counts)
     uint32_t fill_radius = 0;  // 0: the library's default
     float view_lobe = 0.0f;    // 0.7: the view-dependent history's lobe, radians (the view turn a pixel; no byte the roof counts)
+    bool residual = false;     // 0.9: the residual against a base image (4 bytes a pixel more read, which the roof does not count)
 };
 
 struct Config {

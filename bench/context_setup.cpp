@@ -24,6 +24,7 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
         channels_.back().rectify = ch.rectify ? 1u : 0u;
         channels_.back().fill_age = ch.fill_age;
         channels_.back().view_lobe = ch.view_lobe;
+        channels_.back().residual = ch.residual ? 1u : 0u;
         channels_.back().fill_radius = ch.fill_radius;
     }
     desc_ = rrc_host::context_desc(c.width, c.height, channels_);

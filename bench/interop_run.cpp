@@ -48,6 +48,7 @@ InteropBench::InteropBench(VulkanBootstrap& vk, const Config& c, const SceneInpu
         auto ci = rrc_host::rrc_struct<rrc_vulkan_channel_images>(RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES);
         ci.samples = general(img.samples[ch]);
         if (c.channels[ch].confidence) ci.confidence = general(img.confidence[ch]);
+        if (c.channels[ch].residual) ci.fallback = general(img.base[ch]);  // the residual's base
         ci.output = general(img.values[ch]);
         ci.age = general(img.age_out[ch]);
         channels_.push_back(ci);

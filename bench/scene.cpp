@@ -137,6 +137,12 @@ SceneInputs make_scene(const Config& cfg) {
             for (size_t i = 0; i < px; ++i) w[i] = unit((uint32_t)i, (uint32_t)c * 2 + 2);
         }
         s.confidence.push_back(std::move(w));
+        std::vector<float> b;
+        if (cfg.channels[c].residual) {
+            b.resize(px * comps);
+            for (size_t i = 0; i < b.size(); ++i) b[i] = unit((uint32_t)i, (uint32_t)c * 2 + 101);
+        }
+        s.base.push_back(std::move(b));
     }
     if (cfg.nocache) {
         s.nocache.resize(px);

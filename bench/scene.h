@@ -30,6 +30,7 @@ struct SceneInputs {
     PoseFrame poses[2];
     std::vector<std::vector<float>> samples;     // per channel, W*H*components, uniform noise in [0,1)
     std::vector<std::vector<float>> confidence;  // per channel (empty without confidence), W*H in [0,1)
+    std::vector<std::vector<float>> base;        // per channel (empty without residual), W*H*components in [0,1)
     std::vector<uint8_t> nocache;                // W*H, ~nocache_share set (only with nocache)
 };
 

@@ -38,9 +38,10 @@ StandaloneBench::StandaloneBench(const Config& c, const SceneInputs& scene, LogC
         }
         outs_.push_back(o);
     }
-    // Inputs, as arrays: depth, reprojection data, samples, confidence, nocache, ids.
+    // Inputs, as arrays: depth, reprojection data, samples, confidence, bases, nocache, ids.
     bytes += px * sizeof(float) + scene.poses[0].reprojection.size() * sizeof(float);
-    for (size_t ch = 0; ch < c.channels.size(); ++ch) bytes += (scene.samples[ch].size() + scene.confidence[ch].size()) * sizeof(float);
+    for (size_t ch = 0; ch < c.channels.size(); ++ch)
+        bytes += (scene.samples[ch].size() + scene.confidence[ch].size() + scene.base[ch].size()) * sizeof(float);
     bytes += scene.nocache.size() + scene.poses[0].object_id.size() * sizeof(uint32_t);
     res_.bytes = bytes;
     src_.assign(bytes, 1);  // touched once, so the timed copy faults nothing in
@@ -55,8 +56,10 @@ StandaloneBench::~StandaloneBench() { rrc_context_destroy(ctx_); }
 double StandaloneBench::run_frame() {
     const PoseFrame& pf = scene_.poses[frame_ % 2];
     std::vector<rrc_channel_input> ins;
-    for (size_t ch = 0; ch < config_.channels.size(); ++ch)
+    for (size_t ch = 0; ch < config_.channels.size(); ++ch) {
         ins.push_back(rrc_host::channel_input(scene_.samples[ch].data(), scene_.confidence[ch].empty() ? nullptr : scene_.confidence[ch].data()));
+        if (!scene_.base[ch].empty()) ins.back().fallback = scene_.base[ch].data();  // the residual's base
+    }
     rrc_frame_desc f = rrc_host::frame_desc();
     f.frame_index = frame_;
     f.depth = pf.depth.data();
