@@ -726,9 +726,14 @@ TEST(FinishingEdge, InvalidGeometryPixelIsFilledFromTheFallback) {
 // The fill after the split path: rrc_frame_classify + rrc_frame_resolve (the
 // REUSE samples NaN outside the listed quads) give the fused frame's bits,
 // displayed values included.
-TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
-    const std::vector<rrc_channel_desc> chs = {filled(channel("shade", 4, 0.0f, kFp16, RRC_BLEND_REUSE, kBil), 8, 2, 4.0f),
-                                               filled(channel("mean", 1, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil), 4, 1, 0.0f)};
+// Run plain and with the residual (0.9) on the accumulating channel, whose base
+// resolve reads with its samples (docs/CONVENTIONS.md, "The residual").
+class FillSplit : public ::testing::TestWithParam<bool> {};
+
+TEST_P(FillSplit, ClassifyResolveGivesTheFusedBits) {
+    std::vector<rrc_channel_desc> chs = {filled(channel("shade", 4, 0.0f, kFp16, RRC_BLEND_REUSE, kBil), 8, 2, 4.0f),
+                                         filled(channel("mean", 1, 0.0f, kFp32, RRC_BLEND_RUNNING_MEAN, kBil), 4, 1, 0.0f)};
+    chs[1].residual = GetParam() ? 1u : 0u;
     rrc_scene::Scene scene(scene_of(RRC_DEPTH_MODE_REVERSED, 0.01));
     const rrc_reprojection source = RRC_REPROJECTION_PREV_CLIP;
     rrc_context_desc desc = scene_context_desc(scene.config(), source, chs);
@@ -743,6 +748,9 @@ TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
         make_frame_inputs(in, source, chs);
         const std::vector<float>& fallback = in.frame.truth4;
         in.inputs[0].fallback = fallback.data();
+        std::vector<float> base(in.frame.truth1.size());  // the residual's: a biased, noise-free estimate
+        for (size_t i = 0; i < base.size(); ++i) base[i] = 0.5f * in.frame.truth1[i] + 0.25f;
+        in.inputs[1].fallback = base.data();  // without the residual: ignored
         FrameResult a = fused.run(in.desc);
 
         Classification cl(kW, kH);
@@ -763,6 +771,9 @@ TEST(FillSplit, ClassifyResolveGivesTheFusedBits) {
     EXPECT_GT(listed, 0);
     EXPECT_GT(young, (int64_t)n) << "too few young pixels compared";
 }
+
+INSTANTIATE_TEST_SUITE_P(Residual, FillSplit, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& i) { return i.param ? "Residual" : "Plain"; });
 
 // The fill of a view reads that view's own frame: two views interleaved in one
 // context give each view's bits of a one-view context that sees only its frames.
