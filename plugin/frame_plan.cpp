@@ -53,8 +53,8 @@ const char* phase_name(uint32_t phase) {
 const char* phase_bindings(uint32_t phase, bool all_reuse) {
     switch (phase) {
         case RRC_PHASE_FUSED:
-            return "reads depth, reprojection, [nocache, ids], samples, [confidence], previous depth, history, age, [weight, previous ids]; "
-                   "writes history, age, [weight], mask, [depth and id copies, host outputs, fill list]";
+            return "reads depth, reprojection, [nocache, ids], samples, [confidence, base], previous depth, history, age, [weight, previous "
+                   "ids]; writes history, age, [weight], mask, [depth and id copies, host outputs, fill list]";
         case RRC_PHASE_CLASSIFY:
             return all_reuse ? "reads depth, reprojection, [nocache, ids], previous depth, history, age, [previous ids]; writes mask, "
                                "[depth and id copies]; at HITs history, age, [weight, host outputs, fill list]"
@@ -62,12 +62,13 @@ const char* phase_bindings(uint32_t phase, bool all_reuse) {
                                "writes mask, [depth and id copies]";
         case RRC_PHASE_LIST: return "reads mask; writes quad list";
         case RRC_PHASE_RESOLVE:
-            return "reads mask, samples, [confidence], history, age, [weight]; writes history, age, [weight], mask, [host outputs, fill list]";
+            return "reads mask, samples, [confidence, base], history, age, [weight]; writes history, age, [weight], mask, [host outputs, "
+                   "fill list]";
         case RRC_PHASE_RESOLVE_LISTED:
             return "reads quad list, mask, samples, [confidence]; at listed pixels that are not HITs writes history, age, [weight], mask, "
                    "[host outputs, fill list]";
         case RRC_PHASE_COPY_OUT: return "reads this frame's history, age, mask; writes host outputs, [host ages, host mask]";
-        case RRC_PHASE_FILL: return "reads fill list, this frame's history, age, depth, [fallback]; writes displayed values";
+        case RRC_PHASE_FILL: return "reads fill list, this frame's history, age, depth, [fallback or base]; writes displayed values";
     }
     return "?";
 }
