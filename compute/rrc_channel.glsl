@@ -230,7 +230,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         vec4 shown_v = out_v;
         if (CH_(_RESIDUAL)) {
             if (CH_(_COMPONENTS) == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
-            shown_v = clamp(out_v + (rrc_finite4(b_px) ? b_px : vec4(0.0)), vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
+            shown_v = rrc_plus_base(out_v, b_px);
         }
         if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u)
             imageStore(u_host_out[RRC_CH], px, (CH_(_FILL_AGE) != 0u || CH_(_RESIDUAL)) && CH_(_COMPONENTS) == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);

@@ -59,7 +59,7 @@ if (RRC_CH < CH_COUNT && CH_(_FILL_AGE) != 0u) {
         // The residual's displayed value: plus this frame's base (docs/CONVENTIONS.md, "The residual").
         vec4 b = texelFetch(s_fallback[RRC_CH], px, 0);
         if (CH_(_COMPONENTS) == 1u) b = vec4(b.x, 0.0, 0.0, 0.0);
-        shown = clamp(shown + (rrc_finite4(b) ? b : vec4(0.0)), vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
+        shown = rrc_plus_base(shown, b);
     }
     if (rrc_store) imageStore(u_host_out[RRC_CH], px, shown);
 #undef LOAD_WORD

@@ -4,10 +4,16 @@
 #define RRC_FILTER_GLSL
 
 #include "rrc_values.glsl"  // rrc_blend, rrc_history_filter
+#include "rrc_depth.glsl"   // rrc_finite4
 
 // The largest finite fp32 value and the smallest normal one, exactly.
 const float RRC_FLT_MAX = 3.4028234663852886e38;
 const float RRC_FLT_MIN = 1.1754943508222875e-38;
+
+// The residual's displayed value (docs/CONVENTIONS.md, "The residual"): the
+// stored or filled value v plus this frame's base b, in fp32, clamped to the
+// finite range; a base that is not finite adds nothing.
+vec4 rrc_plus_base(vec4 v, vec4 b) { return clamp(v + (rrc_finite4(b) ? b : vec4(0.0)), vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX)); }
 
 // Clamp to the fp16 range and round to the nearest fp16 value, ties to even,
 // so the store is exact whatever rounding the driver's conversion uses.

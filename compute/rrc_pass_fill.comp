@@ -12,7 +12,7 @@ layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP
 RRC_PASS_FILL_BINDINGS(RRC_DECLARE)
 
 #include "rrc_depth.glsl"
-#include "rrc_filter.glsl"  // RRC_FLT_MAX (a residual's displayed value)
+#include "rrc_filter.glsl"  // rrc_plus_base (a residual's displayed value)
 #include "rrc_channel_slots.glsl"
 #include "rrc_list.glsl"
 

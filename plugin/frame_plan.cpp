@@ -91,7 +91,7 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
     FramePlan plan;
     auto& steps = plan.steps;
     const bool reuse = all_reuse(c), fill = c.fill_mask() != 0;
-    // The host's outputs on the Vulkan path; the standalone path's fill writes its displayed values there.
+    // The host's outputs on the Vulkan path; on the standalone path a fill's or a residual's displayed values.
     const uint32_t outputs = r.interop ? all_channels(c) : c.displayed_mask();
     const uint32_t split_outputs = r.interop && r.split_outputs ? all_channels(c) : r.interop ? 0u : c.displayed_mask();
     const uint32_t split_ages = r.interop && r.split_outputs ? r.host_age_mask : 0u;
