@@ -105,17 +105,16 @@ void PostPasses::record_pcss(VkCommandBuffer cmd, uint32_t parity) {
     compute_to_compute(cmd);
 }
 
-PostPasses::SoftInputs PostPasses::record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft,
-                                                      const Image& raw_soft) {
+const Image* PostPasses::record_soft_fallback(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft) {
     if (soft.residual) {
         const FallbackPush p{0.0f, 2};  // the stable estimate b: rrc's base
         fallback_.dispatch(cmd, parity, &p, width_, height_);
         compute_to_compute(cmd);
-        return {&raw_soft, &pcss_};
+        return &pcss_;
     }
-    const bool fallback = soft.fill_prior > 0.0f;
-    if (fallback) record_pcss(cmd, parity);
-    return {&raw_soft, fallback ? &pcss_ : nullptr};
+    if (soft.fill_prior <= 0.0f) return nullptr;
+    record_pcss(cmd, parity);
+    return &pcss_;
 }
 
 void PostPasses::record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input) {

@@ -37,17 +37,12 @@ public:
     void record_age_and_fallback(VkCommandBuffer cmd, uint32_t signals, uint32_t parity, float soft_prior);
     /** The PCSS estimate alone (soft_pcss()), before rrc: the soft channel's fill fallback. */
     void record_pcss(VkCommandBuffer cmd, uint32_t parity);
-    /** What rrc's soft channel reads this frame: its samples and its fallback (null: none). */
-    struct SoftInputs {
-        const Image* samples = nullptr;
-        const Image* fallback = nullptr;
-    };
     /** Before rrc, as the soft channel's settings ask (the centre map, lamp_centre, already rendered
-     *  this frame): the sample itself (`raw_soft`), and as the fallback, with `soft.residual`
-     *  (README.md, "The soft residual") the stable PCSS estimate b, which rrc subtracts from the
-     *  sample and adds to its output (rrc_channel_desc.residual), else, with a fill prior, the
-     *  PCSS estimate. */
-    SoftInputs record_soft_inputs(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft, const Image& raw_soft);
+     *  this frame), the image rrc's soft channel reads as its fallback, or null for none: with
+     *  `soft.residual` (README.md, "The soft residual") the stable PCSS estimate b, which rrc
+     *  subtracts from the sample and adds to its output (rrc_channel_desc.residual), else, with a
+     *  fill prior, the PCSS estimate.  The channel's samples are the raw soft signal either way. */
+    const Image* record_soft_fallback(VkCommandBuffer cmd, uint32_t parity, const ChannelSettings& soft);
     void record_compose(VkCommandBuffer cmd, uint32_t signals, ComposeInput input);
 
     const Image& age(uint32_t parity) const { return age_[parity]; }

@@ -106,14 +106,11 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     const bool confidence = s_.channels.pcf.confidence != 0;
     const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence};
     signals_->record(cmd, sig, state, sampling);
-    // soft's inputs to rrc: the sample and the PCSS fallback, or the stable PCSS estimate as the
-    // residual's base, which rrc subtracts and adds back (README.md, "The soft residual").
-    const PostPasses::SoftInputs soft_in =
-        (sig & kSignalSoft) ? post_->record_soft_inputs(cmd, parity_, s_.channels.soft, signals_->raw().soft) : PostPasses::SoftInputs{};
+    // soft's fallback: the PCSS estimate, or the stable PCSS estimate as the residual's base,
+    // which rrc subtracts and adds back (README.md, "The soft residual").
+    const Image* soft_fallback = (sig & kSignalSoft) ? post_->record_soft_fallback(cmd, parity_, s_.channels.soft) : nullptr;
     stamp(kSignals);
-    SignalImages samples = signals_->raw();
-    if (soft_in.samples) samples.soft = *soft_in.samples;
-    rrc_->record(cmd, gbuffer_->images(), samples, state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_in.fallback);
+    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);

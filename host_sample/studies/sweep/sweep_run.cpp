@@ -361,14 +361,12 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
                             // As rrc-sample's renderer: the PCSS fallback, or the soft residual
                             // (testbed README.md, "The soft residual").
-                            rrc_sample::SignalImages samples = e.signals.raw();
-                            rrc_sample::PostPasses::SoftInputs soft_in;
+                            const rrc_sample::Image* soft_fallback = nullptr;
                             if (pcss[i]) {
                                 e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
-                                soft_in = pcss[i]->record_soft_inputs(c, 0, run.configs[i].channel, samples.soft);
-                                samples.soft = *soft_in.samples;
+                                soft_fallback = pcss[i]->record_soft_fallback(c, 0, run.configs[i].channel);
                             }
-                            stages[i]->record(c, e.gbuffer.images(), samples, state, (uint64_t)f, f == 0, nullptr, soft_in.fallback);
+                            stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, soft_fallback);
                         }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));
