@@ -1,4 +1,5 @@
 # The test environment every test program runs in, and rrc_add_gtest().
+# Tests are registered one per GoogleTest suite (RrcGTestSuites.cmake).
 # Included from the top-level CMakeLists.txt before host_sample/ and tests/,
 # so each program registers its tests from its own folder.
 #
@@ -7,7 +8,7 @@
 # fails on any message.  Tests run on lavapipe explicitly: Debian's driver
 # package also installs Intel and Radeon ICDs.
 find_package(GTest REQUIRED)
-include(GoogleTest)
+include(${CMAKE_CURRENT_LIST_DIR}/RrcGTestSuites.cmake)
 
 file(GLOB RRC_LAVAPIPE_ICD /usr/share/vulkan/icd.d/lvp_icd.*.json)
 if(NOT RRC_LAVAPIPE_ICD)
@@ -37,20 +38,20 @@ if(RRC_SANITIZE)
 endif()
 
 # Test programs run through `cmake -E env` with RRC_TEST_ENV: the target's
-# emulator is honoured by gtest discovery and by every add_test, whereas a
-# list-valued ENVIRONMENT property is split apart by gtest_discover_tests.
+# emulator is honoured by the test listing (rrc_gtest_suites) and by every
+# add_test, and one list of variables holds the whole environment.
 function(rrc_test_environment target)
   set_target_properties(${target} PROPERTIES CROSSCOMPILING_EMULATOR "${CMAKE_COMMAND};-E;env;${RRC_TEST_ENV}")
 endfunction()
 
 # rrc_add_gtest(<name> sources... [LIBS libs...]): a GoogleTest executable
-# whose tests each become a CTest test with the lavapipe environment.
+# whose test suites each become a CTest test with the lavapipe environment.
 function(rrc_add_gtest name)
   cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
   add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name} PRIVATE rrc rrc_descs GTest::gtest_main ${ARG_LIBS})  # rrc_descs: support/rrc_test_context.h
   rrc_test_environment(${name})
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
+  rrc_gtest_suites(${name})
 endfunction()
 

@@ -7,27 +7,28 @@
 # directory has run its tests, ctest's own measured costs
 # (Testing/Temporary/CTestCostData.txt) take over.
 #
-# Seconds: `bash .ci/test` at commit 9de67d0 (2026-12-03, 2-core AMD EPYC VM,
-# Mesa 22.3.6 lavapipe, otherwise idle), the sanitizer run's time where the
-# test runs there, else the release run's.  Only the order matters.
+# Seconds: the release run's own times, one test per GoogleTest suite
+# (cmake/RrcGTestSuites.cmake; `ctest -j2 --timeout 900` in a build directory
+# without a cost file, 2026-12-05, 2-core AMD EPYC VM, Mesa 22.3.6 lavapipe,
+# otherwise idle).  Only the order matters; the sanitizer run uses the same.
 set(_rrc_test_costs
-  spirv_disabled_features_cost_nothing 60
-  Sweep.EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame 47
-  bench_smoke 42
-  documented_commands 31
-  LambdaSweep.BiasAndVarianceOver10000Frames 23
-  RectifyStudy.TheMovingLightChangesTargetsAndRectificationCutsTheLag 19
-  AgeCap.SaturatesAtTheTypeMaximumWithoutWrapping 15
-  BlenderPresetTau.HitAndFalseHitRates 15
-  RrcCache.MissShaderCoversTheListAndRefreshTradesErrorForWork 12
-  CacheRefresh.EveryPixelOnceEveryNFramesOnAStaticScene 11
-  ShadingCacheRefresh.OncePerPeriodFromNear2To40AndBalancedRandom 11
-  BiasMaps.UnderMotionTheBiasSitsWhereTheTargetChanged 8
-  BiasMaps.NothingMovingNoTargetChangesAndNoBias 7
-  RrcSample.DefaultDepthTestRecallAndNoFalseHits 7
-  RrcCache.OctavesChangeTheShadingAndStayFiniteAt64 7
-  NonFiniteSamples.TenThousandFrames 7
-  ApiVulkanDepth.ImageFormatDisagreesWithDepthFormat 6)
+  spirv_disabled_features_cost_nothing 87
+  rrc_visibility_test/Cases/HitTestRecall 39
+  rrc_sweep_test/Sweep 38
+  documented_commands 29
+  bench_smoke 20
+  rrc_sweep_test/RectifyStudy 17
+  rrc_stability_long_test/LambdaSweep 16
+  rrc_kernel_reference_test/Cases/KernelVsReference 15
+  rrc_visibility_test/Cases/ThinCard 14
+  rrc_sample_test/RrcSample 13
+  rrc_stability_test/Cases/DepthPrecision 12
+  rrc_stability_long_test/AgeCap 11
+  rrc_shading_cache_test/Policies/SplitVsFusedReuseOnly 8
+  rrc_bias_regions_test/BiasMaps 7
+  rrc_shading_cache_test/ShadingCacheRefresh 7
+  rrc_cache_test/RrcCache 7
+  rrc_interop_shading_cache_test/InteropShadingCache 7)
 while(_rrc_test_costs)
   list(POP_FRONT _rrc_test_costs _rrc_name _rrc_seconds)
   set_tests_properties(${_rrc_name} PROPERTIES COST ${_rrc_seconds})

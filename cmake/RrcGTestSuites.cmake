@@ -1,0 +1,61 @@
+# rrc_gtest_suites(<target> [TEST_FILTER <gtest filter>] [LABELS <label>]):
+# registers one CTest test per GoogleTest test suite of <target>, named
+# "<target>/<suite>" (for example `rrc_api_test/Api`), which runs that suite's
+# cases in one process.
+#
+# Why not gtest_discover_tests (one process per case): a test process's first
+# Vulkan context costs about 0.35 s more than the next ones in the same process
+# (fresh pages for the driver's and the library's allocations, the driver and
+# the validation layer loaded and relocated), more under the sanitizers, and
+# the suite has some 700 cases (docs/PERFORMANCE.md, "The test suite's time").
+# A case still gets a fresh context of its own: every test makes its context
+# (tests/support/rrc_test_context.h), so a validation message fails the case
+# that caused it, and the output of a failed suite names the failing cases.
+#
+# The tests are listed after each build (--gtest_list_tests, through the
+# target's CROSSCOMPILING_EMULATOR: rrc_test_environment's lavapipe
+# environment).  TEST_FILTER keeps the cases it matches (one executable can be
+# registered twice, with complementary filters and different labels); a
+# suite's test then runs exactly the listed cases.  LABELS is one label.
+set(RRC_GTEST_SUITES_SCRIPT ${CMAKE_CURRENT_LIST_DIR}/RrcGTestSuitesList.cmake)
+
+function(rrc_gtest_suites target)
+  cmake_parse_arguments(ARG "" "TEST_FILTER;LABELS" "" ${ARGN})
+  # One output file per registration of the target (the filtered pairs).
+  get_property(calls TARGET ${target} PROPERTY RRC_GTEST_SUITES_CALLS)
+  if(NOT calls)
+    set(calls 0)
+  endif()
+  math(EXPR calls "${calls} + 1")
+  set_property(TARGET ${target} PROPERTY RRC_GTEST_SUITES_CALLS ${calls})
+
+  set(base "${CMAKE_CURRENT_BINARY_DIR}/${target}_suites${calls}")
+  get_target_property(emulator ${target} CROSSCOMPILING_EMULATOR)
+  if(NOT emulator)
+    set(emulator "")
+  endif()
+  # The listing's inputs, written once generator expressions are known.
+  file(GENERATE OUTPUT "${base}_args.cmake" CONTENT
+"set(TEST_EXECUTABLE [==[$<TARGET_FILE:${target}>]==])
+set(TEST_EXECUTOR [==[${emulator}]==])
+set(TEST_TARGET [==[${target}]==])
+set(TEST_FILTER [==[${ARG_TEST_FILTER}]==])
+set(TEST_LABELS [==[${ARG_LABELS}]==])
+set(TEST_WORKING_DIRECTORY [==[${CMAKE_CURRENT_BINARY_DIR}]==])
+set(TEST_OUTPUT [==[${base}_tests.cmake]==])
+")
+  add_custom_command(TARGET ${target} POST_BUILD
+    BYPRODUCTS "${base}_tests.cmake"
+    COMMAND ${CMAKE_COMMAND} -D "ARGS_FILE=${base}_args.cmake" -P ${RRC_GTEST_SUITES_SCRIPT}
+    VERBATIM)
+  # ctest reads the listed tests; before the target is built there are none,
+  # and a test named after the target says so.
+  file(WRITE "${base}_include.cmake"
+"if(EXISTS [==[${base}_tests.cmake]==])
+  include([==[${base}_tests.cmake]==])
+else()
+  add_test([==[${target}_NOT_BUILT]==] [==[${target}_NOT_BUILT]==])
+endif()
+")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${base}_include.cmake")
+endfunction()
