@@ -56,6 +56,7 @@ struct RenderSettings {
     float pcf_radius = 3.0f;   // sun-map texels
     uint32_t seed = 0;         // ensemble member: moves every random stream (0: the sample's own)
     uint32_t pcf_pattern = 0;  // 0 the uniform disk (unbiased for the exact target), 1 the paper's rotated Poisson disk
+    uint32_t env_base = 0;     // the env residual's base (Sampling::env_base): 0 none, 1 centre sample, 2 unbumped
 };
 
 struct FrameState {

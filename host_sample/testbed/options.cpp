@@ -18,6 +18,7 @@ namespace {
 constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"env", kSignalEnv}, {"soft", kSignalSoft}};
 constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
 constexpr rrc_host::EnumName<uint32_t> kOnOffNames[] = {{"off", 0u}, {"on", 1u}};
+constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", 0u}, {"centre", 1u}, {"unbumped", 2u}, {"smooth", 3u}};
 
 }  // namespace
 
@@ -159,6 +160,11 @@ std::string usage() {
            "                           the sample less a stable PCSS estimate, its base, shows the result plus the\n"
            "                           base, and the base is the fill's prior (default on, the preset; off: rrc\n"
            "                           accumulates the sample, PCSS is the fill's fallback; README.md, \"The soft residual\")\n"
+           "  --env-residual B         rrc's residual on the env channel against a deterministic base the env pass\n"
+           "                           writes: off (default), centre (the bumped mirror's ray through the pixel centre)\n"
+           "                           unbumped (that ray reflected by the smooth sphere) or smooth (reflected by the\n"
+           "                           smooth sphere into the map without its hard edges; README.md, \"The env residual\":\n"
+           "                           measured, every base loses)\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
            "                           pixels younger than T frames (default: 4 on pcf, 2 on env, the presets; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
@@ -247,7 +253,10 @@ Options parse_options(int argc, const char* const* argv) {
             o.channels.env.fill_age = (uint32_t)c.integer(0, RRC_MAX_AGE_CAP + 1);
         else if (c.option("--soft-lambda"))
             o.channels.soft.lambda = c.number(0.0f, 0.9999f);
-        else if (c.option("--soft-residual"))
+        else if (c.option("--env-residual")) {
+            o.env_base = c.choice(kEnvBaseNames);
+            o.channels.env.residual = o.env_base != 0 ? 1u : 0u;
+        } else if (c.option("--soft-residual"))
             o.channels.soft.residual = c.choice(kOnOffNames);
         else if (c.option("--blend"))
             o.channels.pcf.blend = o.channels.env.blend = c.choice(rrc_host::kBlendNames);

@@ -35,6 +35,7 @@ struct Options {
     float env_view_lobe_px = kEnvViewLobePixels;
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
+    uint32_t env_base = 0;                   // --env-residual's base: 1 centre (the bumped mirror at the pixel centre), 2 unbumped
     float fps = 30.0f;                       // animation time step = 1/fps
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels

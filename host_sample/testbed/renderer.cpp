@@ -104,13 +104,15 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     stamp(kGBuffer);
     label(gpu_, cmd, "signals");
     const bool confidence = s_.channels.pcf.confidence != 0;
-    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence};
+    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence, s_.render.env_base};
     signals_->record(cmd, sig, state, sampling);
     // soft's fallback: the PCSS estimate, or the stable PCSS estimate as the residual's base,
     // which rrc subtracts and adds back (README.md, "The soft residual").
     const Image* soft_fallback = (sig & kSignalSoft) ? post_->record_soft_fallback(cmd, parity_, s_.channels.soft) : nullptr;
     stamp(kSignals);
-    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback);
+    const Image* env_base = s_.channels.env.residual ? &signals_->env_base() : nullptr;
+    rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback,
+                 env_base);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);

@@ -711,6 +711,15 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(parse_options(3, residual_off).channels.soft.residual, 0u);
     const char* residual_on[] = {"rrc-sample", "--soft-residual=on", "--soft-lambda", "0.8"};
     EXPECT_EQ(parse_options(4, residual_on).channels.soft.residual, 1u);
+    EXPECT_EQ(defaults.channels.env.residual, 0u) << "the env residual loses (README.md, \"The env residual\")";
+    EXPECT_EQ(defaults.env_base, 0u);
+    const char* env_smooth[] = {"rrc-sample", "--env-residual", "smooth"};
+    const Options smooth = parse_options(3, env_smooth);
+    EXPECT_EQ(smooth.channels.env.residual, 1u);
+    EXPECT_EQ(smooth.env_base, 3u);
+    EXPECT_EQ(smooth.channels.soft.residual, 1u) << "soft's stays the preset's";
+    const char* env_off[] = {"rrc-sample", "--env-residual", "centre", "--env-residual", "off"};
+    EXPECT_EQ(parse_options(5, env_off).channels.env.residual, 0u) << "the last one given wins";
     EXPECT_EQ(defaults.channels.pcf.antilag, 1u) << "the options keep the presets' detector";
     EXPECT_EQ(defaults.channels.pcf.antilag_gamma, 0.25f);
 
@@ -742,7 +751,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "0"},
                                                        {"rrc-sample", "--soft-lambda", "1"},
                                                        {"rrc-sample", "--soft-residual", "yes"},
-                                                       {"rrc-sample", "--soft-residual"}};
+                                                       {"rrc-sample", "--soft-residual"},
+                                                       {"rrc-sample", "--env-residual", "on"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

@@ -14,8 +14,8 @@ const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIP
                        IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
 
-struct SamplesPush {  // signal_pcf.comp and signal_env.comp (which reads the first four)
-    uint32_t samples, reference, seed, pattern, confidence;
+struct SamplesPush {  // signal_pcf.comp (the first five) and signal_env.comp
+    uint32_t samples, reference, seed, pattern, confidence, env_base;
 };
 struct SoftPush {
     glm::mat4 light_vp;
@@ -53,6 +53,7 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
     raw_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf signal");
     raw_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env signal");
     raw_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft signal");
+    env_base_ = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env base");
     ref_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf reference");
     ref_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env reference");
     ref_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft reference");
@@ -61,12 +62,12 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
     brute_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft brute force");
     const char* conf_names[3] = {"pcf confidence", "pcf weighted target", "pcf brute-force confidence"};
     for (int s = 0; s < 3; ++s) conf_[s] = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, conf_names[s]);
-    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft,
+    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft,
                              &conf_[0], &conf_[1], &conf_[2]});
 
     pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG, IMG},
                          sizeof(SamplesPush), 3);
-    env_ = ComputeKernel(gpu, "signal_env", rrc_sample_signal_env_comp, sizeof rrc_sample_signal_env_comp, {UBO, TEX, IMG},
+    env_ = ComputeKernel(gpu, "signal_env", rrc_sample_signal_env_comp, sizeof rrc_sample_signal_env_comp, {UBO, TEX, IMG, IMG},
                          sizeof(SamplesPush), 3);
     soft_ = ComputeKernel(gpu, "signal_soft", rrc_sample_signal_soft_comp, sizeof rrc_sample_signal_soft_comp, {UBO, TEX, TEX, TEX, IMG},
                           sizeof(SoftPush), 3);
@@ -81,6 +82,7 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
         env_.bind_buffer(s, 0, scene.uniforms());
         env_.bind_image(s, 1, g.normal.view, RO);
         env_.bind_image(s, 2, out.env.view, GEN);
+        env_.bind_image(s, 3, env_base_.view, GEN);  // written by set 0 only
         soft_.bind_buffer(s, 0, scene.uniforms());
         soft_.bind_image(s, 1, g.position.view, RO);
         soft_.bind_image(s, 2, g.normal.view, RO);
@@ -93,13 +95,13 @@ SignalPasses::~SignalPasses() {
     pcf_.release();
     env_.release();
     soft_.release();
-    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft, &conf_[0],
+    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft, &conf_[0],
                      &conf_[1], &conf_[2]})
         gpu_.destroy(*i);
 }
 
 void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling) {
-    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern, sampling.pcf_confidence ? 1u : 0u};
+    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern, sampling.pcf_confidence ? 1u : 0u, sampling.env_base};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalSoft) {
@@ -118,7 +120,7 @@ void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t s
                                const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows) {
     // The set (1 reference, 2 brute force) picks the stream.  Brute force stays the plain mean; the
     // reference writes the confidence-weighted target beside the exact one when asked.
-    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern, set == 1 && sampling.pcf_confidence ? 1u : 0u};
+    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern, set == 1 && sampling.pcf_confidence ? 1u : 0u, 0};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalSoft) {

@@ -34,6 +34,7 @@ struct Sampling {
     uint32_t seed = 0;
     uint32_t pcf_pattern = 0;     // 0 uniform disk, 1 the paper's rotated Poisson disk
     bool pcf_confidence = false;  // confidence-weighted taps, w written to confidence() (signal_pcf.comp)
+    uint32_t env_base = 0;        // the per-frame env pass also writes env_base(): 1 centre sample, 2 unbumped (signal_env.comp)
 };
 
 class SignalPasses {
@@ -69,6 +70,8 @@ public:
     /** R32F, written by every pcf pass: the per-frame signal's confidence w (1 without
      *  Sampling::pcf_confidence, and on the background); rrc's pcf confidence image. */
     const Image& pcf_confidence() const { return conf_[0]; }
+    /** The env residual's base (Sampling::env_base; README.md, "The env residual"). */
+    const Image& env_base() const { return env_base_; }
     /** R32F, checkpoints with confidence: the confidence-weighted disk mean, what the pcf
      *  channel converges to with confidence (signal_pcf.comp); 1 without. */
     const Image& pcf_weighted_target() const { return conf_[1]; }
@@ -80,6 +83,7 @@ private:
     void record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
                      const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows);
     SignalImages raw_, ref_, brute_;
+    Image env_base_;
     Image conf_[3];  // per set: confidence, weighted target, brute force's (unused)
     ComputeKernel pcf_, env_, soft_;
 };

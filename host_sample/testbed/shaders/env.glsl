@@ -29,6 +29,18 @@ vec3 env_radiance(vec3 d_world) {
     return mix(vec3(0.12, 0.1, 0.09), vec3(0.6, 0.56, 0.5), c);
 }
 
+// The environment without its hard edges: the sky's gradient, the banners'
+// and the checkers' mean colours, blended across the horizon over 0.1 of d.y,
+// no sun.  Smooth where env_radiance is not (the env residual's smooth base).
+vec3 env_smooth(vec3 d_world) {
+    vec3 d = normalize(d_world);  // the map's turn (u.bump.z) changes nothing here but the sun's
+    vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(max(d.y, 0.0)));
+    vec3 banners = 0.5 * (vec3(1.1, 0.55, 0.18) + vec3(0.18, 0.6, 0.32));
+    vec3 ground = 0.5 * (vec3(0.12, 0.1, 0.09) + vec3(0.6, 0.56, 0.5));
+    vec3 upper = mix(banners, sky, smoothstep(0.02, 0.12, d.y));
+    return mix(ground, upper, smoothstep(-0.05, 0.05, d.y));
+}
+
 // The bumped normal of the sphere at unit normal n: height h(p) =
 // sin(Fx) sin(Fy) sin(Fz) / F on the object-space point p = n * radius.
 vec3 bumped_normal(vec3 n) {
@@ -42,9 +54,9 @@ vec3 bumped_normal(vec3 n) {
 
 // The colour the mirror sphere shows along a camera ray through ndc (sub-pixel
 // position): the ray is intersected with the analytic sphere (rays that pass
-// the silhouette are clamped to the grazing point), the bumped normal
-// reflects it into the environment.
-vec3 sphere_sample(vec2 ndc) {
+// the silhouette are clamped to the grazing point), the bumped normal (or,
+// bumped false, the sphere's own) reflects it into the environment.
+vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
     vec4 far_point = u.inv_view_proj * vec4(ndc, 0.5, 1.0);
     vec3 o = u.camera_pos.xyz;
     vec3 d = normalize(far_point.xyz / far_point.w - o);
@@ -53,10 +65,11 @@ vec3 sphere_sample(vec2 ndc) {
     float disc = max(b * b - (dot(oc, oc) - u.sphere.w * u.sphere.w), 0.0);
     float t = -b - sqrt(disc);
     vec3 n = normalize(o + t * d - u.sphere.xyz);
-    vec3 nb = bumped_normal(n);
+    vec3 nb = bumped ? bumped_normal(n) : n;
     vec3 r = reflect(d, nb);
     if (dot(r, n) < 0.0) r = reflect(r, n);  // keep reflections above the geometric surface
-    return env_radiance(r);
+    return smooth_env ? env_smooth(r) : env_radiance(r);
 }
+vec3 sphere_sample(vec2 ndc) { return sphere_sample(ndc, true, false); }
 
 #endif
