@@ -87,7 +87,9 @@ constexpr float kSampleBlurBound = 0.5f;
  *  256x160 and 0.0456 at 1024x640, against 0.0572 and 0.0577; docs/PERFORMANCE.md, "The soft
  *  residual: what it buys, measured"); since 0.9's sample, when the residual is rrc's own
  *  option, with a Catmull-Rom history, which the residual's smoother input lets win at both
- *  sizes (0.0471 and 0.0435; the blur bound never acts on it, so B is 0).  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
+ *  sizes (0.0471 and 0.0435; the blur bound never acts on it, so B is 0), and lambda 0.95,
+ *  which wins by a little at both (0.0467 and 0.0429; docs/PERFORMANCE.md, "Catmull-Rom with
+ *  the residual").  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
  *  size) and the spatial fill below age 2, no fallback: 0.0435 at 256x160 and 0.0486 at
  *  1024x640, against 0.0430 and 0.0604 for 0.6's env (the fill below age 4, no lobe); below
  *  age 4 the fill would show every pixel the lobe caps at age 1 filled (0.1016 at 1024x640). */
@@ -98,7 +100,7 @@ struct ChannelPresets {
                         /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2};
-    ChannelSettings soft{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, /*confidence*/ 0, /*rectify*/ 0,
+    ChannelSettings soft{0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
                          /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};

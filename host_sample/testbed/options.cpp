@@ -155,7 +155,7 @@ std::string usage() {
            "                           (P * fov_y / height; default 18, the preset: 0.0245 rad at 640 rows; 0 = off;\n"
            "                           docs/CONVENTIONS.md, \"The view-dependent history\")\n"
            "  --env-view-lobe A        the same lobe given in radians, in [0, pi] (0 = off)\n"
-           "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.9, the preset)\n"
+           "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.95, the preset)\n"
            "  --soft-residual on|off   rrc's residual on the soft channel (rrc_channel_desc.residual): it accumulates\n"
            "                           the sample less a stable PCSS estimate, its base, shows the result plus the\n"
            "                           base, and the base is the fill's prior (default on, the preset; off: rrc\n"

@@ -701,7 +701,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.env.fill_age, 2u) << "below the lobe's age cap + 1 at 1024x640 (channel_presets.h)";
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
-    EXPECT_EQ(p.soft.lambda, 0.9f);
+    EXPECT_EQ(p.soft.lambda, 0.95f) << "the residual's preset (channel_presets.h)";
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
     for (const ChannelSettings& c : {p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins on pcf only";
     const char* bare[] = {"rrc-sample"};

@@ -233,7 +233,7 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     // b is deterministic, so the residual's noise is the sample's: with a linear fetch to fp32
     // rounding (tests/residual_reference_test.cpp: every displayed value is a twin's fed s - b,
     // plus b).  The preset's Catmull-Rom clamps its fetch to the bilinear taps' range, the one
-    // step that is not linear in the history: here within 3 % (1.4 % on this run); a b with
+    // step that is not linear in the history: here within 3 % (1.6 % on this run); a b with
     // noise of its own would add its variance.
     ASSERT_EQ(preset->config.channel.filter, RRC_HISTORY_FILTER_CATMULL_ROM);
     EXPECT_NEAR(preset->metrics.variance, without->metrics.variance, 3e-2 * without->metrics.variance)
