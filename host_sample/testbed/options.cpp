@@ -161,7 +161,7 @@ std::string usage() {
            "                           base, and the base is the fill's prior (default on, the preset; off: rrc\n"
            "                           accumulates the sample, PCSS is the fill's fallback; README.md, \"The soft residual\")\n"
            "  --env-residual B         rrc's residual on the env channel against a deterministic base the env pass\n"
-           "                           writes: off (default), centre (the bumped mirror's ray through the pixel centre)\n"
+           "                           writes: off (default), centre (the bumped mirror's ray through the pixel centre),\n"
            "                           unbumped (that ray reflected by the smooth sphere) or smooth (reflected by the\n"
            "                           smooth sphere into the map without its hard edges; README.md, \"The env residual\":\n"
            "                           measured, every base loses)\n"
