@@ -8,7 +8,7 @@
 // The per-frame signal (set 0) with `base` non-zero also writes o_base, a
 // deterministic estimate the env channel's residual subtracts (README.md,
 // "The env residual"): 1 the sample at the pixel's centre, 2 the same ray
-// reflected by the unbumped sphere.
+// reflected by the unbumped sphere, 3 that reflection into env_smooth.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "env.glsl"
