@@ -128,6 +128,7 @@ FrameState make_frame_state(const Scene& scene, const RenderSettings& s, int ind
     u.camera_pos = glm::vec4(cam.eye, (float)t);
     u.sphere = scene.sphere;
     u.bump = glm::vec4(55.0f, 0.45f, scene.light_angle(index), 0.0f);  // z: the environment map's turn (shaders/env.glsl)
+    u.mirror_eye = scene.frozen_mirror_view ? glm::vec4(scene.camera(0.0).eye, 1.0f) : glm::vec4(0.0f);
     u.frame = glm::uvec4((uint32_t)index, (uint32_t)s.taps, s.width, s.height);
     const std::vector<glm::vec2> disk = poisson_disk(s.taps);
     for (int i = 0; i < kMaxTaps; ++i) u.poisson[i] = i < (int)disk.size() ? glm::vec4(disk[i], 0, 0) : glm::vec4(0.0f);

@@ -35,10 +35,11 @@ struct FrameUniforms {
     glm::vec4 lamp_colour;        // w: sun map size (texels)
     glm::vec4 sphere;             // mirror sphere centre, radius
     glm::vec4 bump;               // x: bump frequency (1/m), y: strength, z: the environment map's turn (radians, Scene::light_angle)
+    glm::vec4 mirror_eye;         // w 1: the eye the mirror sphere reflects for (Scene::frozen_mirror_view); w 0: the camera's
     glm::uvec4 frame;             // x: frame index, y: taps k, z: width, w: height
     glm::vec4 poisson[kMaxTaps];  // xy: the k-tap pattern in the unit disk
 };
-static_assert(sizeof(FrameUniforms) == 6 * 64 + 13 * 16 + kMaxTaps * 16, "std140 layout");
+static_assert(sizeof(FrameUniforms) == 6 * 64 + 14 * 16 + kMaxTaps * 16, "std140 layout");
 
 /** std430; shaders/common.glsl's ObjectData. */
 struct GpuObject {

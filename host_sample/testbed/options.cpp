@@ -178,6 +178,9 @@ std::string usage() {
            "  --shadow-map-size S      sun and lamp shadow maps, S x S texels (default 512)\n"
            "  --pcf-radius R           PCF disk radius in sun shadow-map texels (default 3)\n"
            "  --static-camera          keep the camera still (the torus still moves)\n"
+           "  --frozen-mirror-view     the mirror sphere reflects as seen from frame 0's eye, whatever the camera\n"
+           "                           does (signals and reference alike): env without its view dependence, to\n"
+           "                           measure how much of env's error that is (README.md, \"What holds env back\")\n"
            "  --light-speed DEG        the moving light: the sun and the environment map turn DEG degrees a frame\n"
            "                           about the vertical axis (default 0: fixed; the area lamp never moves)\n"
            "  --no-object-id           do not give rrc the G-buffer's per-pixel object ids (default: given, so a hit\n"
@@ -305,6 +308,8 @@ Options parse_options(int argc, const char* const* argv) {
             o.young_ages = (uint32_t)c.integer(1, 255);
         else if (c.flag("--static-camera"))
             o.static_camera = true;
+        else if (c.flag("--frozen-mirror-view"))
+            o.frozen_mirror_view = true;
         else if (c.option("--light-speed"))
             o.light_speed = c.number(-180.0f, 180.0f);
         else if (c.flag("--no-object-id"))

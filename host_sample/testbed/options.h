@@ -40,6 +40,7 @@ struct Options {
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels
     bool static_camera = false;              // hold the camera still (the mover still moves)
+    bool frozen_mirror_view = false;         // the mirror reflects as seen from frame 0's eye (Scene::frozen_mirror_view)
     // The finishing steps (README.md, "Finishing steps"): display-only PCF remaps (never fed back to rrc).
     bool pcf_smoothstep = false;
     float pcf_smooth_e0 = 0.0f, pcf_smooth_e1 = 1.0f;  // --pcf-smoothstep E0,E1

@@ -65,6 +65,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     Scene scene = Scene::make(o.scene);
     if (o.static_camera) scene.camera_speed = 0.0f;
     scene.light_speed = o.light_speed;
+    scene.frozen_mirror_view = o.frozen_mirror_view;
     RunResult run;
     run.options = o;
     run.signals = o.signals ? (o.signals & scene.signals) : scene.signals;

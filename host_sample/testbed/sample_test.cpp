@@ -521,6 +521,45 @@ TEST(RrcSample, AccumulatedPcfVariesLessThanRawOnStaticPixels) {
     EXPECT_LT(var_acc, 0.6 * var_raw) << "temporal variance, accumulated / raw = " << var_acc / var_raw;
 }
 
+// The frozen mirror view (--frozen-mirror-view, Scene::frozen_mirror_view): the mirror
+// reflects as seen from frame 0's eye.  On frame 0 that is the camera's own eye, so the
+// env target is the default's (to rounding: the reflected direction is formed from the
+// point and the eye instead of the camera ray); once the camera has moved, the default's
+// reflection has turned with the view and the frozen one has not, so they differ.
+TEST(RrcSample, FrozenMirrorViewIsTheCamerasOnFrameZeroOnly) {
+    std::vector<float> reference[2][2];  // [frozen][frame 0, frame 5]
+    std::vector<uint8_t> material;
+    for (int frozen = 0; frozen < 2; ++frozen) {
+        Options o = tiny(frozen ? "frozen_mirror" : "mirror");
+        o.signals = kSignalEnv;
+        o.reference_frames = {0};
+        o.write_images = false;
+        o.frozen_mirror_view = frozen != 0;
+        RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
+            if (f.index == 0) reference[frozen][0] = f.env.reference, material = f.material;
+            if (f.index == 5) reference[frozen][1] = f.env.reference;
+        });
+        EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    }
+    for (const auto& run : reference)
+        for (const auto& image : run) ASSERT_EQ(image.size(), material.size() * 4) << "RGBA references of frames 0 and 5";
+    size_t sphere = 0, changed = 0;
+    double frame0_gap = 0.0;
+    for (size_t i = 0; i < material.size(); ++i) {
+        if (material[i] != 3u) continue;  // MAT_SPHERE (shaders/common.glsl)
+        ++sphere;
+        double gap = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            frame0_gap = std::max(frame0_gap, (double)std::abs(reference[1][0][4 * i + c] - reference[0][0][4 * i + c]));
+            gap = std::max(gap, (double)std::abs(reference[1][1][4 * i + c] - reference[0][1][4 * i + c]));
+        }
+        if (gap > 0.02) ++changed;
+    }
+    ASSERT_GT(sphere, 40u) << "the mirror sphere must be in view";
+    EXPECT_LT(frame0_gap, 1e-3) << "frame 0: the frozen eye is the camera's";
+    EXPECT_GT(changed, sphere / 10) << "frame 5: " << changed << " of " << sphere << " sphere pixels differ by > 0.02";
+}
+
 // A scene that does not use a signal makes no channel for it.
 TEST(RrcSample, SceneWithoutMirrorSphereHasNoEnvChannel) {
     Options o = tiny("courtyard");
@@ -720,6 +759,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(smooth.channels.soft.residual, 1u) << "soft's stays the preset's";
     const char* env_off[] = {"rrc-sample", "--env-residual", "centre", "--env-residual", "off"};
     EXPECT_EQ(parse_options(5, env_off).channels.env.residual, 0u) << "the last one given wins";
+    EXPECT_FALSE(defaults.frozen_mirror_view);
+    const char* frozen[] = {"rrc-sample", "--frozen-mirror-view"};
+    EXPECT_TRUE(parse_options(2, frozen).frozen_mirror_view);
     EXPECT_EQ(defaults.channels.pcf.antilag, 1u) << "the options keep the presets' detector";
     EXPECT_EQ(defaults.channels.pcf.antilag_gamma, 0.25f);
 

@@ -67,6 +67,12 @@ public:
      *  the environment map turn about the vertical (y) axis, counter-clockwise seen from above; 0 = the
      *  scene's fixed light.  The area lamp (soft shadows) does not move. */
     float light_speed = 0.0f;
+    /** The frozen mirror view (rrc-sample --frozen-mirror-view): the mirror sphere reflects the
+     *  environment as seen from camera(0)'s eye, whatever the camera does, so env's signal at a
+     *  surface point no longer depends on the view: what is left of env's error under camera
+     *  motion is the history's resampling, not the view (host_sample/testbed/README.md, "What holds
+     *  env back at 1024x640").  false = the mirror as the camera sees it. */
+    bool frozen_mirror_view = false;
     /** The light's turn at frame `index`, radians (0 when light_speed is 0). */
     float light_angle(int index) const;
     /** Towards the sun at frame `index`: sun_direction turned by light_angle(index). */

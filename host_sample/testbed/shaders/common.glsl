@@ -36,6 +36,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
     vec4 lamp_colour;  // w: sun map size
     vec4 sphere;
     vec4 bump;
+    vec4 mirror_eye;   // w 1: the eye the mirror reflects for (--frozen-mirror-view); w 0: the camera's
     uvec4 frame;       // index, taps, width, height
     vec4 poisson[MAX_TAPS];
 } u;

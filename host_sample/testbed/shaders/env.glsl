@@ -55,7 +55,8 @@ vec3 bumped_normal(vec3 n) {
 // The colour the mirror sphere shows along a camera ray through ndc (sub-pixel
 // position): the ray is intersected with the analytic sphere (rays that pass
 // the silhouette are clamped to the grazing point), the bumped normal (or,
-// bumped false, the sphere's own) reflects it into the environment.
+// bumped false, the sphere's own) reflects it into the environment (or, with
+// the frozen mirror view, the direction from u.mirror_eye to the point).
 vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
     vec4 far_point = u.inv_view_proj * vec4(ndc, 0.5, 1.0);
     vec3 o = u.camera_pos.xyz;
@@ -66,7 +67,10 @@ vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
     float t = -b - sqrt(disc);
     vec3 n = normalize(o + t * d - u.sphere.xyz);
     vec3 nb = bumped ? bumped_normal(n) : n;
-    vec3 r = reflect(d, nb);
+    // The frozen mirror view (--frozen-mirror-view): reflect the direction from a fixed eye
+    // to the surface point instead of the camera ray's, so the point's colour stays put.
+    vec3 v = u.mirror_eye.w != 0.0 ? normalize(o + t * d - u.mirror_eye.xyz) : d;
+    vec3 r = reflect(v, nb);
     if (dot(r, n) < 0.0) r = reflect(r, n);  // keep reflections above the geometric surface
     return smooth_env ? env_smooth(r) : env_radiance(r);
 }
