@@ -546,7 +546,7 @@ TEST(RrcSample, FrozenMirrorViewIsTheCamerasOnFrameZeroOnly) {
     size_t sphere = 0, changed = 0;
     double frame0_gap = 0.0;
     for (size_t i = 0; i < material.size(); ++i) {
-        if (material[i] != 3u) continue;  // MAT_SPHERE (shaders/common.glsl)
+        if (material[i] != kMatSphere) continue;
         ++sphere;
         double gap = 0.0;
         for (int c = 0; c < 3; ++c) {
