@@ -31,9 +31,9 @@ struct ChannelSettings {
     // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"), radians; 0 = off.
     float view_lobe = 0.0f;
     // 0.9 the residual (docs/CONVENTIONS.md, "The residual"): the channel accumulates the sample
-    // less the fallback image, its base, and shows the result plus the base; the sample has a base
-    // for soft only, the stable PCSS estimate (README.md, "The soft residual"), which is then also
-    // the fill's prior.
+    // less the fallback image, its base, and shows the result plus the base.  The sample's bases:
+    // soft's stable PCSS estimate (README.md, "The soft residual"), which is then also the fill's
+    // prior; pcf's kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual").
     uint32_t residual = 0;
 };
 
@@ -47,14 +47,13 @@ struct ChannelSettings {
  *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
 constexpr float kEnvViewLobePixels = 18.0f;
 
-/** pcf's fill window by image height (rrc_channel_desc.fill_radius): the window's half width is in
- *  pixels, so against the scene's shadow edges it is four times as wide at 256x160 as at
- *  1024x640.  On the sample's moving scene the 3x3 window (radius 1) wins below 320 rows and the
- *  library's 5x5 (radius 2) from 320 rows up (rrc-sweep's pcf preset row, 4 seeds: 0.0336
- *  against 0.0363 at 256x160; 0.0278 against 0.0271 at 512x320, 0.0227 against 0.0212 at
- *  1024x640; docs/PERFORMANCE.md, "The pcf fill's window by size"). */
-constexpr uint32_t kPcfSmallFillRadius = 1;
-constexpr uint32_t kPcfSmallFillBelowRows = 320;
+/** The bilinear shadow compares of pcf's residual base (rrc-sample's --pcf-residual default;
+ *  README.md, "The pcf residual"): as many as the per-frame signal's k = 4 taps, so that on a
+ *  GPU, whose filtered depth-compare sampler returns a bilinear compare in one fetch, the frame
+ *  fetches 8 times against brute force's 16 (16 + 4 texel reads here, the sample's shader
+ *  reading each texel).  Fewer lose (256x160: 2 compares 0.0381, 3 0.0314), more cost more than
+ *  they buy past the 4k brute force (5: 0.0238; docs/PERFORMANCE.md, "The pcf residual"). */
+constexpr uint32_t kSamplePcfBaseTaps = 4;
 
 /** The PCSS fallback's weight in soft's fill, in samples (rrc_channel_desc.fill_prior): rrc-sample's
  *  --fill-prior default, and the sweep's soft preset row's (host_sample/studies/sweep/README.md). */
@@ -69,12 +68,15 @@ constexpr float kSampleBlurBound = 0.5f;
  *  against the fixed target (docs/PERFORMANCE.md, "Presets chosen from the fronts", where
  *  each value's figure is), a cure or finishing step only where it wins at 256x160 and at
  *  1024x640 (rrc-sample's accumulated RMSE, mean over seeds 0..3).  pcf: lambda 0.9, the
- *  lag detector with a narrow box (gamma_a 0.25, T 0.25), the spatial fill below age 4 (its
- *  window by size: pcf_preset below), a
- *  bilinear history with the blur bound B = 0.25 px^2, not rectified (0.0338 at 256x160 and
- *  0.0212 at 1024x640, against 0.0387 and 0.0242 for the 0.5 preset: Catmull-Rom, rectified;
- *  docs/PERFORMANCE.md, "Chosen again with the blur bound and the bias by region (0.6)" and
- *  "The pcf fill's window by size").
+ *  residual against kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual"), the
+ *  spatial fill below age 4 in the library's 5x5 window, a bilinear history, no lag detector,
+ *  no blur bound, not rectified: 0.0259 at 256x160 and 0.0196 at 1024x640 (docs/PERFORMANCE.md,
+ *  "The pcf residual"), against 0.0338 and 0.0212 for 0.9's pcf (no residual; the lag detector
+ *  with a narrow box, gamma_a 0.25 and T 0.25; B = 0.25 px^2; a 3x3 window below 320 rows),
+ *  which with the residual drop right histories (the detector's box is the residual's, narrow:
+ *  0.0309 with it) or cost variance the residual no longer needs (the bound: 0.0266 against 0.0290
+ *  with the old placement of the base's points, the same filter), and 0.0387 and 0.0242 for
+ *  0.5's (Catmull-Rom, rectified).
  *  soft with the spatial fill (the sample
  *  passes its PCSS estimate as the fallback, --fill-prior); the lag detector makes soft
  *  worse and changes nothing on env, which stay without.  AGE_AWARE everywhere: the same as
@@ -96,8 +98,8 @@ constexpr float kSampleBlurBound = 0.5f;
 struct ChannelPresets {
     ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
-                        /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 1, /*antilag_gamma*/ 0.25f,
-                        /*antilag_threshold*/ 0.25f, /*blur_bound*/ 0.25f};
+                        /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
+                        /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
     ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2};
     ChannelSettings soft{0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, /*confidence*/ 0, /*rectify*/ 0,
@@ -105,14 +107,5 @@ struct ChannelPresets {
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
                          /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
 };
-
-/** rrc-sample's pcf preset at an image height: ChannelPresets::pcf with the fill window of
- *  kPcfSmallFillRadius below kPcfSmallFillBelowRows rows (0, the library's 2, from there up).
- *  The sweep's and the rectification study's preset rows are this at their own size. */
-inline ChannelSettings pcf_preset(uint32_t height) {
-    ChannelSettings pcf = ChannelPresets{}.pcf;
-    pcf.fill_radius = height < kPcfSmallFillBelowRows ? kPcfSmallFillRadius : 0u;
-    return pcf;
-}
 
 }  // namespace rrc_sample

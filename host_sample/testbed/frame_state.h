@@ -58,6 +58,7 @@ struct RenderSettings {
     uint32_t seed = 0;         // ensemble member: moves every random stream (0: the sample's own)
     uint32_t pcf_pattern = 0;  // 0 the uniform disk (unbiased for the exact target), 1 the paper's rotated Poisson disk
     uint32_t env_base = 0;     // the env residual's base (Sampling::env_base): 0 none, 1 centre sample, 2 unbumped
+    uint32_t pcf_base = 0;     // the pcf residual's base (SignalPasses::record_pcf_base): its bilinear taps, 0 none
 };
 
 struct FrameState {

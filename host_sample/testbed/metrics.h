@@ -30,7 +30,7 @@ struct SignalErrors {
     std::string signal;
     ErrorStats raw, accumulated;
     ErrorStats brute_force;                 // 4x the per-frame samples, one frame
-    ErrorStats shown, fallback;             // soft only: displayed (accumulated + PCSS fallback), PCSS alone
+    ErrorStats shown, fallback;             // soft: displayed (accumulated + PCSS fallback), PCSS alone; pcf: -, its residual's base alone
     ErrorStats raw_hits, accumulated_hits;  // over cache hits only
 };
 

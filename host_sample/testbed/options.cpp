@@ -18,6 +18,7 @@ namespace {
 constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"env", kSignalEnv}, {"soft", kSignalSoft}};
 constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
 constexpr rrc_host::EnumName<uint32_t> kOnOffNames[] = {{"off", 0u}, {"on", 1u}};
+constexpr int kMaxPcfBaseTaps = 64;  // --pcf-residual's bilinear taps
 constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", 0u}, {"centre", 1u}, {"unbumped", 2u}, {"smooth", 3u}};
 
 }  // namespace
@@ -121,8 +122,7 @@ std::string usage() {
            "                           default 8, the preset; 0 = off); the display then shows rrc's output, not the\n"
            "                           --soft-prior blend\n"
            "  --fill-radius R          the soft fill's window half width (default 0: the library's, 2)\n"
-           "  --pcf-fill-radius R      the pcf fill's window half width (default: the preset's, 1 below 320 rows and\n"
-           "                           the library's 2 from there up; 0 = the library's)\n"
+           "  --pcf-fill-radius R      the pcf fill's window half width (default 0: the library's, 2, the preset)\n"
            "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
            "                           fallback image (default 4; 0 = no fallback)\n"
@@ -138,14 +138,14 @@ std::string usage() {
            "  --rectify G              pcf and env channels' history rectification with gamma G (0 = off; default: off,\n"
            "                           the presets, channel_presets.h)\n"
            "  --antilag LIST           the lag detector on exactly these channels (pcf,env,soft, or none; default: the\n"
-           "                           presets', pcf with gamma 0.25, threshold 0.25): a history that left its 3x3 box\n"
-           "                           is shortened (docs/CONVENTIONS.md, \"The lag detector\")\n"
+           "                           presets', none): a history that left its 3x3 box is shortened\n"
+           "                           (docs/CONVENTIONS.md, \"The lag detector\")\n"
            "  --antilag-gamma G        its box half width in sigmas (default: the preset's on a preset channel when\n"
            "                           --antilag is not given, else the library's, 2)\n"
            "  --antilag-threshold T    its relative gap that drops the history (default: as --antilag-gamma; the\n"
            "                           library's is 0.5)\n"
            "  --blur-bound LIST        the blur bound on exactly these channels (pcf,env,soft, or none; default: the\n"
-           "                           presets', pcf 0.25 and soft 1 px^2): a bilinear or Gaussian history's age is capped so its stationary\n"
+           "                           presets', none): a bilinear or Gaussian history's age is capped so its stationary\n"
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"
@@ -165,6 +165,10 @@ std::string usage() {
            "                           unbumped (that ray reflected by the smooth sphere) or smooth (reflected by the\n"
            "                           smooth sphere into the map without its hard edges; README.md, \"The env residual\":\n"
            "                           measured, every base loses)\n"
+           "  --pcf-residual N         rrc's residual on the pcf channel against a deterministic base the sample\n"
+           "                           writes: the mean of N bilinear shadow compares on a circle inside the PCF disk\n"
+           "                           (default 4, the preset; 0 = off: rrc accumulates the sample; at most 64;\n"
+           "                           README.md, \"The pcf residual\")\n"
            "  --pcf-fill T, --env-fill T  rrc's spatial fill (library defaults, no fallback) on the pcf / env channel for\n"
            "                           pixels younger than T frames (default: 4 on pcf, 2 on env, the presets; 0 = off)\n"
            "  --blend B                pcf and env channels' blend: fixed, age_aware (default) or running_mean\n"
@@ -259,6 +263,9 @@ Options parse_options(int argc, const char* const* argv) {
         else if (c.option("--env-residual")) {
             o.env_base = c.choice(kEnvBaseNames);
             o.channels.env.residual = o.env_base != 0 ? 1u : 0u;
+        } else if (c.option("--pcf-residual")) {
+            o.pcf_base = (uint32_t)c.integer(0, kMaxPcfBaseTaps);
+            o.channels.pcf.residual = o.pcf_base != 0 ? 1u : 0u;
         } else if (c.option("--soft-residual"))
             o.channels.soft.residual = c.choice(kOnOffNames);
         else if (c.option("--blend"))
@@ -329,12 +336,12 @@ Options parse_options(int argc, const char* const* argv) {
     o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
     o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
     o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
-    // pcf's window: the preset's for the size (channel_presets.h, pcf_preset) unless given; rrc
-    // refuses a window without a fill, so --pcf-fill 0 leaves it at 0 and refuses one given.
+    // pcf's window: the preset's unless given; rrc refuses a window without a fill, so --pcf-fill 0
+    // leaves it at 0 and refuses one given.
     if (o.channels.pcf.fill_age == 0 && o.pcf_fill_radius > 0) throw OptionError("--pcf-fill-radius needs the pcf fill (--pcf-fill T > 0)");
     o.channels.pcf.fill_radius = o.channels.pcf.fill_age == 0 ? 0u
                                  : o.pcf_fill_radius >= 0  ? (uint32_t)o.pcf_fill_radius
-                                                           : pcf_preset(o.height).fill_radius;
+                                                           : ChannelPresets{}.pcf.fill_radius;
     // Not given, --antilag keeps the presets' channels and constants (--antilag-gamma/-threshold
     // override them); given, the listed channels get the given constants or the library's.
     const ChannelPresets presets;

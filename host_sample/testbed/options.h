@@ -25,7 +25,7 @@ struct Options {
     float soft_prior = 4.0f;            // PCSS fallback weight, in samples (see README.md)
     float fill_prior = kSampleFillPrior;  // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
     uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
-    int pcf_fill_radius = -1;           // --pcf-fill-radius (-1: the preset's for --size, channel_presets.h pcf_preset)
+    int pcf_fill_radius = -1;           // --pcf-fill-radius (-1: the preset's, the library's 5x5)
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
     // Without --soft-fill the three fill options are parsed but rrc gets no fill members.
     ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
@@ -36,6 +36,7 @@ struct Options {
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
     uint32_t env_base = 0;                   // --env-residual's base: 1 centre (the bumped mirror at the pixel centre), 2 unbumped
+    uint32_t pcf_base = kSamplePcfBaseTaps;  // --pcf-residual's base: that many bilinear shadow compares (0 off)
     float fps = 30.0f;                       // animation time step = 1/fps
     uint32_t sun_map = 512, lamp_map = 512;  // shadow-map sizes
     float pcf_radius = 3.0f;                 // PCF disk radius in sun-map texels

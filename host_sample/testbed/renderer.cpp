@@ -63,6 +63,7 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s)
     slot_.prev_clip = r.add(gbuffer_->images().prev_clip, ro);
     slot_.confidence = r.add(signals_->pcf_confidence());
     slot_.weighted = r.add(signals_->pcf_weighted_target());
+    slot_.pcf_base = r.add(signals_->pcf_base());
     r.allocate();
 }
 
@@ -109,10 +110,12 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     // soft's fallback: the PCSS estimate, or the stable PCSS estimate as the residual's base,
     // which rrc subtracts and adds back (README.md, "The soft residual").
     const Image* soft_fallback = (sig & kSignalSoft) ? post_->record_soft_fallback(cmd, parity_, s_.channels.soft) : nullptr;
+    // pcf's residual base (README.md, "The pcf residual"), in the signal passes' time.
+    const Image* pcf_base = (sig & kSignalPcf) ? signals_->record_pcf_base(cmd, s_.render.pcf_base) : nullptr;
     stamp(kSignals);
     const Image* env_base = s_.channels.env.residual ? &signals_->env_base() : nullptr;
     rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback,
-                 env_base);
+                 env_base, pcf_base);
     stamp(kRrc);
     label(gpu_, cmd, "post");
     post_->record_age_and_fallback(cmd, sig, parity_, s_.soft_prior);
@@ -135,6 +138,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     for (int k = 0; k < 3; ++k) slots.push_back(slot_.raw[k]), slots.push_back(slot_.acc[k]), slots.push_back(slot_.rrc_age[k]);
     if (confidence) slots.push_back(slot_.confidence);
     if (confidence && checkpoint) slots.push_back(slot_.weighted);
+    if (s_.render.pcf_base && checkpoint) slots.push_back(slot_.pcf_base);
     if (checkpoint)
         for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);
     if (checkpoint) slots.push_back(slot_.colour[1]), slots.push_back(slot_.colour[2]);
@@ -203,6 +207,8 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
         out.pcf.confidence = copy_of<float>(r.data(slot_.confidence), r.bytes(slot_.confidence));
         if (out.checkpoint) out.pcf.weighted_target = copy_of<float>(r.data(slot_.weighted), r.bytes(slot_.weighted));
     }
+    if ((s_.signals & kSignalPcf) && s_.render.pcf_base && out.checkpoint)
+        out.pcf.base = copy_of<float>(r.data(slot_.pcf_base), r.bytes(slot_.pcf_base));
     if ((s_.signals & kSignalPcf) && s_.pcf_display.any()) {
         out.pcf.display.resize(out.pcf.accumulated.size());
         for (size_t i = 0; i < out.pcf.display.size(); ++i) out.pcf.display[i] = s_.pcf_display.apply(out.pcf.accumulated[i]);

@@ -84,7 +84,8 @@ uint64_t RrcStage::memory_bytes() const {
 }
 
 void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
-                      bool reset, const Image* pcf_confidence, const Image* soft_fallback, const Image* env_base) {
+                      bool reset, const Image* pcf_confidence, const Image* soft_fallback, const Image* env_base,
+                      const Image* pcf_base) {
     const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
     std::vector<rrc_vulkan_channel_images> ch;
     auto add = [&](const Image& in, const Image& out, const Image& age, const ChannelSettings& cs, const Image* confidence,
@@ -104,7 +105,7 @@ void RrcStage::record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages&
         ch.push_back(c);
     };
     const ChannelPresets& p = settings_.channels;
-    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf, ages_[0], p.pcf, pcf_confidence, nullptr);
+    if (settings_.signals & kSignalPcf) add(samples.pcf, out_.pcf, ages_[0], p.pcf, pcf_confidence, pcf_base);
     if (settings_.signals & kSignalEnv) add(samples.env, out_.env, ages_[1], p.env, nullptr, env_base);
     if (settings_.signals & kSignalSoft) add(samples.soft, out_.soft, ages_[2], p.soft, nullptr, soft_fallback);
 

@@ -48,7 +48,7 @@ public:
      *  fill_prior > 0), already written (and made visible) by the caller. */
     void record(VkCommandBuffer cmd, const GBuffer& g, const SignalImages& samples, const FrameState& state, uint64_t frame_index,
                 bool reset, const Image* pcf_confidence = nullptr, const Image* soft_fallback = nullptr,
-                const Image* env_base = nullptr);
+                const Image* env_base = nullptr, const Image* pcf_base = nullptr);
 
     const SignalImages& accumulated() const { return out_; }
     /** rrc's age of each channel after the frame (R16_UINT; rrc_vulkan_channel_images.age): the

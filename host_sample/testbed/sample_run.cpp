@@ -96,6 +96,7 @@ RunResult run_sample(const Options& o, std::ostream* progress,
     rs.render.seed = o.seed;
     rs.render.pcf_pattern = o.pcf_pattern;
     rs.render.env_base = o.channels.env.residual ? o.env_base : 0u;
+    rs.render.pcf_base = o.channels.pcf.residual ? o.pcf_base : 0u;
     rs.use_object_id = o.object_id;
     rs.reference_samples = (uint32_t)o.reference_samples;
 

@@ -85,7 +85,8 @@ TEST(RrcSample, EnvViewLobeReachesTheKernelOnTheVulkanPath) {
 
 // The sample's two ages (README.md, "The age map"): rrc's per channel (rrc_vulkan_channel_images.age)
 // is the track age capped at the channel's cap where no cure shortens the history, and never above
-// it; the pcf preset's cures (the lag detector, the blur bound) shorten some.
+// it; the cures that shorten a history (0.9's pcf preset: the lag detector with a narrow box, the
+// blur bound B = 0.25 px^2) shorten some.
 TEST(RrcSample, RrcsAgesAreTheTrackAgesLessTheCures) {
     for (bool cures : {false, true}) {
         Options o = tiny(cures ? "ages_cured" : "ages_plain");
@@ -94,10 +95,9 @@ TEST(RrcSample, RrcsAgesAreTheTrackAgesLessTheCures) {
         o.reference_every = 0;
         o.write_images = false;
         o.channels.pcf.age_cap = 8;
-        if (!cures) {
-            o.channels.pcf.antilag = 0;
-            o.channels.pcf.blur_bound = 0.0f;
-        }
+        o.channels.pcf.antilag = cures ? 1u : 0u;
+        o.channels.pcf.antilag_gamma = o.channels.pcf.antilag_threshold = cures ? 0.25f : 0.0f;
+        o.channels.pcf.blur_bound = cures ? 0.25f : 0.0f;
         size_t hits = 0, shorter = 0, frames = 0;
         RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord&) {
             ASSERT_EQ(f.pcf.age.size(), f.age.size());
@@ -406,6 +406,46 @@ TEST(RrcSample, SoftResidualAddsBackWhatItTookAway) {
     EXPECT_GT(moved, 0u) << "where it moves (the torus's shadow) the history follows it";
 }
 
+// pcf's residual (README.md, "The pcf residual"): the base is the bilinear compares, the same for
+// every seed (deterministic), nearer the target than one frame's k = 4 random taps; rrc adds it back,
+// so a fresh history (frame 0) shows the sample itself.
+TEST(RrcSample, PcfResidualBaseIsDeterministicAndAddedBack) {
+    std::vector<std::vector<float>> bases[2];
+    for (uint32_t seed : {0u, 1u}) {
+        Options o = tiny("pcf_residual_" + std::to_string(seed));
+        o.signals = kSignalPcf;
+        o.frames = 3;
+        o.reference_every = 1;
+        o.write_images = false;
+        o.seed = seed;
+        ASSERT_EQ(o.channels.pcf.residual, 1u) << "the preset's";
+        ASSERT_EQ(o.pcf_base, kSamplePcfBaseTaps);
+        o.channels.pcf.fill_age = 0;  // the fill smooths young pixels' residuals: frame 0 would not be the sample
+        o.channels.pcf.fill_radius = 0;
+        RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord& rec) {
+            ASSERT_TRUE(f.checkpoint);
+            ASSERT_EQ(f.pcf.base.size(), f.pcf.raw.size()) << "frame " << f.index;
+            bases[seed].push_back(f.pcf.base);
+            const SignalErrors* e = find(rec, "pcf");
+            ASSERT_NE(e, nullptr);
+            EXPECT_GT(e->fallback.pixels, 0u);
+            EXPECT_LT(e->fallback.rmse, 0.75 * e->raw.rmse) << "frame " << f.index << ": the base is nearer the target than one frame";
+            EXPECT_GT(e->fallback.rmse, 0.0) << "and not the target itself";
+            if (f.index != 0) return;
+            // The history stores r = s - b at fp16 (docs/CONVENTIONS.md, "The residual"): half an
+            // ulp, 2^-11 |r|, and the fp32 sums.
+            for (size_t i = 0; i < f.mask.size(); ++i) {
+                const float r_abs = std::fabs(f.pcf.raw[i] - f.pcf.base[i]);
+                ASSERT_LE(std::fabs(f.pcf.accumulated[i] - f.pcf.raw[i]), 1e-6f + r_abs / 2048.0f)
+                    << "pixel " << i << ": (s - b) + b on a fresh history";
+            }
+        });
+        EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+    }
+    ASSERT_EQ(bases[0].size(), 3u);
+    EXPECT_EQ(bases[0], bases[1]) << "the base does not depend on the seed";
+}
+
 // The oracle against a test that accepts nearly anything: a fixed epsilon of
 // 2^24 ulp lets disoccluded pixels (behind the moving torus, at the temple's
 // silhouettes as the camera flies) hit, and the oracle must see them; it must
@@ -658,14 +698,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.env.antilag_gamma, 0.0f) << "a channel without the detector gets none of its members (the library refuses them)";
     EXPECT_EQ(o.channels.soft.lambda, 0.9f);
     EXPECT_EQ(o.channels.pcf.lambda, ChannelPresets{}.pcf.lambda);
-    // Not given, --antilag keeps the presets' detector; --antilag-gamma then overrides the preset's constant.
-    const char* preset_gamma[] = {"rrc-sample", "--antilag-gamma", "1"};
-    o = parse_options(3, preset_gamma);
-    EXPECT_EQ(o.channels.pcf.antilag, 1u);
-    EXPECT_EQ(o.channels.pcf.antilag_gamma, 1.0f);
-    EXPECT_EQ(o.channels.pcf.antilag_threshold, ChannelPresets{}.pcf.antilag_threshold);
-    EXPECT_EQ(o.channels.env.antilag, 0u);
-    const char* no_antilag[] = {"rrc-sample", "--antilag", "none"};
+    // Not given, --antilag keeps the presets' detector, none: --antilag-gamma alone is refused (below).
+    const char* nothing[] = {"rrc-sample"};
+    o = parse_options(1, nothing);
+    for (const ChannelSettings& c : {o.channels.pcf, o.channels.env, o.channels.soft}) EXPECT_EQ(c.antilag, 0u);
+    const char* no_antilag[] = {"rrc-sample", "--antilag", "none"};  // the same as the presets
     o = parse_options(3, no_antilag);
     for (const ChannelSettings& c : {o.channels.pcf, o.channels.env, o.channels.soft}) {
         EXPECT_EQ(c.antilag, 0u);
@@ -706,12 +743,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(o.channels.pcf.fill_age, 4u);
     EXPECT_EQ(o.channels.env.fill_age, 6u);
     EXPECT_EQ(o.channels.pcf.fill_prior, 0.0f) << "pcf and env have no fallback image";
-    // pcf's fill window by size (channel_presets.h, pcf_preset): 3x3 below 320 rows, the library's from there.
-    EXPECT_EQ(o.channels.pcf.fill_radius, 1u) << "the default 256x160";
+    // pcf's fill window: the library's at every size with the residual (channel_presets.h).
+    EXPECT_EQ(o.channels.pcf.fill_radius, 0u) << "the default 256x160";
     const char* big[] = {"rrc-sample", "--size", "1024x640"};
     EXPECT_EQ(parse_options(3, big).channels.pcf.fill_radius, 0u);
-    const char* just_below[] = {"rrc-sample", "--size", "512x319"};
-    EXPECT_EQ(parse_options(3, just_below).channels.pcf.fill_radius, 1u);
     const char* given[] = {"rrc-sample", "--pcf-fill-radius", "3"};
     EXPECT_EQ(parse_options(3, given).channels.pcf.fill_radius, 3u);
     EXPECT_EQ(parse_options(3, given).channels.soft.fill_radius, 0u) << "--fill-radius is soft's";
@@ -726,23 +761,21 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 0u);
     EXPECT_EQ(p.pcf.filter, RRC_HISTORY_FILTER_BILINEAR) << "the blur bound acts on bilinear histories only";
-    EXPECT_EQ(p.pcf.blur_bound, 0.25f);
+    EXPECT_EQ(p.pcf.blur_bound, 0.0f) << "with the residual the bound costs variance it no longer buys back";
     EXPECT_EQ(p.soft.filter, RRC_HISTORY_FILTER_CATMULL_ROM) << "with the residual (channel_presets.h)";
     EXPECT_EQ(p.soft.blur_bound, 0.0f) << "the bound never acts on Catmull-Rom";
     EXPECT_EQ(p.soft.residual, 1u);
-    EXPECT_EQ(p.pcf.residual + p.env.residual, 0u) << "the residual is soft's (its stable estimate is PCSS)";
+    EXPECT_EQ(p.pcf.residual, 1u) << "against the bilinear compares (README.md, \"The pcf residual\")";
+    EXPECT_EQ(p.env.residual, 0u) << "every env base loses (README.md, \"The env residual\")";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);
-    EXPECT_EQ(p.pcf.antilag, 1u);
-    EXPECT_EQ(p.pcf.antilag_gamma, 0.25f);
-    EXPECT_EQ(p.pcf.antilag_threshold, 0.25f);
     EXPECT_EQ(p.env.rectify, 0u);
     EXPECT_EQ(p.env.fill_age, 2u) << "below the lobe's age cap + 1 at 1024x640 (channel_presets.h)";
     EXPECT_EQ(p.soft.fill_age, 8u);
     EXPECT_EQ(p.env.lambda, 0.8f);
     EXPECT_EQ(p.soft.lambda, 0.95f) << "the residual's preset (channel_presets.h)";
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
-    for (const ChannelSettings& c : {p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins on pcf only";
+    for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins nowhere with the presets' cures";
     const char* bare[] = {"rrc-sample"};
     const Options defaults = parse_options(1, bare);
     EXPECT_EQ(defaults.channels.soft.residual, 1u) << "the preset's";
@@ -762,8 +795,14 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_FALSE(defaults.frozen_mirror_view);
     const char* frozen[] = {"rrc-sample", "--frozen-mirror-view"};
     EXPECT_TRUE(parse_options(2, frozen).frozen_mirror_view);
-    EXPECT_EQ(defaults.channels.pcf.antilag, 1u) << "the options keep the presets' detector";
-    EXPECT_EQ(defaults.channels.pcf.antilag_gamma, 0.25f);
+    EXPECT_EQ(defaults.channels.pcf.residual, 1u) << "the preset's";
+    EXPECT_EQ(defaults.pcf_base, kSamplePcfBaseTaps);
+    const char* pcf_off[] = {"rrc-sample", "--pcf-residual", "0"};
+    EXPECT_EQ(parse_options(3, pcf_off).channels.pcf.residual, 0u);
+    const char* pcf_eight[] = {"rrc-sample", "--pcf-residual", "8"};
+    const Options eight = parse_options(3, pcf_eight);
+    EXPECT_EQ(eight.channels.pcf.residual, 1u);
+    EXPECT_EQ(eight.pcf_base, 8u);
 
     const std::vector<std::vector<const char*>> bad = {{"rrc-sample", "--frames", "0"},
                                                        {"rrc-sample", "--lambda", "1"},
@@ -794,7 +833,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--soft-lambda", "1"},
                                                        {"rrc-sample", "--soft-residual", "yes"},
                                                        {"rrc-sample", "--soft-residual"},
-                                                       {"rrc-sample", "--env-residual", "on"}};
+                                                       {"rrc-sample", "--env-residual", "on"},
+                                                       {"rrc-sample", "--pcf-residual", "65"},
+                                                       {"rrc-sample", "--pcf-residual", "on"},
+                                                       {"rrc-sample", "--antilag-gamma", "1"}};
     for (const auto& argv : bad) EXPECT_THROW(parse_options((int)argv.size(), argv.data()), OptionError) << argv[1];
 }
 

@@ -17,6 +17,8 @@ const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAG
 struct SamplesPush {  // signal_pcf.comp (the first five) and signal_env.comp
     uint32_t samples, reference, seed, pattern, confidence, env_base;
 };
+constexpr uint32_t kPcfBasePass = 3;  // signal_pcf.comp's `reference` value of the base pass
+
 struct SoftPush {
     glm::mat4 light_vp;
     uint32_t pass, count;
@@ -54,6 +56,7 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
     raw_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env signal");
     raw_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft signal");
     env_base_ = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env base");
+    pcf_base_ = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf base");
     ref_.pcf = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "pcf reference");
     ref_.env = gpu.create_image(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, use, "env reference");
     ref_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft reference");
@@ -62,10 +65,10 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
     brute_.soft = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, "soft brute force");
     const char* conf_names[3] = {"pcf confidence", "pcf weighted target", "pcf brute-force confidence"};
     for (int s = 0; s < 3; ++s) conf_[s] = gpu.create_image(VK_FORMAT_R32_SFLOAT, w, h, use, conf_names[s]);
-    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft,
+    gpu.init_storage_images({&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &pcf_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft,
                              &conf_[0], &conf_[1], &conf_[2]});
 
-    pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG, IMG},
+    pcf_ = ComputeKernel(gpu, "signal_pcf", rrc_sample_signal_pcf_comp, sizeof rrc_sample_signal_pcf_comp, {UBO, TEX, TEX, TEX, IMG, IMG, IMG},
                          sizeof(SamplesPush), 3);
     env_ = ComputeKernel(gpu, "signal_env", rrc_sample_signal_env_comp, sizeof rrc_sample_signal_env_comp, {UBO, TEX, IMG, IMG},
                          sizeof(SamplesPush), 3);
@@ -79,6 +82,7 @@ SignalPasses::SignalPasses(Gpu& gpu, const GpuScene& scene, const GBuffer& g, co
         pcf_.bind_image(s, 3, maps.sun.view, RO);
         pcf_.bind_image(s, 4, out.pcf.view, GEN);
         pcf_.bind_image(s, 5, conf_[s].view, GEN);
+        pcf_.bind_image(s, 6, pcf_base_.view, GEN);  // written by record_pcf_base (set 0) only
         env_.bind_buffer(s, 0, scene.uniforms());
         env_.bind_image(s, 1, g.normal.view, RO);
         env_.bind_image(s, 2, out.env.view, GEN);
@@ -95,7 +99,7 @@ SignalPasses::~SignalPasses() {
     pcf_.release();
     env_.release();
     soft_.release();
-    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft, &conf_[0],
+    for (Image* i : {&raw_.pcf, &raw_.env, &raw_.soft, &env_base_, &pcf_base_, &ref_.pcf, &ref_.env, &ref_.soft, &brute_.pcf, &brute_.env, &brute_.soft, &conf_[0],
                      &conf_[1], &conf_[2]})
         gpu_.destroy(*i);
 }
@@ -108,6 +112,14 @@ void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameStat
         const SoftPush p{state.uniforms.lamp_point_vp, 0, 0};
         soft_.dispatch(cmd, 0, &p, width_, height_);
     }
+}
+
+const Image* SignalPasses::record_pcf_base(VkCommandBuffer cmd, uint32_t taps) {
+    if (taps == 0) return nullptr;
+    const SamplesPush base{taps, kPcfBasePass, 0, 0, 0, 0};  // deterministic: no seed, no pattern
+    pcf_.dispatch(cmd, 0, &base, width_, height_);
+    compute_to_compute(cmd);
+    return &pcf_base_;
 }
 
 void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling,

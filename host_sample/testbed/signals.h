@@ -64,6 +64,12 @@ public:
     void record_brute_force(VkCommandBuffer cmd, uint32_t signals, uint32_t taps, int frame, const Sampling& sampling, const Scene& scene,
                             ShadowPass& shadows);
 
+    /** The pcf residual's base (README.md, "The pcf residual"): the mean of `taps` bilinear shadow
+     *  compares at fixed points of the frame's PCF disk (signal_pcf.comp), deterministic; written to
+     *  pcf_base() and made visible to later compute passes, which the result points to (nullptr,
+     *  nothing recorded, when taps is 0). */
+    const Image* record_pcf_base(VkCommandBuffer cmd, uint32_t taps);
+
     const SignalImages& raw() const { return raw_; }
     const SignalImages& reference() const { return ref_; }
     const SignalImages& brute_force() const { return brute_; }
@@ -72,6 +78,8 @@ public:
     const Image& pcf_confidence() const { return conf_[0]; }
     /** The env residual's base (Sampling::env_base; README.md, "The env residual"). */
     const Image& env_base() const { return env_base_; }
+    /** The pcf residual's base (record_pcf_base). */
+    const Image& pcf_base() const { return pcf_base_; }
     /** R32F, checkpoints with confidence: the confidence-weighted disk mean, what the pcf
      *  channel converges to with confidence (signal_pcf.comp); 1 without. */
     const Image& pcf_weighted_target() const { return conf_[1]; }
@@ -83,7 +91,7 @@ private:
     void record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t set, uint32_t samples, const Sampling& sampling,
                      const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows);
     SignalImages raw_, ref_, brute_;
-    Image env_base_;
+    Image env_base_, pcf_base_;
     Image conf_[3];  // per set: confidence, weighted target, brute force's (unused)
     ComputeKernel pcf_, env_, soft_;
 };

@@ -73,14 +73,23 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                     c.push_back({app, on, base});
                 }
         }
-        // rrc-sample's preset (testbed/channel_presets.h) with and without the lag detector:
-        // pcf's has it (gamma_a 0.25, T 0.25), env's has not (here with the sweep's rows' setting).
-        if (o.antilag && app.signal != kSignalSoft) {
+        // rrc-sample's pcf preset (testbed/channel_presets.h) with and without its residual (testbed
+        // README.md, "The pcf residual"), env's with and without the lag detector, which it has not
+        // (here with the sweep's rows' setting).
+        if (o.antilag && app.signal == kSignalPcf) {
+            const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
+            rrc_sample::ChannelSettings without = preset;
+            without.residual = 0;
+            const int base = (int)c.size();
+            c.push_back({app, without, -1, "the preset without its residual"});
+            c.push_back({app, preset, base, "the preset"});
+        }
+        if (o.antilag && app.signal == kSignalEnv) {
             const rrc_sample::ChannelPresets presets;
-            rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? rrc_sample::pcf_preset(o.height) : presets.env;
+            rrc_sample::ChannelSettings preset = presets.env;
             // env's preset has rrc-sample's lobe for the size (sample_run.cpp); its first two rows
             // leave the lighting's turn out, so that under the still camera the lobe caps nothing.
-            const bool lobe = app.signal == kSignalEnv && o.view_lobe;
+            const bool lobe = o.view_lobe;
             if (lobe) preset.view_lobe = study_view_lobe(o, rrc_sample::kEnvViewLobePixels);
             rrc_sample::ChannelSettings without = preset, with = preset;
             without.antilag = 0;
@@ -198,6 +207,8 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
         s.lighting_turn = c.lighting_turn;
         stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
     }
+    bool pcf_residual = false;  // a pcf row accumulates the residual: the frame writes its base
+    for (const StudyConfig& c : configs) pcf_residual |= c.app.signal == kSignalPcf && c.channel.residual;
     rrc_sample::Readback rb(gpu);
     std::vector<int> slots;
     for (size_t i = 0; i < stages.size(); ++i) slots.push_back(rb.add(signal_image(stages[i]->accumulated(), configs[i].app.signal)));
@@ -216,8 +227,12 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
                 // soft: the frame's one point of the light, its map rendered here (as the sweep's k = 1 runs).
                 e.signals.record(c, sigs, state, sampling, rrc_sample::lamp_frame_points(scene.lamp, f, 1, sampling.seed), scene,
                                  e.shadows);
+                // pcf's residual base for the preset rows that take it (testbed README.md, "The pcf residual").
+                const rrc_sample::Image* pcf_base = pcf_residual ? e.signals.record_pcf_base(c, rrc_sample::kSamplePcfBaseTaps) : nullptr;
                 full_barrier(c);
-                for (auto& st : stages) st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0);
+                for (size_t i = 0; i < stages.size(); ++i)
+                    stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, nullptr, nullptr,
+                                      configs[i].channel.residual ? pcf_base : nullptr);
                 if (read) rb.record(c, slots);
             });
             if (!read) continue;

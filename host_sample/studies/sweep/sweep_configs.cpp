@@ -90,12 +90,12 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                 }
             // rrc-sample's pcf and soft presets (testbed/channel_presets.h), which no row above
             // spells: the targets under motion are theirs (docs/PERFORMANCE.md, "Targets under
-            // motion").  soft's: Catmull-Rom, the fill with rrc-sample's PCSS estimate as its
+            // motion").  pcf's: the residual against kSamplePcfBaseTaps bilinear compares (its
+            // base pass is timed with its rrc pass; testbed README.md, "The pcf residual").  soft's: Catmull-Rom, the fill with rrc-sample's PCSS estimate as its
             // prior, worth kSampleFillPrior samples, and the residual against the stable estimate
             // (README.md, "The soft preset rows": its centre-light map and PCSS pass are timed
             // with its rrc pass).  env's preset (the view lobe scaled to the size) is not a row.
-            if (o.antilag && o.finishing && app.signal == rrc_sample::kSignalPcf)
-                run.configs.push_back({app, rrc_sample::pcf_preset(o.height)});
+            if (o.finishing && app.signal == rrc_sample::kSignalPcf) run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
             if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
                 rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
                 preset.fill_prior = rrc_sample::kSampleFillPrior;
@@ -150,7 +150,7 @@ std::string filter_label(const rrc_sample::ChannelSettings& c) {
         std::snprintf(b, sizeof b, "+pcss%g", (double)c.fill_prior);
         s += b;
     }
-    if (c.residual) s += "+residual";  // rrc's residual against the stable PCSS estimate (soft's base)
+    if (c.residual) s += "+residual";  // rrc's residual: soft's against the stable PCSS estimate, pcf's against its bilinear compares
     if (c.antilag) s += "+antilag";
     // A detector other than the sweep's own rows' (the pcf preset's narrow box): its gamma_a/T.
     if (c.antilag && (c.antilag_gamma != kSweepAntilagGamma || c.antilag_threshold != kSweepAntilagThreshold)) {

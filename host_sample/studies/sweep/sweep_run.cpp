@@ -360,13 +360,17 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                     for (size_t i = 0; i < stages.size(); ++i)
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
                             // As rrc-sample's renderer: the PCSS fallback, or the soft residual
-                            // (testbed README.md, "The soft residual").
-                            const rrc_sample::Image* soft_fallback = nullptr;
+                            // (testbed README.md, "The soft residual"); pcf's residual base ("The
+                            // pcf residual").
+                            const rrc_sample::Image *soft_fallback = nullptr, *pcf_base = nullptr;
                             if (pcss[i]) {
                                 e.shadows.record(c, e.maps.lamp_centre, state.uniforms.lamp_centre_vp);
                                 soft_fallback = pcss[i]->record_soft_fallback(c, 0, run.configs[i].channel);
                             }
-                            stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, soft_fallback);
+                            if (run.configs[i].app.signal == kSignalPcf && run.configs[i].channel.residual)
+                                pcf_base = e.signals.record_pcf_base(c, rrc_sample::kSamplePcfBaseTaps);
+                            stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, soft_fallback,
+                                              nullptr, pcf_base);
                         }));
                     for (auto& st : probe)
                         probe_t.push_back(timed_pass([&](VkCommandBuffer c) { st->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0); }));

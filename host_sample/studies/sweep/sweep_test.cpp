@@ -250,18 +250,17 @@ TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
     o.lambdas = {0.8f, 0.9f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
     int pcf = 0, env = 0, presets = 0;
-    const rrc_sample::ChannelSettings preset = rrc_sample::pcf_preset(o.height);
+    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
     for (const RrcRun& run : rrc_runs(o, all))
         for (const RrcConfig& c : run.configs) {
-            if (!c.channel.antilag) continue;
-            ASSERT_NE(c.app.signal, (uint32_t)rrc_sample::kSignalSoft) << "the detector drops right soft histories";
             if (std::memcmp(&c.channel, &preset, sizeof preset) == 0) {  // rrc-sample's pcf preset, spelled out once
                 EXPECT_EQ(c.app.signal, (uint32_t)rrc_sample::kSignalPcf);
-                EXPECT_NE(filter_label(c.channel).find("+antilag_g0.25_t0.25"), std::string::npos) << "its detector's own settings";
-                EXPECT_NE(filter_label(c.channel).find("+fill4r1+"), std::string::npos) << "its 3x3 fill window below 320 rows";
+                EXPECT_EQ(filter_label(c.channel), "bilinear+fill4+residual") << "the residual, no detector (testbed README.md, \"The pcf residual\")";
                 presets++;
                 continue;
             }
+            if (!c.channel.antilag) continue;
+            ASSERT_NE(c.app.signal, (uint32_t)rrc_sample::kSignalSoft) << "the detector drops right soft histories";
             EXPECT_EQ(c.channel.blend, RRC_BLEND_AGE_AWARE);
             EXPECT_EQ(c.channel.filter, RRC_HISTORY_FILTER_BILINEAR);
             EXPECT_EQ(c.channel.antilag_gamma, kSweepAntilagGamma);
@@ -289,7 +288,7 @@ TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
     int bounded = 0;
     // rrc-sample's pcf and soft preset rows are the presets whatever they hold (--no-antilag drops
     // pcf's, --no-finishing both); soft's is the one row with a fill fallback.
-    const rrc_sample::ChannelSettings preset = rrc_sample::pcf_preset(o.height);
+    const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
     auto is_preset = [&](const RrcConfig& c) {
         return std::memcmp(&c.channel, &preset, sizeof preset) == 0 || c.channel.fill_prior > 0.0f;
     };
@@ -443,12 +442,13 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     // study's 192x128 and 8 seeds; x0.67 on this small frame, where shadow edges are a larger share).
     EXPECT_LT(lag.lag.bias2, 0.8 * off.lag.bias2) << "the lag detector at lambda 0.9 must cut pcf's lag bias behind the moving light";
     EXPECT_LT(lag.still.rmse, 1.1 * off.still.rmse) << "and keep its static RMSE";
-    // rrc-sample's pcf preset (its lag detector on) against the same channel without it.
+    // rrc-sample's pcf preset (its residual on) against the same channel without it: the base follows
+    // the light's turn in the frame it happens (testbed README.md, "The pcf residual").
     const RectifyRow &bare = r.rows[3], &preset = r.rows[4];
     ASSERT_TRUE(bare.preset.size() && preset.preset.size() && preset.base == 3 && bare.base == -1);
-    const rrc_sample::ChannelSettings pcf_preset = rrc_sample::pcf_preset(o.height);
-    EXPECT_TRUE(preset.antilag && !bare.antilag && std::memcmp(&preset.channel, &pcf_preset, sizeof pcf_preset) == 0);
-    EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's lag detector must halve its lag bias behind the moving light";
+    const rrc_sample::ChannelSettings pcf_preset = rrc_sample::ChannelPresets{}.pcf;
+    EXPECT_TRUE(preset.channel.residual && !bare.channel.residual && std::memcmp(&preset.channel, &pcf_preset, sizeof pcf_preset) == 0);
+    EXPECT_LT(preset.lag.bias2, 0.5 * bare.lag.bias2) << "the pcf preset's residual must halve its lag bias behind the moving light";
     // env's view lobe fed the lighting's turn (docs/CONVENTIONS.md, "The view-dependent history"):
     // with the light fixed phi = 0 and the still camera turns nothing, so the row is its base bit
     // for bit; with the light moving the cap at 3 shortens the history (lambda 0.9 -> 0.75), and

@@ -11,7 +11,17 @@
 //     angle per pixel and frame (biased for the target: rotation keeps each
 //     tap on its own radius).
 // reference 1: the target itself, exactly (disk_area.glsl); 2: brute force,
-// `samples` taps of the pattern (pattern 1: samples/k stratified rotations).
+// `samples` taps of the pattern (pattern 1: samples/k stratified rotations);
+// 3: the residual's base (below), into o_base only.
+//
+// The residual's base (README.md, "The pcf residual"): reference 3 writes only o_base,
+// b = the mean of `samples` = M bilinear shadow compares (the test at the four texel centres
+// around a point, weighted as a bilinear fetch: what a GPU's filtered depth-compare sampler
+// returns in one fetch) at M points evenly spaced on the circle of radius
+// rho = sqrt(R^2/2 - 1/3) around the receiver's map position, the first on the map's +x axis
+// (rho matches the disk's variance per axis, R^2/4, with the bilinear tent's 1/6).  b is
+// deterministic and continuous in the receiver's position, so rrc's history holds x - b,
+// whose detail is b's error against the disk mean, not the shadow's edge.
 //
 // Confidence (README.md, "Finishing steps"; Scherzer et al. 2007): a tap at shadow-map position
 // (x, y) texels tests the texel whose centre is (cx, cy) = floor(x, y) + 1/2;
@@ -33,9 +43,10 @@ layout(set = 0, binding = 2) uniform sampler2D g_normal_material;
 layout(set = 0, binding = 3) uniform sampler2D sun_map;
 layout(set = 0, binding = 4, r32f) uniform writeonly image2D o_signal;
 layout(set = 0, binding = 5, r32f) uniform writeonly image2D o_confidence;
+layout(set = 0, binding = 6, r32f) uniform writeonly image2D o_base;
 layout(push_constant) uniform Push {
     uint samples;     // brute force: taps
-    uint reference;   // 0 per frame, 1 the exact target, 2 brute force
+    uint reference;   // 0 per frame, 1 the exact target, 2 brute force, 3 the residual's base
     uint seed;        // the ensemble member: moves every random stream
     uint pattern;     // 0 uniform disk, 1 rotated Poisson
     uint confidence;  // non-zero: confidence-weighted taps (above); w in o_confidence
@@ -45,6 +56,25 @@ float sun_test(ivec2 c, float z, int size) {
     return z <= texelFetch(sun_map, clamp(c, ivec2(0), ivec2(size - 1)), 0).r ? 1.0 : 0.0;
 }
 float sun_test(vec2 texel, float z, int size) { return sun_test(ivec2(floor(texel)), z, size); }
+
+// The bilinear shadow compare at q (texel i covers [i, i+1), its centre i + 1/2).
+float bilinear_test(vec2 q, float z, int size) {
+    vec2 p = q - 0.5, f = fract(p);
+    ivec2 i = ivec2(floor(p));
+    float t00 = sun_test(i, z, size), t10 = sun_test(i + ivec2(1, 0), z, size);
+    float t01 = sun_test(i + ivec2(0, 1), z, size), t11 = sun_test(i + ivec2(1, 1), z, size);
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+}
+
+// The residual's base (above).
+float base_estimate(vec2 texel, float radius, float z, int size, uint m) {
+    float rho = sqrt(max(radius * radius * 0.5 - 1.0 / 3.0, 0.0)), sum = 0.0;
+    for (uint j = 0u; j < m; ++j) {
+        float phi = 2.0 * PI * float(j) / float(m);
+        sum += bilinear_test(texel + rho * vec2(cos(phi), sin(phi)), z, size);
+    }
+    return sum / float(m);
+}
 
 // The tap's confidence: 1 - 2 max(|x - cx|, |y - cy|), (cx, cy) its texel's centre.
 float tap_confidence(vec2 texel) {
@@ -93,6 +123,10 @@ void main() {
     if (px.x >= int(u.frame.z) || px.y >= int(u.frame.w)) return;
     vec4 nm = texelFetch(g_normal_material, px, 0);
     if (material_of(nm) == MAT_BACKGROUND) {
+        if (pc.reference == 3u) {
+            imageStore(o_base, px, vec4(1.0));
+            return;
+        }
         imageStore(o_signal, px, vec4(1.0));
         imageStore(o_confidence, px, vec4(1.0));
         return;
@@ -103,6 +137,10 @@ void main() {
     vec2 texel = (lc.xy * 0.5 + 0.5) * float(size);
     float z = lc.z - u.ambient.w / 79.0;  // ortho depth spans 79 world units
     float radius = u.sun_colour.w;
+    if (pc.reference == 3u) {
+        imageStore(o_base, px, vec4(base_estimate(texel, radius, z, size, pc.samples)));
+        return;
+    }
     if (pc.reference == 1u) {
         imageStore(o_signal, px, vec4(disk_mean(texel, radius, z, size)));
         imageStore(o_confidence, px, vec4(pc.confidence != 0u ? weighted_disk_mean(texel, radius, z, size) : 1.0));
