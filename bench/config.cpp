@@ -103,10 +103,16 @@ std::vector<Config> full_sweep() {
     // The fill at a stated young fraction: the fill works on young pixels
     // only, so its cost is set against its twin without the fill at the same
     // nocache share (young12), round by round (docs/PERFORMANCE.md, "Targets").
+    // young12_fill_residual: the fill with the residual (rrc-sample's pcf preset).
     const struct {
         const char* name;
         uint32_t fill_age, fill_radius;
-    } young[] = {{"young12", 0, 0}, {"young12_fill", kYoungAge, 0}, {"young12_fill_r1", kYoungAge, 1}, {"young12_fill_r4", kYoungAge, 4}};
+        bool residual;
+    } young[] = {{"young12", 0, 0, false},
+                 {"young12_fill", kYoungAge, 0, false},
+                 {"young12_fill_r1", kYoungAge, 1, false},
+                 {"young12_fill_r4", kYoungAge, 4, false},
+                 {"young12_fill_residual", kYoungAge, 0, true}};
     for (const auto& y : young) {
         Config c = vary(y.name, "young");
         c.nocache = true;
@@ -114,6 +120,7 @@ std::vector<Config> full_sweep() {
         c.young = true;
         c.channels[0].fill_age = y.fill_age;
         c.channels[0].fill_radius = y.fill_radius;
+        c.channels[0].residual = y.residual;
         all.push_back(c);
     }
     return all;

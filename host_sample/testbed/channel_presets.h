@@ -51,8 +51,9 @@ constexpr float kEnvViewLobePixels = 18.0f;
  *  README.md, "The pcf residual"): as many as the per-frame signal's k = 4 taps, so that on a
  *  GPU, whose filtered depth-compare sampler returns a bilinear compare in one fetch, the frame
  *  fetches 8 times against brute force's 16 (16 + 4 texel reads here, the sample's shader
- *  reading each texel).  Fewer lose (256x160: 2 compares 0.0381, 3 0.0314), more cost more than
- *  they buy past the 4k brute force (5: 0.0238; docs/PERFORMANCE.md, "The pcf residual"). */
+ *  reading each texel).  At 256x160: 3 compares 0.0311, 5 0.0262, 8 0.0204, against 0.0259;
+ *  with 8 the base alone (0.0190) already beats the 16-tap brute force (0.0265), so more
+ *  compares buy a better estimator, not a better history. */
 constexpr uint32_t kSamplePcfBaseTaps = 4;
 
 /** The PCSS fallback's weight in soft's fill, in samples (rrc_channel_desc.fill_prior): rrc-sample's
@@ -70,13 +71,13 @@ constexpr float kSampleBlurBound = 0.5f;
  *  1024x640 (rrc-sample's accumulated RMSE, mean over seeds 0..3).  pcf: lambda 0.9, the
  *  residual against kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual"), the
  *  spatial fill below age 4 in the library's 5x5 window, a bilinear history, no lag detector,
- *  no blur bound, not rectified: 0.0259 at 256x160 and 0.0196 at 1024x640 (docs/PERFORMANCE.md,
- *  "The pcf residual"), against 0.0338 and 0.0212 for 0.9's pcf (no residual; the lag detector
- *  with a narrow box, gamma_a 0.25 and T 0.25; B = 0.25 px^2; a 3x3 window below 320 rows),
+ *  no blur bound, not rectified: 0.0259 at 256x160 and 0.0196 at 1024x640 (the same section),
+ *  against 0.0338 and 0.0212 for the pcf preset before 2026-12-05 (no residual; the lag
+ *  detector with a narrow box, gamma_a 0.25 and T 0.25; B = 0.25 px^2; a 3x3 window below 320
+ *  rows),
  *  which with the residual drop right histories (the detector's box is the residual's, narrow:
- *  0.0309 with it) or cost variance the residual no longer needs (the bound: 0.0266 against 0.0290
- *  with the old placement of the base's points, the same filter), and 0.0387 and 0.0242 for
- *  0.5's (Catmull-Rom, rectified).
+ *  0.0320 with it at 256x160) or cost variance the residual no longer needs (the bound: 0.0285),
+ *  and 0.0387 and 0.0242 for 0.5's (Catmull-Rom, rectified).
  *  soft with the spatial fill (the sample
  *  passes its PCSS estimate as the fallback, --fill-prior); the lag detector makes soft
  *  worse and changes nothing on env, which stay without.  AGE_AWARE everywhere: the same as

@@ -39,11 +39,14 @@ std::string channel_line(const rrc_channel_desc& c) {
              ", threshold " + std::to_string(c.antilag_threshold > 0.0f ? c.antilag_threshold : RRC_DEFAULT_ANTILAG_THRESHOLD).substr(0, 5) + ")";
     if (c.blur_bound > 0.0f) l += ", blur bound " + std::to_string(c.blur_bound).substr(0, 5) + " px^2";
     if (c.view_lobe > 0.0f) l += ", view lobe " + std::to_string(c.view_lobe).substr(0, 6) + " rad";
-    // The sample's bases: soft's stable PCSS estimate (README.md, "The soft residual"), env's
-    // deterministic sample ("The env residual").
+    // The sample's bases: soft's stable PCSS estimate (README.md, "The soft residual"), pcf's
+    // bilinear compares ("The pcf residual"), env's deterministic sample ("The env residual").
     if (c.residual)
         l += std::string(", the residual against its base (") +
-             (std::strcmp(c.name, "soft") == 0 ? "the stable PCSS estimate" : "the env pass's deterministic sample") + ")";
+             (std::strcmp(c.name, "soft") == 0  ? "the stable PCSS estimate"
+              : std::strcmp(c.name, "pcf") == 0 ? "the mean of bilinear shadow compares"
+                                                : "the env pass's deterministic sample") +
+             ")";
     if (c.fill_age)
         l += ", fill below age " + std::to_string(c.fill_age) + " (radius " + std::to_string(c.fill_radius ? c.fill_radius : RRC_DEFAULT_FILL_RADIUS) +
              ", fallback weight " + std::to_string(c.fill_prior).substr(0, 4) + ")";
