@@ -33,12 +33,18 @@ struct ChannelSettings {
     // 0.9 the residual (docs/CONVENTIONS.md, "The residual"): the channel accumulates the sample
     // less the fallback image, its base, and shows the result plus the base.  The sample's bases:
     // soft's stable PCSS estimate (README.md, "The soft residual"), which is then also the fill's
-    // prior; pcf's kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual").
+    // prior; pcf's kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual"); env's
+    // filtered reflections (kSampleEnvBase; README.md, "The env residual").
     uint32_t residual = 0;
 };
 
-/** env's view lobe (docs/CONVENTIONS.md, "The view-dependent history"), in pixels of the
- *  camera's vertical angle: alpha = kEnvViewLobePixels * fov_y / height radians (0.0245 at
+/** The env residual's base the preset takes (rrc-sample's --env-residual default, `filtered`;
+ *  README.md, "The env residual"). */
+constexpr uint32_t kSampleEnvBase = 4;
+
+/** env's view lobe before the env residual (2026-12-05; now --env-view-lobe-px's value in the
+ *  rectification study's rows, not a preset's) (docs/CONVENTIONS.md, "The view-dependent
+ *  history"), in pixels of the camera's vertical angle: alpha = kEnvViewLobePixels * fov_y / height radians (0.0245 at
  *  1024x640, 0.098 at 256x160).  A bump-mapped mirror's signal at a pixel averages the
  *  reflection over the pixel's footprint, so its angular width scales with the footprint: at
  *  1024x640 the lobe caps the sphere's history at age 1 (the camera turns the view to its
@@ -92,17 +98,23 @@ constexpr float kSampleBlurBound = 0.5f;
  *  option, with a Catmull-Rom history, which the residual's smoother input lets win at both
  *  sizes (0.0471 and 0.0435; the blur bound never acts on it, so B is 0), and lambda 0.95,
  *  which wins by a little at both (0.0467 and 0.0429; docs/PERFORMANCE.md, "Catmull-Rom with
- *  the residual").  env with the view lobe of kEnvViewLobePixels (set by run_sample from the
- *  size) and the spatial fill below age 2, no fallback: 0.0435 at 256x160 and 0.0486 at
- *  1024x640, against 0.0430 and 0.0604 for 0.6's env (the fill below age 4, no lobe); below
- *  age 4 the fill would show every pixel the lobe caps at age 1 filled (0.1016 at 1024x640). */
+ *  the residual").  env (since 2026-12-05) with lambda 0.9, the residual against its filtered
+ *  base (kSampleEnvBase: four reflections into the environment box-filtered over their
+ *  footprints; README.md, "The env residual"), no view lobe, and the spatial fill below age 2:
+ *  0.0429 at 256x160 and 0.0310 at 1024x640, against 0.0435 and 0.0486 for the env preset before
+ *  it (lambda 0.8, the view lobe of kEnvViewLobePixels, the fill below age 2, no residual).  The
+ *  base is this frame's view of the reflection, so the history holds only the base's error and
+ *  the lobe, which cut the history to age 1 on the sphere at 1024x640, costs more than it buys
+ *  (0.0422 with it). */
 struct ChannelPresets {
     ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
                         /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
-    ChannelSettings env{0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
-                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2};
+    ChannelSettings env{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
+                        /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2, /*fill_radius*/ 0,
+                        /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
+                        /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
     ChannelSettings soft{0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,

@@ -71,7 +71,7 @@ std::vector<SignalErrors> frame_errors(const FrameOutput& f) {
             e.shown = error_against(s.shown, s.reference, 1, 1, valid);
             e.fallback = error_against(s.pcss, s.reference, 1, 1, valid);
         }
-        if (!s.base.empty()) e.fallback = error_against(s.base, s.reference, 1, 1, valid);
+        if (!s.base.empty()) e.fallback = error_against(s.base, s.reference, s.components, compare, valid);
         out.push_back(e);
     };
     add("pcf", f.pcf, surface, 1);

@@ -30,7 +30,7 @@ struct SignalErrors {
     std::string signal;
     ErrorStats raw, accumulated;
     ErrorStats brute_force;                 // 4x the per-frame samples, one frame
-    ErrorStats shown, fallback;             // soft: displayed (accumulated + PCSS fallback), PCSS alone; pcf: -, its residual's base alone
+    ErrorStats shown, fallback;             // soft: displayed (accumulated + PCSS fallback), PCSS alone; pcf, env: -, the residual's base alone
     ErrorStats raw_hits, accumulated_hits;  // over cache hits only
 };
 

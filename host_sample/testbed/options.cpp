@@ -19,7 +19,7 @@ constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"
 constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
 constexpr rrc_host::EnumName<uint32_t> kOnOffNames[] = {{"off", 0u}, {"on", 1u}};
 constexpr int kMaxPcfBaseTaps = 64;  // --pcf-residual's bilinear taps
-constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", 0u}, {"centre", 1u}, {"unbumped", 2u}, {"smooth", 3u}};
+constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", 0u}, {"centre", 1u}, {"unbumped", 2u}, {"smooth", 3u}, {"filtered", 4u}};
 
 }  // namespace
 
@@ -152,8 +152,9 @@ std::string usage() {
            "  --env-view-lobe-px P     the view-dependent history on the env channel: its age is capped at\n"
            "                           floor(A/theta), theta the turn of the view direction to the pixel's surface\n"
            "                           point since the last frame, A = P pixels of the camera's vertical angle\n"
-           "                           (P * fov_y / height; default 18, the preset: 0.0245 rad at 640 rows; 0 = off;\n"
-           "                           docs/CONVENTIONS.md, \"The view-dependent history\")\n"
+           "                           (P * fov_y / height; default 0, off, the preset since the env residual; the\n"
+           "                           preset before it: 18, 0.0245 rad at 640 rows; docs/CONVENTIONS.md, \"The\n"
+           "                           view-dependent history\")\n"
            "  --env-view-lobe A        the same lobe given in radians, in [0, pi] (0 = off)\n"
            "  --soft-lambda L          the soft channel's lambda, in [0, 1) (default 0.95, the preset)\n"
            "  --soft-residual on|off   rrc's residual on the soft channel (rrc_channel_desc.residual): it accumulates\n"
@@ -161,10 +162,11 @@ std::string usage() {
            "                           base, and the base is the fill's prior (default on, the preset; off: rrc\n"
            "                           accumulates the sample, PCSS is the fill's fallback; README.md, \"The soft residual\")\n"
            "  --env-residual B         rrc's residual on the env channel against a deterministic base the env pass\n"
-           "                           writes: off (default), centre (the bumped mirror's ray through the pixel centre),\n"
-           "                           unbumped (that ray reflected by the smooth sphere) or smooth (reflected by the\n"
-           "                           smooth sphere into the map without its hard edges; README.md, \"The env residual\":\n"
-           "                           measured, every base loses)\n"
+           "                           writes: filtered (default, the preset: four reflections per pixel into the map\n"
+           "                           box-filtered over each one's footprint), centre (the bumped mirror's ray through\n"
+           "                           the pixel centre), unbumped (that ray reflected by the smooth sphere), smooth\n"
+           "                           (reflected by the smooth sphere into the map without its hard edges) or off\n"
+           "                           (rrc accumulates the sample); README.md, \"The env residual\"\n"
            "  --pcf-residual N         rrc's residual on the pcf channel against a deterministic base the sample\n"
            "                           writes: the mean of N bilinear shadow compares on a circle inside the PCF disk\n"
            "                           (default 4, the preset; 0 = off: rrc accumulates the sample; at most 64;\n"

@@ -64,6 +64,7 @@ Renderer::Renderer(Gpu& gpu, const Scene& scene, const RendererSettings& s)
     slot_.confidence = r.add(signals_->pcf_confidence());
     slot_.weighted = r.add(signals_->pcf_weighted_target());
     slot_.pcf_base = r.add(signals_->pcf_base());
+    slot_.env_base = r.add(signals_->env_base());
     r.allocate();
 }
 
@@ -139,6 +140,7 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     if (confidence) slots.push_back(slot_.confidence);
     if (confidence && checkpoint) slots.push_back(slot_.weighted);
     if (s_.render.pcf_base && checkpoint) slots.push_back(slot_.pcf_base);
+    if (s_.render.env_base && checkpoint) slots.push_back(slot_.env_base);
     if (checkpoint)
         for (int k = 0; k < 3; ++k) slots.push_back(slot_.ref[k]), slots.push_back(slot_.brute[k]);
     if (checkpoint) slots.push_back(slot_.colour[1]), slots.push_back(slot_.colour[2]);
@@ -209,6 +211,8 @@ void Renderer::read_back(FrameOutput& out, uint32_t parity) const {
     }
     if ((s_.signals & kSignalPcf) && s_.render.pcf_base && out.checkpoint)
         out.pcf.base = copy_of<float>(r.data(slot_.pcf_base), r.bytes(slot_.pcf_base));
+    if ((s_.signals & kSignalEnv) && s_.render.env_base && out.checkpoint)
+        out.env.base = copy_of<float>(r.data(slot_.env_base), r.bytes(slot_.env_base));
     if ((s_.signals & kSignalPcf) && s_.pcf_display.any()) {
         out.pcf.display.resize(out.pcf.accumulated.size());
         for (size_t i = 0; i < out.pcf.display.size(); ++i) out.pcf.display[i] = s_.pcf_display.apply(out.pcf.accumulated[i]);

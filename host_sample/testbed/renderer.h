@@ -48,7 +48,7 @@ struct SignalData {
     std::vector<uint16_t> age;                       // rrc's age of the channel (rrc_vulkan_channel_images.age)
     std::vector<float> brute_force;                  // checkpoints: 4x the per-frame samples
     std::vector<float> shown, pcss;                  // soft only: the --soft-prior display, the fallback
-    std::vector<float> base;                         // pcf with the residual, checkpoints: its base (signals.h, pcf_base)
+    std::vector<float> base;                         // pcf, env with the residual, checkpoints: its base (signals.h, pcf_base, env_base)
     std::vector<float> display;                      // pcf with a PcfDisplay remap: what is shown (the remapped accumulated)
     std::vector<float> confidence;                   // pcf with confidence: the per-frame w
     std::vector<float> weighted_target;              // pcf with confidence, checkpoints: the confidence-weighted disk mean
@@ -99,7 +99,7 @@ private:
     std::unique_ptr<Readback> readback_;
     struct Slots {
         int mask, age[2], rrc_age[3], colour[3], raw[3], acc[3], ref[3], brute[3], shown, pcss, position, normal, prev_clip, confidence,
-            weighted, pcf_base;
+            weighted, pcf_base, env_base;
     } slot_{};
     rrc_host::FencedCommands commands_;
     rrc_host::TimestampQueries queries_;  // kStampCount

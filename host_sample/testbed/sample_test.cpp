@@ -406,44 +406,54 @@ TEST(RrcSample, SoftResidualAddsBackWhatItTookAway) {
     EXPECT_GT(moved, 0u) << "where it moves (the torus's shadow) the history follows it";
 }
 
-// pcf's residual (README.md, "The pcf residual"): the base is the bilinear compares, the same for
-// every seed (deterministic), nearer the target than one frame's k = 4 random taps; rrc adds it back,
-// so a fresh history (frame 0) shows the sample itself.
-TEST(RrcSample, PcfResidualBaseIsDeterministicAndAddedBack) {
-    std::vector<std::vector<float>> bases[2];
-    for (uint32_t seed : {0u, 1u}) {
-        Options o = tiny("pcf_residual_" + std::to_string(seed));
-        o.signals = kSignalPcf;
-        o.frames = 3;
-        o.reference_every = 1;
-        o.write_images = false;
-        o.seed = seed;
-        ASSERT_EQ(o.channels.pcf.residual, 1u) << "the preset's";
-        ASSERT_EQ(o.pcf_base, kSamplePcfBaseTaps);
-        o.channels.pcf.fill_age = 0;  // the fill smooths young pixels' residuals: frame 0 would not be the sample
-        o.channels.pcf.fill_radius = 0;
-        RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord& rec) {
-            ASSERT_TRUE(f.checkpoint);
-            ASSERT_EQ(f.pcf.base.size(), f.pcf.raw.size()) << "frame " << f.index;
-            bases[seed].push_back(f.pcf.base);
-            const SignalErrors* e = find(rec, "pcf");
-            ASSERT_NE(e, nullptr);
-            EXPECT_GT(e->fallback.pixels, 0u);
-            EXPECT_LT(e->fallback.rmse, 0.75 * e->raw.rmse) << "frame " << f.index << ": the base is nearer the target than one frame";
-            EXPECT_GT(e->fallback.rmse, 0.0) << "and not the target itself";
-            if (f.index != 0) return;
-            // The history stores r = s - b at fp16 (docs/CONVENTIONS.md, "The residual"): half an
-            // ulp, 2^-11 |r|, and the fp32 sums.
-            for (size_t i = 0; i < f.mask.size(); ++i) {
-                const float r_abs = std::fabs(f.pcf.raw[i] - f.pcf.base[i]);
-                ASSERT_LE(std::fabs(f.pcf.accumulated[i] - f.pcf.raw[i]), 1e-6f + r_abs / 2048.0f)
-                    << "pixel " << i << ": (s - b) + b on a fresh history";
-            }
-        });
-        EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+// pcf's and env's residuals (README.md, "The pcf residual", "The env residual"): the base (pcf's
+// bilinear compares, env's filtered reflections) is the same for every seed (deterministic) and
+// nearer the target than one frame's k = 4 random samples; rrc adds it back, so a fresh history
+// (frame 0) shows the sample itself.
+TEST(RrcSample, ResidualBasesAreDeterministicAndAddedBack) {
+    for (uint32_t signal : {(uint32_t)kSignalPcf, (uint32_t)kSignalEnv}) {
+        const bool pcf = signal == kSignalPcf;
+        SCOPED_TRACE(pcf ? "pcf" : "env");
+        std::vector<std::vector<float>> bases[2];
+        for (uint32_t seed : {0u, 1u}) {
+            Options o = tiny(std::string(pcf ? "pcf" : "env") + "_residual_" + std::to_string(seed));
+            o.signals = signal;
+            o.frames = 3;
+            o.reference_every = 1;
+            o.write_images = false;
+            o.seed = seed;
+            // env's footprint at 64x40 spans much of the bump's period, where the filtered reflections
+            // are no nearer the pixel's mean than 4 random rays (0.075 against 0.074): 128x80.
+            if (!pcf) o.width = 128, o.height = 80;
+            ChannelSettings& ch = pcf ? o.channels.pcf : o.channels.env;
+            ASSERT_EQ(ch.residual, 1u) << "the preset's";
+            ASSERT_EQ(pcf ? o.pcf_base : o.env_base, pcf ? kSamplePcfBaseTaps : kSampleEnvBase);
+            ch.fill_age = 0;  // the fill smooths young pixels' residuals: frame 0 would not be the sample
+            ch.fill_radius = 0;
+            RunResult r = run_sample(o, nullptr, [&](const FrameOutput& f, const FrameRecord& rec) {
+                ASSERT_TRUE(f.checkpoint);
+                const SignalData& d = pcf ? f.pcf : f.env;
+                ASSERT_EQ(d.base.size(), d.raw.size()) << "frame " << f.index;
+                bases[seed].push_back(d.base);
+                const SignalErrors* e = find(rec, pcf ? "pcf" : "env");
+                ASSERT_NE(e, nullptr);
+                EXPECT_GT(e->fallback.pixels, 0u);
+                EXPECT_LT(e->fallback.rmse, 0.75 * e->raw.rmse) << "frame " << f.index << ": the base is nearer the target than one frame";
+                EXPECT_GT(e->fallback.rmse, 0.0) << "and not the target itself";
+                if (f.index != 0) return;
+                // The history stores r = s - b at fp16 (docs/CONVENTIONS.md, "The residual"): half an
+                // ulp, 2^-11 |r|, and the fp32 sums.
+                for (size_t i = 0; i < d.raw.size(); ++i) {
+                    const float r_abs = std::fabs(d.raw[i] - d.base[i]);
+                    ASSERT_LE(std::fabs(d.accumulated[i] - d.raw[i]), 1e-6f + r_abs / 2048.0f)
+                        << "value " << i << ": (s - b) + b on a fresh history";
+                }
+            });
+            EXPECT_EQ(r.validation_messages, 0u) << first_messages(r);
+        }
+        ASSERT_EQ(bases[0].size(), 3u);
+        EXPECT_EQ(bases[0], bases[1]) << "the base does not depend on the seed";
     }
-    ASSERT_EQ(bases[0].size(), 3u);
-    EXPECT_EQ(bases[0], bases[1]) << "the base does not depend on the seed";
 }
 
 // The oracle against a test that accepts nearly anything: a fixed epsilon of
@@ -725,8 +735,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     o = parse_options(1, no_bound);
     EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
     EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
-    // The view lobe (0.7): env only, the preset's in pixels of the vertical angle until radians are given.
-    EXPECT_EQ(o.env_view_lobe_px, kEnvViewLobePixels);
+    // The view lobe (0.7): env only, in pixels of the vertical angle until radians are given; none
+    // in the preset since the env residual (channel_presets.h).
+    EXPECT_EQ(o.env_view_lobe_px, 0.0f);
+    const char* lobe_18[] = {"rrc-sample", "--env-view-lobe-px", "18"};
+    EXPECT_EQ(parse_options(3, lobe_18).env_view_lobe_px, kEnvViewLobePixels);
     const char* lobe[] = {"rrc-sample", "--env-view-lobe", "0.0245"};
     o = parse_options(3, lobe);
     EXPECT_EQ(o.channels.env.view_lobe, 0.0245f);
@@ -766,13 +779,14 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.soft.blur_bound, 0.0f) << "the bound never acts on Catmull-Rom";
     EXPECT_EQ(p.soft.residual, 1u);
     EXPECT_EQ(p.pcf.residual, 1u) << "against the bilinear compares (README.md, \"The pcf residual\")";
-    EXPECT_EQ(p.env.residual, 0u) << "every env base loses (README.md, \"The env residual\")";
+    EXPECT_EQ(p.env.residual, 1u) << "against the filtered reflections (README.md, \"The env residual\")";
+    EXPECT_EQ(p.env.view_lobe, 0.0f) << "the base follows the view: the lobe costs more than it buys";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.env.rectify, 0u);
     EXPECT_EQ(p.env.fill_age, 2u) << "below the lobe's age cap + 1 at 1024x640 (channel_presets.h)";
     EXPECT_EQ(p.soft.fill_age, 8u);
-    EXPECT_EQ(p.env.lambda, 0.8f);
+    EXPECT_EQ(p.env.lambda, 0.9f) << "with the env residual (channel_presets.h)";
     EXPECT_EQ(p.soft.lambda, 0.95f) << "the residual's preset (channel_presets.h)";
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.blend, RRC_BLEND_AGE_AWARE);
     for (const ChannelSettings& c : {p.pcf, p.env, p.soft}) EXPECT_EQ(c.antilag, 0u) << "the detector wins nowhere with the presets' cures";
@@ -783,8 +797,11 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(parse_options(3, residual_off).channels.soft.residual, 0u);
     const char* residual_on[] = {"rrc-sample", "--soft-residual=on", "--soft-lambda", "0.8"};
     EXPECT_EQ(parse_options(4, residual_on).channels.soft.residual, 1u);
-    EXPECT_EQ(defaults.channels.env.residual, 0u) << "the env residual loses (README.md, \"The env residual\")";
-    EXPECT_EQ(defaults.env_base, 0u);
+    EXPECT_EQ(defaults.channels.env.residual, 1u) << "the preset's (README.md, \"The env residual\")";
+    EXPECT_EQ(defaults.env_base, kSampleEnvBase);
+    const char* env_none[] = {"rrc-sample", "--env-residual", "off"};
+    EXPECT_EQ(parse_options(3, env_none).channels.env.residual, 0u);
+    EXPECT_EQ(parse_options(3, env_none).env_base, 0u);
     const char* env_smooth[] = {"rrc-sample", "--env-residual", "smooth"};
     const Options smooth = parse_options(3, env_smooth);
     EXPECT_EQ(smooth.channels.env.residual, 1u);

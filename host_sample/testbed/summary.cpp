@@ -277,6 +277,9 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
             if (name == "pcf" && o.channels.pcf.residual)
                 f << "| pcf, the residual's base alone (" << o.pcf_base << " bilinear compares) | | | " << fmt("%.4f", s.rmse_fallback)
                   << " | | | | |\n";
+            if (name == "env" && o.channels.env.residual)
+                f << "| env, the residual's base alone (--env-residual " << o.env_base << ") | | | " << fmt("%.4f", s.rmse_fallback)
+                  << " | | | | |\n";
         }
         f << "\nFor soft shadows \"k\" is one shadow map a frame and \"4k\" four shadow maps from random points of the light.\n";
         f << "\nPer checkpoint:\n\n| frame | signal | pixels | RMSE raw | RMSE accumulated | RMSE raw, hits | RMSE accumulated, hits | "

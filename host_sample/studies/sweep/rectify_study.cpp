@@ -73,36 +73,16 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                     c.push_back({app, on, base});
                 }
         }
-        // rrc-sample's pcf preset (testbed/channel_presets.h) with and without its residual (testbed
-        // README.md, "The pcf residual"), env's with and without the lag detector, which it has not
-        // (here with the sweep's rows' setting).
-        if (o.antilag && app.signal == kSignalPcf) {
-            const rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.pcf;
+        // rrc-sample's pcf and env presets (testbed/channel_presets.h) with and without their
+        // residuals (testbed README.md, "The pcf residual", "The env residual").
+        if (o.antilag && app.signal != kSignalSoft) {
+            const rrc_sample::ChannelPresets presets;
+            const rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
             rrc_sample::ChannelSettings without = preset;
             without.residual = 0;
             const int base = (int)c.size();
             c.push_back({app, without, -1, "the preset without its residual"});
             c.push_back({app, preset, base, "the preset"});
-        }
-        if (o.antilag && app.signal == kSignalEnv) {
-            const rrc_sample::ChannelPresets presets;
-            rrc_sample::ChannelSettings preset = presets.env;
-            // env's preset has rrc-sample's lobe for the size (sample_run.cpp); its first two rows
-            // leave the lighting's turn out, so that under the still camera the lobe caps nothing.
-            const bool lobe = o.view_lobe;
-            if (lobe) preset.view_lobe = study_view_lobe(o, rrc_sample::kEnvViewLobePixels);
-            rrc_sample::ChannelSettings without = preset, with = preset;
-            without.antilag = 0;
-            without.antilag_gamma = without.antilag_threshold = 0.0f;
-            if (!with.antilag) {
-                with.antilag = 1;
-                with.antilag_gamma = kSweepAntilagGamma;
-                with.antilag_threshold = kSweepAntilagThreshold;
-            }
-            const int base = (int)c.size();
-            c.push_back({app, without, -1, preset.antilag ? "the preset without the lag detector" : "the preset", !lobe});
-            c.push_back({app, with, base, preset.antilag ? "the preset" : "the preset with the lag detector", !lobe});
-            if (lobe) c.push_back({app, without, base, "the preset with the lighting's turn", true});
         }
     }
     return c;
@@ -207,8 +187,11 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
         s.lighting_turn = c.lighting_turn;
         stages.emplace_back(new rrc_sample::RrcStage(gpu, s));
     }
-    bool pcf_residual = false;  // a pcf row accumulates the residual: the frame writes its base
-    for (const StudyConfig& c : configs) pcf_residual |= c.app.signal == kSignalPcf && c.channel.residual;
+    bool pcf_residual = false, env_residual = false;  // a row accumulates the residual: the frame writes its base
+    for (const StudyConfig& c : configs) {
+        pcf_residual |= c.app.signal == kSignalPcf && c.channel.residual;
+        env_residual |= c.app.signal == kSignalEnv && c.channel.residual;
+    }
     rrc_sample::Readback rb(gpu);
     std::vector<int> slots;
     for (size_t i = 0; i < stages.size(); ++i) slots.push_back(rb.add(signal_image(stages[i]->accumulated(), configs[i].app.signal)));
@@ -216,7 +199,7 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
     std::vector<Ensemble> ensembles;
     for (const StudyConfig& c : configs) ensembles.emplace_back(apps[c.app.signal].targets.size());
     for (int seed = 0; seed < o.seeds; ++seed) {
-        const Sampling sampling{kFirstSeed + (uint32_t)seed, 0};
+        const Sampling sampling{kFirstSeed + (uint32_t)seed, 0, false, env_residual ? rrc_sample::kSampleEnvBase : 0u};
         for (int f = 0; f <= last; ++f) {
             const FrameState state = e.begin_frame(f, k, sampling.seed);
             const auto cp = std::find(checkpoints.begin(), checkpoints.end(), f);
@@ -230,9 +213,11 @@ std::vector<Metrics> run_scenario(Gpu& gpu, const rrc_sample::Scene& scene, cons
                 // pcf's residual base for the preset rows that take it (testbed README.md, "The pcf residual").
                 const rrc_sample::Image* pcf_base = pcf_residual ? e.signals.record_pcf_base(c, rrc_sample::kSamplePcfBaseTaps) : nullptr;
                 full_barrier(c);
-                for (size_t i = 0; i < stages.size(); ++i)
-                    stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, nullptr, nullptr,
-                                      configs[i].channel.residual ? pcf_base : nullptr);
+                for (size_t i = 0; i < stages.size(); ++i) {
+                    const bool residual = configs[i].channel.residual != 0, env = configs[i].app.signal == kSignalEnv;
+                    stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, nullptr,
+                                      residual && env ? &e.signals.env_base() : nullptr, residual && !env ? pcf_base : nullptr);
+                }
                 if (read) rb.record(c, slots);
             });
             if (!read) continue;

@@ -121,8 +121,8 @@ struct Engine {
         return ms;
     }
 
-    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are (pcf and soft
-     *  without their residuals). */
+    /** rrc's settings over this engine's frames, one channel per bit of `signals`, the channels' presets as they are (without
+     *  their residuals). */
     rrc_sample::RrcSettings rrc_settings(uint32_t signals) const {
         rrc_sample::RrcSettings s;
         s.width = settings.width;
@@ -132,9 +132,10 @@ struct Engine {
         s.far_plane = scene.far_plane;
         s.ages = false;  // no row reads them: rrc's time is the channel's without the optional age output
         // No base here (rrc-sample's soft preset takes the stable PCSS estimate as its residual's
-        // base, pcf's its bilinear compares): the preset rows set their own channel, which turns it
-        // back on.
+        // base, pcf's its bilinear compares, env's its filtered reflections): the preset rows set
+        // their own channel, which turns it back on.
         s.channels.pcf.residual = 0;
+        s.channels.env.residual = 0;
         s.channels.soft.residual = 0;
         return s;
     }

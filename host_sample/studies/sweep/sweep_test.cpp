@@ -417,9 +417,9 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     const RectifyResult r = run_rectify_study(o, nullptr);
     EXPECT_EQ(r.validation_messages, 0u);
     ASSERT_EQ(r.apps.size(), 2u);
-    // pcf, env x off, rectified, lag detector, the preset without and with its cure; env also the view
-    // lobe with the lighting's turn, and its preset (whose lobe is rrc-sample's) with the turn.
-    ASSERT_EQ(r.rows.size(), 12u);
+    // pcf, env x off, rectified, lag detector, the preset without and with its residual; env also the
+    // view lobe with the lighting's turn.
+    ASSERT_EQ(r.rows.size(), 11u);
     // The targets follow the light: the sun's turn moves pcf's shadow edges, some pixels change and most do not.
     EXPECT_GT(r.changed_pixels[0], 20u);
     EXPECT_LT(r.changed_fraction[0], 0.5);
@@ -462,7 +462,16 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     EXPECT_EQ(lobe.still.variance, env_off.still.variance);
     EXPECT_NE(lobe.lag.rmse, env_off.lag.rmse) << "the lighting's turn must cap the history while the light moves";
     EXPECT_GT(lobe.lag.variance, 1.15 * env_off.lag.variance) << "a capped history is a shorter one";
-    EXPECT_TRUE(r.rows[11].lighting_turn && !r.rows[9].lighting_turn && r.rows[11].base == 9);
+    // rrc-sample's env preset (its residual against the filtered reflections, computed from this
+    // frame's turned map) against the same channel without it.
+    const RectifyRow &env_bare = r.rows[9], &env_preset = r.rows[10];
+    ASSERT_TRUE(env_bare.app.signal == rrc_sample::kSignalEnv && !env_bare.channel.residual && env_preset.channel.residual &&
+                env_preset.base == 9);
+    // On this small frame the base is no nearer the target than the samples are (its footprint spans
+    // the bump), so the lag is not cut (2.3e-4 -> 2.9e-4 here; docs/rectify/README.md has the study's
+    // size); what must hold is that the deterministic base adds no noise: the static error stays.
+    EXPECT_LT(env_preset.still.rmse, 1.1 * env_bare.still.rmse) << "a deterministic base adds no noise";
+    EXPECT_GT(env_preset.still.rmse, 0.9 * env_bare.still.rmse);
 }
 
 }  // namespace

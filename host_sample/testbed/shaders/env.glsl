@@ -41,6 +41,47 @@ vec3 env_smooth(vec3 d_world) {
     return mix(ground, upper, smoothstep(-0.05, 0.05, d.y));
 }
 
+// The mean over [x - h, x + h] of the square wave that is 1 where fract(x) < 1/2 and 0
+// elsewhere (its integral: floor(x)/2 + min(fract(x), 1/2)).
+float square_wave_box(float x, float h) {
+    if (h < 1e-5) return fract(x) < 0.5 ? 1.0 : 0.0;
+    float a = x - h, b = x + h;
+    float ia = floor(a) * 0.5 + min(fract(a), 0.5), ib = floor(b) * 0.5 + min(fract(b), 0.5);
+    return (ib - ia) / (2.0 * h);
+}
+
+// env_radiance box-filtered over an angular footprint of width w radians about d (the env
+// residual's `filtered` base, README.md "The env residual"): each hard edge is averaged over
+// the footprint, separably and to first order in w: the ground, the banners and the sky
+// weighted by the share of [d.y - w/2, d.y + w/2] each covers; the banners' colours by the
+// share of the footprint's azimuths that are warm; the checkers by the box means of their two
+// square waves (on the ground plane, where the footprint widens by 1 + |g|^2); the sun as it is.
+vec3 env_filtered(vec3 d_world, float w) {
+    d_world = normalize(d_world);
+    vec3 d = d_world;
+    if (u.bump.z != 0.0) {
+        float c = cos(u.bump.z), s = sin(u.bump.z);
+        d = vec3(c * d_world.x - s * d_world.z, d_world.y, s * d_world.x + c * d_world.z);
+    }
+    float h = max(0.5 * w, 1e-5);
+    float ground_share = clamp((h - d.y) / (2.0 * h), 0.0, 1.0);
+    float sky_share = clamp((d.y + h - 0.07) / (2.0 * h), 0.0, 1.0);
+    float band_share = max(1.0 - ground_share - sky_share, 0.0);
+    vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(max(d.y, 0.0)));
+    float az = atan(d.z, d.x) * (12.0 / (2.0 * PI));
+    float az_h = h * 12.0 / (2.0 * PI * max(length(d.xz), 1e-3));
+    vec3 band = mix(vec3(0.18, 0.6, 0.32), vec3(1.1, 0.55, 0.18), square_wave_box(az, az_h));
+    vec2 g = d.xz / max(-d.y, 0.05);
+    float g_h = 1.5 * h * (1.0 + dot(g, g));
+    // floor(1.5 g) odd: the square wave of 1.5 g / 2 is 0; the checker is the two waves' xor.
+    vec2 odd = vec2(1.0 - square_wave_box(0.75 * g.x, 0.5 * g_h), 1.0 - square_wave_box(0.75 * g.y, 0.5 * g_h));
+    float c = odd.x * (1.0 - odd.y) + (1.0 - odd.x) * odd.y;
+    vec3 ground = mix(vec3(0.12, 0.1, 0.09), vec3(0.6, 0.56, 0.5), c);
+    float s = max(dot(d_world, u.sun_dir.xyz), 0.0);
+    vec3 above = (sky * sky_share + band * band_share) / max(sky_share + band_share, 1e-6) + vec3(1.6, 1.4, 1.0) * pow(s, 200.0);
+    return mix(above, ground, ground_share);
+}
+
 // The bumped normal of the sphere at unit normal n: height h(p) =
 // sin(Fx) sin(Fy) sin(Fz) / F on the object-space point p = n * radius.
 vec3 bumped_normal(vec3 n) {
@@ -57,7 +98,7 @@ vec3 bumped_normal(vec3 n) {
 // the silhouette are clamped to the grazing point), the bumped normal (or,
 // bumped false, the sphere's own) reflects it into the environment (or, with
 // the frozen mirror view, the direction from u.mirror_eye to the point).
-vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
+vec3 sphere_reflection(vec2 ndc, bool bumped) {
     vec4 far_point = u.inv_view_proj * vec4(ndc, 0.5, 1.0);
     vec3 o = u.camera_pos.xyz;
     vec3 d = normalize(far_point.xyz / far_point.w - o);
@@ -72,7 +113,26 @@ vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
     vec3 v = u.mirror_eye.w != 0.0 ? normalize(o + t * d - u.mirror_eye.xyz) : d;
     vec3 r = reflect(v, nb);
     if (dot(r, n) < 0.0) r = reflect(r, n);  // keep reflections above the geometric surface
+    return r;
+}
+vec3 sphere_sample(vec2 ndc, bool bumped, bool smooth_env) {
+    vec3 r = sphere_reflection(ndc, bumped);
     return smooth_env ? env_smooth(r) : env_radiance(r);
+}
+// The env residual's `filtered` base: the mean over the pixel's four quarter-pixel centres
+// (offsets of +-1/4 pixel in x and y) of each one's reflection into env_filtered over its
+// half-pixel cell, whose width is the reflection's turn to the neighbouring centre in x or in y
+// (half a pixel away), the larger: four reflections, as many as the signal's k = 4 rays.
+vec3 sphere_filtered(vec2 ndc, vec2 pixel) {
+    vec3 r[4];
+    for (int i = 0; i < 4; ++i)
+        r[i] = sphere_reflection(ndc + 0.25 * pixel * vec2((i & 1) != 0 ? 1.0 : -1.0, (i & 2) != 0 ? 1.0 : -1.0), true);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+        float wx = length(r[i ^ 1] - r[i]), wy = length(r[i ^ 2] - r[i]);
+        sum += env_filtered(r[i], max(wx, wy));
+    }
+    return 0.25 * sum;
 }
 vec3 sphere_sample(vec2 ndc) { return sphere_sample(ndc, true, false); }
 

@@ -8,7 +8,8 @@
 // The per-frame signal (set 0) with `base` non-zero also writes o_base, a
 // deterministic estimate the env channel's residual subtracts (README.md,
 // "The env residual"): 1 the sample at the pixel's centre, 2 the same ray
-// reflected by the unbumped sphere, 3 that reflection into env_smooth.
+// reflected by the unbumped sphere, 3 that reflection into env_smooth, 4 the
+// centre's reflection into env_filtered over the pixel's footprint (env.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "env.glsl"
@@ -34,7 +35,9 @@ void main() {
     uint stream = (pc.reference != 0u ? 0x5eedu + 2u * pc.reference : 2u) + 0x10000u * pc.seed;
     vec2 shift = vec2(rnd(uint(px.x), uint(px.y), u.frame.x, stream), rnd(uint(px.x), uint(px.y), u.frame.x, stream + 1u));
     vec2 size = vec2(u.frame.zw);
-    if (base) imageStore(o_base, px, vec4(sphere_sample((vec2(px) + 0.5) / size * 2.0 - 1.0, pc.base == 1u, pc.base == 3u), 1.0));
+    vec2 centre = (vec2(px) + 0.5) / size * 2.0 - 1.0;
+    if (base)
+        imageStore(o_base, px, vec4(pc.base == 4u ? sphere_filtered(centre, 2.0 / size) : sphere_sample(centre, pc.base == 1u, pc.base == 3u), 1.0));
     vec3 sum = vec3(0.0);
     for (uint j = 0u; j < n; ++j) {
         vec2 o = fract(vec2((float(j) + 0.5) / float(n), float(j) * 0.6180339887) + shift);
