@@ -289,10 +289,10 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             // The soft preset rows' fill fallback and soft residual (sweep_configs.cpp): rrc-sample's PCSS
             // estimates from the light centre's map (post.h), recorded in the row's own timed pass before
             // its dispatch, so that the row's rrc time holds the map and the estimate.  One set of passes
-            // a row.
+            // a row.  Soft's rows only: pcf's residual has its own base (below).
             std::vector<std::unique_ptr<rrc_sample::PostPasses>> pcss(stages.size());
             for (size_t i = 0; i < stages.size(); ++i)
-                if (run.configs[i].channel.fill_prior > 0.0f || run.configs[i].channel.residual)
+                if (run.configs[i].app.signal == kSignalSoft && (run.configs[i].channel.fill_prior > 0.0f || run.configs[i].channel.residual))
                     pcss[i].reset(new rrc_sample::PostPasses(gpu, e.gpu_scene, e.gbuffer.images(), e.maps, stages[i]->mask(),
                                                              stages[i]->age(kSignalSoft), stages[i]->accumulated(), e.signals.raw(),
                                                              e.signals.reference(), o.width, o.height, true));
