@@ -53,6 +53,17 @@ constexpr uint32_t kSampleEnvBase = 4;
  *  in docs/PERFORMANCE.md, "The view lobe in the kernel (0.7), measured". */
 constexpr float kEnvViewLobePixels = 18.0f;
 
+/** The env preset's view lobe (docs/CONVENTIONS.md, "The view-dependent history"), in radians of
+ *  the view's or the lighting's turn, the same at every size: with the residual the history holds
+ *  only the filtered base's error, which moves with the reflection as the lighting turns, so a
+ *  lighting that turned by phi a frame leaves it good for about 0.08 / phi frames.  At the
+ *  rectification study's 1 degree a frame the age is capped at 4 (lambda 0.9 -> 0.8): the moving
+ *  light's lag bias^2 0.48x the preset without its cures, against 0.68x for the residual alone
+ *  (README.md, "The env residual's view lobe"); under the sample's moving camera (0.012-0.022 rad a
+ *  frame on the sphere) it caps at 3 to 6, which costs 0.0437 against 0.0429 at 256x160 and
+ *  0.0311 against 0.0310 at 1024x640.  A lobe in pixels (as kEnvViewLobePixels) would cap the
+ *  history at age 1 at 1024x640, where the base carries the view at the pixel's scale. */
+constexpr float kEnvResidualViewLobe = 0.08f;
 /** The bilinear shadow compares of pcf's residual base (rrc-sample's --pcf-residual default;
  *  README.md, "The pcf residual"): as many as the per-frame signal's k = 4 taps, so that on a
  *  GPU, whose filtered depth-compare sampler returns a bilinear compare in one fetch, the frame
@@ -100,12 +111,14 @@ constexpr float kSampleBlurBound = 0.5f;
  *  which wins by a little at both (0.0467 and 0.0429; docs/PERFORMANCE.md, "Catmull-Rom with
  *  the residual").  env (since 2026-12-05) with lambda 0.9, the residual against its filtered
  *  base (kSampleEnvBase: four reflections into the environment box-filtered over their
- *  footprints; README.md, "The env residual"), no view lobe, and the spatial fill below age 2:
+ *  footprints; README.md, "The env residual"), and the spatial fill below age 2:
  *  0.0429 at 256x160 and 0.0310 at 1024x640, against 0.0435 and 0.0486 for the env preset before
  *  it (lambda 0.8, the view lobe of kEnvViewLobePixels, the fill below age 2, no residual).  The
  *  base is this frame's view of the reflection, so the history holds only the base's error and
- *  the lobe, which cut the history to age 1 on the sphere at 1024x640, costs more than it buys
- *  (0.0422 with it). */
+ *  the lobe of kEnvViewLobePixels, which cut the history to age 1 on the sphere at 1024x640,
+ *  costs more than it buys (0.0422 with it); since 2026-12-05 16:00 UTC with the wider lobe of
+ *  kEnvResidualViewLobe radians, which halves the lag behind a turning environment for 0.0437 and
+ *  0.0311. */
 struct ChannelPresets {
     ChannelSettings pcf{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 4, /*fill_radius*/ 0,
@@ -114,7 +127,7 @@ struct ChannelPresets {
     ChannelSettings env{0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, /*confidence*/ 0, /*rectify*/ 0,
                         /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 2, /*fill_radius*/ 0,
                         /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,
-                        /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ 0.0f, /*residual*/ 1};
+                        /*antilag_threshold*/ 0.0f, /*blur_bound*/ 0.0f, /*view_lobe*/ kEnvResidualViewLobe, /*residual*/ 1};
     ChannelSettings soft{0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, /*confidence*/ 0, /*rectify*/ 0,
                          /*rectify_gamma*/ 0.0f, /*blur_sigma*/ 0.0f, /*fill_age*/ 8, /*fill_radius*/ 0,
                          /*fill_depth_tolerance*/ 0.0f, /*fill_prior*/ 0.0f, /*antilag*/ 0, /*antilag_gamma*/ 0.0f,

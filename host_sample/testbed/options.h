@@ -32,7 +32,7 @@ struct Options {
     // env's view lobe (channel_presets.h): in pixels of the camera's vertical angle (run_sample
     // turns it into radians with the scene's fov and --size); --env-view-lobe A sets radians
     // instead (channels.env.view_lobe), and then this is 0.
-    float env_view_lobe_px = 0.0f;  // the preset: none since the env residual (channel_presets.h)
+    float env_view_lobe_px = 0.0f;  // 0: the preset's lobe in radians (kEnvResidualViewLobe, channel_presets.h)
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
     uint32_t env_base = kSampleEnvBase;      // --env-residual's base: 1 centre, 2 unbumped, 3 smooth, 4 filtered (the preset); 0 off

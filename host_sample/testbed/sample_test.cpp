@@ -735,11 +735,13 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     o = parse_options(1, no_bound);
     EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
     EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
-    // The view lobe (0.7): env only, in pixels of the vertical angle until radians are given; none
-    // in the preset since the env residual (channel_presets.h).
+    // The view lobe (0.7): env only; the preset's in radians at every size (channel_presets.h),
+    // replaced by one in pixels of the vertical angle when those are given.
     EXPECT_EQ(o.env_view_lobe_px, 0.0f);
+    EXPECT_EQ(o.channels.env.view_lobe, kEnvResidualViewLobe);
     const char* lobe_18[] = {"rrc-sample", "--env-view-lobe-px", "18"};
     EXPECT_EQ(parse_options(3, lobe_18).env_view_lobe_px, kEnvViewLobePixels);
+    EXPECT_EQ(parse_options(3, lobe_18).channels.env.view_lobe, 0.0f) << "the pixels replace the preset's radians";
     const char* lobe[] = {"rrc-sample", "--env-view-lobe", "0.0245"};
     o = parse_options(3, lobe);
     EXPECT_EQ(o.channels.env.view_lobe, 0.0245f);
@@ -780,7 +782,8 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.soft.residual, 1u);
     EXPECT_EQ(p.pcf.residual, 1u) << "against the bilinear compares (README.md, \"The pcf residual\")";
     EXPECT_EQ(p.env.residual, 1u) << "against the filtered reflections (README.md, \"The env residual\")";
-    EXPECT_EQ(p.env.view_lobe, 0.0f) << "the base follows the view: the lobe costs more than it buys";
+    EXPECT_EQ(p.env.view_lobe, kEnvResidualViewLobe) << "a lobe in radians, wide enough to leave the camera's motion alone";
+    EXPECT_GT(p.env.view_lobe, 4.0f * 0.0174533f) << "capped at age 4 or more behind a light turning 1 degree a frame";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);
     EXPECT_EQ(p.env.rectify, 0u);

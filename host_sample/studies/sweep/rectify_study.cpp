@@ -73,15 +73,23 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                     c.push_back({app, on, base});
                 }
         }
-        // rrc-sample's pcf and env presets (testbed/channel_presets.h) with and without their
-        // residuals (testbed README.md, "The pcf residual", "The env residual").
+        // rrc-sample's pcf and env presets (testbed/channel_presets.h) without and with their cures:
+        // the residual (testbed README.md, "The pcf residual", "The env residual") and env's view
+        // lobe fed the lighting's turn ("The env residual's view lobe"); env also with the residual
+        // alone, each cure's share.
         if (o.antilag && app.signal != kSignalSoft) {
             const rrc_sample::ChannelPresets presets;
             const rrc_sample::ChannelSettings preset = app.signal == kSignalPcf ? presets.pcf : presets.env;
             rrc_sample::ChannelSettings without = preset;
             without.residual = 0;
+            without.view_lobe = 0.0f;
             const int base = (int)c.size();
-            c.push_back({app, without, -1, "the preset without its residual"});
+            c.push_back({app, without, -1, "the preset without its cures"});
+            if (preset.view_lobe > 0.0f) {
+                rrc_sample::ChannelSettings residual_only = preset;
+                residual_only.view_lobe = 0.0f;
+                c.push_back({app, residual_only, base, "the preset without its view lobe"});
+            }
             c.push_back({app, preset, base, "the preset"});
         }
     }
@@ -424,11 +432,12 @@ void write_rectify_files(const SweepOptions& o, const RectifyResult& r, const st
           << (soft ? " (soft: outside the study's targets, shown to say what happens)" : "") << "\n";
     }
     if (!any) f << "- no lambda = 0.9 rows\n";
-    f << "\n## Verdicts, the lag detector and the view lobe with the lighting's turn (lambda = 0.9: lag bias² on the changed pixels at "
+    f << "\n## Verdicts, the lag detector, the view lobe with the lighting's turn and the presets' cures (lambda = 0.9: lag bias² on the changed pixels at "
          "most half of without, static RMSE at most 1.1x)\n\n";
     any = false;
     for (const RectifyRow& row : r.rows) {
-        if (!(row.antilag || row.lighting_turn) || (row.preset.empty() && std::abs(row.lambda - 0.9f) > 1e-4f)) continue;
+        // The cures' rows at lambda 0.9 and every preset row that has a row without its cures.
+        if (row.preset.empty() && (!(row.antilag || row.lighting_turn) || std::abs(row.lambda - 0.9f) > 1e-4f)) continue;
         const RectifyRow* off = off_row(r, row);
         if (!off) continue;
         any = true;
