@@ -5,6 +5,8 @@
 
 #include <rrc/rrc.h>
 
+#include "shaders/signal_modes.h"
+
 namespace rrc_sample {
 
 /** One signal's rrc channel (include/rrc/rrc.h, rrc_channel_desc). */
@@ -40,7 +42,7 @@ struct ChannelSettings {
 
 /** The env residual's base the preset takes (rrc-sample's --env-residual default, `filtered`;
  *  README.md, "The env residual"). */
-constexpr uint32_t kSampleEnvBase = 4;
+constexpr uint32_t kSampleEnvBase = SAMPLE_ENV_BASE_FILTERED;
 
 /** env's view lobe before the env residual (2026-12-05; now --env-view-lobe-px's value in the
  *  rectification study's rows, not a preset's) (docs/CONVENTIONS.md, "The view-dependent

@@ -19,7 +19,11 @@ constexpr rrc_host::EnumName<uint32_t> kSignalNames[] = {{"pcf", kSignalPcf}, {"
 constexpr rrc_host::EnumName<uint32_t> kPcfPatternNames[] = {{"disk", 0u}, {"rotated", 1u}};
 constexpr rrc_host::EnumName<uint32_t> kOnOffNames[] = {{"off", 0u}, {"on", 1u}};
 constexpr int kMaxPcfBaseTaps = 64;  // --pcf-residual's bilinear taps
-constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", 0u}, {"centre", 1u}, {"unbumped", 2u}, {"smooth", 3u}, {"filtered", 4u}};
+constexpr rrc_host::EnumName<uint32_t> kEnvBaseNames[] = {{"off", SAMPLE_ENV_BASE_OFF},
+                                                           {"centre", SAMPLE_ENV_BASE_CENTRE},
+                                                           {"unbumped", SAMPLE_ENV_BASE_UNBUMPED},
+                                                           {"smooth", SAMPLE_ENV_BASE_SMOOTH},
+                                                           {"filtered", SAMPLE_ENV_BASE_FILTERED}};
 
 }  // namespace
 
@@ -78,6 +82,8 @@ std::string signal_list(uint32_t s) {
 }
 
 const char* reprojection_name(uint32_t r) { return rrc_host::enum_name(rrc_host::kReprojectionNames, r); }
+
+const char* env_base_name(uint32_t base) { return rrc_host::enum_name(kEnvBaseNames, base); }
 
 namespace {
 // host_sample/common/enum_names.h has no depth-test table yet; the sample keeps its own.

@@ -77,6 +77,8 @@ std::string usage();
 /** "pcf,env,soft" for Signal bits. */
 std::string signal_list(uint32_t signals);
 const char* reprojection_name(uint32_t reprojection);
+/** --env-residual's name of an env base (Options::env_base; shaders/signal_modes.h), "?" if none. */
+const char* env_base_name(uint32_t base);
 /** "default", "adaptive" or "fixed". */
 const char* depth_test_name(uint32_t depth_test);
 /** The test rrc applies for these options, in words (summary, progress). */

@@ -808,7 +808,9 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     const char* env_smooth[] = {"rrc-sample", "--env-residual", "smooth"};
     const Options smooth = parse_options(3, env_smooth);
     EXPECT_EQ(smooth.channels.env.residual, 1u);
-    EXPECT_EQ(smooth.env_base, 3u);
+    EXPECT_EQ(smooth.env_base, SAMPLE_ENV_BASE_SMOOTH) << "the mode signal_env.comp reads (shaders/signal_modes.h)";
+    EXPECT_STREQ(env_base_name(kSampleEnvBase), "filtered") << "summary.md names the base as the option does";
+    EXPECT_STREQ(env_base_name(SAMPLE_ENV_BASE_CENTRE), "centre");
     EXPECT_EQ(smooth.channels.soft.residual, 1u) << "soft's stays the preset's";
     const char* env_off[] = {"rrc-sample", "--env-residual", "centre", "--env-residual", "off"};
     EXPECT_EQ(parse_options(5, env_off).channels.env.residual, 0u) << "the last one given wins";

@@ -3,6 +3,7 @@
 #include "rrc_sample_signal_env_comp.h"
 #include "rrc_sample_signal_pcf_comp.h"
 #include "rrc_sample_signal_soft_comp.h"
+#include "shaders/signal_modes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +18,7 @@ const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAG
 struct SamplesPush {  // signal_pcf.comp (the first five) and signal_env.comp
     uint32_t samples, reference, seed, pattern, confidence, env_base;
 };
-constexpr uint32_t kPcfBasePass = 3;  // signal_pcf.comp's `reference` value of the base pass
+constexpr uint32_t kPcfBasePass = SAMPLE_PCF_BASE_PASS;  // signal_pcf.comp's `reference` value of the base pass
 
 struct SoftPush {
     glm::mat4 light_vp;

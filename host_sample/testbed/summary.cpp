@@ -278,7 +278,7 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
                 f << "| pcf, the residual's base alone (" << o.pcf_base << " bilinear compares) | | | " << fmt("%.4f", s.rmse_fallback)
                   << " | | | | |\n";
             if (name == "env" && o.channels.env.residual)
-                f << "| env, the residual's base alone (--env-residual " << o.env_base << ") | | | " << fmt("%.4f", s.rmse_fallback)
+                f << "| env, the residual's base alone (--env-residual " << env_base_name(o.env_base) << ") | | | " << fmt("%.4f", s.rmse_fallback)
                   << " | | | | |\n";
         }
         f << "\nFor soft shadows \"k\" is one shadow map a frame and \"4k\" four shadow maps from random points of the light.\n";

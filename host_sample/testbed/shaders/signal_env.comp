@@ -13,6 +13,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "env.glsl"
+#include "signal_modes.h"
 layout(local_size_x = 128, local_size_y = 1) in;
 
 layout(set = 0, binding = 1) uniform sampler2D g_normal_material;
@@ -37,7 +38,9 @@ void main() {
     vec2 size = vec2(u.frame.zw);
     vec2 centre = (vec2(px) + 0.5) / size * 2.0 - 1.0;
     if (base)
-        imageStore(o_base, px, vec4(pc.base == 4u ? sphere_filtered(centre, 2.0 / size) : sphere_sample(centre, pc.base == 1u, pc.base == 3u), 1.0));
+        imageStore(o_base, px, vec4(pc.base == SAMPLE_ENV_BASE_FILTERED ? sphere_filtered(centre, 2.0 / size)
+                                                                   : sphere_sample(centre, pc.base == SAMPLE_ENV_BASE_CENTRE, pc.base == SAMPLE_ENV_BASE_SMOOTH),
+                                  1.0));
     vec3 sum = vec3(0.0);
     for (uint j = 0u; j < n; ++j) {
         vec2 o = fract(vec2((float(j) + 0.5) / float(n), float(j) * 0.6180339887) + shift);

@@ -36,6 +36,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "disk_area.glsl"
+#include "signal_modes.h"
 layout(local_size_x = 128, local_size_y = 1) in;
 
 layout(set = 0, binding = 1) uniform sampler2D g_position;
@@ -123,7 +124,7 @@ void main() {
     if (px.x >= int(u.frame.z) || px.y >= int(u.frame.w)) return;
     vec4 nm = texelFetch(g_normal_material, px, 0);
     if (material_of(nm) == MAT_BACKGROUND) {
-        if (pc.reference == 3u) {
+        if (pc.reference == SAMPLE_PCF_BASE_PASS) {
             imageStore(o_base, px, vec4(1.0));
             return;
         }
@@ -137,7 +138,7 @@ void main() {
     vec2 texel = (lc.xy * 0.5 + 0.5) * float(size);
     float z = lc.z - u.ambient.w / 79.0;  // ortho depth spans 79 world units
     float radius = u.sun_colour.w;
-    if (pc.reference == 3u) {
+    if (pc.reference == SAMPLE_PCF_BASE_PASS) {
         imageStore(o_base, px, vec4(base_estimate(texel, radius, z, size, pc.samples)));
         return;
     }
