@@ -2,31 +2,47 @@
 #ifndef RRC_SAMPLE_ENV_GLSL
 #define RRC_SAMPLE_ENV_GLSL
 
+// The environment's constants, read by env_radiance and its two smoothed forms below.
+const vec3 ENV_SKY_HORIZON = vec3(0.78, 0.86, 1.0);  // the sky's colour at the horizon ...
+const vec3 ENV_SKY_ZENITH = vec3(0.22, 0.42, 0.85);  // ... and overhead, mixed by sqrt(d.y)
+const float ENV_BAND_TOP = 0.07;                     // the banners: 0 <= d.y < this
+const float ENV_BAND_SECTORS = 12.0;                 // banners about the horizon, warm and cool alternating
+const vec3 ENV_BAND_WARM = vec3(1.1, 0.55, 0.18);
+const vec3 ENV_BAND_COOL = vec3(0.18, 0.6, 0.32);
+const vec3 ENV_SUN = vec3(1.6, 1.4, 1.0);            // the sun's highlight: ENV_SUN * max(d . sun, 0)^ENV_SUN_POWER
+const float ENV_SUN_POWER = 200.0;
+const float ENV_CHECKER_SCALE = 1.5;                 // checkers a unit of the ground plane y = -1 (g = d.xz / -d.y)
+const float ENV_GROUND_MIN_DEPTH = 0.05;             // -d.y is clamped to this before the ground is projected
+const vec3 ENV_GROUND_DARK = vec3(0.12, 0.1, 0.09);
+const vec3 ENV_GROUND_LIGHT = vec3(0.6, 0.56, 0.5);
+
+// The map's own frame: the moving light (--light-speed) turns the map about +y by u.bump.z
+// radians with the sun (frame_state.cpp), so a world direction is turned back by it.
+vec3 env_map_frame(vec3 d_world) {
+    if (u.bump.z == 0.0) return d_world;
+    float c = cos(u.bump.z), s = sin(u.bump.z);
+    return vec3(c * d_world.x - s * d_world.z, d_world.y, s * d_world.x + c * d_world.z);
+}
+
 // Radiance from direction d: a sky with a band of coloured banners along the
 // horizon and a sun, over a checkered ground.  Hard edges on purpose: a
 // bumpy mirror turns them into sub-pixel detail that one sample aliases.
-// The moving light (--light-speed): the map turns about +y by u.bump.z
-// radians with the sun (frame_state.cpp), so d is turned back by it into the
-// map's own frame; the sun's highlight follows u.sun_dir, already turned.
+// The sun's highlight follows u.sun_dir, already turned with the map.
 vec3 env_radiance(vec3 d_world) {
     d_world = normalize(d_world);
-    vec3 d = d_world;
-    if (u.bump.z != 0.0) {
-        float c = cos(u.bump.z), s = sin(u.bump.z);
-        d = vec3(c * d_world.x - s * d_world.z, d_world.y, s * d_world.x + c * d_world.z);
-    }
+    vec3 d = env_map_frame(d_world);
     if (d.y >= 0.0) {
-        vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(d.y));
-        float az = atan(d.z, d.x) * (12.0 / (2.0 * PI));
+        vec3 sky = mix(ENV_SKY_HORIZON, ENV_SKY_ZENITH, sqrt(d.y));
+        float az = atan(d.z, d.x) * (ENV_BAND_SECTORS / (2.0 * PI));
         bool warm = fract(az) < 0.5;
-        if (d.y < 0.07) sky = warm ? vec3(1.1, 0.55, 0.18) : vec3(0.18, 0.6, 0.32);
+        if (d.y < ENV_BAND_TOP) sky = warm ? ENV_BAND_WARM : ENV_BAND_COOL;
         float s = max(dot(d_world, u.sun_dir.xyz), 0.0);
-        sky += vec3(1.6, 1.4, 1.0) * pow(s, 200.0);
+        sky += ENV_SUN * pow(s, ENV_SUN_POWER);
         return sky;
     }
-    vec2 g = d.xz / max(-d.y, 0.05);
-    float c = mod(floor(g.x * 1.5) + floor(g.y * 1.5), 2.0);
-    return mix(vec3(0.12, 0.1, 0.09), vec3(0.6, 0.56, 0.5), c);
+    vec2 g = d.xz / max(-d.y, ENV_GROUND_MIN_DEPTH);
+    float c = mod(floor(g.x * ENV_CHECKER_SCALE) + floor(g.y * ENV_CHECKER_SCALE), 2.0);
+    return mix(ENV_GROUND_DARK, ENV_GROUND_LIGHT, c);
 }
 
 // The environment without its hard edges: the sky's gradient, the banners'
@@ -34,9 +50,9 @@ vec3 env_radiance(vec3 d_world) {
 // no sun.  Smooth where env_radiance is not (the env residual's smooth base).
 vec3 env_smooth(vec3 d_world) {
     vec3 d = normalize(d_world);  // the map's turn (u.bump.z) changes nothing here but the sun's
-    vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(max(d.y, 0.0)));
-    vec3 banners = 0.5 * (vec3(1.1, 0.55, 0.18) + vec3(0.18, 0.6, 0.32));
-    vec3 ground = 0.5 * (vec3(0.12, 0.1, 0.09) + vec3(0.6, 0.56, 0.5));
+    vec3 sky = mix(ENV_SKY_HORIZON, ENV_SKY_ZENITH, sqrt(max(d.y, 0.0)));
+    vec3 banners = 0.5 * (ENV_BAND_WARM + ENV_BAND_COOL);
+    vec3 ground = 0.5 * (ENV_GROUND_DARK + ENV_GROUND_LIGHT);
     vec3 upper = mix(banners, sky, smoothstep(0.02, 0.12, d.y));
     return mix(ground, upper, smoothstep(-0.05, 0.05, d.y));
 }
@@ -58,27 +74,24 @@ float square_wave_box(float x, float h) {
 // square waves (on the ground plane, where the footprint widens by 1 + |g|^2); the sun as it is.
 vec3 env_filtered(vec3 d_world, float w) {
     d_world = normalize(d_world);
-    vec3 d = d_world;
-    if (u.bump.z != 0.0) {
-        float c = cos(u.bump.z), s = sin(u.bump.z);
-        d = vec3(c * d_world.x - s * d_world.z, d_world.y, s * d_world.x + c * d_world.z);
-    }
+    vec3 d = env_map_frame(d_world);
     float h = max(0.5 * w, 1e-5);
     float ground_share = clamp((h - d.y) / (2.0 * h), 0.0, 1.0);
-    float sky_share = clamp((d.y + h - 0.07) / (2.0 * h), 0.0, 1.0);
+    float sky_share = clamp((d.y + h - ENV_BAND_TOP) / (2.0 * h), 0.0, 1.0);
     float band_share = max(1.0 - ground_share - sky_share, 0.0);
-    vec3 sky = mix(vec3(0.78, 0.86, 1.0), vec3(0.22, 0.42, 0.85), sqrt(max(d.y, 0.0)));
-    float az = atan(d.z, d.x) * (12.0 / (2.0 * PI));
-    float az_h = h * 12.0 / (2.0 * PI * max(length(d.xz), 1e-3));
-    vec3 band = mix(vec3(0.18, 0.6, 0.32), vec3(1.1, 0.55, 0.18), square_wave_box(az, az_h));
-    vec2 g = d.xz / max(-d.y, 0.05);
-    float g_h = 1.5 * h * (1.0 + dot(g, g));
-    // floor(1.5 g) odd: the square wave of 1.5 g / 2 is 0; the checker is the two waves' xor.
-    vec2 odd = vec2(1.0 - square_wave_box(0.75 * g.x, 0.5 * g_h), 1.0 - square_wave_box(0.75 * g.y, 0.5 * g_h));
+    vec3 sky = mix(ENV_SKY_HORIZON, ENV_SKY_ZENITH, sqrt(max(d.y, 0.0)));
+    float az = atan(d.z, d.x) * (ENV_BAND_SECTORS / (2.0 * PI));
+    float az_h = h * ENV_BAND_SECTORS / (2.0 * PI * max(length(d.xz), 1e-3));
+    vec3 band = mix(ENV_BAND_COOL, ENV_BAND_WARM, square_wave_box(az, az_h));
+    vec2 g = d.xz / max(-d.y, ENV_GROUND_MIN_DEPTH);
+    float g_h = ENV_CHECKER_SCALE * h * (1.0 + dot(g, g));
+    // floor(s g) odd (s = ENV_CHECKER_SCALE): the square wave of s g / 2 is 0; the checker is the two waves' xor.
+    vec2 odd = vec2(1.0 - square_wave_box(0.5 * ENV_CHECKER_SCALE * g.x, 0.5 * g_h),
+                    1.0 - square_wave_box(0.5 * ENV_CHECKER_SCALE * g.y, 0.5 * g_h));
     float c = odd.x * (1.0 - odd.y) + (1.0 - odd.x) * odd.y;
-    vec3 ground = mix(vec3(0.12, 0.1, 0.09), vec3(0.6, 0.56, 0.5), c);
+    vec3 ground = mix(ENV_GROUND_DARK, ENV_GROUND_LIGHT, c);
     float s = max(dot(d_world, u.sun_dir.xyz), 0.0);
-    vec3 above = (sky * sky_share + band * band_share) / max(sky_share + band_share, 1e-6) + vec3(1.6, 1.4, 1.0) * pow(s, 200.0);
+    vec3 above = (sky * sky_share + band * band_share) / max(sky_share + band_share, 1e-6) + ENV_SUN * pow(s, ENV_SUN_POWER);
     return mix(above, ground, ground_share);
 }
 
