@@ -122,8 +122,6 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
             VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layouts_[pass]), "vkCreatePipelineLayout");
         }
 
-        pipeline(KernelVariant{});  // the plain variant now: a broken device fails at creation, not mid-frame
-
         VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets * buffers}};

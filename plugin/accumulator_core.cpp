@@ -28,6 +28,14 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
                             /*device_local=*/true);
     view_buffer_ = HostBuffer(*dev_, RRC_VIEW_BUFFER_FLOATS * sizeof(float),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, /*device_local=*/true);
+    // The pipelines of the context's plainest frame now, so that a broken device fails at
+    // creation, not mid-frame, and that frame compiles nothing more: a frame of the whole
+    // pass (a shading cache's classify) with no optional output, sampled inputs.  A frame
+    // that asks for more makes its own variants then (accumulate_pipeline.h, KernelVariant).
+    PlanRequest plain;
+    plain.call = all_reuse(config_) ? PlanCall::Classify : PlanCall::Run;
+    plain.interop = interop;
+    prepare(make_plan(config_, plain), KernelVariant{});
 }
 
 AccumulatorCore::~AccumulatorCore() = default;  // members in reverse order: the device wrapper last
