@@ -9,6 +9,17 @@
 
 #include "rrc_values.glsl"  // RRC_MAX_CHANNELS, spec ids, bindings
 
+// The channel slots a module carries code for: the per-channel passes (frame, fill) are built
+// once for each count 1..RRC_MAX_CHANNELS (compute/CMakeLists.txt, -DRRC_SLOTS=N) and the library
+// takes the module of the context's channel count, so a driver compiles no code for slots the
+// context cannot use (docs/PERFORMANCE.md, "One module a channel count").  Unset: every slot.
+#ifndef RRC_SLOTS
+#define RRC_SLOTS RRC_MAX_CHANNELS
+#endif
+#if RRC_SLOTS < 1 || RRC_SLOTS > RRC_MAX_CHANNELS || RRC_MAX_CHANNELS != 4
+#error "RRC_SLOTS must be 1..RRC_MAX_CHANNELS, and the passes include slots 0..3 (RRC_MAX_CHANNELS 4)"
+#endif
+
 layout(constant_id = RRC_SPEC_CHANNEL_COUNT) const uint CH_COUNT = 1u;
 
 // Per-slot specialization constants: RRC_SPEC_CHANNEL(property, slot), i.e.

@@ -43,18 +43,25 @@ void rrc_fill() {
     bool fill_here = !rrc_is_background(d_p);
     bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
 
+// The module's RRC_SLOTS slots (rrc_channel_slots.glsl); slots past them are not compiled.
 #define RRC_CH 0
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
+#if RRC_SLOTS > 1
 #define RRC_CH 1
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
+#endif
+#if RRC_SLOTS > 2
 #define RRC_CH 2
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
+#endif
+#if RRC_SLOTS > 3
 #define RRC_CH 3
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
+#endif
 }
 
 void main() { rrc_fill(); }

@@ -111,18 +111,25 @@ void rrc_pixel_at(ivec2 px, bool store) {
         if (hit_any) view_theta = rrc_view_turn(px, size) + u_view.d.w;
     }
 
+// The module's RRC_SLOTS slots (rrc_channel_slots.glsl); slots past them are not compiled.
 #define RRC_CH 0
 #include "rrc_channel.glsl"
 #undef RRC_CH
+#if RRC_SLOTS > 1
 #define RRC_CH 1
 #include "rrc_channel.glsl"
 #undef RRC_CH
+#endif
+#if RRC_SLOTS > 2
 #define RRC_CH 2
 #include "rrc_channel.glsl"
 #undef RRC_CH
+#endif
+#if RRC_SLOTS > 3
 #define RRC_CH 3
 #include "rrc_channel.glsl"
 #undef RRC_CH
+#endif
 
     if (store) imageStore(u_mask, px, uvec4(mask));
     if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px);

@@ -2,8 +2,14 @@
 
 #include "error.h"
 #include "rrc_pass_copy_out_spv.h"
-#include "rrc_pass_fill_spv.h"
-#include "rrc_pass_frame_spv.h"
+#include "rrc_pass_fill_1_spv.h"
+#include "rrc_pass_fill_2_spv.h"
+#include "rrc_pass_fill_3_spv.h"
+#include "rrc_pass_fill_4_spv.h"
+#include "rrc_pass_frame_1_spv.h"
+#include "rrc_pass_frame_2_spv.h"
+#include "rrc_pass_frame_3_spv.h"
+#include "rrc_pass_frame_4_spv.h"
 #include "rrc_pass_list_spv.h"
 
 #include <cstring>
@@ -50,12 +56,26 @@ constexpr Binding kCopyOutBindings[] = {RRC_PASS_COPY_OUT_BINDINGS(RRC_BINDING_I
 constexpr Binding kFillBindings[] = {RRC_PASS_FILL_BINDINGS(RRC_BINDING_ID)};
 #undef RRC_BINDING_ID
 #define RRC_PASS_MODULE(code, bindings) PassModule{code, sizeof(code), bindings, (uint32_t)(sizeof(bindings) / sizeof(Binding))}
-PassModule pass_module(uint32_t pass) {
+// The per-channel passes (frame, fill) come once for each channel count, slots
+// 1..RRC_MAX_CHANNELS (compute/CMakeLists.txt, RRC_SLOTS): `slots` picks the
+// module with exactly the context's channels, so a driver compiles no code for
+// slots it cannot use (docs/PERFORMANCE.md, "One module a channel count").  Every
+// count has the same bindings.
+static_assert(RRC_MAX_CHANNELS == 4, "one module a channel count: rrc_pass_frame_1..4_spv, rrc_pass_fill_1..4_spv");
+PassModule pass_module(uint32_t pass, uint32_t slots) {
     switch (pass) {
         case RRC_PASS_LIST: return RRC_PASS_MODULE(rrc_pass_list_spv, kListBindings);
         case RRC_PASS_COPY_OUT: return RRC_PASS_MODULE(rrc_pass_copy_out_spv, kCopyOutBindings);
-        case RRC_PASS_FILL: return RRC_PASS_MODULE(rrc_pass_fill_spv, kFillBindings);
-        default: return RRC_PASS_MODULE(rrc_pass_frame_spv, kFrameBindings);
+        case RRC_PASS_FILL:
+            return slots <= 1   ? RRC_PASS_MODULE(rrc_pass_fill_1_spv, kFillBindings)
+                   : slots == 2 ? RRC_PASS_MODULE(rrc_pass_fill_2_spv, kFillBindings)
+                   : slots == 3 ? RRC_PASS_MODULE(rrc_pass_fill_3_spv, kFillBindings)
+                                : RRC_PASS_MODULE(rrc_pass_fill_4_spv, kFillBindings);
+        default:
+            return slots <= 1   ? RRC_PASS_MODULE(rrc_pass_frame_1_spv, kFrameBindings)
+                   : slots == 2 ? RRC_PASS_MODULE(rrc_pass_frame_2_spv, kFrameBindings)
+                   : slots == 3 ? RRC_PASS_MODULE(rrc_pass_frame_3_spv, kFrameBindings)
+                                : RRC_PASS_MODULE(rrc_pass_frame_4_spv, kFrameBindings);
     }
 }
 #undef RRC_PASS_MODULE
@@ -97,7 +117,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         // Each pass's layout from its list; the pool holds `sets` of each.
         uint32_t storage = 0, sampled = 0, buffers = 0;
         for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
-            const PassModule m = pass_module(pass);
+            const PassModule m = pass_module(pass, RRC_MAX_CHANNELS);  // the bindings: every count's
             std::vector<VkDescriptorSetLayoutBinding> bindings;
             for (uint32_t i = 0; i < m.binding_count; ++i) {
                 const Binding b = m.bindings[i];
@@ -143,7 +163,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     VulkanDevice& dev = dev_;
     const ContextConfig& c = config_;
     VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    const PassModule code = pass_module(pass_of(variant.phase));
+    const PassModule code = pass_module(pass_of(variant.phase), (uint32_t)c.channels.size());
     smi.codeSize = code.size;
     smi.pCode = code.code;
     VkShaderModule module = VK_NULL_HANDLE;
@@ -246,7 +266,7 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
     VkDescriptorBufferInfo buffers[RRC_PASS_COUNT][kBufferBindings];
     std::vector<VkWriteDescriptorSet> writes;
     for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
-        const PassModule m = pass_module(pass);
+        const PassModule m = pass_module(pass, RRC_MAX_CHANNELS);  // the bindings: every count's
         for (uint32_t i = 0; i < m.binding_count; ++i) {
             const Binding b = m.bindings[i];
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

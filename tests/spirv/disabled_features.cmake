@@ -199,6 +199,18 @@ function(rrc_specialise src dst settings count_out)
   set(count_${key} ${n} PARENT_SCOPE)
 endfunction()
 
+# Compares the specialised modules <a> and <b>: <verdict_out> = equal or DIFFERENT, and a
+# difference joins `failures` under <label> with the two disassemblies to diff.
+function(rrc_compare a b label verdict_out)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${WORK_DIR}/${a}.spv ${WORK_DIR}/${b}.spv RESULT_VARIABLE differ)
+  if(differ)
+    set(${verdict_out} DIFFERENT PARENT_SCOPE)
+    set(failures ${failures} "${label}: ${WORK_DIR}/${a}.dis vs ${WORK_DIR}/${b}.dis" PARENT_SCOPE)
+  else()
+    set(${verdict_out} equal PARENT_SCOPE)
+  endif()
+endfunction()
+
 # ---- The check ---------------------------------------------------------------
 rrc_compile(spec)
 rrc_spec_ids(spec spec_ids)
@@ -248,25 +260,58 @@ foreach(base IN LISTS base_names)
         rrc_specialise(spec_${m} ${base}_${f}_${m}_on "${on}" on_count_${key})
       endif()
       set(n_on ${on_count_${key}})
-      execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
-                      ${WORK_DIR}/${base}_${f}_${m}_spec.spv ${WORK_DIR}/${base}_${f}_${m}_removed.spv RESULT_VARIABLE differ)
-      if(differ)
-        set(verdict DIFFERENT)
-        list(APPEND failures "${base}/${f}/${m}: ${WORK_DIR}/${base}_${f}_${m}_spec.dis vs ${WORK_DIR}/${base}_${f}_${m}_removed.dis")
-      else()
-        set(verdict equal)
-      endif()
+      rrc_compare(${base}_${f}_${m}_spec ${base}_${f}_${m}_removed "${base}/${f}/${m}" verdict)
       string(APPEND table "| ${base} | ${f} | ${m} | ${n_spec} | ${n_removed} | ${verdict} | ${n_on} |\n")
     endforeach()
   endforeach()
 endforeach()
+
+# ---- One module a channel count ----------------------------------------------
+# The library builds the per-channel passes once for each channel count n (compute/CMakeLists.txt,
+# -DRRC_SLOTS=n) and gives a context of n channels the n-slot module (docs/PERFORMANCE.md, "One
+# module a channel count"). Specialised as such a context (CHANNEL_COUNT n; the defaults base, and
+# the all_on base with every feature on), it must equal the full module specialised the same:
+# the slots it leaves out are code no n-channel context runs.
+file(READ ${INCLUDE_DIR}/rrc/rrc_values.h values)
+if(NOT values MATCHES "#define RRC_MAX_CHANNELS ([0-9]+)")
+  message(FATAL_ERROR "rrc_values.h defines no RRC_MAX_CHANNELS")
+endif()
+math(EXPR fewer "${CMAKE_MATCH_1} - 1")
+set(every_feature_on ${BASE_interop_SET})
+list(FILTER every_feature_on EXCLUDE REGEX "^${ID_CHANNEL_COUNT}:")
+foreach(g IN LISTS features)
+  foreach(id IN LISTS F_${g}_IDS)
+    list(APPEND every_feature_on ${id}:${F_${g}_ON})
+  endforeach()
+endforeach()
+list(REMOVE_DUPLICATES every_feature_on)
+set(slot_table "")
+foreach(n RANGE 1 ${fewer})
+  foreach(m frame fill)
+    rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} -DRRC_SLOTS=${n}
+            ${KERNEL_DIR}/rrc_pass_${m}.comp -o ${WORK_DIR}/slots${n}_${m}.spv)
+    foreach(base defaults all_on)
+      set(settings ${ID_CHANNEL_COUNT}:${n})
+      if(base STREQUAL "all_on")
+        list(APPEND settings ${every_feature_on})
+      endif()
+      rrc_specialise(spec_${m} slots_${base}_${n}_${m}_full "${settings}" n_full)
+      rrc_specialise(slots${n}_${m} slots_${base}_${n}_${m}_own "${settings}" n_own)
+      rrc_compare(slots_${base}_${n}_${m}_full slots_${base}_${n}_${m}_own "${n} channels/${base}/${m}" verdict)
+      string(APPEND slot_table "| ${n} | ${base} | ${m} | ${n_full} | ${n_own} | ${verdict} |\n")
+    endforeach()
+  endforeach()
+endforeach()
+message(STATUS "One module a channel count, SPIR-V instructions after specialisation:\n\n"
+        "| channels | base | pass | full module | its own module | comparison |\n"
+        "|---|---|---|---:|---:|---|\n${slot_table}")
 
 message(STATUS "SPIR-V instructions after specialisation (tests/spirv/disabled_features.cmake):\n\n"
         "| base | feature | pass | spec constant off | code removed | comparison | feature on |\n"
         "|---|---|---|---:|---:|---|---:|\n${table}")
 if(failures)
   string(REPLACE ";" "\n  " failures "${failures}")
-  message(FATAL_ERROR "A disabled feature costs something: the specialised SPIR-V differs from the build "
-                      "without the feature's code (diff the disassemblies):\n  ${failures}")
+  message(FATAL_ERROR "A disabled feature costs something, or a channel count's module is not the full one "
+                      "specialised: the specialised SPIR-V differs (diff the disassemblies):\n  ${failures}")
 endif()
 message(STATUS "every disabled feature specialises to the SPIR-V built without its code")
