@@ -91,6 +91,16 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
                 c.push_back({app, residual_only, base, "the preset without its view lobe"});
             }
             c.push_back({app, preset, base, "the preset"});
+            // The env preset with other lobes (--preset-lobes): the lobe's choice (testbed README.md,
+            // "The env residual's view lobe").
+            if (app.signal == kSignalEnv)
+                for (float alpha : o.preset_lobes) {
+                    rrc_sample::ChannelSettings other = preset;
+                    other.view_lobe = alpha;
+                    char name[64];
+                    std::snprintf(name, sizeof name, "the preset with a view lobe of %g rad", (double)alpha);
+                    c.push_back({app, other, base, name});
+                }
         }
     }
     return c;

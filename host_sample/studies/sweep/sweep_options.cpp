@@ -68,6 +68,8 @@ std::string sweep_usage() {
            "  --antilag-threshold T    their threshold T (default 0.25)\n"
            "  --lobe-pixels LIST       the study's env rows with the view lobe fed the lighting's turn, one per lobe in\n"
            "                           pixels of the vertical angle (default 18, rrc-sample's; --no-view-lobe drops them)\n"
+           "  --preset-lobes LIST      the study's env preset row again with each of these view lobes in radians, in\n"
+           "                           (0, pi], in place of its own (default none; dropped with the preset rows)\n"
            "  --change-threshold T     the study's changed pixels (pcf, soft): the target moved by more than T since the\n"
            "                           frame before (default 0.05); env's: by more than 3 sigma of its target's noise\n"
            "  --bias-maps              also the signed bias maps (seed mean - target) of every row at every checkpoint\n"
@@ -115,6 +117,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.rectify_gammas = c.numbers(0.01f, 8.0f);
         else if (c.option("--lobe-pixels"))
             o.lobe_pixels = c.numbers(0.01f, 1e4f);
+        else if (c.option("--preset-lobes"))
+            o.preset_lobes = c.numbers(1e-4f, RRC_MAX_VIEW_LOBE);
         else if (c.option("--antilag-gammas"))
             o.antilag_gammas = c.numbers(0.01f, RRC_MAX_ANTILAG_GAMMA);
         else if (c.option("--antilag-threshold"))

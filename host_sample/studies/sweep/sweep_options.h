@@ -36,6 +36,7 @@ struct SweepOptions {
     std::vector<float> antilag_gammas = {1.0f, 0.75f, 0.25f}; // the study's lag-detector rows (pcf, env; --no-antilag drops them)
     float antilag_threshold = 0.25f;                          // their T (docs/CONVENTIONS.md, "The lag detector")
     std::vector<float> lobe_pixels = {18.0f};  // the study's env view-lobe rows with the lighting's turn, in pixels of the vertical angle
+    std::vector<float> preset_lobes;           // the study's env preset again with each of these view lobes, radians (none by default)
     float change_threshold = 0.05f;       // the study: a pcf/soft target changed when it moved by more (env: 3 sigma of its noise)
     bool bias_maps = false;               // --bias-maps: per-pixel bias maps and bias² by region (bias_regions.h)
     int change_window = 16;               // --bias-maps: a pixel's target "changed" when it did in any of the last W frames

@@ -319,6 +319,15 @@ TEST(SweepConfigs, BlurBoundRowsAreTwinsOfRowsWithout) {
             if (!is_preset(c)) EXPECT_EQ(c.channel.blur_bound, 0.0f);
 }
 
+TEST(SweepConfigs, PresetLobesAreRadiansUpToPi) {
+    const char* none[] = {"rrc-sweep"};
+    EXPECT_TRUE(parse_sweep_options(1, none).preset_lobes.empty()) << "no extra preset rows unless asked";
+    const char* two[] = {"rrc-sweep", "--preset-lobes", "0.054,0.122"};
+    EXPECT_EQ(parse_sweep_options(3, two).preset_lobes, (std::vector<float>{0.054f, 0.122f}));
+    const char* too_wide[] = {"rrc-sweep", "--preset-lobes", "4"};
+    EXPECT_THROW(parse_sweep_options(3, too_wide), rrc_host::OptionError) << "above RRC_MAX_VIEW_LOBE";
+}
+
 TEST(SweepConfigs, ViewLobeRowsAreEnvTwinsOfThePlainAgeAwareRows) {
     SweepOptions o;
     o.rrc_taps = {4};
