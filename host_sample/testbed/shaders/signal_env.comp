@@ -7,9 +7,8 @@
 // Pixels that do not show the sphere get 0 (alpha 0 marks them).
 // The per-frame signal (set 0) with `base` non-zero also writes o_base, a
 // deterministic estimate the env channel's residual subtracts (README.md,
-// "The env residual"): 1 the sample at the pixel's centre, 2 the same ray
-// reflected by the unbumped sphere, 3 that reflection into env_smooth, 4 the
-// centre's reflection into env_filtered over the pixel's footprint (env.glsl).
+// "The env residual"), one of SAMPLE_ENV_BASE_* (signal_modes.h says which is
+// which; the filtered one is env.glsl's sphere_filtered).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "env.glsl"
