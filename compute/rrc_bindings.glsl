@@ -15,6 +15,22 @@
 
 #define RRC_DECLARE(name) RRC_DECLARE_##name
 
+// A channel slot's parameters: one member a PARAM row of
+// rrc_channel_options.def, in row order (the library's mirror,
+// plugin/accumulate_pipeline.h KernelChannelParams, comes from the same rows).
+#define RRC_GLSL_TYPE_float float
+#define RRC_GLSL_TYPE_uint32_t uint
+#define RRC_PARAM_NONE(ctype, member)
+#define RRC_PARAM_PARAM(ctype, member) RRC_GLSL_TYPE_##ctype member;
+struct RrcChannelParams {
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, bit, width, feature, version, anchor) \
+    RRC_PARAM_##param(ctype, member)
+#include "rrc_channel_options.def"
+#undef RRC_CHANNEL_OPTION
+};
+#undef RRC_PARAM_PARAM
+#undef RRC_PARAM_NONE
+
 #define RRC_DECLARE_DEPTH layout(set = 0, binding = RRC_BINDING_DEPTH, r32f) uniform readonly image2D u_depth;
 #define RRC_DECLARE_PREV_DEPTH layout(set = 0, binding = RRC_BINDING_PREV_DEPTH, r32f) uniform readonly image2D u_prev_depth;
 // REPROJ: PREV_CLIP, MOTION (.xy), MOTION_DEPTH
@@ -69,6 +85,8 @@
 // FILL_LIST: the fill list (rrc_list.glsl)
 #define RRC_DECLARE_FILL_LIST layout(std430, set = 0, binding = RRC_BINDING_FILL_LIST) buffer FillList { uint words[]; } u_fill;
 // VIEW: the view lobe's camera (rrc_kernel_interface.h), read only
+// CHANNEL_PARAMS: each slot's parameters (written once, at creation)
+#define RRC_DECLARE_CHANNEL_PARAMS layout(std140, set = 0, binding = RRC_BINDING_CHANNEL_PARAMS) uniform ChannelParams { RrcChannelParams slot[RRC_MAX_CHANNELS]; } u_params;
 #define RRC_DECLARE_VIEW layout(std430, set = 0, binding = RRC_BINDING_VIEW) readonly buffer View { mat4 Q; vec4 d; } u_view;
 
 #endif

@@ -16,10 +16,10 @@ layout(constant_id = RRC_SPEC_MAX_LIFETIME) const uint MAX_LIFETIME = 0u;
 
 // Slot c holds a REUSE channel.  Without one, refresh never happens and
 // every line below folds away.
-const bool REUSE0 = CH_COUNT > 0u && CH0_BLEND == RRC_BLEND_REUSE;
-const bool REUSE1 = CH_COUNT > 1u && CH1_BLEND == RRC_BLEND_REUSE;
-const bool REUSE2 = CH_COUNT > 2u && CH2_BLEND == RRC_BLEND_REUSE;
-const bool REUSE3 = CH_COUNT > 3u && CH3_BLEND == RRC_BLEND_REUSE;
+const bool REUSE0 = CH_COUNT > 0u && CH0_blend == RRC_BLEND_REUSE;
+const bool REUSE1 = CH_COUNT > 1u && CH1_blend == RRC_BLEND_REUSE;
+const bool REUSE2 = CH_COUNT > 2u && CH2_blend == RRC_BLEND_REUSE;
+const bool REUSE3 = CH_COUNT > 3u && CH3_blend == RRC_BLEND_REUSE;
 const bool HAS_REUSE = REUSE0 || REUSE1 || REUSE2 || REUSE3;
 
 // The 32-bit integer hash of CONVENTIONS.md (RANDOM's per-block offset).
@@ -48,15 +48,21 @@ bool rrc_refresh_due(ivec2 px, ivec2 size) {
     return false;
 }
 
-// Slot C's age at texel t (C a literal): packed channels keep it in the history word.
-#define RRC_AGE_AT(C, t) \
-    ((CH##C##_FP16 && CH##C##_COMPONENTS == 1u) ? (imageLoad(u_hist_packed[C], t).r >> 16) : imageLoad(u_age[C], t).r)
-#define RRC_AGE_RANGE(C)                                 \
-    if (REUSE##C) {                                      \
-        uint a = RRC_AGE_AT(C, g.taps.nearest);          \
-        amin = min(amin, a);                             \
-        amax = max(amax, a);                             \
+// Slot C's age at the reprojected nearest texel, or 0xFFFFFFFF for a slot
+// that is not REUSE (it neither lowers nor raises the range below).  Packed
+// channels keep the age in the history word.  One function a slot
+// (storage-image arrays are indexed by constants), emitted by RRC_REUSE_AGE.
+#define RRC_REUSE_AGE(C)                                                                              \
+    uint rrc_reuse_age_##C(ivec2 t) {                                                                \
+        if (!REUSE##C) return 0xFFFFFFFFu;                                                            \
+        const bool PACKED = CH##C##_precision && !CH##C##_components; /* fp16, 1 component */ \
+        return PACKED ? (imageLoad(u_hist_packed[C], t).r >> 16) : imageLoad(u_age[C], t).r;         \
     }
+RRC_REUSE_AGE(0)
+RRC_REUSE_AGE(1)
+RRC_REUSE_AGE(2)
+RRC_REUSE_AGE(3)
+#undef RRC_REUSE_AGE
 
 // HIT, REFRESHED, BACKGROUND and INVALID_GEOMETRY of a pixel whose
 // geometry (and hit test) is g.
@@ -64,15 +70,14 @@ uint rrc_cache_mask(ivec2 px, ivec2 size, RrcGeometry g) {
     uint mask = (g.background ? RRC_MASK_BACKGROUND : 0u) | (g.invalid ? RRC_MASK_INVALID_GEOMETRY : 0u);
     bool refresh = false;
     if (HAS_REUSE && g.hit) {
-        uint amin = 0xFFFFFFFFu, amax = 0u;
-        RRC_AGE_RANGE(0)
-        RRC_AGE_RANGE(1)
-        RRC_AGE_RANGE(2)
-        RRC_AGE_RANGE(3)
+        // The REUSE slots' smallest and largest age.
+        uint a0 = rrc_reuse_age_0(g.taps.nearest), a1 = rrc_reuse_age_1(g.taps.nearest);
+        uint a2 = rrc_reuse_age_2(g.taps.nearest), a3 = rrc_reuse_age_3(g.taps.nearest);
+        uint amin = min(min(a0, a1), min(a2, a3));
+        uint amax = max(max(REUSE0 ? a0 : 0u, REUSE1 ? a1 : 0u), max(REUSE2 ? a2 : 0u, REUSE3 ? a3 : 0u));
         refresh = rrc_refresh_due(px, size) || amin == 0u || (MAX_LIFETIME > 0u && amax >= MAX_LIFETIME);
     }
     return mask | (g.hit ? (refresh ? RRC_MASK_REFRESHED : RRC_MASK_HIT) : 0u);
 }
-#undef RRC_AGE_RANGE
 
 #endif

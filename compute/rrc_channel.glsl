@@ -1,43 +1,56 @@
-// One channel slot of the per-pixel passes (rrc_pass_frame.comp).  Included once per slot with RRC_CH
-// defined to a literal (0..RRC_MAX_CHANNELS-1): storage-image arrays may only
-// be indexed by constants, and per-slot specialization constants compile out
-// every format, filter and blend the channel does not use.
+// One channel slot's update in the per-pixel passes (rrc_pass_frame.comp):
+// the function rrc_channel_<slot>, defined once per slot by including this
+// file with RRC_CH defined to a literal (0..RRC_MAX_CHANNELS-1): storage-image
+// arrays may only be indexed by constants, and the slot's feature word
+// (rrc_channel_slots.glsl) compiles out every format, filter and blend the
+// channel does not use.  Its parameters (lambda, the age cap, gammas,
+// thresholds, widths) come from its parameter block, read once.
 //
-// Inputs from the enclosing rrc_pixel_at(): CHANNELS (false: a classify that
-// writes no channel), px, g (RrcGeometry: where to resample), mask (uint,
-// in/out), hit_any (the hit test passed: HIT or REFRESHED), hit_cached (HIT:
-// a REUSE channel keeps its value) and channel_store (this pass writes this
-// pixel's channels); out: young (a channel with a fill is younger than its
-// fill age here).  CLASSIFY (ALL_REUSE) writes only HITs, so it loads no
-// sample; RESOLVE_LISTED writes only the rest, so it resamples no history.
+// In: px, g (RrcGeometry: where to resample), hit_any (the hit test passed:
+// HIT or REFRESHED), hit_cached (HIT: a REUSE channel keeps its value),
+// channel_store (this pass writes this pixel's channels), view_theta (the
+// view and lighting turn, rrc_view_lobe.glsl); in/out: mask (INVALID_SAMPLE)
+// and young (set where the channel has a fill and is younger than its fill
+// age here).  CLASSIFY (ALL_REUSE) writes only HITs, so it loads no sample;
+// RESOLVE_LISTED writes only the rest, so it resamples no history.
 
-#define CH_(name) ch##name(RRC_CH)
+#define CH_(name) ch_##name(RRC_CH)
+#define COMPONENTS_ (CH_(components) ? 4u : 1u)
+#define FP16_ CH_(precision)  // the precision field is on for an fp16 history
 // A 1-component fp16 channel keeps value and age in one R32_UINT word
 // (docs/PERFORMANCE.md, "Inside the kernel"): one load per tap brings both,
 // and one store writes both.
-#define PACKED_ (CH_(_FP16) && CH_(_COMPONENTS) == 1u)
+#define PACKED_ (FP16_ && COMPONENTS_ == 1u)
 #define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)
-#define REUSE_ (CH_(_BLEND) == RRC_BLEND_REUSE)
+#define REUSE_ (CH_(blend) == RRC_BLEND_REUSE)
+#define RESIDUAL_ CH_(residual)
+#define CONFIDENCE_ CH_(confidence)
 
 // This frame's sample and confidence at texel t (the pixel, or a neighbour for rectification).
 #define LOAD_RAW(t) (SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], t, 0)        \
-                     : CH_(_COMPONENTS) == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
+                     : COMPONENTS_ == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
                                               : imageLoad(u_sample4[RRC_CH], t))
 // The residual (docs/CONVENTIONS.md, "The residual"): the channel's sample is
 // s - b, b the host's base (the fallback image) at the same texel.
-#define LOAD_B(t) (CH_(_RESIDUAL) ? texelFetch(s_fallback[RRC_CH], t, 0) : vec4(0.0))
-#define LOAD_S(t) (CH_(_RESIDUAL) ? LOAD_RAW(t) - LOAD_B(t) : LOAD_RAW(t))
-#define LOAD_C(t) (!CH_(_CONFIDENCE) ? 1.0 : SAMPLED_INPUTS ? texelFetch(s_confidence[RRC_CH], t, 0).r : imageLoad(u_confidence[RRC_CH], t).r)
+#define LOAD_B(t) (RESIDUAL_ ? texelFetch(s_fallback[RRC_CH], t, 0) : vec4(0.0))
+#define LOAD_S(t) (RESIDUAL_ ? LOAD_RAW(t) - LOAD_B(t) : LOAD_RAW(t))
+#define LOAD_C(t) (!CONFIDENCE_ ? 1.0 : SAMPLED_INPUTS ? texelFetch(s_confidence[RRC_CH], t, 0).r : imageLoad(u_confidence[RRC_CH], t).r)
 
-if (CHANNELS && RRC_CH < CH_COUNT) {
+#define RRC_SLOT_PASTE2(a, b) a##b
+#define RRC_SLOT_PASTE(a, b) RRC_SLOT_PASTE2(a, b)
+void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any, bool hit_cached, bool channel_store, float view_theta,
+                                         inout uint mask, inout bool young) {
+    if (RRC_CH >= CH_COUNT) return;
+    const RrcChannelParams P = u_params.slot[RRC_CH];
+    ivec2 size = rrc_size();
     // -- the new sample s and its confidence w
     const bool SAMPLE_ = PHASE != RRC_PHASE_CLASSIFY;
     // The residual's base at the pixel: subtracted from the sample, added to
     // the displayed value (a base that is not finite makes the sample invalid
     // and adds nothing).
     vec4 b_px = SAMPLE_ ? LOAD_B(px) : vec4(0.0);
-    vec4 s = SAMPLE_ ? (CH_(_RESIDUAL) ? LOAD_RAW(px) - b_px : LOAD_RAW(px)) : vec4(0.0);
-    if (CH_(_COMPONENTS) == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
+    vec4 s = SAMPLE_ ? (RESIDUAL_ ? LOAD_RAW(px) - b_px : LOAD_RAW(px)) : vec4(0.0);
+    if (COMPONENTS_ == 1u) s = vec4(s.x, 0.0, 0.0, 0.0);
     float w = SAMPLE_ ? LOAD_C(px) : 1.0;
     bool s_valid = rrc_finite4(s) && rrc_finite(w);
     w = clamp(w, 0.0, 1.0);
@@ -45,15 +58,15 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
 
     // -- history H, weight W (resampled) and age (nearest) at uv_prev
 #define LOAD_WORD(t) imageLoad(u_hist_packed[RRC_CH], t).r
-#define LOAD_H(t) (PACKED_ ? UNPACK_H(LOAD_WORD(t)) : CH_(_FP16) ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
-                   : (CH_(_COMPONENTS) == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
-#define LOAD_W(t) (CH_(_CONFIDENCE) ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
+#define LOAD_H(t) (PACKED_ ? UNPACK_H(LOAD_WORD(t)) : FP16_ ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
+                   : (COMPONENTS_ == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
+#define LOAD_W(t) (CONFIDENCE_ ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
     vec4 H;
     float Wh;
     uint n_prev;
     if (PHASE == RRC_PHASE_RESOLVE_LISTED) {
         H = vec4(0.0), Wh = 0.0, n_prev = 0u;  // only pixels that are not HITs are written: their history is not used
-    } else if (CH_(_FILTER) == RRC_HISTORY_FILTER_NEAREST) {
+    } else if (CH_(filter) == RRC_HISTORY_FILTER_NEAREST) {
         uint word = PACKED_ ? LOAD_WORD(g.taps.nearest) : 0u;
         H = PACKED_ ? UNPACK_H(word) : LOAD_H(g.taps.nearest);
         Wh = LOAD_W(g.taps.nearest);
@@ -73,13 +86,13 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         }
         vec4 wt = g.taps.w;
         H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
-        Wh = CH_(_CONFIDENCE) ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
-        if (CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM || CH_(_FILTER) == RRC_HISTORY_FILTER_GAUSSIAN) {
+        Wh = CONFIDENCE_ ? dot(wt, vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11))) : 1.0;
+        if (CH_(filter) == RRC_HISTORY_FILTER_CATMULL_ROM || CH_(filter) == RRC_HISTORY_FILTER_GAUSSIAN) {
             // 4x4 taps.  Catmull-Rom is clamped to the range of the bilinear
             // taps so it cannot ring; the Gaussian's weights are convex.
-            const bool CR = CH_(_FILTER) == RRC_HISTORY_FILTER_CATMULL_ROM;
-            vec4 wx = CR ? rrc_catmull_rom_weights(g.taps.f.x) : rrc_blur_weights(g.taps.f.x, CH_(_BLUR_G));
-            vec4 wy = CR ? rrc_catmull_rom_weights(g.taps.f.y) : rrc_blur_weights(g.taps.f.y, CH_(_BLUR_G));
+            const bool CR = CH_(filter) == RRC_HISTORY_FILTER_CATMULL_ROM;
+            vec4 wx = CR ? rrc_catmull_rom_weights(g.taps.f.x) : rrc_blur_weights(g.taps.f.x, (P.blur_sigma * P.blur_sigma * 0.5));
+            vec4 wy = CR ? rrc_catmull_rom_weights(g.taps.f.y) : rrc_blur_weights(g.taps.f.y, (P.blur_sigma * P.blur_sigma * 0.5));
             ivec2 hi = rrc_size() - 1;
             vec4 acc = vec4(0.0);
             float accw = 0.0;
@@ -88,12 +101,12 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
                 for (int i = 0; i < 4; ++i) {
                     ivec2 t = ivec2(clamp(g.taps.base.x - 1 + i, 0, hi.x), y);
                     acc += (wx[i] * wy[j]) * LOAD_H(t);
-                    if (CH_(_CONFIDENCE)) accw += (wx[i] * wy[j]) * LOAD_W(t);
+                    if (CONFIDENCE_) accw += (wx[i] * wy[j]) * LOAD_W(t);
                 }
             }
             H = CR ? clamp(acc, min(min(h00, h10), min(h01, h11)), max(max(h00, h10), max(h01, h11))) : acc;
-            if (CH_(_CONFIDENCE) && !CR) Wh = accw;
-            if (CH_(_CONFIDENCE) && CR) {
+            if (CONFIDENCE_ && !CR) Wh = accw;
+            if (CONFIDENCE_ && CR) {
                 vec4 wq = vec4(LOAD_W(g.taps.p00), LOAD_W(g.taps.p10), LOAD_W(g.taps.p01), LOAD_W(g.taps.p11));
                 Wh = clamp(accw, min(min(wq.x, wq.y), min(wq.z, wq.w)), max(max(wq.x, wq.y), max(wq.z, wq.w)));
             }
@@ -111,7 +124,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     // The lag detector (docs/CONVENTIONS.md, "The lag detector") reads the
     // same 3x3 moments with its own gamma: the age the blend uses, n_a.
     uint n_blend = n_prev;
-    if (CH_(_RECTIFY) || CH_(_ANTILAG)) {
+    if (CH_(rectify) || CH_(antilag)) {
         ivec2 hi = size - 1;
         vec4 sum = vec4(0.0), sum2 = vec4(0.0);
         float m = 0.0;
@@ -119,7 +132,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
             for (int a = -1; a <= 1; ++a) {
                 ivec2 t = clamp(px + ivec2(a, b), ivec2(0), hi);
                 vec4 q = LOAD_S(t);
-                if (CH_(_COMPONENTS) == 1u) q = vec4(q.x, 0.0, 0.0, 0.0);
+                if (COMPONENTS_ == 1u) q = vec4(q.x, 0.0, 0.0, 0.0);
                 float wq = LOAD_C(t);
                 bool ok = rrc_finite4(q) && rrc_finite(wq);
                 vec4 dq = ok ? q - s : vec4(0.0);
@@ -129,19 +142,19 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
             }
         vec4 mean_d = sum / max(m, 1.0);
         vec4 sigma = sqrt(max(sum2 / max(m, 1.0) - mean_d * mean_d, vec4(0.0)));
-        vec4 lo = s + mean_d - CH_(_RECTIFY_GAMMA) * sigma, hi_v = s + mean_d + CH_(_RECTIFY_GAMMA) * sigma;
+        vec4 lo = s + mean_d - P.rectify_gamma * sigma, hi_v = s + mean_d + P.rectify_gamma * sigma;
         // A box an fp32 overflow made infinite or NaN clamps nothing.
         bvec4 box = bvec4(uvec4(not(isnan(lo))) & uvec4(not(isnan(hi_v))) & uvec4(not(isinf(lo))) & uvec4(not(isinf(hi_v))));
-        if (CH_(_RECTIFY)) H_blend = mix(H, clamp(H, lo, hi_v), box);
-        if (CH_(_ANTILAG)) {
+        if (CH_(rectify)) H_blend = mix(H, clamp(H, lo, hi_v), box);
+        if (CH_(antilag)) {
             // The distance from H to mu +- gamma_a sigma, relative to the larger
             // of |H| and |mu| (plus the box and the darkness term): d.
-            const float ga = CH_(_ANTILAG_GAMMA);
+            const float ga = P.antilag_gamma;
             vec4 gap = max(abs((H - s) - mean_d) - ga * sigma, vec4(0.0));
             vec4 d4 = gap / (max(abs(H), abs(s + mean_d)) + ga * sigma + float(RRC_ANTILAG_DARKNESS));
-            float d = CH_(_COMPONENTS) == 1u ? d4.x : max(max(d4.x, d4.y), max(d4.z, d4.w));
+            float d = COMPONENTS_ == 1u ? d4.x : max(max(d4.x, d4.y), max(d4.z, d4.w));
             // Confidence c: 1 up to T/2, 0 from T; a d an fp32 overflow made NaN or infinite changes nothing.
-            float c = clamp(2.0 - 2.0 * d / CH_(_ANTILAG_THRESHOLD), 0.0, 1.0);
+            float c = clamp(2.0 - 2.0 * d / P.antilag_threshold, 0.0, 1.0);
             c = (isnan(d) || isinf(d)) ? 1.0 : c;
             n_blend = min(uint(floor(c * float(n_prev))), n_prev);
         }
@@ -151,12 +164,12 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     //    blur b, the larger per-axis second moment of its weights about the
     //    fetch point (BILINEAR f(1 - f); GAUSSIAN adds its 2g = sigma_b^2),
     //    caps the age at floor(B / b), so the stationary blur n b stays within B.
-    if (CH_(_BLUR_BOUND)) {
+    if (CH_(blur_bound)) {
         vec2 bxy = g.taps.f * (1.0 - g.taps.f);
-        if (CH_(_FILTER) == RRC_HISTORY_FILTER_GAUSSIAN) bxy += 2.0 * CH_(_BLUR_G);
+        if (CH_(filter) == RRC_HISTORY_FILTER_GAUSSIAN) bxy += 2.0 * (P.blur_sigma * P.blur_sigma * 0.5);
         float b = max(bxy.x, bxy.y);
         // b below the fp32 normal range is no blur (and keeps B / b in the division's exact range).
-        float ratio = b >= RRC_FLT_MIN ? CH_(_BLUR_BOUND_PX2) / b : RRC_FLT_MAX;
+        float ratio = b >= RRC_FLT_MIN ? P.blur_bound / b : RRC_FLT_MAX;
         n_blend = min(n_blend, uint(min(floor(ratio), float(RRC_MAX_AGE_CAP))));
     }
 
@@ -164,17 +177,17 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     //    history"): the pixel's view turn theta plus the lighting's turn phi
     //    (view_theta) caps the age at floor(alpha / (theta + phi)), so the
     //    history's mean offset in reflected direction stays within alpha.
-    if (CH_(_VIEW_LOBE) && view_theta >= RRC_FLT_MIN)
-        n_blend = min(n_blend, uint(min(floor(CH_(_VIEW_LOBE_RAD) / view_theta), float(RRC_MAX_AGE_CAP))));
+    if (CH_(view_lobe) && view_theta >= RRC_FLT_MIN)
+        n_blend = min(n_blend, uint(min(floor(P.view_lobe / view_theta), float(RRC_MAX_AGE_CAP))));
 
     // -- the table of docs/CONVENTIONS.md
-    float lambda = rrc_lambda_eff(CH_(_BLEND), CH_(_LAMBDA), n_prev);
+    float lambda = rrc_lambda_eff(CH_(blend), P.lambda, n_prev);
     // A shortened age caps lambda_eff at n_a/(n_a + 1) (0: the sample alone).
-    const bool SHORTENED_ = CH_(_ANTILAG) || CH_(_BLUR_BOUND) || CH_(_VIEW_LOBE);
+    const bool SHORTENED_ = CH_(antilag) || CH_(blur_bound) || CH_(view_lobe);
     if (SHORTENED_) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;
-    if (CH_(_CONFIDENCE)) {
+    if (CONFIDENCE_) {
         // Both weights normalised first: a weighted mean of H and s neither
         // underflows (w*s with a tiny w) nor overflows; each weight is formed
         // on its own (not as 1 - the other) so a tiny one is not cancelled.
@@ -192,7 +205,7 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
     if (REUSE_ && hit) {
         // The cached value, unchanged (n_prev >= 1: an empty history refreshes).
         out_v = H;
-        n_out = min(n_prev + 1u, CH_(_AGE_CAP));
+        n_out = min(n_prev + 1u, P.age_cap);
         W_out = 1.0;
     } else if (!s_valid) {
         out_v = hit ? H : vec4(0.0);
@@ -203,19 +216,19 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         out_v = s;
         n_out = g.background ? 0u : 1u;
         W_out = w;
-    } else if (CH_(_CONFIDENCE) && !(W_new >= RRC_FLT_MIN)) {
+    } else if (CONFIDENCE_ && !(W_new >= RRC_FLT_MIN)) {
         out_v = H;
         n_out = n_prev;
         W_out = 0.0;
     } else {
         out_v = blended;
-        n_out = min(n_blend + 1u, CH_(_AGE_CAP));
+        n_out = min(n_blend + 1u, P.age_cap);
         W_out = W_new;
     }
     // fp32: resampling texels at +-FLT_MAX with weights that sum to 1 + ulp
     // rounds to +-Inf; no history value may be infinite.
-    out_v = CH_(_FP16) ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
-    young = young || (CH_(_FILL_AGE) != 0u && n_out < CH_(_FILL_AGE));
+    out_v = FP16_ ? rrc_round_fp16(out_v) : clamp(out_v, vec4(-RRC_FLT_MAX), vec4(RRC_FLT_MAX));
+    if (CH_(fill_age) && n_out < P.fill_age) young = true;
     if (channel_store) {
         if (PACKED_) {
             // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
@@ -228,14 +241,14 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
         // run: the fill shows a 1-component value as (v, 0, 0, 0)); with a
         // residual, the history's value plus this frame's base.
         vec4 shown_v = out_v;
-        if (CH_(_RESIDUAL)) {
-            if (CH_(_COMPONENTS) == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
+        if (RESIDUAL_) {
+            if (COMPONENTS_ == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
             shown_v = rrc_plus_base(out_v, b_px);
         }
         if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u)
-            imageStore(u_host_out[RRC_CH], px, (CH_(_FILL_AGE) != 0u || CH_(_RESIDUAL)) && CH_(_COMPONENTS) == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
+            imageStore(u_host_out[RRC_CH], px, (CH_(fill_age) || RESIDUAL_) && COMPONENTS_ == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
         if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
-        if (CH_(_CONFIDENCE)) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
+        if (CONFIDENCE_) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
     }
 }
 
@@ -246,4 +259,10 @@ if (CHANNELS && RRC_CH < CH_COUNT) {
 #undef UNPACK_H
 #undef REUSE_
 #undef PACKED_
+#undef CONFIDENCE_
+#undef RESIDUAL_
+#undef FP16_
+#undef COMPONENTS_
 #undef CH_
+#undef RRC_SLOT_PASTE
+#undef RRC_SLOT_PASTE2

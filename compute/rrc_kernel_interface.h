@@ -7,7 +7,11 @@
 #ifndef RRC_KERNEL_INTERFACE_H
 #define RRC_KERNEL_INTERFACE_H
 
-// ---- Specialization constant ids -------------------------------------------
+// ---- Specialization constant ids: one range, 0..RRC_SPEC_COUNT - 1 --------
+// Only what changes code is a specialization constant: sources, modes,
+// phases, masks, the shading cache's clocks and each channel slot's feature
+// word.  A channel's parameters (lambda, thresholds, widths: what changes no
+// code) are in its parameter block, RRC_BINDING_CHANNEL_PARAMS below.
 // Whole-dispatch constants (rrc_depth.glsl, rrc_reproject.glsl, the passes).
 #define RRC_SPEC_SOURCE 0         // uint rrc_reprojection
 #define RRC_SPEC_DEPTH_MODE 1     // uint rrc_depth_mode
@@ -24,57 +28,28 @@
 #define RRC_SPEC_HOST_OUT_MASK 12   // uint: bit c = channel slot c writes RRC_BINDING_HOST_OUT in this pass (plugin/frame_plan.cpp decides)
 #define RRC_SPEC_COPY_MASK 13       // bool: COPY_OUT also copies the classified mask into RRC_BINDING_MASK (the host's)
 #define RRC_SPEC_MASK_IN_PLACE 14   // bool: LIST / RESOLVE / RESOLVE_LISTED read classify's mask from RRC_BINDING_MASK (the image classify wrote), not RRC_BINDING_CLASSIFIED
-#define RRC_SPEC_LAST_DISPATCH RRC_SPEC_MASK_IN_PLACE
-#define RRC_SPEC_GROUP_SIZE_X 100  // local_size_x_id
-#define RRC_SPEC_GROUP_SIZE_Y 101  // local_size_y_id
-
-// Per-channel constants: property k of channel slot c has id 16 + 4*k + c
-// (4 slots: CH0_..CH3_ in rrc_channel_slots.glsl).
-#define RRC_CHANNEL_PROPERTY_COMPONENTS 0  // uint 1 or 4
-#define RRC_CHANNEL_PROPERTY_FP16 1        // bool: fp16 history
-#define RRC_CHANNEL_PROPERTY_BLEND 2       // uint rrc_blend
-#define RRC_CHANNEL_PROPERTY_FILTER 3      // uint rrc_history_filter
-#define RRC_CHANNEL_PROPERTY_CONFIDENCE 4  // bool
-#define RRC_CHANNEL_PROPERTY_LAMBDA 5      // float
-#define RRC_CHANNEL_PROPERTY_AGE_CAP 6     // uint
-#define RRC_CHANNEL_PROPERTY_COUNT 7
+// The shading cache's constants (compute/rrc_cache.glsl): the refresh clock's
+// modulus and tiles shape its arithmetic.
+#define RRC_SPEC_REFRESH_POLICY 15   // uint rrc_refresh_policy
+#define RRC_SPEC_REFRESH_PERIOD 16   // uint n
+#define RRC_SPEC_REFRESH_TILES_X 17  // uint gx (TILED)
+#define RRC_SPEC_REFRESH_TILES_Y 18  // uint gy (TILED)
+#define RRC_SPEC_MAX_LIFETIME 19     // uint L, 0 = none
+#define RRC_SPEC_GROUP_SIZE_X 20  // local_size_x_id
+#define RRC_SPEC_GROUP_SIZE_Y 21  // local_size_y_id
+// Channel slot c's feature word: id RRC_SPEC_CHANNEL_FEATURES + c.  Its
+// fields are the `bit, width` columns of rrc_channel_options.def (the
+// components, precision, blend, filter, each optional step, the fill's
+// radius); rrc_channel_slots.glsl reads them.
+#define RRC_SPEC_CHANNEL_FEATURES 22
 #define RRC_SPEC_CHANNEL_SLOTS 4
-#define RRC_SPEC_CHANNEL(property, slot) (16 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
-
-// The shading cache's constants (compute/rrc_cache.glsl), after the channel ids.
-#define RRC_SPEC_REFRESH_POLICY 48   // uint rrc_refresh_policy
-#define RRC_SPEC_REFRESH_PERIOD 49   // uint n
-#define RRC_SPEC_REFRESH_TILES_X 50  // uint gx (TILED)
-#define RRC_SPEC_REFRESH_TILES_Y 51  // uint gy (TILED)
-#define RRC_SPEC_MAX_LIFETIME 52     // uint L, 0 = none
-
-// 0.4 per-channel constants (the finishing steps, docs/CONVENTIONS.md): a
-// second range, property k of slot c has id 56 + 4*k + c.
-#define RRC_CHANNEL2_PROPERTY_RECTIFY 0        // bool: history rectification
-#define RRC_CHANNEL2_PROPERTY_RECTIFY_GAMMA 1  // float gamma
-#define RRC_CHANNEL2_PROPERTY_BLUR_G 2         // float g = blur_sigma^2 / 2 (GAUSSIAN)
-#define RRC_CHANNEL2_PROPERTY_FILL_AGE 3       // uint T, 0 = no fill (the FILL phase; FUSED/RESOLVE: no host output)
-#define RRC_CHANNEL2_PROPERTY_FILL_RADIUS 4    // uint r
-#define RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE 5 // float tau
-#define RRC_CHANNEL2_PROPERTY_FILL_PRIOR 6     // float P, 0 = no fallback
-// 0.5, the lag detector (docs/CONVENTIONS.md, "The lag detector"): the same range.
-#define RRC_CHANNEL2_PROPERTY_ANTILAG 7            // bool: the lag detector
-#define RRC_CHANNEL2_PROPERTY_ANTILAG_GAMMA 8      // float gamma_a
-#define RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD 9  // float T_a
-#define RRC_CHANNEL2_PROPERTY_COUNT 10             // ids 56..95: below RRC_SPEC_GROUP_SIZE_X
-#define RRC_SPEC_CHANNEL2(property, slot) (56 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
-// 0.6 per-channel constants: the second range is full (96 would meet
-// RRC_SPEC_GROUP_SIZE_X), so a third range above the group size: property k
-// of slot c has id 104 + 4*k + c.
-#define RRC_CHANNEL3_PROPERTY_BLUR_BOUND 0      // bool: the blur bound acts (B > 0 and a BILINEAR or GAUSSIAN filter)
-#define RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2 1  // float B, px^2 (docs/CONVENTIONS.md, "The blur bound")
-// 0.7, the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): the same range.
-#define RRC_CHANNEL3_PROPERTY_VIEW_LOBE 2       // bool: the view lobe acts (alpha > 0)
-#define RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD 3   // float alpha, radians
-// 0.9, the residual (docs/CONVENTIONS.md, "The residual"): the same range.
-#define RRC_CHANNEL3_PROPERTY_RESIDUAL 4        // bool: the channel accumulates s - b (b: RRC_BINDING_FALLBACK)
-#define RRC_CHANNEL3_PROPERTY_COUNT 5           // ids 104..123
-#define RRC_SPEC_CHANNEL3(property, slot) (104 + RRC_SPEC_CHANNEL_SLOTS * (property) + (slot))
+#define RRC_SPEC_COUNT 26
+// The feature word of a default channel (rrc_create's defaults: 1 component,
+// fp16, FIXED, BILINEAR, nothing optional): the constants' default value.
+#define RRC_DEFAULT_CHANNEL_FEATURES 2u
+// The channel parameter block (RRC_BINDING_CHANNEL_PARAMS): std140, one
+// struct a slot with one 32-bit member a PARAM row of rrc_channel_options.def,
+// in row order, its stride a multiple of 16 bytes.
 // The lag detector's darkness term: added to the relative gap's denominator so
 // that a history and a signal both near 0 do not make a large relative gap
 // (docs/CONVENTIONS.md, "The lag detector").
@@ -151,6 +126,10 @@
 // (plugin/accumulator_core.cpp).  Bound to every per-pixel pass.
 #define RRC_BINDING_VIEW 33
 #define RRC_VIEW_BUFFER_FLOATS 20
+// The channel parameter block (library-owned, a uniform buffer written once
+// at creation): each slot's PARAM rows (rrc_channel_options.def).  Bound to
+// the passes that run channels (frame, fill).
+#define RRC_BINDING_CHANNEL_PARAMS 34
 #define RRC_FILL_LIST_COUNT 0u
 #define RRC_FILL_LIST_DISPATCH 1u
 #define RRC_FILL_LIST_FIRST 4u

@@ -22,7 +22,7 @@
     X(HOST_NOCACHE) X(DEPTH_OUT) X(SAMPLE1) X(SAMPLE4) X(CONFIDENCE) X(HIST_PACKED) X(HIST_RGBA16F) X(HIST_R32F) \
     X(HIST_RGBA32F) X(AGE) X(WEIGHT) X(HIST_OUT) X(AGE_OUT) X(WEIGHT_OUT) X(HOST_SAMPLES) X(HOST_CONFIDENCE)     \
     X(HOST_OUT) X(HOST_AGE_OUT) X(OBJECT_ID) X(HOST_OBJECT_ID) X(CLASSIFIED) X(STATS) X(QUADS) X(FILL_LIST) X(VIEW)    \
-    X(FALLBACK)
+    X(FALLBACK) X(CHANNEL_PARAMS)
 // The list: classify's mask in, the quad list out.
 #define RRC_PASS_LIST_BINDINGS(X) X(MASK) X(CLASSIFIED) X(QUADS)
 // Copy-out, bound as the next frame: this frame's history and age, the mask,
@@ -33,6 +33,6 @@
 // The spatial fill, bound as the next frame: this frame's depth, history
 // and age, the fallback estimates (a residual's base), the fill list; the displayed values out.
 #define RRC_PASS_FILL_BINDINGS(X) \
-    X(PREV_DEPTH) X(HIST_PACKED) X(HIST_RGBA16F) X(HIST_R32F) X(HIST_RGBA32F) X(AGE) X(HOST_OUT) X(FALLBACK) X(FILL_LIST)
+    X(PREV_DEPTH) X(HIST_PACKED) X(HIST_RGBA16F) X(HIST_R32F) X(HIST_RGBA32F) X(AGE) X(HOST_OUT) X(FALLBACK) X(FILL_LIST) X(CHANNEL_PARAMS)
 
 #endif  // RRC_PASS_BINDINGS_H

@@ -26,24 +26,8 @@ bool rrc_fill_similar(float d_q, float d_p, float tau) {
     return abs(d_q - d_p) <= tau * d_p;
 }
 
-// FILL: one invocation a listed pixel (the fill list, indirect), after the
-// frame's channels, bound as the next frame would be (its history inputs are
-// this frame's results, its previous depth this frame's depth): the
-// displayed value of every channel with a fill, into u_host_out
-// (docs/CONVENTIONS.md, "The spatial fill").  Every other pixel's displayed
-// value is its history value, which the frame's pass wrote there.
-void rrc_fill() {
-    ivec2 size = imageSize(u_prev_depth);
-    uint slot = gl_GlobalInvocationID.x;
-    uint count = u_fill.words[RRC_FILL_LIST_COUNT];
-    rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)
-    uint word = u_fill.words[RRC_FILL_LIST_FIRST + min(slot, max(count, 1u) - 1u)];
-    ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
-    float d_p = imageLoad(u_prev_depth, px).r;
-    bool fill_here = !rrc_is_background(d_p);
-    bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
-
-// The module's RRC_SLOTS slots (rrc_channel_slots.glsl); slots past them are not compiled.
+// The module's RRC_SLOTS slots' fills, rrc_fill_channel_0 .. (rrc_channel_slots.glsl);
+// slots past them are not compiled.
 #define RRC_CH 0
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
@@ -61,6 +45,34 @@ void rrc_fill() {
 #define RRC_CH 3
 #include "rrc_fill_channel.glsl"
 #undef RRC_CH
+#endif
+
+// FILL: one invocation a listed pixel (the fill list, indirect), after the
+// frame's channels, bound as the next frame would be (its history inputs are
+// this frame's results, its previous depth this frame's depth): the
+// displayed value of every channel with a fill, into u_host_out
+// (docs/CONVENTIONS.md, "The spatial fill").  Every other pixel's displayed
+// value is its history value, which the frame's pass wrote there.
+void rrc_fill() {
+    ivec2 size = imageSize(u_prev_depth);
+    uint slot = gl_GlobalInvocationID.x;
+    uint count = u_fill.words[RRC_FILL_LIST_COUNT];
+    rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)
+    uint word = u_fill.words[RRC_FILL_LIST_FIRST + min(slot, max(count, 1u) - 1u)];
+    ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
+    float d_p = imageLoad(u_prev_depth, px).r;
+    bool fill_here = !rrc_is_background(d_p);
+    bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
+
+    rrc_fill_channel_0(size, px, rrc_store, fill_here, valid_p, d_p);
+#if RRC_SLOTS > 1
+    rrc_fill_channel_1(size, px, rrc_store, fill_here, valid_p, d_p);
+#endif
+#if RRC_SLOTS > 2
+    rrc_fill_channel_2(size, px, rrc_store, fill_here, valid_p, d_p);
+#endif
+#if RRC_SLOTS > 3
+    rrc_fill_channel_3(size, px, rrc_store, fill_here, valid_p, d_p);
 #endif
 }
 

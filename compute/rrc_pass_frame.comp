@@ -56,23 +56,44 @@ void rrc_count(uint mask, bool geometry, bool samples) {
 // resolve runs only on the listed quads (docs/PERFORMANCE.md, "The frame plan").
 // (One && or || a constant: glslang folds those into specialization-constant
 // operations, but turns a nested mix of them into run-time code.)
-const bool ACCUMULATES0 = CH_COUNT > 0u && CH0_BLEND != RRC_BLEND_REUSE;
-const bool ACCUMULATES1 = CH_COUNT > 1u && CH1_BLEND != RRC_BLEND_REUSE;
-const bool ACCUMULATES2 = CH_COUNT > 2u && CH2_BLEND != RRC_BLEND_REUSE;
-const bool ACCUMULATES3 = CH_COUNT > 3u && CH3_BLEND != RRC_BLEND_REUSE;
+const bool ACCUMULATES0 = CH_COUNT > 0u && CH0_blend != RRC_BLEND_REUSE;
+const bool ACCUMULATES1 = CH_COUNT > 1u && CH1_blend != RRC_BLEND_REUSE;
+const bool ACCUMULATES2 = CH_COUNT > 2u && CH2_blend != RRC_BLEND_REUSE;
+const bool ACCUMULATES3 = CH_COUNT > 3u && CH3_blend != RRC_BLEND_REUSE;
 const bool ALL_REUSE = !(ACCUMULATES0 || ACCUMULATES1 || ACCUMULATES2 || ACCUMULATES3);
 // Some channel has a spatial fill: the passes that write channels list its pixels.
-const bool FILL0 = CH_COUNT > 0u && CH0_FILL_AGE != 0u;
-const bool FILL1 = CH_COUNT > 1u && CH1_FILL_AGE != 0u;
-const bool FILL2 = CH_COUNT > 2u && CH2_FILL_AGE != 0u;
-const bool FILL3 = CH_COUNT > 3u && CH3_FILL_AGE != 0u;
+const bool FILL0 = CH_COUNT > 0u && CH0_fill_age;
+const bool FILL1 = CH_COUNT > 1u && CH1_fill_age;
+const bool FILL2 = CH_COUNT > 2u && CH2_fill_age;
+const bool FILL3 = CH_COUNT > 3u && CH3_fill_age;
 const bool FILL_ANY = FILL0 || FILL1 || FILL2 || FILL3;
 // Some channel has a view lobe: the pixel's view turn is formed once for all (rrc_view_lobe.glsl).
-const bool VIEW0 = CH_COUNT > 0u && CH0_VIEW_LOBE;
-const bool VIEW1 = CH_COUNT > 1u && CH1_VIEW_LOBE;
-const bool VIEW2 = CH_COUNT > 2u && CH2_VIEW_LOBE;
-const bool VIEW3 = CH_COUNT > 3u && CH3_VIEW_LOBE;
+const bool VIEW0 = CH_COUNT > 0u && CH0_view_lobe;
+const bool VIEW1 = CH_COUNT > 1u && CH1_view_lobe;
+const bool VIEW2 = CH_COUNT > 2u && CH2_view_lobe;
+const bool VIEW3 = CH_COUNT > 3u && CH3_view_lobe;
 const bool VIEW_ANY = VIEW0 || VIEW1 || VIEW2 || VIEW3;
+
+// The module's RRC_SLOTS slots' updates, rrc_channel_0 .. rrc_channel_<RRC_SLOTS - 1>
+// (rrc_channel_slots.glsl); slots past them are not compiled.
+#define RRC_CH 0
+#include "rrc_channel.glsl"
+#undef RRC_CH
+#if RRC_SLOTS > 1
+#define RRC_CH 1
+#include "rrc_channel.glsl"
+#undef RRC_CH
+#endif
+#if RRC_SLOTS > 2
+#define RRC_CH 2
+#include "rrc_channel.glsl"
+#undef RRC_CH
+#endif
+#if RRC_SLOTS > 3
+#define RRC_CH 3
+#include "rrc_channel.glsl"
+#undef RRC_CH
+#endif
 
 // One pixel, every channel: FUSED, RESOLVE, CLASSIFY (the mask; with
 // ALL_REUSE the HITs' channels too) and RESOLVE_LISTED (the listed pixels
@@ -102,7 +123,7 @@ void rrc_pixel_at(ivec2 px, bool store) {
     bool hit_cached = (mask & RRC_MASK_HIT) != 0u;
     // Which pass writes this pixel's channels: classify the HITs, resolve_listed the rest.
     bool channel_store = PHASE == RRC_PHASE_CLASSIFY ? store && hit_cached : LISTED ? store && !hit_cached : store;
-    bool young = false;  // some channel with a fill has n < fill_age here (set by rrc_channel.glsl)
+    bool young = false;  // some channel with a fill has n < fill_age here (the slots' updates say)
     // The view turn theta, once for every slot with a view lobe (rrc_view_lobe.glsl), where the
     // channels blend: not in classify, which writes only REUSE channels (they have no lobe).
     // The lighting's turn phi adds to it (docs/CONVENTIONS.md, "The view-dependent history").
@@ -111,25 +132,19 @@ void rrc_pixel_at(ivec2 px, bool store) {
         if (hit_any) view_theta = rrc_view_turn(px, size) + u_view.d.w;
     }
 
-// The module's RRC_SLOTS slots (rrc_channel_slots.glsl); slots past them are not compiled.
-#define RRC_CH 0
-#include "rrc_channel.glsl"
-#undef RRC_CH
+    // Each slot's update: its channel, the mask's INVALID_SAMPLE, and whether it is young.
+    if (CHANNELS) {
+        rrc_channel_0(px, g, hit_any, hit_cached, channel_store, view_theta, mask, young);
 #if RRC_SLOTS > 1
-#define RRC_CH 1
-#include "rrc_channel.glsl"
-#undef RRC_CH
+        rrc_channel_1(px, g, hit_any, hit_cached, channel_store, view_theta, mask, young);
 #endif
 #if RRC_SLOTS > 2
-#define RRC_CH 2
-#include "rrc_channel.glsl"
-#undef RRC_CH
+        rrc_channel_2(px, g, hit_any, hit_cached, channel_store, view_theta, mask, young);
 #endif
 #if RRC_SLOTS > 3
-#define RRC_CH 3
-#include "rrc_channel.glsl"
-#undef RRC_CH
+        rrc_channel_3(px, g, hit_any, hit_cached, channel_store, view_theta, mask, young);
 #endif
+    }
 
     if (store) imageStore(u_mask, px, uvec4(mask));
     if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px);

@@ -1,5 +1,6 @@
 #include "accumulate_pipeline.h"
 
+#include "channel_options.h"
 #include "error.h"
 #include "rrc_pass_copy_out_spv.h"
 #include "rrc_pass_fill_1_spv.h"
@@ -18,25 +19,17 @@
 namespace rrc {
 namespace {
 
-// Specialization constant ids and channel properties: RRC_SPEC_* and
-// RRC_CHANNEL_PROPERTY_* of compute/rrc_kernel_interface.h.
-uint32_t channel_constant_id(uint32_t property, uint32_t slot) { return RRC_SPEC_CHANNEL(property, slot); }
-// The per-channel ids fill the slots of the kernel (CH0_..CH3_) and stay
-// clear of the whole-dispatch ones.
+// The specialization constants are one range, 0..RRC_SPEC_COUNT - 1
+// (compute/rrc_kernel_interface.h); each channel slot has one feature word.
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
-static_assert(RRC_SPEC_CHANNEL(0, 0) > RRC_SPEC_LAST_DISPATCH, "channel ids overlap the dispatch ids");
+static_assert(RRC_SPEC_MASK_IN_PLACE < RRC_SPEC_REFRESH_POLICY && RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X &&
+                  RRC_SPEC_GROUP_SIZE_Y < RRC_SPEC_CHANNEL_FEATURES &&
+                  RRC_SPEC_CHANNEL_FEATURES + RRC_SPEC_CHANNEL_SLOTS == RRC_SPEC_COUNT,
+              "the ids: dispatch, shading cache, workgroup size, channel feature words, in one range");
 static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_BINDING_STATS + 1 && RRC_BINDING_FILL_LIST == RRC_BINDING_QUADS + 1 &&
-                  RRC_BINDING_VIEW == RRC_BINDING_FILL_LIST + 1,
+                  RRC_BINDING_VIEW == RRC_BINDING_FILL_LIST + 1 && RRC_BINDING_CHANNEL_PARAMS == RRC_BINDING_VIEW + 1,
               "the buffers follow every image binding, in a row");
-constexpr uint32_t kBufferBindings = RRC_BINDING_VIEW - RRC_BINDING_STATS + 1;
-static_assert(RRC_SPEC_REFRESH_POLICY > RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) &&
-                  RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X,
-              "the shading cache's ids sit between the channel ids and the workgroup-size ids");
-static_assert(RRC_SPEC_CHANNEL(RRC_CHANNEL_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
-              "channel ids overlap the workgroup-size ids");
-static_assert(RRC_SPEC_CHANNEL2(0, 0) > RRC_SPEC_MAX_LIFETIME &&
-                  RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_COUNT - 1, RRC_SPEC_CHANNEL_SLOTS - 1) < RRC_SPEC_GROUP_SIZE_X,
-              "the second channel range sits between the shading cache's ids and the workgroup-size ids");
+constexpr uint32_t kBufferBindings = RRC_BINDING_CHANNEL_PARAMS - RRC_BINDING_STATS + 1;
 
 // Each pass is its own module (compute/rrc_pass_*.comp) with its own
 // bindings (compute/rrc_pass_bindings.h); the per-pixel passes (FUSED,
@@ -80,9 +73,10 @@ PassModule pass_module(uint32_t pass, uint32_t slots) {
 }
 #undef RRC_PASS_MODULE
 
-bool is_buffer_binding(Binding b) { return b >= RRC_BINDING_STATS && b <= RRC_BINDING_VIEW; }
+bool is_buffer_binding(Binding b) { return b >= RRC_BINDING_STATS && b <= RRC_BINDING_CHANNEL_PARAMS; }
 VkDescriptorType descriptor_type(Binding b) {
-    return is_buffer_binding(b)    ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+    return b == RRC_BINDING_CHANNEL_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+           : is_buffer_binding(b)    ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
            : is_sampled_binding(b) ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
                                    : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 }
@@ -115,7 +109,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         VulkanDevice::check(vk.vkCreateSampler(dev.device, &sci, dev.allocator, &sampler_), "vkCreateSampler");
         const VkSampler immutable[RRC_MAX_CHANNELS] = {sampler_, sampler_, sampler_, sampler_};
         // Each pass's layout from its list; the pool holds `sets` of each.
-        uint32_t storage = 0, sampled = 0, buffers = 0;
+        uint32_t storage = 0, sampled = 0, buffers = 0, uniforms = 0;
         for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
             const PassModule m = pass_module(pass, RRC_MAX_CHANNELS);  // the bindings: every count's
             std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -124,8 +118,10 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
                 const VkDescriptorType type = descriptor_type(b);
                 bindings.push_back({b, type, descriptor_count(b), VK_SHADER_STAGE_COMPUTE_BIT,
                                     type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ? immutable : nullptr});
-                (type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ? buffers : type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? storage : sampled) +=
-                    descriptor_count(b);
+                (type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER   ? uniforms
+                 : type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ? buffers
+                 : type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE  ? storage
+                                                             : sampled) += descriptor_count(b);
             }
             VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
             lci.bindingCount = (uint32_t)bindings.size();
@@ -142,14 +138,21 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
             VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layouts_[pass]), "vkCreatePipelineLayout");
         }
 
-        VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
+        VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sets * sampled},
-                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets * buffers}};
+                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets * buffers},
+                                         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets * uniforms}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         dpi.maxSets = sets * RRC_PASS_COUNT;
-        dpi.poolSizeCount = 3;
+        dpi.poolSizeCount = 4;
         dpi.pPoolSizes = sizes;
         VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, dev.allocator, &pool_), "vkCreateDescriptorPool");
+        // The channels' parameters, written once: host-visible and coherent, so the first
+        // submission that reads them sees them (docs/design/adding-an-option.md).
+        params_ = HostBuffer(dev, sizeof(KernelParamBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+        KernelParamBlock block{};
+        for (size_t s = 0; s < c.channels.size(); ++s) block.slot[s] = kernel_channel_params(c.channels[s]);
+        std::memcpy(params_.data, &block, sizeof block);
     } catch (...) {
         release();  // the destructor does not run for a constructor that throws
         throw;
@@ -192,31 +195,8 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_MAX_LIFETIME, c.max_lifetime);
     spec.add(RRC_SPEC_GROUP_SIZE_X, kGroupX);
     spec.add(RRC_SPEC_GROUP_SIZE_Y, kGroupY);
-    for (uint32_t slot = 0; slot < c.channels.size(); ++slot) {
-        const ChannelConfig& ch = c.channels[slot];
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_COMPONENTS, slot), ch.components);
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_FP16, slot), ch.fp16 ? 1u : 0u);
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_BLEND, slot), ch.blend);
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_FILTER, slot), ch.filter);
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_CONFIDENCE, slot), ch.confidence ? 1u : 0u);
-        spec.add_float(channel_constant_id(RRC_CHANNEL_PROPERTY_LAMBDA, slot), ch.lambda);
-        spec.add(channel_constant_id(RRC_CHANNEL_PROPERTY_AGE_CAP, slot), ch.age_cap);
-        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_RECTIFY, slot), ch.rectify ? 1u : 0u);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_RECTIFY_GAMMA, slot), ch.rectify_gamma);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_BLUR_G, slot), ch.blur_sigma * ch.blur_sigma * 0.5f);
-        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_AGE, slot), ch.fill_age);
-        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_RADIUS, slot), ch.fill_radius);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_TOLERANCE, slot), ch.fill_depth_tolerance);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_FILL_PRIOR, slot), ch.fill_prior);
-        spec.add(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG, slot), ch.antilag ? 1u : 0u);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_GAMMA, slot), ch.antilag_gamma);
-        spec.add_float(RRC_SPEC_CHANNEL2(RRC_CHANNEL2_PROPERTY_ANTILAG_THRESHOLD, slot), ch.antilag_threshold);
-        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND, slot), ch.blur_bound_active() ? 1u : 0u);
-        spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_BLUR_BOUND_PX2, slot), ch.blur_bound);
-        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE, slot), ch.view_lobe > 0.0f ? 1u : 0u);
-        spec.add_float(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_VIEW_LOBE_RAD, slot), ch.view_lobe);
-        spec.add(RRC_SPEC_CHANNEL3(RRC_CHANNEL3_PROPERTY_RESIDUAL, slot), ch.residual ? 1u : 0u);
-    }
+    // Each slot's feature word (its parameters are in params_, written at creation).
+    for (uint32_t slot = 0; slot < c.channels.size(); ++slot) spec.add(RRC_SPEC_CHANNEL_FEATURES + slot, channel_feature_word(c.channels[slot]));
     VkSpecializationInfo si{(uint32_t)spec.entries.size(), spec.entries.data(), spec.data.size() * 4, spec.data.data()};
     VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -285,9 +265,11 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
                 } else if (b == RRC_BINDING_FILL_LIST) {
                     if (!v.fill_list) fail(RRC_ERROR_UNSUPPORTED, "internal: the fill list binding has no buffer");
                     info = {v.fill_list, 0, VK_WHOLE_SIZE};
-                } else {
+                } else if (b == RRC_BINDING_VIEW) {
                     if (!v.view_buffer) fail(RRC_ERROR_UNSUPPORTED, "internal: the view binding has no buffer");
                     info = {v.view_buffer, 0, RRC_VIEW_BUFFER_FLOATS * sizeof(float)};
+                } else {
+                    info = {params_.buffer, 0, sizeof(KernelParamBlock)};
                 }
                 w.pBufferInfo = &info;
             } else {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "config.h"
+#include "gpu_resources.h"
 #include "vulkan_device.h"
 
 #include <rrc_kernel_interface.h>
@@ -137,6 +138,7 @@ private:
     std::map<uint32_t, VkPipeline> pipelines_;  // by KernelVariant::key()
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;  // nearest, clamp: texelFetch ignores it, the layout needs one
+    HostBuffer params_;  // RRC_BINDING_CHANNEL_PARAMS: the channels' parameter block (plugin/channel_options.h)
 };
 
 }  // namespace rrc

@@ -13,36 +13,19 @@ namespace rrc {
 
 struct ChannelConfig {
     std::string name;
-    uint32_t components = 1;
+    // One member a row of compute/rrc_channel_options.def, as the caller set
+    // it with its "0 = default" resolved (plugin/validation.cpp).
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, ...) ctype member = dflt;
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+    // The history actually kept in fp16: asked for, and not promoted to fp32
+    // above RRC_FP16_MAX_LAMBDA (docs/CONVENTIONS.md, "The recursive filter").
     bool fp16 = true;
-    float lambda = 0.6f;
-    rrc_blend blend = RRC_BLEND_FIXED;
-    rrc_history_filter filter = RRC_HISTORY_FILTER_BILINEAR;
-    uint32_t age_cap = RRC_DEFAULT_AGE_CAP;
-    bool confidence = false;
-    // 0.4 finishing steps (docs/CONVENTIONS.md, "Finishing steps"), defaults applied.
-    bool rectify = false;
-    float rectify_gamma = RRC_DEFAULT_RECTIFY_GAMMA;
-    float blur_sigma = 0.0f;      // GAUSSIAN only (else 0)
-    uint32_t fill_age = 0;        // T; 0 = no fill
-    uint32_t fill_radius = RRC_DEFAULT_FILL_RADIUS;
-    float fill_depth_tolerance = RRC_DEFAULT_FILL_DEPTH_TOLERANCE;
-    float fill_prior = 0.0f;      // > 0: frames carry a fallback
-    // 0.5 the lag detector (docs/CONVENTIONS.md, "The lag detector"), defaults applied.
-    bool antilag = false;
-    float antilag_gamma = RRC_DEFAULT_ANTILAG_GAMMA;
-    float antilag_threshold = RRC_DEFAULT_ANTILAG_THRESHOLD;
-    // 0.6 the blur bound (docs/CONVENTIONS.md, "The blur bound"): B in px^2, 0 = off.
-    float blur_bound = 0.0f;
     // The kernel caps ages only where the fetch blurs: BILINEAR and GAUSSIAN
     // (NEAREST and CATMULL_ROM have b = 0, so their code is compiled out).
     bool blur_bound_active() const {
         return blur_bound > 0.0f && (filter == RRC_HISTORY_FILTER_BILINEAR || filter == RRC_HISTORY_FILTER_GAUSSIAN);
     }
-    // 0.7 the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history"): alpha in radians, 0 = off.
-    float view_lobe = 0.0f;
-    // 0.9 the residual (docs/CONVENTIONS.md, "The residual"): the channel accumulates s - b, b its fallback.
-    bool residual = false;
     bool reuse() const { return blend == RRC_BLEND_REUSE; }
     bool fill() const { return fill_age != 0; }
     // Frames carry a fallback: the fill's prior, or the residual's base.

@@ -36,6 +36,29 @@ double max_lambda_eff(const ChannelConfig& c) {
     return c.lambda;
 }
 
+// One row of compute/rrc_channel_options.def, checked: the caller's value
+// `raw` is in the row's range (the message names the member and the range),
+// non-zero only where the row's `needs` holds and, for a row REFUSED to
+// REUSE, only on an accumulating channel.  Returns the resolved value
+// (0 becomes the row's default).
+enum class Check { None, Bool, Uint, Float, Below };
+enum class Reuse { ALLOWED, REFUSED };
+template <typename T>
+void check_option(const char* what, const char* member, T raw, Check check, double high, bool zero_default, bool needs,
+                  const char* needs_text, Reuse reuse, bool reuse_blend) {
+    const double v = (double)raw;
+    const char* zero = zero_default ? " (0 = default)" : "";
+    if (check == Check::Uint && v > high) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.%s is %.0f, at most %.0f%s", what, member, v, high, zero);
+    if ((check == Check::Float && !(v >= 0.0 && v <= high)) || (check == Check::Below && !(v >= 0.0 && v < high)))
+        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.%s is %g, must be in [0, %g%c%s", what, member, v, high, check == Check::Below ? ')' : ']',
+             zero);
+    if (raw != T{} && !needs) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.%s is set but needs %s", what, member, needs_text);
+    if (raw != T{} && reuse == Reuse::REFUSED && reuse_blend)
+        fail(RRC_ERROR_INVALID_ARGUMENT,
+             "%s has blend REUSE and %s: a shading cache keeps its values, it neither blends nor takes a sample on a hit", what,
+             member);
+}
+
 // c: the caller's channel as read by read_array (struct rules already applied).
 ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     char what[48];
@@ -45,91 +68,42 @@ ChannelConfig resolve_channel(const rrc_channel_desc& c, uint32_t index) {
     if (len == 0) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is empty", what);
     if (len == RRC_MAX_NAME) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.name is not NUL-terminated within %d bytes", what, RRC_MAX_NAME);
     out.name.assign(c.name, len);
+    // The rows checked by hand (check NONE): sets and enumerations.
     if (c.components != 1 && c.components != 4) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.components is %u, must be 1 or 4", what, c.components);
     out.components = c.components;
     if (c.precision != RRC_HISTORY_FP16 && c.precision != RRC_HISTORY_FP32)
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.precision is %u, not an rrc_history_precision", what, c.precision);
-    out.fp16 = c.precision == RRC_HISTORY_FP16;
-    if (!(c.lambda >= 0.0f && c.lambda < 1.0f))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.lambda is %g, must be in [0, 1)", what, (double)c.lambda);
-    out.lambda = c.lambda;
+    out.precision = c.precision;
     if (c.blend > uint32_t{RRC_BLEND_REUSE}) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blend is %u, not an rrc_blend", what, c.blend);
     out.blend = c.blend;
     if (c.filter > uint32_t{RRC_HISTORY_FILTER_GAUSSIAN})
         fail(RRC_ERROR_INVALID_ARGUMENT, "%s.filter is %u, not an rrc_history_filter", what, c.filter);
     out.filter = c.filter;
-    if (c.age_cap > RRC_MAX_AGE_CAP) fail(RRC_ERROR_INVALID_ARGUMENT, "%s.age_cap is %u, at most %u", what, c.age_cap, RRC_MAX_AGE_CAP);
-    out.age_cap = c.age_cap == 0 ? RRC_DEFAULT_AGE_CAP : c.age_cap;
-    out.confidence = c.confidence != 0;
-    if (out.confidence && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and confidence: a shading cache keeps values, it does not weigh them", what);
-    // 0.4: the finishing steps (docs/CONVENTIONS.md, "Finishing steps").
-    out.rectify = c.rectify != 0;
-    if (out.rectify && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and rectify: a shading cache takes no sample on a hit to rectify against", what);
-    if (!(c.rectify_gamma >= 0.0f && c.rectify_gamma <= RRC_MAX_RECTIFY_GAMMA))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.rectify_gamma is %g, must be in (0, %g] (0 = default)", what, (double)c.rectify_gamma,
-             (double)RRC_MAX_RECTIFY_GAMMA);
-    if (c.rectify_gamma != 0.0f && !out.rectify)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.rectify_gamma is %g but rectify is 0", what, (double)c.rectify_gamma);
-    out.rectify_gamma = c.rectify_gamma == 0.0f ? RRC_DEFAULT_RECTIFY_GAMMA : c.rectify_gamma;
-    if (!(c.blur_sigma >= 0.0f && c.blur_sigma <= RRC_MAX_BLUR_SIGMA))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_sigma is %g, must be in (0, %g] (0 = default)", what, (double)c.blur_sigma,
-             (double)RRC_MAX_BLUR_SIGMA);
-    if (c.blur_sigma != 0.0f && c.filter != RRC_HISTORY_FILTER_GAUSSIAN)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_sigma is %g but the filter is not GAUSSIAN", what, (double)c.blur_sigma);
-    out.blur_sigma = c.filter != RRC_HISTORY_FILTER_GAUSSIAN ? 0.0f : c.blur_sigma == 0.0f ? RRC_DEFAULT_BLUR_SIGMA : c.blur_sigma;
-    if (c.fill_age > out.age_cap + 1u)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_age is %u, at most the age cap + 1 (%u)", what, c.fill_age, out.age_cap + 1u);
-    out.fill_age = c.fill_age;
-    if (c.fill_radius > RRC_MAX_FILL_RADIUS)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_radius is %u, at most %u", what, c.fill_radius, RRC_MAX_FILL_RADIUS);
-    if (!(c.fill_depth_tolerance >= 0.0f && c.fill_depth_tolerance <= 1.0f))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_depth_tolerance is %g, must be in (0, 1] (0 = default)", what, (double)c.fill_depth_tolerance);
-    if (!(c.fill_prior >= 0.0f && c.fill_prior <= (float)RRC_MAX_AGE_CAP))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.fill_prior is %g, must be in [0, %u] samples", what, (double)c.fill_prior, RRC_MAX_AGE_CAP);
-    if (out.fill_age == 0 && (c.fill_radius != 0 || c.fill_depth_tolerance != 0.0f || c.fill_prior != 0.0f))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s sets fill_radius, fill_depth_tolerance or fill_prior but fill_age is 0 (no fill)", what);
-    out.fill_radius = c.fill_radius == 0 ? RRC_DEFAULT_FILL_RADIUS : c.fill_radius;
-    out.fill_depth_tolerance = c.fill_depth_tolerance == 0.0f ? RRC_DEFAULT_FILL_DEPTH_TOLERANCE : c.fill_depth_tolerance;
-    out.fill_prior = c.fill_prior;
-    // 0.5: the lag detector (docs/CONVENTIONS.md, "The lag detector").
-    out.antilag = c.antilag != 0;
-    if (out.antilag && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and antilag: a shading cache takes no sample on a hit to compare with", what);
-    if (!(c.antilag_gamma >= 0.0f && c.antilag_gamma <= RRC_MAX_ANTILAG_GAMMA))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.antilag_gamma is %g, must be in (0, %g] (0 = default)", what, (double)c.antilag_gamma,
-             (double)RRC_MAX_ANTILAG_GAMMA);
-    if (!(c.antilag_threshold >= 0.0f && c.antilag_threshold <= RRC_MAX_ANTILAG_THRESHOLD))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.antilag_threshold is %g, must be in (0, %g] (0 = default)", what, (double)c.antilag_threshold,
-             (double)RRC_MAX_ANTILAG_THRESHOLD);
-    if (!out.antilag && (c.antilag_gamma != 0.0f || c.antilag_threshold != 0.0f))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s sets antilag_gamma or antilag_threshold but antilag is 0", what);
-    out.antilag_gamma = c.antilag_gamma == 0.0f ? RRC_DEFAULT_ANTILAG_GAMMA : c.antilag_gamma;
-    out.antilag_threshold = c.antilag_threshold == 0.0f ? RRC_DEFAULT_ANTILAG_THRESHOLD : c.antilag_threshold;
-    // 0.6: the blur bound (docs/CONVENTIONS.md, "The blur bound").
-    if (!(c.blur_bound >= 0.0f && c.blur_bound <= RRC_MAX_BLUR_BOUND))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.blur_bound is %g, must be in [0, %g] px^2 (0 = off)", what, (double)c.blur_bound,
-             (double)RRC_MAX_BLUR_BOUND);
-    if (c.blur_bound > 0.0f && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and blur_bound: a shading cache never blends, so it has no age to cap", what);
-    out.blur_bound = c.blur_bound;
-    // 0.7: the view-dependent history (docs/CONVENTIONS.md, "The view-dependent history").
-    if (!(c.view_lobe >= 0.0f && c.view_lobe <= RRC_MAX_VIEW_LOBE))
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s.view_lobe is %g, must be in [0, %g] radians (0 = off)", what, (double)c.view_lobe,
-             (double)RRC_MAX_VIEW_LOBE);
-    if (c.view_lobe > 0.0f && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and view_lobe: a shading cache never blends, so it has no age to cap", what);
-    out.view_lobe = c.view_lobe;
-    // 0.9: the residual (docs/CONVENTIONS.md, "The residual").
-    if (c.residual != 0 && out.reuse())
-        fail(RRC_ERROR_INVALID_ARGUMENT, "%s has blend REUSE and residual: a shading cache keeps values, it accumulates no residual", what);
-    out.residual = c.residual != 0;
+    // Every other row, in row order: a row's range and needs may read the rows before it (`out`).
+#define RRC_CHECK_NONE(member, ctype, dflt, high, needs, needs_text, rule)
+#define RRC_CHECK_ROW(member, ctype, check, dflt, high, needs, needs_text, rule)                                                   \
+    check_option(what, #member, c.member, Check::check, (double)(high), (double)(dflt) != 0.0, needs, needs_text, Reuse::rule, \
+                 out.reuse());                                                                                                  \
+    out.member = c.member == 0 ? dflt : (ctype)c.member;
+#define RRC_CHECK_BOOL(member, ctype, dflt, high, needs, needs_text, rule) RRC_CHECK_ROW(member, ctype, Bool, dflt, high, needs, needs_text, rule)
+#define RRC_CHECK_UINT(member, ctype, dflt, high, needs, needs_text, rule) RRC_CHECK_ROW(member, ctype, Uint, dflt, high, needs, needs_text, rule)
+#define RRC_CHECK_FLOAT(member, ctype, dflt, high, needs, needs_text, rule) RRC_CHECK_ROW(member, ctype, Float, dflt, high, needs, needs_text, rule)
+#define RRC_CHECK_BELOW(member, ctype, dflt, high, needs, needs_text, rule) RRC_CHECK_ROW(member, ctype, Below, dflt, high, needs, needs_text, rule)
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, rule, ...) \
+    RRC_CHECK_##check(member, ctype, dflt, high, needs, needs_text, rule)
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+#undef RRC_CHECK_BELOW
+#undef RRC_CHECK_FLOAT
+#undef RRC_CHECK_UINT
+#undef RRC_CHECK_BOOL
+#undef RRC_CHECK_ROW
+#undef RRC_CHECK_NONE
     // An fp16 history rounded to nearest stops moving once (1 - lambda)|s - H|
     // falls under half an ulp of H, and stalls up to 2^-11/(1 - lambda) of H
     // away from the signal: keep fp16 only while the largest lambda_eff the
     // channel can reach is at most RRC_FP16_MAX_LAMBDA (docs/CONVENTIONS.md).
-    if (out.fp16 && max_lambda_eff(out) > RRC_FP16_MAX_LAMBDA) out.fp16 = false;
+    out.fp16 = out.precision == RRC_HISTORY_FP16 && max_lambda_eff(out) <= RRC_FP16_MAX_LAMBDA;
     return out;
 }
 
