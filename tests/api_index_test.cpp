@@ -13,6 +13,8 @@
 // once, as rrc_struct_header's.
 #include "support/source_file.h"
 
+#include <rrc/rrc.h>  // RRC_MAKE_VERSION, RRC_VERSION_MINOR (the option table's versions)
+
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -143,6 +145,12 @@ std::multimap<std::string, std::string> index_rows() {
         else
             EXPECT_NE(line.rfind("| `rrc_", 0), 0u) << "docs/INTEGRATION.md: a row not of the form | `name` | meaning | 0.N |: " << line;
     }
+    // rrc_channel_desc's options: each row of compute/rrc_channel_options.def is
+    // its index row (its version; its meaning in docs/CONVENTIONS.md, its range in the table).
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, bit, width, feature, version, anchor) \
+    rows.emplace("rrc_channel_desc." #member, "0." + std::to_string(RRC_VERSION_MINOR(version)));
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
     return rows;
 }
 

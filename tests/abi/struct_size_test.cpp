@@ -34,6 +34,36 @@ using rrc_test::vkpath::VulkanRig;
 
 namespace {
 
+// The option rows of rrc_channel_desc in member order, with where each sits.
+struct ChannelRow {
+    const char* member;
+    size_t offset, size;
+    uint32_t version;
+};
+std::vector<ChannelRow> channel_rows() {
+    return {
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, bit, width, feature, version, anchor) \
+    {#member, offsetof(rrc_channel_desc, member), sizeof(rrc_channel_desc::member), version},
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+    };
+}
+
+TEST(AbiChannelDesc, TheOptionTableIsTheStructAfterItsName) {
+    // Every member after `name` is a row, in member order, with no gap; versions only grow.
+    size_t at = offsetof(rrc_channel_desc, name) + sizeof(rrc_channel_desc::name);
+    uint32_t version = 0;
+    for (const ChannelRow& r : channel_rows()) {
+        EXPECT_EQ(r.offset, at) << r.member << ": the table's rows follow the struct's members";
+        EXPECT_GE(r.version, version) << r.member << ": an option of an earlier version after a later one";
+        at = r.offset + r.size;
+        version = r.version;
+    }
+    const size_t align = alignof(rrc_channel_desc);
+    EXPECT_EQ((at + align - 1) / align * align, sizeof(rrc_channel_desc)) << "a member after the table's last row";
+}
+
+
 // ---- layout: every 0.1 member where a 0.1 caller put it ---------------------
 
 const rrc_abi_entry kLayout02[] = {
@@ -95,11 +125,12 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_context_desc, refresh_policy), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_context_desc, max_lifetime), size01("rrc_context_desc"));
     EXPECT_GE(offsetof(rrc_frame_output, refreshed), size01("rrc_frame_output"));
-    EXPECT_GE(offsetof(rrc_channel_desc, rectify), size01("rrc_channel_desc"));  // 0.4
-    EXPECT_GE(offsetof(rrc_channel_desc, antilag), offsetof(rrc_channel_desc, fill_prior) + sizeof(float));  // 0.5 appends after 0.4
-    EXPECT_GE(offsetof(rrc_channel_desc, blur_bound), offsetof(rrc_channel_desc, antilag_threshold) + sizeof(float));  // 0.6 after 0.5
-    EXPECT_GE(offsetof(rrc_channel_desc, view_lobe), offsetof(rrc_channel_desc, blur_bound) + sizeof(float));  // 0.7 after 0.6
-    EXPECT_GE(offsetof(rrc_channel_desc, residual), offsetof(rrc_channel_desc, view_lobe) + sizeof(float));  // 0.9 after 0.7
+    // rrc_channel_desc's options (compute/rrc_channel_options.def): after the 0.1
+    // size only the rows of later versions, each version's after the last.
+    for (const ChannelRow& r : channel_rows()) {
+        if (r.version > RRC_MAKE_VERSION(0, 1, 0)) EXPECT_GE(r.offset, size01("rrc_channel_desc")) << r.member;
+        else EXPECT_LT(r.offset, size01("rrc_channel_desc")) << r.member << ": a 0.1 member";
+    }
     EXPECT_GE(offsetof(rrc_frame_desc, camera_position), offsetof(rrc_frame_desc, reproject_from) + sizeof(uint32_t));  // 0.7 after 0.3
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, camera_position), offsetof(rrc_vulkan_frame_desc, split_outputs) + sizeof(uint32_t));
     EXPECT_GE(offsetof(rrc_frame_desc, lighting_turn), offsetof(rrc_frame_desc, prev_camera_position) + 3 * sizeof(double));  // 0.8
@@ -548,29 +579,15 @@ TEST(AbiChannelDesc, RulesOneToFour) {
         d.channels = a.as<rrc_channel_desc>();
         expect_same_sequence(&d, "strided by sizeof + 16, zero tails");
     }
-    {
-        // A 0.4 caller: its channel descriptors end before the lag detector's members (read as zero: off).
-        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, antilag), {}, 0);
+    // A caller of each earlier version: its channel descriptors end before the
+    // first option of a later version (compute/rrc_channel_options.def), read as zero: off.
+    const std::vector<ChannelRow> rows = channel_rows();
+    for (size_t i = 1; i < rows.size(); ++i) {
+        if (rows[i].version == rows[i - 1].version || rows[i - 1].version == RRC_MAKE_VERSION(0, 1, 0)) continue;
+        Blob a = pack_array(channels, (uint32_t)rows[i].offset, {}, 0);
         d.channels = a.as<rrc_channel_desc>();
-        expect_same_sequence(&d, "0.4 size, exact buffer");
-    }
-    {
-        // A 0.5 caller: its channel descriptors end before the blur bound (read as zero: off).
-        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, blur_bound), {}, 0);
-        d.channels = a.as<rrc_channel_desc>();
-        expect_same_sequence(&d, "0.5 size, exact buffer");
-    }
-    {
-        // A 0.6 caller: its channel descriptors end before the view lobe (read as zero: off).
-        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, view_lobe), {}, 0);
-        d.channels = a.as<rrc_channel_desc>();
-        expect_same_sequence(&d, "0.6 size, exact buffer");
-    }
-    {
-        // A 0.8 caller: its channel descriptors end before the residual (read as zero: off).
-        Blob a = pack_array(channels, (uint32_t)offsetof(rrc_channel_desc, residual), {}, 0);
-        d.channels = a.as<rrc_channel_desc>();
-        expect_same_sequence(&d, "0.8 size, exact buffer");
+        const std::string what = std::string("a caller before ") + rows[i].member + ", exact buffer";
+        expect_same_sequence(&d, what.c_str());
     }
     {
         Blob a = pack_array(channels, s01 - 1, {}, 0);

@@ -219,7 +219,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         c.blend = fuzz_small(in, 3);
         c.filter = fuzz_small(in, 3);
         c.age_cap = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0, 300) : in.ConsumeIntegral<uint32_t>();
-        c.confidence = in.ConsumeIntegral<uint8_t>() % 3;
+        // Every other row of compute/rrc_channel_options.def, by its check: 0 often (off, or the default).
+#define RRC_FUZZ_NONE(member)
+#define RRC_FUZZ_BOOL(member) c.member = in.ConsumeIntegral<uint8_t>() % 3;
+#define RRC_FUZZ_UINT(member) c.member = in.ConsumeBool() ? 0u : in.ConsumeBool() ? fuzz_small(in, 8) : in.ConsumeIntegral<uint32_t>();
+#define RRC_FUZZ_FLOAT(member) c.member = in.ConsumeBool() ? 0.0f : fuzz_float(in);
+#define RRC_FUZZ_BELOW(member) RRC_FUZZ_FLOAT(member)
+#define RRC_CHANNEL_OPTION(member, ctype, check, ...) RRC_FUZZ_##check(member)
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+#undef RRC_FUZZ_BELOW
+#undef RRC_FUZZ_FLOAT
+#undef RRC_FUZZ_UINT
+#undef RRC_FUZZ_BOOL
+#undef RRC_FUZZ_NONE
     });
     d.channels = in.ConsumeIntegralInRange<int>(0, 15) ? channels.get() : nullptr;
     d.use_nocache_mask = in.ConsumeBool();
@@ -244,6 +257,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             if (!(c.lambda >= 0.0f && c.lambda < 1.0f) || (c.components != 1 && c.components != 4) || c.age_cap == 0 ||
                 c.age_cap > RRC_MAX_AGE_CAP || c.name.empty())
                 std::abort();
+        // Every checked row's resolved value is in its range (a finite, non-negative float).
+#define RRC_FUZZ_CHECK_FLOAT(member) \
+    for (const rrc::ChannelConfig& c : config.channels)                                         \
+        if (!(std::isfinite(c.member) && c.member >= 0.0f)) std::abort();
+#define RRC_FUZZ_CHECK_BELOW(member) RRC_FUZZ_CHECK_FLOAT(member)
+#define RRC_FUZZ_CHECK_NONE(member)
+#define RRC_FUZZ_CHECK_BOOL(member)
+#define RRC_FUZZ_CHECK_UINT(member)
+#define RRC_CHANNEL_OPTION(member, ctype, check, ...) RRC_FUZZ_CHECK_##check(member)
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
         fuzz_frame(in, config);
     }
     fuzz_vulkan_device(in);
