@@ -74,6 +74,10 @@ Params resolve(const rrc_context_desc& ctx) {
         ch.blur_bound = d.blur_bound;
         ch.view_lobe = d.view_lobe;
         ch.residual = d.residual != 0;
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, ...) \
+    ch.options.member = d.member != 0 ? (double)d.member : (double)(dflt);
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
         p.channels.push_back(ch);
     }
     return p;

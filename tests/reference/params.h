@@ -11,6 +11,16 @@
 
 namespace rrc_ref {
 
+// Every row of compute/rrc_channel_options.def as the host set it, 0 read as
+// the row's default (the table's rule, docs/design/adding-an-option.md): what
+// an option added since carries to the reference's math without a member of
+// its own.  The options above that predate the table keep their own members.
+struct TableOptions {
+#define RRC_CHANNEL_OPTION(member, ...) double member = 0.0;
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+};
+
 struct ChannelParams {
     unsigned components;
     bool fp16;  // the history actually stored in fp16 (asked for, and not promoted to fp32)
@@ -37,6 +47,7 @@ struct ChannelParams {
     double view_lobe = 0.0;
     // 0.9 the residual (docs/CONVENTIONS.md "The residual"): the channel filters s - b, b its fallback.
     bool residual = false;
+    TableOptions options;
 };
 
 struct Params {
