@@ -5,29 +5,30 @@
 // runs over them (docs/PERFORMANCE.md, "The frame plan").  The fill list
 // (u_fill; docs/CONVENTIONS.md, "The spatial fill"): the passes that write
 // channels append the pixels younger than a fill age, the fill pass runs
-// over them.  Macros: GLSL passes no buffer to a function, and a pass
-// declares only the list it uses (rrc_pass_bindings.h).
+// over them.  GLSL passes no buffer to a function, and a pass declares only
+// the list it uses (rrc_pass_bindings.h): so a pass defines its own appender.
 #ifndef RRC_LIST_GLSL
 #define RRC_LIST_GLSL
 
 #include "rrc_values.glsl"  // RRC_QUAD_LIST_*, RRC_QUADS_PER_GROUP, RRC_FILL_LIST_*
 
-// Appends `entry`; the dispatch's x covers the largest slot taken: slot /
-// per_group + 1 = ceil(count / per_group).  Every slot below the count is
-// taken, so only the first slot of each group needs to raise it: one
-// atomicMax a group, not one an entry.
-#define RRC_LIST_APPEND(words, count_at, dispatch_at, first_at, per_group, entry)                \
-    {                                                                                          \
-        uint slot = atomicAdd(words[count_at], 1u);                                            \
-        words[first_at + slot] = (entry);                                                      \
-        if (slot % (per_group) == 0u) atomicMax(words[dispatch_at], slot / (per_group) + 1u);  \
+// RRC_LIST_APPENDER(name, list, ...) defines `void name(ivec2 xy)`, which appends
+// xy as x | y << 16 to `list` (a buffer's words).  The dispatch's x covers the
+// largest slot taken: slot / per_group + 1 = ceil(count / per_group).  Every slot
+// below the count is taken, so only the first slot of each group needs to raise
+// it: one atomicMax a group, not one an entry.  A pass defines the appender of the
+// list it declares: RRC_QUAD_LIST_APPENDER, RRC_FILL_LIST_APPENDER.
+#define RRC_LIST_APPENDER(name, words, count_at, dispatch_at, first_at, per_group)                  \
+    void name(ivec2 xy) {                                                                          \
+        uint slot = atomicAdd(words[count_at], 1u);                                                \
+        words[first_at + slot] = uint(xy.x) | (uint(xy.y) << 16);                                  \
+        if (slot % (per_group) == 0u) atomicMax(words[dispatch_at], slot / (per_group) + 1u);      \
     }
-// Entries are x | y << 16: quad q, pixel px.
-#define rrc_list_quad(q)                                                                                                 \
-    RRC_LIST_APPEND(u_quads.words, RRC_QUAD_LIST_COUNT, RRC_QUAD_LIST_DISPATCH, RRC_QUAD_LIST_FIRST_QUAD, RRC_QUADS_PER_GROUP, \
-                    uint((q).x) | (uint((q).y) << 16))
-#define rrc_list_fill(px)                                                                                               \
-    RRC_LIST_APPEND(u_fill.words, RRC_FILL_LIST_COUNT, RRC_FILL_LIST_DISPATCH, RRC_FILL_LIST_FIRST, RRC_FILL_LIST_PER_GROUP, \
-                    uint((px).x) | (uint((px).y) << 16))
+// rrc_list_quad(q): quad q into classify's quad list.
+#define RRC_QUAD_LIST_APPENDER \
+    RRC_LIST_APPENDER(rrc_list_quad, u_quads.words, RRC_QUAD_LIST_COUNT, RRC_QUAD_LIST_DISPATCH, RRC_QUAD_LIST_FIRST_QUAD, RRC_QUADS_PER_GROUP)
+// rrc_list_fill(px): pixel px into the fill list.
+#define RRC_FILL_LIST_APPENDER \
+    RRC_LIST_APPENDER(rrc_list_fill, u_fill.words, RRC_FILL_LIST_COUNT, RRC_FILL_LIST_DISPATCH, RRC_FILL_LIST_FIRST, RRC_FILL_LIST_PER_GROUP)
 
 #endif

@@ -25,6 +25,7 @@ RRC_PASS_FRAME_BINDINGS(RRC_DECLARE)
 #include "rrc_mask.glsl"
 #include "rrc_cache.glsl"
 #include "rrc_list.glsl"
+RRC_FILL_LIST_APPENDER  // rrc_list_fill
 #include "rrc_view_lobe.glsl"
 
 // The frame's statistics: an optional interop output, its own pipeline

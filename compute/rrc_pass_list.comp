@@ -13,6 +13,7 @@ RRC_PASS_LIST_BINDINGS(RRC_DECLARE)
 
 #include "rrc_mask.glsl"
 #include "rrc_list.glsl"
+RRC_QUAD_LIST_APPENDER  // rrc_list_quad
 
 // LIST: one invocation a 2x2 quad, after CLASSIFY wrote the mask (a pass of
 // its own: one invocation a quad would run the reprojection of four pixels

@@ -189,11 +189,12 @@ TEST(ChannelOptionTable, EveryParameterIsDeclaredWhereTheLibraryUploadsIt) {
     d.channel.blur_sigma = 0.25f;
     const rrc::ChannelConfig c = rrc::resolve_context_desc(&d.context).channels[0];
     const rrc::KernelChannelParams p = rrc::kernel_channel_params(c);
-#define RRC_PARAM_NONE(member)
-#define RRC_PARAM_PARAM(member) \
+#define RRC_PARAM_NONE(member, dflt)
+#define RRC_PARAM_PARAM(member, dflt)          \
     EXPECT_EQ(p.member, c.member) << #member; \
-    EXPECT_EQ(p.member, (decltype(p.member))d.channel.member) << #member " is uploaded as the caller set it";
-#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, ...) RRC_PARAM_##param(member)
+    EXPECT_EQ(p.member, d.channel.member != 0 ? (decltype(p.member))d.channel.member : (decltype(p.member))(dflt)) \
+        << #member " is uploaded as the caller set it (0: the row's default)";
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, ...) RRC_PARAM_##param(member, dflt)
 #include <rrc_channel_options.def>
 #undef RRC_CHANNEL_OPTION
 #undef RRC_PARAM_PARAM
