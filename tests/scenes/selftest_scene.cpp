@@ -365,11 +365,12 @@ TEST(SceneFrame, LinearBackgroundValue) {
         }
 }
 
-TEST(SceneFrame, RenderIsCheap) {
+// The time a frame takes is printed for a reader, not asserted: a loaded
+// machine or a sanitizer build takes any time (tests/lint/timed_assertions.py).
+TEST(SceneFrame, RenderTimeIsPrinted) {
     Scene s(SceneConfig{});
     const auto t0 = std::chrono::steady_clock::now();
     for (int t = 0; t < 5; ++t) (void)s.render(t);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 5;
     std::printf("96x64 frame: %.2f ms\n", ms);
-    EXPECT_LT(ms, 500.0);  // loose: sanitizer builds are ~10x slower
 }
