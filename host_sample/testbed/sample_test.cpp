@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -129,7 +130,11 @@ TEST(RrcSample, ShortSequenceUnderValidationLayer) {
     EXPECT_EQ(r.frames[0].hits.hits, 0u) << "frame 0 is a reset";
     EXPECT_GT(r.frames[5].hits.ratio(), 0.5);
     EXPECT_GT(r.frames[5].hits.background, 0u);
-    EXPECT_GT(r.frames[5].timings.rrc, 0.0);
+    // rrc's GPU time is reported, from timestamps, and printed; its value is not asserted: it
+    // depends on the machine and its load (tests/lint/timed_assertions.py).
+    EXPECT_TRUE(r.frames[5].timings.from_timestamps);
+    EXPECT_TRUE(std::isfinite(r.frames[5].timings.rrc));
+    std::printf("rrc on frame 5: %.4f ms\n", r.frames[5].timings.rrc);
     // At the library's defaults rrc never reuses a point that was hidden (oracle.h); recall
     // is asserted at the default size below (at 64x40 a pixel spans 4x the depth slope).
     EXPECT_EQ(r.frames[0].visibility.hits, 0u);
