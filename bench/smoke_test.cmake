@@ -3,9 +3,10 @@
 # under the Khronos validation layer with synchronization validation.  It
 # fails on any validation message, on roof outputs that are not exact
 # copies of their inputs (read back and compared), on a missing row or a
-# non-positive time, and on roof bytes that disagree with the per-pixel
-# figures below, written out here independently of the C++ bookkeeping.
-# No timed assertion: the machine is shared and noisy.
+# time that is not reported as a number, and on roof bytes that disagree with
+# the per-pixel figures below, written out here independently of the C++
+# bookkeeping.  No timed assertion: the machine is shared and noisy, so a time
+# is checked for its presence, never for its value (tests/lint/timed_assertions.py).
 #   cmake -DBENCH=<rrc-bench> -DOUT=<dir> -P smoke_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
@@ -61,10 +62,11 @@ foreach(i RANGE ${last})
     message(FATAL_ERROR "unexpected row ${name}")
   endif()
   list(REMOVE_ITEM configs ${name})
+  # Each time is reported: a JSON number (rrc-bench writes null for one it has not).
   foreach(key kernel_ms_median roof_ms_median ratio_median kernel_ms_min roof_ms_min wall_ms_median)
-    string(JSON v GET "${json}" rows ${i} ${key})
-    if(NOT v GREATER 0)
-      message(FATAL_ERROR "${name}: ${key} = ${v}, not positive")
+    string(JSON type TYPE "${json}" rows ${i} ${key})
+    if(NOT type STREQUAL "NUMBER")
+      message(FATAL_ERROR "${name}: ${key} is ${type}, not a number")
     endif()
   endforeach()
   # The young fraction is read back from the statistics frame: a share of the pixels.
@@ -90,10 +92,10 @@ foreach(i RANGE ${last})
     message(FATAL_ERROR "${name}: bytes read/written ${r}/${w} (bound ${br}/${bw}, total ${total}), expected ${er}/${ew}")
   endif()
   if(name STREQUAL "standalone")
-    string(JSON fps GET "${json}" rows ${i} standalone_fps)
+    string(JSON fps_type TYPE "${json}" rows ${i} standalone_fps)
     string(JSON sb GET "${json}" rows ${i} standalone_bytes)
-    if(NOT fps GREATER 0 OR NOT sb GREATER 0)
-      message(FATAL_ERROR "standalone: fps ${fps}, bytes ${sb}")
+    if(NOT fps_type STREQUAL "NUMBER" OR NOT sb GREATER 0)
+      message(FATAL_ERROR "standalone: fps is ${fps_type}, not a number, or bytes ${sb} not positive")
     endif()
   endif()
 endforeach()
