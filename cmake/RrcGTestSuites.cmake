@@ -1,4 +1,5 @@
-# rrc_gtest_suites(<target> [TEST_FILTER <gtest filter>] [LABELS <label>]):
+# rrc_gtest_suites(<target> [TEST_FILTER <gtest filter>] [LABELS <label>...]
+#                  [UNIT_SUITES <suite>...]):
 # registers one CTest test per GoogleTest test suite of <target>, named
 # "<target>/<suite>" (for example `rrc_api_test/Api`), which runs that suite's
 # cases in one process.
@@ -16,11 +17,18 @@
 # target's CROSSCOMPILING_EMULATOR: rrc_test_environment's lavapipe
 # environment).  TEST_FILTER keeps the cases it matches (one executable can be
 # registered twice, with complementary filters and different labels); a
-# suite's test then runs exactly the listed cases.  LABELS is one label.
+# suite's test then runs exactly the listed cases.
+#
+# LABELS go to every suite's test; a suite named in UNIT_SUITES (as in its
+# test's name, e.g. `Cases/Golden`) gets the label `unit` too: the fast tier,
+# `ctest -L unit`.  Labels are applied when ctest reads the tests, from this
+# configuration, so a change of labels needs no rebuild; a unit suite the
+# program does not list becomes a failing test of the tier, so a renamed suite
+# cannot leave it unnoticed.
 set(RRC_GTEST_SUITES_SCRIPT ${CMAKE_CURRENT_LIST_DIR}/RrcGTestSuitesList.cmake)
 
 function(rrc_gtest_suites target)
-  cmake_parse_arguments(ARG "" "TEST_FILTER;LABELS" "" ${ARGN})
+  cmake_parse_arguments(ARG "" "TEST_FILTER" "LABELS;UNIT_SUITES" ${ARGN})
   # One output file per registration of the target (the filtered pairs).
   get_property(calls TARGET ${target} PROPERTY RRC_GTEST_SUITES_CALLS)
   if(NOT calls)
@@ -40,19 +48,40 @@ function(rrc_gtest_suites target)
 set(TEST_EXECUTOR [==[${emulator}]==])
 set(TEST_TARGET [==[${target}]==])
 set(TEST_FILTER [==[${ARG_TEST_FILTER}]==])
-set(TEST_LABELS [==[${ARG_LABELS}]==])
 set(TEST_WORKING_DIRECTORY [==[${CMAKE_CURRENT_BINARY_DIR}]==])
 set(TEST_OUTPUT [==[${base}_tests.cmake]==])
 ")
+  # Relinked, and so listed again, when the listing's script or inputs change.
+  set_property(TARGET ${target} APPEND PROPERTY LINK_DEPENDS "${base}_args.cmake" ${RRC_GTEST_SUITES_SCRIPT})
   add_custom_command(TARGET ${target} POST_BUILD
     BYPRODUCTS "${base}_tests.cmake"
     COMMAND ${CMAKE_COMMAND} -D "ARGS_FILE=${base}_args.cmake" -P ${RRC_GTEST_SUITES_SCRIPT}
     VERBATIM)
   # ctest reads the listed tests; before the target is built there are none,
-  # and a test named after the target says so.
+  # and a test named after the target says so.  The listing sets
+  # rrc_listed_suites; the labels follow from this call's arguments.
   file(WRITE "${base}_include.cmake"
 "if(EXISTS [==[${base}_tests.cmake]==])
+  set(rrc_listed_suites \"\")
   include([==[${base}_tests.cmake]==])
+  set(rrc_unit_suites [==[${ARG_UNIT_SUITES}]==])
+  foreach(rrc_suite IN LISTS rrc_listed_suites)
+    set(rrc_labels [==[${ARG_LABELS}]==])
+    list(FIND rrc_unit_suites \"\${rrc_suite}\" rrc_at)
+    if(NOT rrc_at EQUAL -1)
+      list(APPEND rrc_labels unit)
+    endif()
+    if(rrc_labels)
+      set_tests_properties(\"${target}/\${rrc_suite}\" PROPERTIES LABELS \"\${rrc_labels}\")
+    endif()
+  endforeach()
+  foreach(rrc_suite IN LISTS rrc_unit_suites)
+    list(FIND rrc_listed_suites \"\${rrc_suite}\" rrc_at)
+    if(rrc_at EQUAL -1)
+      add_test(\"${target}/\${rrc_suite}_NOT_LISTED\" \"${target}/\${rrc_suite}_NOT_LISTED\")
+      set_tests_properties(\"${target}/\${rrc_suite}_NOT_LISTED\" PROPERTIES LABELS unit)
+    endif()
+  endforeach()
 else()
   add_test([==[${target}_NOT_BUILT]==] [==[${target}_NOT_BUILT]==])
 endif()

@@ -1,6 +1,7 @@
 # Run after a test program is built (cmake -D ARGS_FILE=... -P, from
 # rrc_gtest_suites in RrcGTestSuites.cmake): lists its GoogleTest cases and
-# writes one add_test per test suite to TEST_OUTPUT.
+# writes one add_test per test suite to TEST_OUTPUT, and the suites' names
+# (labels come later, from the configuration: rrc_gtest_suites).
 include(${ARGS_FILE})
 
 set(list_command ${TEST_EXECUTOR} ${TEST_EXECUTABLE} --gtest_list_tests)
@@ -61,10 +62,8 @@ foreach(suite IN LISTS suites)
   endif()
   set(name "${TEST_TARGET}/${suite}")
   string(APPEND content "add_test([==[${name}]==]${executor_args} [==[${TEST_EXECUTABLE}]==] [==[--gtest_filter=${filter}]==])\n")
-  string(APPEND content "set_tests_properties([==[${name}]==] PROPERTIES WORKING_DIRECTORY [==[${TEST_WORKING_DIRECTORY}]==]")
-  if(TEST_LABELS)
-    string(APPEND content " LABELS [==[${TEST_LABELS}]==]")
-  endif()
-  string(APPEND content ")\n")
+  string(APPEND content "set_tests_properties([==[${name}]==] PROPERTIES WORKING_DIRECTORY [==[${TEST_WORKING_DIRECTORY}]==])\n")
 endforeach()
+# The suites, for the labels rrc_gtest_suites' include file gives them.
+string(APPEND content "set(rrc_listed_suites [==[${suites}]==])\n")
 file(WRITE ${TEST_OUTPUT} "${content}")

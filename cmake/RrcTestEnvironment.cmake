@@ -44,14 +44,16 @@ function(rrc_test_environment target)
   set_target_properties(${target} PROPERTIES CROSSCOMPILING_EMULATOR "${CMAKE_COMMAND};-E;env;${RRC_TEST_ENV}")
 endfunction()
 
-# rrc_add_gtest(<name> sources... [LIBS libs...]): a GoogleTest executable
-# whose test suites each become a CTest test with the lavapipe environment.
+# rrc_add_gtest(<name> sources... [LIBS libs...] [LABELS labels...]
+#               [UNIT_SUITES suites...]): a GoogleTest executable whose test
+# suites each become a CTest test with the lavapipe environment; LABELS and
+# UNIT_SUITES as rrc_gtest_suites (RrcGTestSuites.cmake) takes them.
 function(rrc_add_gtest name)
-  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "LIBS;LABELS;UNIT_SUITES" ${ARGN})
   add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name} PRIVATE rrc rrc_descs GTest::gtest_main ${ARG_LIBS})  # rrc_descs: support/rrc_test_context.h
   rrc_test_environment(${name})
-  rrc_gtest_suites(${name})
+  rrc_gtest_suites(${name} LABELS ${ARG_LABELS} UNIT_SUITES ${ARG_UNIT_SUITES})
 endfunction()
 
