@@ -5,76 +5,22 @@
 // The plan (plugin/frame_plan.cpp) is compiled into this test: it is pure
 // C++ on the context's configuration, no device involved.
 //
-// After an intended change of a plan, regenerate the table:
-//   RRC_WRITE_PLAN_TABLE=1 build/release/tests/rrc_plan_table_test
-#include "bench/config.h"  // the rrc-bench configurations
+// After an intended change of a plan, regenerate the table with its own
+// program (tests/plan/write_plan_table.cpp), never from this test:
+//   cmake --build build/release --target regenerate_plan_table
 #include "frame_plan.h"  // plugin/
+#include "plan/plan_table.h"
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 namespace {
 
-// The library's configuration of an rrc-bench row (bench/context_setup.cpp
-// builds the same through the public API).
-rrc::ContextConfig context_config(const rrc_bench::Config& b) {
-    rrc::ContextConfig c;
-    c.width = b.width;
-    c.height = b.height;
-    for (const rrc_bench::ChannelConfig& bc : b.channels) {
-        rrc::ChannelConfig ch;
-        ch.components = bc.components;
-        ch.fp16 = bc.precision != RRC_HISTORY_FP32;
-        ch.blend = b.shading_cache != rrc_bench::Config::Cache::Off ? RRC_BLEND_REUSE : RRC_BLEND_FIXED;
-        ch.fill_age = bc.fill_age;
-        ch.view_lobe = bc.view_lobe;
-        if (bc.fill_radius) ch.fill_radius = bc.fill_radius;
-        c.channels.push_back(ch);
-    }
-    return c;
-}
-
-std::string table() {
-    std::ostringstream out;
-    out << "# The frame plan of each rrc-bench configuration (tests/plan/plan_table_test.cpp).\n"
-        << "# Timed frames pass no statistics buffer; the bench gives the host's mask and age images.\n";
-    for (const rrc_bench::Config& b : rrc_bench::full_sweep()) {
-        const rrc::ContextConfig c = context_config(b);
-        rrc::PlanRequest r;
-        r.interop = !b.standalone;
-        r.host_mask = r.interop;
-        r.host_age_mask = r.interop ? (1u << c.channels.size()) - 1u : 0u;
-        r.split_outputs = b.split_outputs;
-        std::vector<std::pair<const char*, rrc::PlanCall>> calls;
-        switch (b.shading_cache) {
-            case rrc_bench::Config::Cache::Split: calls = {{"classify", rrc::PlanCall::Classify}, {"resolve", rrc::PlanCall::Resolve}}; break;
-            case rrc_bench::Config::Cache::ClassifyFused:
-                calls = {{"classify", rrc::PlanCall::Classify}, {"frame", rrc::PlanCall::Run}};
-                break;
-            default: calls = {{"frame", rrc::PlanCall::Run}};
-        }
-        out << "\n## " << b.name << " (" << b.width << "x" << b.height << ", " << rrc_bench::channels_text(b)
-            << (r.interop ? ", interop" : ", standalone") << (b.shading_cache != rrc_bench::Config::Cache::Off ? ", REUSE" : "")
-            << (b.shading_cache == rrc_bench::Config::Cache::Split ? (b.split_outputs ? ", split_outputs" : ", no split_outputs") : "")
-            << ")\n";
-        for (const auto& call : calls) {
-            r.call = call.second;
-            out << call.first << ":\n" << rrc::describe_plan(rrc::make_plan(c, r), c);
-        }
-    }
-    return out.str();
-}
-
 TEST(PlanTable, EveryBenchConfigurationRunsWhatTheTableSays) {
     const std::string path = std::string(RRC_PLAN_TABLE);
-    const std::string now = table();
-    if (std::getenv("RRC_WRITE_PLAN_TABLE")) {
-        std::ofstream(path) << now;
-        GTEST_SKIP() << "wrote " << path;
-    }
+    const std::string now = rrc_plan::plan_table();
     std::ifstream in(path);
     ASSERT_TRUE(in) << "no table at " << path;
     std::stringstream checked;
@@ -88,7 +34,7 @@ TEST(PlanTable, EveryBenchConfigurationRunsWhatTheTableSays) {
         ++line;
         if (!ga && !gb) break;
         ASSERT_EQ(ga, gb) << "the table and the plans differ in length at line " << line;
-        ASSERT_EQ(la, lb) << "line " << line << " of " << path << " (regenerate with RRC_WRITE_PLAN_TABLE=1 if intended)";
+        ASSERT_EQ(la, lb) << "line " << line << " of " << path << " (if intended: cmake --build <build> --target regenerate_plan_table)";
     }
 }
 
