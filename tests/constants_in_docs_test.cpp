@@ -179,3 +179,56 @@ TEST(ConstantsInDocs, BlurBoundLimit) {
 TEST(ConstantsInDocs, ViewLobeLimit) {
     expect_value<float>("RRC_MAX_VIEW_LOBE", RRC_MAX_VIEW_LOBE, {{"docs/CONVENTIONS.md", "`RRC_MAX_VIEW_LOBE` = "}});
 }
+
+// docs/CONVENTIONS.md's table of channel options is the option table
+// (compute/rrc_channel_options.def), row for row: each row's range, its
+// default, what it needs, the REUSE refusal and its version, as the rows write
+// them (the macros' values are checked above).
+namespace {
+
+// A C expression of the table as the docs write it: no `out.`, no casts, no `u`/`f` suffixes.
+std::string as_written(std::string e) {
+    e = std::regex_replace(e, std::regex("out\\."), "");
+    e = std::regex_replace(e, std::regex("\\(float\\)"), "");
+    e = std::regex_replace(e, std::regex("([0-9.])[uf]\\b"), "$1");
+    return e;
+}
+std::string code(const std::string& e) { return "`" + as_written(e) + "`"; }
+
+std::vector<std::string> option_rows() {
+    std::vector<std::string> rows;
+#define RRC_CHANNEL_OPTION(member, ctype, check, dflt, high, needs, needs_text, reuse, param, bit, width, feature, version, anchor)      \
+    {                                                                                                                                  \
+        const std::string c = #check, d = as_written(#dflt);                                                                           \
+        const std::string range = c == "BOOL"    ? "0 or non-zero"                                                                     \
+                                  : c == "UINT"  ? "0 to " + code(#high)                                                               \
+                                  : c == "FLOAT" ? "[0, " + code(#high) + "]"                                                          \
+                                  : c == "BELOW" ? "[0, " + code(#high) + ")"                                                          \
+                                                 : std::string("a set or an enumeration, checked by hand");                           \
+        const std::string zero = c == "NONE" ? "" : (d == "0" || d == "0.0") ? "0" : code(#dflt);                                      \
+        const std::string n = std::string(needs_text).empty() ? "" : std::string("`") + needs_text + "`";                             \
+        rows.push_back("| `" #member "` | " + range + " | " + zero + " | " + n + " | " + (std::string(#reuse) == "REFUSED" ? "refused" : "") + \
+                       " | 0." + std::to_string(RRC_VERSION_MINOR(version)) + " |");                                                   \
+    }
+#include <rrc_channel_options.def>
+#undef RRC_CHANNEL_OPTION
+    return rows;
+}
+
+}  // namespace
+
+TEST(ConstantsInDocs, ChannelOptionTable) {
+    const std::string doc = rrc_test::read_source("docs/CONVENTIONS.md");
+    const std::string header = "| member | values | 0 means | needs | REUSE | since |";
+    const size_t at = doc.find(header);
+    ASSERT_NE(at, std::string::npos) << "docs/CONVENTIONS.md: no channel option table (header " << header << ")";
+    std::vector<std::string> written;
+    std::istringstream lines(doc.substr(at));
+    for (std::string line; std::getline(lines, line) && line.rfind("|", 0) == 0;)
+        if (line.rfind("| `", 0) == 0) written.push_back(line);
+    const std::vector<std::string> expected = option_rows();
+    std::string want;
+    for (const std::string& r : expected) want += r + "\n";
+    EXPECT_EQ(written, expected) << "docs/CONVENTIONS.md's channel option table must read, row for row:\n" << header << "\n|---|---|---|---|---|---|\n"
+                                 << want;
+}
