@@ -1,13 +1,4 @@
 // One channel slot of the spatial fill (the FILL phase of
-// rrc_pass_fill.comp, docs/CONVENTIONS.md "The spatial fill").  Included once
-// per slot with RRC_CH defined to a literal, as rrc_channel.glsl.  The
-// dispatch is bound as the next frame: the history inputs (u_hist_*, u_age)
-// hold this frame's results, u_prev_depth this frame's depth.
-//
-// Inputs from the enclosing rrc_fill(): size, px, fill_here (p is not
-// background), valid_p (p's depth is valid: else no neighbour counts), d_p (its depth).
-
-// One channel slot of the spatial fill (the FILL phase of
 // rrc_pass_fill.comp, docs/CONVENTIONS.md "The spatial fill"): the function
 // rrc_fill_channel_<slot>, defined once per slot by including this file with
 // RRC_CH defined to a literal, as rrc_channel.glsl.  The dispatch is bound as
@@ -36,7 +27,7 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
                    : (COMPONENTS_ == 1u ? vec4(imageLoad(u_hist_r32f[RRC_CH], t).r, 0.0, 0.0, 0.0) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
 #define LOAD_N(t, word) (PACKED_ ? (word) >> 16 : imageLoad(u_age[RRC_CH], t).r)
     const uint T = P.fill_age;
-    const int R = int(CH_(fill_radius));  // a loop bound: the feature word's
+    const int R = int(CH_(fill_radius));  // a loop bound, so a feature field, not a parameter
     uint word_p = LOAD_WORD(px);
     vec4 v_p = LOAD_V(px, word_p);
     if (COMPONENTS_ == 1u) v_p = vec4(v_p.x, 0.0, 0.0, 0.0);

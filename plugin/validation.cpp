@@ -39,9 +39,9 @@ double max_lambda_eff(const ChannelConfig& c) {
 // One row of compute/rrc_channel_options.def, checked: the caller's value
 // `raw` is in the row's range (the message names the member and the range),
 // non-zero only where the row's `needs` holds and, for a row REFUSED to
-// REUSE, only on an accumulating channel.  Returns the resolved value
-// (0 becomes the row's default).
-enum class Check { None, Bool, Uint, Float, Below };
+// REUSE, only on an accumulating channel.  The caller then resolves it
+// (0 becomes the row's default).  Rows checked NONE are checked by hand.
+enum class Check { Bool, Uint, Float, Below };
 enum class Reuse { ALLOWED, REFUSED };
 template <typename T>
 void check_option(const char* what, const char* member, T raw, Check check, double high, bool zero_default, bool needs,
