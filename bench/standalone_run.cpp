@@ -78,7 +78,25 @@ double StandaloneBench::run_frame() {
     o.channel_count = (uint32_t)outs_.size();
     o.channels = outs_.data();
     const double t0 = now_ms();
-    if (rrc_frame_run(ctx_, &f, &o) != RRC_SUCCESS) throw std::runtime_error(std::string("rrc_frame_run: ") + rrc_context_last_error(ctx_));
+    // The shading cache's rows make the interop path's calls (interop_run.cpp):
+    // classify, then resolve (Split) or the fused frame (ClassifyFused).
+    if (config_.shading_cache == Config::Cache::Split || config_.shading_cache == Config::Cache::ClassifyFused) {
+        quads_.resize(RRC_QUAD_LIST_BYTES(config_.width, config_.height) / 4 - RRC_QUAD_LIST_FIRST_QUAD);
+        auto classified = rrc_host::rrc_struct<rrc_classify_output>(RRC_STRUCT_TYPE_CLASSIFY_OUTPUT);
+        classified.quads = quads_.data();
+        classified.quad_capacity = (uint32_t)quads_.size();
+        if (rrc_frame_classify(ctx_, &f, &classified) != RRC_SUCCESS)
+            throw std::runtime_error(std::string("rrc_frame_classify: ") + rrc_context_last_error(ctx_));
+    }
+    if (config_.shading_cache == Config::Cache::Split) {
+        auto resolve = rrc_host::rrc_struct<rrc_resolve_desc>(RRC_STRUCT_TYPE_RESOLVE_DESC);
+        resolve.channel_count = f.channel_count;
+        resolve.channels = f.channels;
+        if (rrc_frame_resolve(ctx_, &resolve, &o) != RRC_SUCCESS)
+            throw std::runtime_error(std::string("rrc_frame_resolve: ") + rrc_context_last_error(ctx_));
+    } else if (rrc_frame_run(ctx_, &f, &o) != RRC_SUCCESS) {
+        throw std::runtime_error(std::string("rrc_frame_run: ") + rrc_context_last_error(ctx_));
+    }
     const double ms = now_ms() - t0;
     res_.hit_fraction = (double)o.stats.hits / ((double)config_.width * config_.height);
     ++frame_;

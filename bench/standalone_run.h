@@ -1,6 +1,7 @@
 // The standalone path: rrc_context_create (the library's own device) and
 // rrc_frame_run with CPU arrays, i.e. uploads, the kernel and readbacks in
-// one call.  Beside it, in the same process and interleaved with it, a
+// one call (the shading cache's rows make the interop path's calls:
+// classify, then resolve or the fused frame).  Beside it, in the same process and interleaved with it, a
 // memcpy of the same bytes (every input array and every output array), so
 // the report can set the round trip against "kernel time + memcpy of its
 // bytes": what an ideal standalone path would cost.
@@ -48,6 +49,7 @@ private:
     std::vector<std::vector<float>> values_, weights_;
     std::vector<std::vector<uint16_t>> ages_;
     std::vector<uint8_t> mask_;
+    std::vector<uint32_t> quads_;  // the shading cache's rows: classify's list
     std::vector<rrc_channel_output> outs_;
     std::vector<unsigned char> src_, dst_;
     uint64_t frame_ = 0;

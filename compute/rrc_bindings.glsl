@@ -1,9 +1,9 @@
 // Every descriptor binding's GLSL declaration (set 0, the numbers of
 // rrc_kernel_interface.h), one macro each: a pass declares exactly the
-// bindings of its list in rrc_pass_bindings.h, the list the library makes its
+// bindings of its list in rrc_module_bindings.h, the list the library makes its
 // descriptor-set layout from, by expanding it with RRC_DECLARE before it
 // includes the function libraries that use them:
-//     RRC_PASS_LIST_BINDINGS(RRC_DECLARE)
+//     RRC_MODULE_LIST_BINDINGS(RRC_DECLARE)
 // Per-channel bindings are arrays of RRC_MAX_CHANNELS, indexed by slot
 // (rrc_channel_slots.glsl).  Every imageLoad needs a format qualifier
 // (lavapipe); write-only images of any float format are declared without one.
@@ -11,7 +11,7 @@
 #define RRC_BINDINGS_GLSL
 
 #include "rrc_values.glsl"  // RRC_MAX_CHANNELS, RRC_BINDING_*, RRC_STAT_COUNT
-#include "rrc_pass_bindings.h"
+#include "rrc_module_bindings.h"
 
 #define RRC_DECLARE(name) RRC_DECLARE_##name
 

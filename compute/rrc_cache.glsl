@@ -1,7 +1,7 @@
 // The shading cache (docs/CONVENTIONS.md, "The shading cache"): which hits
 // of REUSE channels are refreshed and the mask bits of a pixel (classify's
 // quad list: rrc_list.glsl).  A function library of the per-pixel
-// passes (rrc_pass_frame.comp): it reads the ages from rrc_channel_slots.glsl's images.
+// passes (rrc_module_frame.comp): it reads the ages from rrc_channel_slots.glsl's images.
 #ifndef RRC_CACHE_GLSL
 #define RRC_CACHE_GLSL
 

@@ -1,4 +1,4 @@
-// One channel slot's update in the per-pixel passes (rrc_pass_frame.comp):
+// One channel slot's update in the per-pixel passes (rrc_module_frame.comp):
 // the function rrc_channel_<slot>, defined once per slot by including this
 // file with RRC_CH defined to a literal (0..RRC_MAX_CHANNELS-1): storage-image
 // arrays may only be indexed by constants, and the slot's feature word
@@ -44,7 +44,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     const RrcChannelParams P = u_params.slot[RRC_CH];
     ivec2 size = rrc_size();
     // -- the new sample s and its confidence w
-    const bool SAMPLE_ = PHASE != RRC_PHASE_CLASSIFY;
+    const bool SAMPLE_ = PASS != RRC_PASS_CLASSIFY;
     // The residual's base at the pixel: subtracted from the sample, added to
     // the displayed value (a base that is not finite makes the sample invalid
     // and adds nothing).
@@ -64,7 +64,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     vec4 H;
     float Wh;
     uint n_prev;
-    if (PHASE == RRC_PHASE_RESOLVE_LISTED) {
+    if (PASS == RRC_PASS_RESOLVE_LISTED) {
         H = vec4(0.0), Wh = 0.0, n_prev = 0u;  // only pixels that are not HITs are written: their history is not used
     } else if (CH_(filter) == RRC_HISTORY_FILTER_NEAREST) {
         uint word = PACKED_ ? LOAD_WORD(g.taps.nearest) : 0u;

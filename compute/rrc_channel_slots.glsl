@@ -1,5 +1,5 @@
 // The channel slots, shared by every pass that reads or writes channels
-// (compute/rrc_pass_frame.comp, rrc_pass_copy_out.comp, rrc_pass_fill.comp):
+// (compute/rrc_module_frame.comp, rrc_module_copy_out.comp, rrc_module_fill.comp):
 // each slot's feature word (a specialization constant: what changes code)
 // and its fields, one per row of rrc_channel_options.def with a feature
 // field.  The slot's parameters (what changes no code) are its parameter

@@ -1,5 +1,5 @@
 // The frame's depth conventions, shared by every pass that reads depth
-// (compute/rrc_pass_*.comp): the depth mode, the frame's push constants, the
+// (compute/rrc_module_*.comp): the depth mode, the frame's push constants, the
 // previous depth (the fill and copy-out passes, bound as the next frame, find
 // this frame's depth there) and what background and invalid depth are
 // (docs/CONVENTIONS.md).  The hit test itself is rrc_reproject.glsl.

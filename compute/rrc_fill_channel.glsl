@@ -1,5 +1,5 @@
-// One channel slot of the spatial fill (the FILL phase of
-// rrc_pass_fill.comp, docs/CONVENTIONS.md "The spatial fill"): the function
+// One channel slot of the spatial fill (the FILL pass of
+// rrc_module_fill.comp, docs/CONVENTIONS.md "The spatial fill"): the function
 // rrc_fill_channel_<slot>, defined once per slot by including this file with
 // RRC_CH defined to a literal, as rrc_channel.glsl.  The dispatch is bound as
 // the next frame: the history inputs (u_hist_*, u_age) hold this frame's

@@ -1,4 +1,4 @@
-// The interface between the kernels (compute/rrc_pass_*.comp and their
+// The interface between the kernels (compute/rrc_module_*.comp and their
 // includes) and the library (plugin/accumulate_pipeline.h/.cpp,
 // plugin/config.h), written once: specialization-constant ids, descriptor
 // binding numbers, epsilon kinds and the push-constant layout.  Preprocessor
@@ -9,7 +9,7 @@
 
 // ---- Specialization constant ids: one range, 0..RRC_SPEC_COUNT - 1 --------
 // Only what changes code is a specialization constant: sources, modes,
-// phases, masks, the shading cache's clocks and each channel slot's feature
+// passes, masks, the shading cache's clocks and each channel slot's feature
 // word.  A channel's parameters (lambda, thresholds, widths: what changes no
 // code) are in its parameter block, RRC_BINDING_CHANNEL_PARAMS below.
 // Whole-dispatch constants (rrc_depth.glsl, rrc_reproject.glsl, the passes).
@@ -24,7 +24,7 @@
 #define RRC_SPEC_ADAPTIVE 8       // bool: the ADAPTIVE depth test (not plain MOTION; below)
 #define RRC_SPEC_OBJECT_ID 9      // bool: frames carry object ids (RRC_BINDING_OBJECT_ID..)
 #define RRC_SPEC_STORAGE_INPUTS 10  // bool: interop, the host's inputs read as storage images (rrc_vulkan_frame_desc.storage_inputs)
-#define RRC_SPEC_PHASE 11           // uint RRC_PHASE_* below: the pass this pipeline runs
+#define RRC_SPEC_PASS 11           // uint RRC_PASS_* below: the pass this pipeline runs
 #define RRC_SPEC_HOST_OUT_MASK 12   // uint: bit c = channel slot c writes RRC_BINDING_HOST_OUT in this pass (plugin/frame_plan.cpp decides)
 #define RRC_SPEC_COPY_MASK 13       // bool: COPY_OUT also copies the classified mask into RRC_BINDING_MASK (the host's)
 #define RRC_SPEC_MASK_IN_PLACE 14   // bool: LIST / RESOLVE / RESOLVE_LISTED read classify's mask from RRC_BINDING_MASK (the image classify wrote), not RRC_BINDING_CLASSIFIED
@@ -55,16 +55,16 @@
 // (docs/CONVENTIONS.md, "The lag detector").
 #define RRC_ANTILAG_DARKNESS 1e-3
 
-// ---- Phases (the value of RRC_SPEC_PHASE) ----------------------------------
+// ---- Passes (the value of RRC_SPEC_PASS) ----------------------------------
 // Which passes a frame runs, in which order, over which grid, is decided in
 // one place: plugin/frame_plan.cpp (docs/PERFORMANCE.md, "The frame plan").
-#define RRC_PHASE_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
-#define RRC_PHASE_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels; in a context of REUSE channels only, also every HIT's channels
-#define RRC_PHASE_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
-#define RRC_PHASE_RESOLVE 3u   // the channels with classify's mask: a dispatch over pixels, no hit test
-#define RRC_PHASE_FILL 4u      // the spatial fill: after the frame, indirect over the fill list, bound as the next frame (docs/CONVENTIONS.md)
-#define RRC_PHASE_RESOLVE_LISTED 5u  // resolve of a context of REUSE channels only: indirect over the quad list, the listed pixels that are not HITs
-#define RRC_PHASE_COPY_OUT 6u  // after RESOLVE_LISTED: the library's results into the host's output, age and mask images, over pixels, bound as the next frame
+#define RRC_PASS_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
+#define RRC_PASS_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels; in a context of REUSE channels only, also every HIT's channels
+#define RRC_PASS_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
+#define RRC_PASS_RESOLVE 3u   // the channels with classify's mask: a dispatch over pixels, no hit test
+#define RRC_PASS_FILL 4u      // the spatial fill: after the frame, indirect over the fill list, bound as the next frame (docs/CONVENTIONS.md)
+#define RRC_PASS_RESOLVE_LISTED 5u  // resolve of a context of REUSE channels only: indirect over the quad list, the listed pixels that are not HITs
+#define RRC_PASS_COPY_OUT 6u  // after RESOLVE_LISTED: the library's results into the host's output, age and mask images, over pixels, bound as the next frame
 
 // ---- Descriptor bindings (set 0) -------------------------------------------
 // Geometry (rrc_reproject.glsl) and the mask: one image each.
@@ -104,7 +104,7 @@
 // through a sampler: the storage images are at lavapipe's 64 a stage already.
 #define RRC_BINDING_CLASSIFIED 28
 // The spatial fill's fallback estimates (0.4), per channel slot: samplers
-// (the host's images, or the standalone uploads), read by the FILL phase only.
+// (the host's images, or the standalone uploads), read by the FILL pass only.
 #define RRC_BINDING_FALLBACK 29
 #define RRC_BINDING_LAST RRC_BINDING_FALLBACK
 // The buffer bindings, after every image binding: the host's statistics

@@ -6,7 +6,7 @@
 // (u_fill; docs/CONVENTIONS.md, "The spatial fill"): the passes that write
 // channels append the pixels younger than a fill age, the fill pass runs
 // over them.  GLSL passes no buffer to a function, and a pass declares only
-// the list it uses (rrc_pass_bindings.h): so a pass defines its own appender.
+// the list it uses (rrc_module_bindings.h): so a pass defines its own appender.
 #ifndef RRC_LIST_GLSL
 #define RRC_LIST_GLSL
 

@@ -1,5 +1,5 @@
 // Reverse reprojection and the epsilon-depth hit test (docs/CONVENTIONS.md).
-// A function library of the per-pixel passes (compute/rrc_pass_frame.comp):
+// A function library of the per-pixel passes (compute/rrc_module_frame.comp):
 // it reads the geometry inputs (RRC_BINDING_DEPTH..RRC_BINDING_NOCACHE and
 // the interop bindings, declared by the pass: rrc_bindings.glsl) and declares
 // the specialization constants that select the source, so a configuration
@@ -40,11 +40,11 @@ layout(constant_id = RRC_SPEC_ADAPTIVE)
 #endif
 const bool ADAPTIVE = false;
 
-// The frame's phase (RRC_PHASE_*): resolve takes hit and miss from the mask
+// The frame's pass (RRC_PASS_*): resolve takes hit and miss from the mask
 // classify wrote, so it skips the hit test (and the copies kept for the next
 // frame, which classify made) and computes only where to resample history.
-layout(constant_id = RRC_SPEC_PHASE) const uint PHASE = RRC_PHASE_FUSED;
-const bool RRC_TEST = PHASE != RRC_PHASE_RESOLVE;
+layout(constant_id = RRC_SPEC_PASS) const uint PASS = RRC_PASS_FUSED;
+const bool RRC_TEST = PASS != RRC_PASS_RESOLVE;
 // Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.
 #ifndef RRC_WITHOUT_OBJECT_ID

@@ -3,8 +3,8 @@
 // frame's eye and from the previous eye to the pixel's surface point, from
 // the view buffer (rrc_kernel_interface.h, RRC_BINDING_VIEW).  Each channel
 // with a view lobe alpha caps its age at floor(alpha / (theta + phi)), phi
-// the lighting's turn (the view buffer's d.w; rrc_pass_frame.comp adds it,
-// rrc_channel.glsl caps).  Included by rrc_pass_frame.comp after rrc_reproject.glsl.
+// the lighting's turn (the view buffer's d.w; rrc_module_frame.comp adds it,
+// rrc_channel.glsl caps).  Included by rrc_module_frame.comp after rrc_reproject.glsl.
 #ifndef RRC_VIEW_LOBE_GLSL
 #define RRC_VIEW_LOBE_GLSL
 

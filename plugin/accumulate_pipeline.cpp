@@ -2,16 +2,16 @@
 
 #include "channel_options.h"
 #include "error.h"
-#include "rrc_pass_copy_out_spv.h"
-#include "rrc_pass_fill_1_spv.h"
-#include "rrc_pass_fill_2_spv.h"
-#include "rrc_pass_fill_3_spv.h"
-#include "rrc_pass_fill_4_spv.h"
-#include "rrc_pass_frame_1_spv.h"
-#include "rrc_pass_frame_2_spv.h"
-#include "rrc_pass_frame_3_spv.h"
-#include "rrc_pass_frame_4_spv.h"
-#include "rrc_pass_list_spv.h"
+#include "rrc_module_copy_out_spv.h"
+#include "rrc_module_fill_1_spv.h"
+#include "rrc_module_fill_2_spv.h"
+#include "rrc_module_fill_3_spv.h"
+#include "rrc_module_fill_4_spv.h"
+#include "rrc_module_frame_1_spv.h"
+#include "rrc_module_frame_2_spv.h"
+#include "rrc_module_frame_3_spv.h"
+#include "rrc_module_frame_4_spv.h"
+#include "rrc_module_list_spv.h"
 
 #include <cstring>
 #include <vector>
@@ -31,47 +31,47 @@ static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_B
               "the buffers follow every image binding, in a row");
 constexpr uint32_t kBufferBindings = RRC_BINDING_CHANNEL_PARAMS - RRC_BINDING_STATS + 1;
 
-// Each pass is its own module (compute/rrc_pass_*.comp) with its own
-// bindings (compute/rrc_pass_bindings.h); the per-pixel passes (FUSED,
-// CLASSIFY, RESOLVE, RESOLVE_LISTED) are one body that the PHASE constant
+// Each module (compute/rrc_module_*.comp) has its own bindings
+// (compute/rrc_module_bindings.h); the per-pixel passes (FUSED, CLASSIFY,
+// RESOLVE, RESOLVE_LISTED) are one module that the PASS constant
 // specialises (docs/PERFORMANCE.md, "The frame plan").  Constants a module
 // does not declare are ignored by vkCreateComputePipelines.
-struct PassModule {
+struct KernelModule {
     const uint32_t* code;
     size_t size;
     const Binding* bindings;
     uint32_t binding_count;
 };
 #define RRC_BINDING_ID(name) RRC_BINDING_##name,
-constexpr Binding kFrameBindings[] = {RRC_PASS_FRAME_BINDINGS(RRC_BINDING_ID)};
-constexpr Binding kListBindings[] = {RRC_PASS_LIST_BINDINGS(RRC_BINDING_ID)};
-constexpr Binding kCopyOutBindings[] = {RRC_PASS_COPY_OUT_BINDINGS(RRC_BINDING_ID)};
-constexpr Binding kFillBindings[] = {RRC_PASS_FILL_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kFrameBindings[] = {RRC_MODULE_FRAME_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kListBindings[] = {RRC_MODULE_LIST_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kCopyOutBindings[] = {RRC_MODULE_COPY_OUT_BINDINGS(RRC_BINDING_ID)};
+constexpr Binding kFillBindings[] = {RRC_MODULE_FILL_BINDINGS(RRC_BINDING_ID)};
 #undef RRC_BINDING_ID
-#define RRC_PASS_MODULE(code, bindings) PassModule{code, sizeof(code), bindings, (uint32_t)(sizeof(bindings) / sizeof(Binding))}
-// The per-channel passes (frame, fill) come once for each channel count, slots
+#define RRC_KERNEL_MODULE(code, bindings) KernelModule{code, sizeof(code), bindings, (uint32_t)(sizeof(bindings) / sizeof(Binding))}
+// The per-channel modules (frame, fill) come once for each channel count, slots
 // 1..RRC_MAX_CHANNELS (compute/CMakeLists.txt, RRC_SLOTS): `slots` picks the
 // module with exactly the context's channels, so a driver compiles no code for
 // slots it cannot use (docs/PERFORMANCE.md, "One module a channel count").  Every
 // count has the same bindings.
-static_assert(RRC_MAX_CHANNELS == 4, "one module a channel count: rrc_pass_frame_1..4_spv, rrc_pass_fill_1..4_spv");
-PassModule pass_module(uint32_t pass, uint32_t slots) {
-    switch (pass) {
-        case RRC_PASS_LIST: return RRC_PASS_MODULE(rrc_pass_list_spv, kListBindings);
-        case RRC_PASS_COPY_OUT: return RRC_PASS_MODULE(rrc_pass_copy_out_spv, kCopyOutBindings);
-        case RRC_PASS_FILL:
-            return slots <= 1   ? RRC_PASS_MODULE(rrc_pass_fill_1_spv, kFillBindings)
-                   : slots == 2 ? RRC_PASS_MODULE(rrc_pass_fill_2_spv, kFillBindings)
-                   : slots == 3 ? RRC_PASS_MODULE(rrc_pass_fill_3_spv, kFillBindings)
-                                : RRC_PASS_MODULE(rrc_pass_fill_4_spv, kFillBindings);
+static_assert(RRC_MAX_CHANNELS == 4, "one module a channel count: rrc_module_frame_1..4_spv, rrc_module_fill_1..4_spv");
+KernelModule kernel_module(uint32_t module, uint32_t slots) {
+    switch (module) {
+        case RRC_MODULE_LIST: return RRC_KERNEL_MODULE(rrc_module_list_spv, kListBindings);
+        case RRC_MODULE_COPY_OUT: return RRC_KERNEL_MODULE(rrc_module_copy_out_spv, kCopyOutBindings);
+        case RRC_MODULE_FILL:
+            return slots <= 1   ? RRC_KERNEL_MODULE(rrc_module_fill_1_spv, kFillBindings)
+                   : slots == 2 ? RRC_KERNEL_MODULE(rrc_module_fill_2_spv, kFillBindings)
+                   : slots == 3 ? RRC_KERNEL_MODULE(rrc_module_fill_3_spv, kFillBindings)
+                                : RRC_KERNEL_MODULE(rrc_module_fill_4_spv, kFillBindings);
         default:
-            return slots <= 1   ? RRC_PASS_MODULE(rrc_pass_frame_1_spv, kFrameBindings)
-                   : slots == 2 ? RRC_PASS_MODULE(rrc_pass_frame_2_spv, kFrameBindings)
-                   : slots == 3 ? RRC_PASS_MODULE(rrc_pass_frame_3_spv, kFrameBindings)
-                                : RRC_PASS_MODULE(rrc_pass_frame_4_spv, kFrameBindings);
+            return slots <= 1   ? RRC_KERNEL_MODULE(rrc_module_frame_1_spv, kFrameBindings)
+                   : slots == 2 ? RRC_KERNEL_MODULE(rrc_module_frame_2_spv, kFrameBindings)
+                   : slots == 3 ? RRC_KERNEL_MODULE(rrc_module_frame_3_spv, kFrameBindings)
+                                : RRC_KERNEL_MODULE(rrc_module_frame_4_spv, kFrameBindings);
     }
 }
-#undef RRC_PASS_MODULE
+#undef RRC_KERNEL_MODULE
 
 bool is_buffer_binding(Binding b) { return b >= RRC_BINDING_STATS && b <= RRC_BINDING_CHANNEL_PARAMS; }
 VkDescriptorType descriptor_type(Binding b) {
@@ -108,10 +108,10 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
         sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         VulkanDevice::check(vk.vkCreateSampler(dev.device, &sci, dev.allocator, &sampler_), "vkCreateSampler");
         const VkSampler immutable[RRC_MAX_CHANNELS] = {sampler_, sampler_, sampler_, sampler_};
-        // Each pass's layout from its list; the pool holds `sets` of each.
+        // Each module's layout from its list; the pool holds `sets` of each.
         uint32_t storage = 0, sampled = 0, buffers = 0, uniforms = 0;
-        for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
-            const PassModule m = pass_module(pass, RRC_MAX_CHANNELS);  // the bindings: every count's
+        for (uint32_t module = 0; module < RRC_MODULE_COUNT; ++module) {
+            const KernelModule m = kernel_module(module, RRC_MAX_CHANNELS);  // the bindings: every count's
             std::vector<VkDescriptorSetLayoutBinding> bindings;
             for (uint32_t i = 0; i < m.binding_count; ++i) {
                 const Binding b = m.bindings[i];
@@ -126,16 +126,16 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
             VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
             lci.bindingCount = (uint32_t)bindings.size();
             lci.pBindings = bindings.data();
-            VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, dev.allocator, &set_layouts_[pass]),
+            VulkanDevice::check(vk.vkCreateDescriptorSetLayout(dev.device, &lci, dev.allocator, &set_layouts_[module]),
                                 "vkCreateDescriptorSetLayout");
 
             VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FramePushConstants)};
             VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
             pli.setLayoutCount = 1;
-            pli.pSetLayouts = &set_layouts_[pass];
+            pli.pSetLayouts = &set_layouts_[module];
             pli.pushConstantRangeCount = 1;
             pli.pPushConstantRanges = &range;
-            VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layouts_[pass]), "vkCreatePipelineLayout");
+            VulkanDevice::check(vk.vkCreatePipelineLayout(dev.device, &pli, dev.allocator, &layouts_[module]), "vkCreatePipelineLayout");
         }
 
         VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets * storage},
@@ -143,7 +143,7 @@ AccumulatePipeline::AccumulatePipeline(VulkanDevice& dev, const ContextConfig& c
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, sets * buffers},
                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, sets * uniforms}};
         VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        dpi.maxSets = sets * RRC_PASS_COUNT;
+        dpi.maxSets = sets * RRC_MODULE_COUNT;
         dpi.poolSizeCount = 4;
         dpi.pPoolSizes = sizes;
         VulkanDevice::check(vk.vkCreateDescriptorPool(dev.device, &dpi, dev.allocator, &pool_), "vkCreateDescriptorPool");
@@ -166,7 +166,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     VulkanDevice& dev = dev_;
     const ContextConfig& c = config_;
     VkShaderModuleCreateInfo smi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    const PassModule code = pass_module(pass_of(variant.phase), (uint32_t)c.channels.size());
+    const KernelModule code = kernel_module(module_of(variant.pass), (uint32_t)c.channels.size());
     smi.codeSize = code.size;
     smi.pCode = code.code;
     VkShaderModule module = VK_NULL_HANDLE;
@@ -184,7 +184,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
     spec.add(RRC_SPEC_STORAGE_INPUTS, variant.storage_inputs ? 1u : 0u);
-    spec.add(RRC_SPEC_PHASE, variant.phase);
+    spec.add(RRC_SPEC_PASS, variant.pass);
     spec.add(RRC_SPEC_HOST_OUT_MASK, variant.host_out_mask);
     spec.add(RRC_SPEC_COPY_MASK, variant.copy_mask ? 1u : 0u);
     spec.add(RRC_SPEC_MASK_IN_PLACE, variant.mask_in_place ? 1u : 0u);
@@ -204,7 +204,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     pci.stage.module = module;
     pci.stage.pName = "main";
     pci.stage.pSpecializationInfo = &si;
-    pci.layout = layouts_[pass_of(variant.phase)];
+    pci.layout = layouts_[module_of(variant.pass)];
     VkPipeline created = VK_NULL_HANDLE;
     VkResult r = vk.vkCreateComputePipelines(dev.device, cache_, 1, &pci, dev.allocator, &created);
     vk.vkDestroyShaderModule(dev.device, module, dev.allocator);
@@ -220,11 +220,11 @@ void AccumulatePipeline::release() {
     if (pool_) vk.vkDestroyDescriptorPool(dev_.device, pool_, dev_.allocator);
     for (auto& p : pipelines_) vk.vkDestroyPipeline(dev_.device, p.second, dev_.allocator);
     pipelines_.clear();
-    for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
-        if (layouts_[pass]) vk.vkDestroyPipelineLayout(dev_.device, layouts_[pass], dev_.allocator);
-        if (set_layouts_[pass]) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layouts_[pass], dev_.allocator);
-        layouts_[pass] = VK_NULL_HANDLE;
-        set_layouts_[pass] = VK_NULL_HANDLE;
+    for (uint32_t module = 0; module < RRC_MODULE_COUNT; ++module) {
+        if (layouts_[module]) vk.vkDestroyPipelineLayout(dev_.device, layouts_[module], dev_.allocator);
+        if (set_layouts_[module]) vk.vkDestroyDescriptorSetLayout(dev_.device, set_layouts_[module], dev_.allocator);
+        layouts_[module] = VK_NULL_HANDLE;
+        set_layouts_[module] = VK_NULL_HANDLE;
     }
     if (sampler_) vk.vkDestroySampler(dev_.device, sampler_, dev_.allocator);
     sampler_ = VK_NULL_HANDLE;
@@ -234,28 +234,28 @@ void AccumulatePipeline::release() {
 DescriptorSets AccumulatePipeline::allocate_set() {
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = pool_;
-    ai.descriptorSetCount = RRC_PASS_COUNT;
+    ai.descriptorSetCount = RRC_MODULE_COUNT;
     ai.pSetLayouts = set_layouts_;
     DescriptorSets sets;
-    VulkanDevice::check(dev_.vk.vkAllocateDescriptorSets(dev_.device, &ai, sets.pass), "vkAllocateDescriptorSets");
+    VulkanDevice::check(dev_.vk.vkAllocateDescriptorSets(dev_.device, &ai, sets.module), "vkAllocateDescriptorSets");
     return sets;
 }
 
 void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorViews& v) const {
-    VkDescriptorImageInfo infos[RRC_PASS_COUNT][kBindingCount][RRC_MAX_CHANNELS];
-    VkDescriptorBufferInfo buffers[RRC_PASS_COUNT][kBufferBindings];
+    VkDescriptorImageInfo infos[RRC_MODULE_COUNT][kBindingCount][RRC_MAX_CHANNELS];
+    VkDescriptorBufferInfo buffers[RRC_MODULE_COUNT][kBufferBindings];
     std::vector<VkWriteDescriptorSet> writes;
-    for (uint32_t pass = 0; pass < RRC_PASS_COUNT; ++pass) {
-        const PassModule m = pass_module(pass, RRC_MAX_CHANNELS);  // the bindings: every count's
+    for (uint32_t module = 0; module < RRC_MODULE_COUNT; ++module) {
+        const KernelModule m = kernel_module(module, RRC_MAX_CHANNELS);  // the bindings: every count's
         for (uint32_t i = 0; i < m.binding_count; ++i) {
             const Binding b = m.bindings[i];
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = sets.pass[pass];
+            w.dstSet = sets.module[module];
             w.dstBinding = b;
             w.descriptorCount = descriptor_count(b);
             w.descriptorType = descriptor_type(b);
             if (is_buffer_binding(b)) {
-                VkDescriptorBufferInfo& info = buffers[pass][b - RRC_BINDING_STATS];
+                VkDescriptorBufferInfo& info = buffers[module][b - RRC_BINDING_STATS];
                 if (b == RRC_BINDING_STATS) {
                     if (!v.stats) fail(RRC_ERROR_UNSUPPORTED, "internal: the stats binding has no buffer");
                     info = {v.stats, v.stats_offset, RRC_STAT_COUNT * sizeof(uint32_t)};
@@ -276,9 +276,9 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
                 for (uint32_t s = 0; s < binding_count(b); ++s) {
                     if (!v.view[b][s]) fail(RRC_ERROR_UNSUPPORTED, "internal: binding %u slot %u has no view", b, s);
                     VkImageLayout layout = v.layout[b][s] ? v.layout[b][s] : VK_IMAGE_LAYOUT_GENERAL;
-                    infos[pass][b][s] = {VK_NULL_HANDLE, v.view[b][s], layout};
+                    infos[module][b][s] = {VK_NULL_HANDLE, v.view[b][s], layout};
                 }
-                w.pImageInfo = infos[pass][b];
+                w.pImageInfo = infos[module][b];
             }
             writes.push_back(w);
         }
@@ -288,17 +288,17 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
 
 void AccumulatePipeline::bind(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, const KernelVariant& variant) {
     auto& vk = dev_.vk;
-    const uint32_t pass = pass_of(variant.phase);
+    const uint32_t module = module_of(variant.pass);
     vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(variant));
-    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layouts_[pass], 0, 1, &sets.pass[pass], 0, nullptr);
-    vk.vkCmdPushConstants(cmd, layouts_[pass], VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+    vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layouts_[module], 0, 1, &sets.module[module], 0, nullptr);
+    vk.vkCmdPushConstants(cmd, layouts_[module], VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
 }
 
 void AccumulatePipeline::record(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, uint32_t width, uint32_t height,
                                 const KernelVariant& variant) {
     bind(cmd, sets, pc, variant);
     // Round up; the kernel bounds-checks.  The list runs one invocation a 2x2 quad.
-    if (variant.phase == RRC_PHASE_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
+    if (variant.pass == RRC_PASS_LIST) width = (width + 1) / 2, height = (height + 1) / 2;
     dev_.vk.vkCmdDispatch(cmd, (width + kGroupX - 1) / kGroupX, (height + kGroupY - 1) / kGroupY, 1);
 }
 

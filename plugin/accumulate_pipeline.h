@@ -1,4 +1,4 @@
-// The kernels' pipelines (one module a pass, compute/rrc_pass_*.comp): descriptor layout, specialization constants
+// The kernels' pipelines (compute/rrc_module_*.comp; a module runs one or more passes): descriptor layout, specialization constants
 // chosen from the context's configuration (so a scene pays only for what it
 // enables) and the dispatch.  Binding numbers, constant ids and push-constant
 // offsets come from compute/rrc_kernel_interface.h, which the kernels read too.
@@ -9,7 +9,7 @@
 #include "vulkan_device.h"
 
 #include <rrc_kernel_interface.h>
-#include <rrc_pass_bindings.h>
+#include <rrc_module_bindings.h>
 
 #include <cstddef>
 #include <map>
@@ -29,8 +29,8 @@ inline uint32_t binding_count(uint32_t b) {
     return (b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL) || b == RRC_BINDING_FALLBACK ? RRC_MAX_CHANNELS : 1;
 }
 
-// The image view bound at [binding][slot], for every binding of every pass:
-// each pass's set takes the bindings of its list (compute/rrc_pass_bindings.h),
+// The image view bound at [binding][slot], for every binding of every module:
+// each module's set takes the bindings of its list (compute/rrc_module_bindings.h),
 // and each of those entries must be filled (placeholders where a
 // configuration does not use a binding).
 struct DescriptorViews {
@@ -44,15 +44,15 @@ struct DescriptorViews {
     VkBuffer view_buffer = VK_NULL_HANDLE;  // RRC_BINDING_VIEW: the library's (a placeholder without a view lobe)
 };
 
-// The pass module (RRC_PASS_*) that runs a phase (RRC_PHASE_*).
-inline uint32_t pass_of(uint32_t phase) {
-    return phase == RRC_PHASE_LIST ? RRC_PASS_LIST : phase == RRC_PHASE_COPY_OUT ? RRC_PASS_COPY_OUT : phase == RRC_PHASE_FILL ? RRC_PASS_FILL : RRC_PASS_FRAME;
+// The module (RRC_MODULE_*) that runs a pass (RRC_PASS_*).
+inline uint32_t module_of(uint32_t pass) {
+    return pass == RRC_PASS_LIST ? RRC_MODULE_LIST : pass == RRC_PASS_COPY_OUT ? RRC_MODULE_COPY_OUT : pass == RRC_PASS_FILL ? RRC_MODULE_FILL : RRC_MODULE_FRAME;
 }
 
-// A binding of the library's descriptor sets: one set a pass module, each
+// A binding of the library's descriptor sets: one set a module, each
 // with its own layout, written from the same DescriptorViews.
 struct DescriptorSets {
-    VkDescriptorSet pass[RRC_PASS_COUNT] = {};
+    VkDescriptorSet module[RRC_MODULE_COUNT] = {};
 };
 
 // What a frame asks of the kernel beyond the context's configuration: the
@@ -63,12 +63,12 @@ struct KernelVariant {
     bool stats = false;
     bool storage_inputs = false;  // the host's inputs bound to the storage bindings (rrc_vulkan_frame_desc.storage_inputs)
     uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
-    uint32_t phase = RRC_PHASE_FUSED;  // RRC_PHASE_*: the pass (plugin/frame_plan.cpp chooses)
+    uint32_t pass = RRC_PASS_FUSED;  // RRC_PASS_*: the pass (plugin/frame_plan.cpp chooses)
     uint32_t host_out_mask = 0;   // bit c: slot c writes RRC_BINDING_HOST_OUT
     bool copy_mask = false;       // COPY_OUT: the classified mask into RRC_BINDING_MASK
     bool mask_in_place = false;   // LIST, RESOLVE, RESOLVE_LISTED: classify's mask is the image bound at RRC_BINDING_MASK
     uint32_t key() const {
-        return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | phase << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13 |
+        return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | pass << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13 |
                (mask_in_place ? 1u : 0u) << 14;
     }
 };
@@ -103,7 +103,7 @@ class AccumulatePipeline {
 public:
     static constexpr uint32_t kGroupX = 128, kGroupY = 1;  // wide groups win on lavapipe (128x1 ~2% over 64x1; 8x8 is ~1.45x slower)
     // The indirect passes' groups: RESOLVE_LISTED runs two invocations a
-    // listed quad, FILL one a listed pixel (compute/rrc_pass_frame.comp, rrc_pass_fill.comp).
+    // listed quad, FILL one a listed pixel (compute/rrc_module_frame.comp, rrc_module_fill.comp).
     static_assert(2 * RRC_QUADS_PER_GROUP == kGroupX && RRC_FILL_LIST_PER_GROUP == kGroupX, "the lists' groups are the kernel's");
     AccumulatePipeline(VulkanDevice& dev, const ContextConfig& config, bool interop, uint32_t sets, VkPipelineCache cache = VK_NULL_HANDLE);
     ~AccumulatePipeline();
@@ -113,7 +113,7 @@ public:
     // sets: how many DescriptorSets the pool holds (2 standalone: the
     // ping-pong parity; interop: 2 x frames in flight).
     DescriptorSets allocate_set();
-    // Writes each pass's set with the bindings of its list only.
+    // Writes each module's set with the bindings of its list only.
     void write_set(const DescriptorSets& sets, const DescriptorViews& views) const;
     // A dispatch over width x height invocations (LIST: over its 2x2 quads).
     void record(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, uint32_t width, uint32_t height,
@@ -127,14 +127,14 @@ public:
 
 private:
     void release();
-    // Binds the variant's pipeline, its pass's set and the push constants.
+    // Binds the variant's pipeline, its module's set and the push constants.
     void bind(VkCommandBuffer cmd, const DescriptorSets& sets, const FramePushConstants& pc, const KernelVariant& variant);
     VulkanDevice& dev_;
     ContextConfig config_;
     bool interop_;
     VkPipelineCache cache_;
-    VkDescriptorSetLayout set_layouts_[RRC_PASS_COUNT] = {};  // by RRC_PASS_*: its bindings only
-    VkPipelineLayout layouts_[RRC_PASS_COUNT] = {};
+    VkDescriptorSetLayout set_layouts_[RRC_MODULE_COUNT] = {};  // by RRC_MODULE_*: its bindings only
+    VkPipelineLayout layouts_[RRC_MODULE_COUNT] = {};
     std::map<uint32_t, VkPipeline> pipelines_;  // by KernelVariant::key()
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;  // nearest, clamp: texelFetch ignores it, the layout needs one

@@ -1,8 +1,19 @@
 #include "accumulator_core.h"
 
 #include "frame_constants.h"
+#include "plan_observer.h"
+
+#include <atomic>
 
 namespace rrc {
+namespace {
+
+std::atomic<PlanObserver*> g_observer{nullptr};
+
+}  // namespace
+
+void set_plan_observer(PlanObserver* observer) { g_observer = observer; }
+PlanObserver* plan_observer() { return g_observer.load(); }
 
 AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const ContextConfig& config, bool interop, uint32_t sets,
                                  VkPipelineCache cache)
@@ -54,97 +65,147 @@ DescriptorViews AccumulatorCore::library_views(const ViewState& view, uint32_t p
     return v;
 }
 
-void AccumulatorCore::collect_images(std::vector<GpuImage*>& out) {
-    for (ViewState& v : views_) {
-        out.insert(out.end(), {&v.depth[0], &v.depth[1]});
-        for (auto& img : v.object_id)
-            if (img.image) out.push_back(&img);
-        for (auto& c : v.channels) c->collect(out);
-    }
-    out.push_back(&mask_);
-    placeholders_.collect(out);
-}
-
-void AccumulatorCore::record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages,
-                                             VkAccessFlags extra_src_access) const {
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | extra_src_access;
-    // The indirect read too: resolve dispatches from classify's list.
-    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-    dev_->vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | extra_src_stages,
-                                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
 void AccumulatorCore::prepare(const FramePlan& plan, const KernelVariant& base) {
     for (const PlanStep& step : plan.steps) {
-        if (step.op != PlanStep::Op::Dispatch) continue;
+        if (step.kind != PlanStep::Kind::Dispatch) continue;
         KernelVariant v = step.variant;
         v.storage_inputs = base.storage_inputs;
         pipeline_.pipeline(v);
     }
 }
 
-void AccumulatorCore::record_plan(VkCommandBuffer cmd, const FramePlan& plan, const PlanBindings& sets, const KernelVariant& base,
-                                  const Frame& frame, bool prev_valid) {
+void AccumulatorCore::record_call(VkCommandBuffer cmd, const PlanRequest& request, const KernelVariant& base, const Frame* frame,
+                                  bool prev_valid, const MapResources& map) {
+    const FramePlan plan = make_plan(config_, request);
+    prepare(plan, base);  // every pipeline before anything is recorded: a failure records nothing
+    PlanResources res = map(plan);
+    res.fill_list = {fill_list_.buffer, 0, RRC_FILL_LIST_FIRST * sizeof(uint32_t)};
+    res.view_buffer = {view_buffer_.buffer, 0, VK_WHOLE_SIZE};
+    if (PlanObserver* observer = plan_observer()) observer->recording(plan, res, config_, *dev_);
+    record_steps(cmd, plan, res, base, frame, prev_valid);
+}
+
+void AccumulatorCore::record_barrier(VkCommandBuffer cmd, const PlanStep& step, const PlanResources& res) const {
     auto& vk = dev_->vk;
-    const FramePushConstants pc = make_frame_constants(config_, frame, prev_valid);
+    const VkPipelineStageFlags src = step.src_stages, dst = step.dst_stages;
+    auto buffer_barrier = [&](const PlanBuffer& buf) {
+        VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.buffer = buf.buffer;
+        b.offset = buf.offset;
+        b.size = buf.size;
+        b.srcAccessMask = step.src_access;
+        b.dstAccessMask = step.dst_access;
+        vk.vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 1, &b, 0, nullptr);
+    };
+    auto image_barriers = [&](const std::vector<PlanCopy>& images) {
+        std::vector<VkImageMemoryBarrier> barriers;
+        for (const PlanCopy& c : images) {
+            VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+            b.srcAccessMask = step.src_access;
+            b.dstAccessMask = step.dst_access;
+            b.oldLayout = step.old_layout;
+            b.newLayout = step.new_layout;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = c.image->image;
+            b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            barriers.push_back(b);
+        }
+        if (!barriers.empty())
+            vk.vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, (uint32_t)barriers.size(), barriers.data());
+    };
+    switch (step.resource) {
+        case PlanResource::Memory: {
+            VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+            b.srcAccessMask = step.src_access;
+            b.dstAccessMask = step.dst_access;
+            vk.vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
+            break;
+        }
+        case PlanResource::FillList: buffer_barrier(res.fill_list); break;
+        case PlanResource::ViewBuffer: buffer_barrier(res.view_buffer); break;
+        case PlanResource::QuadList: buffer_barrier(res.quad_list); break;
+        case PlanResource::Stats: buffer_barrier(res.stats); break;
+        case PlanResource::HostImagesIn:
+        case PlanResource::HostImagesOut: {
+            // Each host image carries its own layouts and accesses; the barrier
+            // is recorded without any, too (an execution dependency).
+            const auto& b = step.resource == PlanResource::HostImagesIn ? res.host_in : res.host_out;
+            vk.vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, (uint32_t)b.size(), b.data());
+            break;
+        }
+        case PlanResource::Inputs: image_barriers(res.inputs); break;
+        case PlanResource::Outputs: image_barriers(res.outputs); break;
+        case PlanResource::LibraryImages: break;  // initialised with their own barriers (record_initialise)
+    }
+}
+
+void AccumulatorCore::record_steps(VkCommandBuffer cmd, const FramePlan& plan, const PlanResources& res, const KernelVariant& base,
+                                   const Frame* frame, bool prev_valid) {
+    auto& vk = dev_->vk;
+    const FramePushConstants pc = frame ? make_frame_constants(config_, *frame, prev_valid) : FramePushConstants{};
+    const VkImageSubresourceLayers colour{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     for (const PlanStep& step : plan.steps) {
-        switch (step.op) {
-            case PlanStep::Op::ClearFillList: {
-                // The previous frame's fill (its indirect read and its loads)
-                // finishes before the list starts again empty.
-                VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                b.buffer = fill_list_.buffer;
-                b.size = RRC_FILL_LIST_FIRST * sizeof(uint32_t);
-                b.srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-                b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                                        VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0, nullptr);
-                const uint32_t start[RRC_FILL_LIST_FIRST] = {0, 0, 1, 1};
-                vk.vkCmdUpdateBuffer(cmd, fill_list_.buffer, 0, sizeof start, start);
-                b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0,
-                                        nullptr);
+        switch (step.kind) {
+            case PlanStep::Kind::BeginLabel:
+                if (dev_->fi.CmdBeginDebugUtilsLabelEXT) {
+                    VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+                    label.pLabelName = step.label;
+                    dev_->fi.CmdBeginDebugUtilsLabelEXT(cmd, &label);
+                }
+                break;
+            case PlanStep::Kind::EndLabel:
+                if (dev_->fi.CmdEndDebugUtilsLabelEXT) dev_->fi.CmdEndDebugUtilsLabelEXT(cmd);
+                break;
+            case PlanStep::Kind::Initialise: {
+                std::vector<GpuImage*> all = res.initialise;
+                for (ViewState& v : views_) {
+                    all.insert(all.end(), {&v.depth[0], &v.depth[1]});
+                    for (auto& img : v.object_id)
+                        if (img.image) all.push_back(&img);
+                    for (auto& c : v.channels) c->collect(all);
+                }
+                all.push_back(&mask_);
+                placeholders_.collect(all);
+                record_initialise(*dev_, cmd, all);
                 break;
             }
-            case PlanStep::Op::WriteView: {
-                // The previous frame's passes finish reading the camera before it changes.
-                VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                b.buffer = view_buffer_.buffer;
-                b.size = VK_WHOLE_SIZE;
-                b.srcAccessMask = VK_ACCESS_SHADER_READ_BIT;
-                b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &b, 0,
-                                        nullptr);
-                const ViewBuffer view = make_view_buffer(frame);
-                vk.vkCmdUpdateBuffer(cmd, view_buffer_.buffer, 0, sizeof view, &view);
-                b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 1, &b, 0,
-                                        nullptr);
+            case PlanStep::Kind::Barrier: record_barrier(cmd, step, res); break;
+            case PlanStep::Kind::Clear: {
+                const PlanBuffer& b = step.resource == PlanResource::FillList ? res.fill_list
+                                      : step.resource == PlanResource::Stats  ? res.stats
+                                                                              : res.quad_list;
+                vk.vkCmdUpdateBuffer(cmd, b.buffer, b.offset, step.words.size() * sizeof(uint32_t), step.words.data());
                 break;
             }
-            case PlanStep::Op::Barrier: {
-                VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-                b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-                b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                                  (step.to_indirect ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0);
-                const VkPipelineStageFlags dst =
-                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | (step.to_indirect ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0);
-                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
+            case PlanStep::Kind::WriteView: {
+                const ViewBuffer view = make_view_buffer(*frame);
+                vk.vkCmdUpdateBuffer(cmd, res.view_buffer.buffer, 0, sizeof view, &view);
                 break;
             }
-            case PlanStep::Op::Dispatch: {
+            case PlanStep::Kind::Upload:
+            case PlanStep::Kind::Readback: {
+                const bool up = step.kind == PlanStep::Kind::Upload;
+                for (const PlanCopy& c : up ? res.inputs : res.outputs) {
+                    VkBufferImageCopy r{};
+                    r.bufferOffset = c.offset;
+                    r.imageSubresource = colour;
+                    r.imageExtent = {c.image->width, c.image->height, 1};
+                    if (up)
+                        vk.vkCmdCopyBufferToImage(cmd, res.staging_in, c.image->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+                    else
+                        vk.vkCmdCopyImageToBuffer(cmd, c.image->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, res.staging_out, 1, &r);
+                }
+                break;
+            }
+            case PlanStep::Kind::Dispatch: {
                 KernelVariant v = step.variant;
                 v.storage_inputs = base.storage_inputs;
-                const DescriptorSets& set = step.set == PlanSet::Frame ? sets.frame : sets.next;
+                const DescriptorSets& set = step.set == PlanSet::Frame ? res.frame : res.next;
                 if (step.grid == PlanGrid::QuadList)
-                    pipeline_.record_indirect(cmd, set, pc, v, sets.quad_list, sets.quad_list_offset + 4 * RRC_QUAD_LIST_DISPATCH);
+                    pipeline_.record_indirect(cmd, set, pc, v, res.quad_list.buffer, res.quad_list.offset + 4 * RRC_QUAD_LIST_DISPATCH);
                 else if (step.grid == PlanGrid::FillList)
-                    pipeline_.record_indirect(cmd, set, pc, v, fill_list_.buffer, 4 * RRC_FILL_LIST_DISPATCH);
+                    pipeline_.record_indirect(cmd, set, pc, v, res.fill_list.buffer, 4 * RRC_FILL_LIST_DISPATCH);
                 else
                     pipeline_.record(cmd, set, pc, config_.width, config_.height, v);
                 break;

@@ -10,10 +10,12 @@
 #include "config.h"
 #include "frame.h"
 #include "frame_plan.h"
+#include "plan_resources.h"
 #include "gpu_resources.h"
 #include "live_inputs.h"
 #include "vulkan_device.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -59,30 +61,24 @@ public:
     DescriptorViews library_views(const ViewState& view, uint32_t parity) const { return library_views(view, parity, view, 1 - parity); }
     // The same for a frame that reprojects from `source`'s set `source_parity`.
     DescriptorViews library_views(const ViewState& view, uint32_t parity, const ViewState& source, uint32_t source_parity) const;
-    // Images to clear to zero and move to GENERAL once, before first use.
-    void collect_images(std::vector<GpuImage*>& out);
-    // The previous frame's kernel wrote what this one reads and read what
-    // this one overwrites: one global barrier, compute -> compute.
-    void record_history_barrier(VkCommandBuffer cmd, VkPipelineStageFlags extra_src_stages, VkAccessFlags extra_src_access) const;
-    // The descriptor sets a plan's passes are bound with (PlanSet), and the
-    // quad list RESOLVE_LISTED is dispatched from.
-    struct PlanBindings {
-        DescriptorSets frame, next;
-        VkBuffer quad_list = VK_NULL_HANDLE;
-        VkDeviceSize quad_list_offset = 0;
-    };
-    // Makes every pipeline the plan dispatches (base: the frame's own
-    // variant bits, e.g. storage_inputs): call before recording anything, so
-    // that a failure leaves the command buffer untouched.
-    void prepare(const FramePlan& plan, const KernelVariant& base);
-    // Records the plan's steps: push constants from the frame record.
-    void record_plan(VkCommandBuffer cmd, const FramePlan& plan, const PlanBindings& sets, const KernelVariant& base, const Frame& frame,
-                     bool prev_valid);
+    // Records one call: makes its plan (the only caller of make_plan), every
+    // pipeline the plan dispatches (base: the frame's own variant bits, e.g.
+    // storage_inputs) before anything is recorded, so that a failure leaves
+    // the command buffer untouched; then asks `map` for the resources the
+    // plan's ids stand for, and records the steps.  frame: NULL for Initialise.
+    using MapResources = std::function<PlanResources(const FramePlan&)>;
+    void record_call(VkCommandBuffer cmd, const PlanRequest& request, const KernelVariant& base, const Frame* frame, bool prev_valid,
+                     const MapResources& map);
     // After `count` frames were recorded (standalone: and submitted).
     void advance(ViewState& view, uint32_t count, uint64_t last_frame_index);
     size_t memory_bytes() const;
 
 private:
+    void prepare(const FramePlan& plan, const KernelVariant& base);
+    void record_steps(VkCommandBuffer cmd, const FramePlan& plan, const PlanResources& res, const KernelVariant& base, const Frame* frame,
+                      bool prev_valid);
+    void record_barrier(VkCommandBuffer cmd, const PlanStep& step, const PlanResources& res) const;
+
     // Declaration order is destruction order reversed: every Vulkan object
     // goes before the device wrapper that destroys the device.
     ContextConfig config_;

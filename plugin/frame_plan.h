@@ -1,9 +1,12 @@
 // The frame plan: from a context's configuration and what one call asks
-// (run a frame, classify, resolve; on which path; which host outputs), the
-// passes it runs, in order, with the barrier before each, the descriptor set
-// each is bound with and the grid it runs over.  Both contexts only execute
-// a plan (AccumulatorCore::record_plan); the order of passes lives here and
-// nowhere else (docs/PERFORMANCE.md, "The frame plan").
+// (initialise, run a frame, classify, resolve; on which path; which host
+// outputs), every command the call records, in order: debug labels, the
+// first use's initialisation, barriers, clears, uploads and readbacks, and
+// the passes' dispatches with the set each binds and the grid it runs over.
+// Steps name resources by id (PlanResource); a context only maps the ids to
+// its images and buffers (PlanResources), and the core records the steps
+// (AccumulatorCore::record_call, the planner's one caller a call).  The
+// words: docs/PERFORMANCE.md, "The frame plan".
 #pragma once
 
 #include "accumulate_pipeline.h"
@@ -14,15 +17,33 @@
 
 namespace rrc {
 
-enum class PlanCall { Run, Classify, Resolve };
+// The API call a plan records: the context's one-time initialisation, a
+// frame (rrc_frame_run, rrc_vulkan_record_frame), or a shading cache's split.
+enum class PlanCall { Initialise, Run, Classify, Resolve };
 
 struct PlanRequest {
     PlanCall call = PlanCall::Run;
     bool interop = false;
+    bool first_use = false;      // interop: the library's images are not yet initialised (the host's first call)
     bool split_outputs = false;  // interop: rrc_vulkan_frame_desc.split_outputs
     bool host_mask = false;      // interop: the frame has a host mask image
     uint32_t host_age_mask = 0;  // interop: bit c, channel c has a host age image
     bool stats = false;          // interop: the frame has a statistics buffer
+};
+
+// What a step acts on.  The fill list and the view buffer are the core's
+// own; the rest a context maps (PlanResources).
+enum class PlanResource {
+    Memory,           // a global memory barrier: every resource
+    LibraryImages,    // every image the library owns (initialised to zero, GENERAL)
+    FillList,         // the fill list's header (count and indirect dispatch)
+    ViewBuffer,       // the view lobe's camera
+    QuadList,         // classify's quad list (interop: the host's buffer)
+    Stats,            // interop: the host's statistics buffer
+    HostImagesIn,     // interop: the host's images this call binds, to the kernel's layouts
+    HostImagesOut,    // interop: the same, back to the host's final layouts
+    Inputs,           // standalone: the library's copies of this call's inputs
+    Outputs,          // standalone: the images this call reads back
 };
 
 // Which descriptor set a pass is bound with.
@@ -36,32 +57,55 @@ enum class PlanSet {
 enum class PlanGrid { Pixels, Quads, QuadList, FillList };
 
 struct PlanStep {
-    enum class Op {
-        ClearFillList,  // the fill list's count and dispatch to {0, 0, 1, 1} (a transfer, with its barriers)
-        WriteView,      // the view buffer from the frame's camera (a transfer, with its barriers; contexts with a view lobe)
-        Barrier,        // the previous pass's writes to the next pass's reads (and, to_indirect, its indirect read)
-        Dispatch,
-    } op = Op::Dispatch;
-    KernelVariant variant;  // Dispatch: the pipeline (phase, host outputs, statistics)
+    enum class Kind {
+        BeginLabel,  // vkCmdBeginDebugUtilsLabelEXT(label), where the device has debug utils
+        EndLabel,
+        Initialise,  // LibraryImages: UNDEFINED -> GENERAL, cleared to zero
+        Barrier,     // vkCmdPipelineBarrier over `resource` (Memory: a memory barrier)
+        Clear,       // vkCmdUpdateBuffer: `resource`'s first words := `words`
+        WriteView,   // vkCmdUpdateBuffer: the view buffer := the frame's camera
+        Upload,      // Inputs: vkCmdCopyBufferToImage from staging, one an image
+        Readback,    // Outputs: vkCmdCopyImageToBuffer into staging, one an image
+        Dispatch,    // a pass: vkCmdDispatch, or vkCmdDispatchIndirect from the list `grid` names
+    } kind = Kind::Dispatch;
+    PlanResource resource = PlanResource::Memory;
+    const char* label = nullptr;  // BeginLabel
+    // Barrier: stages and accesses; Inputs and Outputs: their layouts too
+    // (the host's images carry their own layouts and accesses: PlanResources).
+    VkPipelineStageFlags src_stages = 0, dst_stages = 0;
+    VkAccessFlags src_access = 0, dst_access = 0;
+    VkImageLayout old_layout = VK_IMAGE_LAYOUT_UNDEFINED, new_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    std::vector<uint32_t> words;  // Clear
+    KernelVariant variant;        // Dispatch: the pipeline (pass, host outputs, statistics)
     PlanSet set = PlanSet::Frame;
     PlanGrid grid = PlanGrid::Pixels;
-    bool to_indirect = false;  // Barrier: the next dispatch is indirect
+};
+
+// What a context binds into a set beyond the library's own images.
+struct PlanSetContents {
+    bool used = false;
+    bool channel_inputs = false;  // Frame: the frame's samples and confidences (classify reads the geometry only)
+    bool fallbacks = false;       // the fallback estimates: the fill's (Next), a residual's base (Frame)
+    bool host_mask = false;       // the host's mask image at RRC_BINDING_MASK (else the library's)
+    uint32_t host_outputs = 0;    // bit c: channel c's host output image
+    uint32_t host_ages = 0;       // bit c: channel c's host age image
+    bool stats = false;           // the host's statistics buffer
+    bool quad_list = false;       // the call's quad list
 };
 
 struct FramePlan {
     std::vector<PlanStep> steps;
-    // Where the Frame set binds the mask: the host's image (true) or the
-    // library's own.  Classify writes its mask there, and the passes after
-    // it read it in place (KernelVariant::mask_in_place) where resolve's set binds the same image.
-    bool frame_set_host_mask = false;
-    bool uses(PlanSet set) const;
+    PlanSetContents sets[2];  // [PlanSet]
+    bool uses(PlanSet set) const { return sets[(int)set].used; }
 };
 
 FramePlan make_plan(const ContextConfig& config, const PlanRequest& request);
 
-// One line a step, for the checked-in plan table (tests/plan): passes,
-// bindings, barriers and dispatch sizes ("indirect" where the data decides).
+// One line a step, for the checked-in plan table (tests/plan): labels,
+// barriers with their stages and accesses, clears, copies, and passes with
+// their sets, bindings and dispatch sizes ("indirect" where the data decides).
 std::string describe_plan(const FramePlan& plan, const ContextConfig& config);
+const char* pass_name(uint32_t pass);
 
 // Every channel is REUSE: the shading cache's proportional split applies.
 bool all_reuse(const ContextConfig& config);

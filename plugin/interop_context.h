@@ -1,5 +1,5 @@
-// A context on the host's Vulkan device: records its barriers and one
-// dispatch into the host's command buffer, never submits or waits.  Over
+// A context on the host's Vulkan device: records each call's plan into the
+// host's command buffer, never submits or waits.  Over
 // the shared accumulator core it adds only what this path needs: the host's
 // images bound per frame, the barriers that hand them over and back, the
 // descriptor-set ring of the frames in flight, and the statistics buffer.
@@ -38,10 +38,6 @@ private:
     // One call's frame plan; list: classify's quad list (resolve: the pending classify's).
     void record_pass(const Frame& frame, PlanCall call, VkBuffer list = VK_NULL_HANDLE, VkDeviceSize list_offset = 0);
     DescriptorSets next_set();  // the ring's next
-    void record_list_clear(VkCommandBuffer cmd, VkBuffer list, VkDeviceSize offset);
-    void record_initialisation(VkCommandBuffer cmd);
-    void record_stats_clear(VkCommandBuffer cmd, const Frame& frame);
-    VkBufferMemoryBarrier stats_barrier(const Frame& frame, VkAccessFlags src, VkAccessFlags dst) const;
 
     std::unique_ptr<AccumulatorCore> core_;
     std::vector<DescriptorSets> ring_;  // four sets (two calls, two sets each) per frame in flight, plus four

@@ -36,7 +36,8 @@ StandaloneContext::StandaloneContext(const ContextConfig& config) {
         }
         readback_bytes_ = readback_bytes();
         reserve_batch(1);
-        quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+        quads_ = HostBuffer(d, RRC_QUAD_LIST_BYTES(w, h),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pci.queueFamilyIndex = d.queue_family;
@@ -152,35 +153,36 @@ DescriptorSets StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t so
     return set;
 }
 
-// One submission at creation: every image to GENERAL, cleared.
+// One submission at creation: every image to GENERAL, cleared (the plan of
+// the Initialise call).
 void StandaloneContext::initialise_images() {
-    auto& vk = core_->device().vk;
-    std::vector<GpuImage*> all;
-    core_->collect_images(all);
-    for (GpuImage& img : inputs_) all.push_back(&img);
-    for (GpuImage& img : display_)
-        if (img.image) all.push_back(&img);
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VulkanDevice::check(vk.vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
-    record_initialise(core_->device(), cmd_, all);
-    VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+    begin();
+    PlanRequest request;
+    request.call = PlanCall::Initialise;
+    core_->record_call(cmd_, request, KernelVariant{}, nullptr, false, [&](const FramePlan&) {
+        PlanResources res;
+        for (GpuImage& img : inputs_) res.initialise.push_back(&img);
+        for (GpuImage& img : display_)
+            if (img.image) res.initialise.push_back(&img);
+        return res;
+    });
+    VulkanDevice::check(core_->device().vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
 }
 
 // The host's arrays into the slot's staging region, in the table's order;
 // arrays with fewer components than their image (MOTION_DEPTH's 3 floats)
 // are padded with zeros.
-bool StandaloneContext::uploads(const LiveInput& in, uint32_t phase) const {
+bool StandaloneContext::uploads(const LiveInput& in, PlanCall call) const {
     const bool channel = is_channel_input(in.role);
-    return phase == RRC_PHASE_FUSED || (phase == RRC_PHASE_RESOLVE) == channel;
+    return call == PlanCall::Run || (call == PlanCall::Resolve) == channel;
 }
 
-void StandaloneContext::upload(const Frame& f, uint32_t slot, uint32_t phase) {
+void StandaloneContext::upload(const Frame& f, uint32_t slot, PlanCall call) {
     const size_t n = (size_t)config().width * config().height;
     unsigned char* dst = upload_.data + slot * upload_bytes_;
     for (const LiveInput& in : core_->inputs()) {
-        if (!uploads(in, phase)) {
+        if (!uploads(in, call)) {
             dst += align16(n * texel_bytes(in.own_format));
             continue;
         }
@@ -199,97 +201,34 @@ void StandaloneContext::upload(const Frame& f, uint32_t slot, uint32_t phase) {
 }
 
 void StandaloneContext::record(const Frame& f, const FrameOutputs& out, uint32_t slot, uint32_t parity, uint32_t source_parity,
-                               bool prev_valid, uint32_t phase) {
-    auto& vk = core_->device().vk;
+                               bool prev_valid, PlanCall call) {
     const ViewState& view = core_->view(f.view);
-    const DescriptorSets set = set_for(f.view, parity, f.source(), source_parity);
-    std::vector<const GpuImage*> inputs;  // uploaded by this pass (null entries keep the staging offsets)
-    for (size_t i = 0; i < core_->inputs().size(); ++i)
-        inputs.push_back(uploads(core_->inputs()[i], phase) ? &own_input(view, i, parity) : nullptr);
-    std::vector<const GpuImage*> uploaded;
-    for (const GpuImage* img : inputs)
-        if (img) uploaded.push_back(img);
-    std::vector<const GpuImage*> outputs;
-    for (const Readback& r : readbacks(out, view, parity))
-        if (r.destination || r.image == &core_->own_mask()) outputs.push_back(r.image);
-
-    // 1. The previous frame's writes (kernel and copies) become visible to
-    //    this dispatch, and its reads finish before this frame overwrites its
-    //    inputs.  Inputs are fully overwritten: their old contents are
-    //    discarded (UNDEFINED).
-    core_->record_history_barrier(cmd_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    transition(uploaded, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
-               VK_ACCESS_TRANSFER_WRITE_BIT);
-    size_t offset = slot * upload_bytes_;
-    for (size_t i = 0; i < inputs.size(); ++i) {
-        const GpuImage* img = inputs[i];
-        if (!img) {
-            offset += align16((size_t)config().width * config().height * texel_bytes(core_->inputs()[i].own_format));
-            continue;
-        }
-        VkBufferImageCopy r{};
-        r.bufferOffset = offset;
-        r.imageSubresource = color_layers();
-        r.imageExtent = {img->width, img->height, 1};
-        vk.vkCmdCopyBufferToImage(cmd_, upload_.buffer, img->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-        offset += align16(img->bytes());
-    }
-    // 2. Uploaded inputs to the kernel.
-    transition(uploaded, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-               VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-    // The passes: the frame plan's (plugin/frame_plan.cpp).
     PlanRequest request;
-    request.call = phase == RRC_PHASE_CLASSIFY ? PlanCall::Classify : phase == RRC_PHASE_RESOLVE ? PlanCall::Resolve : PlanCall::Run;
-    const FramePlan plan = make_plan(config(), request);
-    AccumulatorCore::PlanBindings sets;
-    sets.frame = set;
-    if (plan.uses(PlanSet::Next)) sets.next = set_for(f.view, 1 - parity, f.view, parity);  // this frame's results as history inputs
-    sets.quad_list = quads_.buffer;
-    core_->record_plan(cmd_, plan, sets, KernelVariant{}, f, prev_valid);
-    // 3. Requested outputs (and the mask, for the statistics) to the copy,
-    //    then back to GENERAL: next frame's kernel reads them as history.
-    transition(outputs, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-               VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    offset = slot * readback_bytes_;
-    for (const Readback& r : readbacks(out, view, parity)) {
-        const bool wanted = r.destination || r.image == &core_->own_mask();
-        if (r.image->image && wanted) {
-            VkBufferImageCopy c{};
-            c.bufferOffset = offset;
-            c.imageSubresource = color_layers();
-            c.imageExtent = {r.image->width, r.image->height, 1};
-            vk.vkCmdCopyImageToBuffer(cmd_, r.image->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &c);
+    request.call = call;
+    // The plan's ids to this context's own images: its sets bind everything
+    // (a fill's or a residual's displayed values are its host outputs), its
+    // inputs come from the slot's staging region, its outputs go to the slot's readback region.
+    core_->record_call(cmd_, request, KernelVariant{}, &f, prev_valid, [&](const FramePlan& plan) {
+        PlanResources res;
+        res.frame = set_for(f.view, parity, f.source(), source_parity);
+        if (plan.uses(PlanSet::Next)) res.next = set_for(f.view, 1 - parity, f.view, parity);  // this frame's results as history inputs
+        res.quad_list = {quads_.buffer, 0, quads_.size};
+        res.staging_in = upload_.buffer;
+        res.staging_out = readback_.buffer;
+        VkDeviceSize offset = slot * upload_bytes_;
+        for (size_t i = 0; i < core_->inputs().size(); ++i) {
+            const LiveInput& in = core_->inputs()[i];
+            if (uploads(in, call)) res.inputs.push_back({&own_input(view, i, parity), offset});
+            offset += align16((size_t)config().width * config().height * texel_bytes(in.own_format));
         }
-        offset += align16(r.image->bytes());
-    }
-    transition(outputs, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vk.vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-void StandaloneContext::transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to,
-                                   VkPipelineStageFlags src_stage, VkAccessFlags src_access, VkPipelineStageFlags dst_stage,
-                                   VkAccessFlags dst_access) {
-    std::vector<VkImageMemoryBarrier> barriers;
-    for (const GpuImage* img : images) {
-        if (!img->image) continue;
-        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-        b.srcAccessMask = src_access;
-        b.dstAccessMask = dst_access;
-        b.oldLayout = from;
-        b.newLayout = to;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = img->image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        barriers.push_back(b);
-    }
-    if (barriers.empty()) return;
-    core_->device().vk.vkCmdPipelineBarrier(cmd_, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, (uint32_t)barriers.size(),
-                                            barriers.data());
+        offset = slot * readback_bytes_;
+        for (const Readback& r : readbacks(out, view, parity)) {
+            // What the host asked for, and the mask always (the statistics).
+            if (r.image->image && (r.destination || r.image == &core_->own_mask())) res.outputs.push_back({r.image, offset});
+            offset += align16(r.image->bytes());
+        }
+        return res;
+    });
 }
 
 void StandaloneContext::submit_and_wait() {
@@ -369,19 +308,9 @@ void StandaloneContext::run_classify(const Frame& f) {
     auto& vk = core_->device().vk;
     ViewState& view = core_->view(f.view);
     const ViewState& source = core_->view(f.source());
-    // The list starts empty, dispatch {0, 1, 1}: host-coherent memory written
-    // before the submission is visible to it.
-    uint32_t* words = reinterpret_cast<uint32_t*>(quads_.data);
-    const uint32_t start[RRC_QUAD_LIST_FIRST_QUAD] = {0, 0, 1, 1};
-    std::memcpy(words, start, sizeof start);
     begin();
     record(f, FrameOutputs{}, 0, view.parity, AccumulatorCore::latest(source), source.have_previous,
-           RRC_PHASE_CLASSIFY);  // copies the mask back, as always
-    // The list to the CPU.
-    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    b.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vk.vkCmdPipelineBarrier(cmd_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+           PlanCall::Classify);  // copies the mask back, as always, and the list to the host
     VulkanDevice::check(vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
 }
@@ -392,7 +321,7 @@ void StandaloneContext::classify(const Frame& f, const Classified& out) {
     // the list, the uploaded inputs and the HITs' channels).
     std::vector<unsigned char> pending_geometry;
     if (pending_) pending_geometry.assign(upload_.data, upload_.data + upload_bytes_);
-    upload(f, 0, RRC_PHASE_CLASSIFY);
+    upload(f, 0, PlanCall::Classify);
     run_classify(f);
 
     const uint32_t* words = reinterpret_cast<const uint32_t*>(quads_.data);
@@ -426,9 +355,9 @@ void StandaloneContext::resolve(const Frame& channels, const FrameOutputs& out) 
     f.channel_count = channels.channel_count;
     f.channels = channels.channels;
     f.channels_given = channels.channels_given;
-    upload(f, 0, RRC_PHASE_RESOLVE);
+    upload(f, 0, PlanCall::Resolve);
     begin();
-    record(f, out, 0, view.parity, AccumulatorCore::latest(source), source.have_previous, RRC_PHASE_RESOLVE);
+    record(f, out, 0, view.parity, AccumulatorCore::latest(source), source.have_previous, PlanCall::Resolve);
     VulkanDevice::check(core_->device().vk.vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
     submit_and_wait();
     read_back(out, 0, view, view.parity);

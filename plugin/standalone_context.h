@@ -62,13 +62,13 @@ private:
     void run_classify(const Frame& frame);
     void initialise_images();
     void reserve_batch(uint32_t frames);
-    // Which inputs a pass uploads: all (FUSED), the geometry (CLASSIFY) or the channels' (RESOLVE).
-    bool uploads(const LiveInput& in, uint32_t phase) const;
-    void upload(const Frame& frame, uint32_t slot, uint32_t phase = RRC_PHASE_FUSED);
+    // Which inputs a call uploads: all (Run), the geometry (Classify) or the channels' (Resolve).
+    bool uploads(const LiveInput& in, PlanCall call) const;
+    void upload(const Frame& frame, uint32_t slot, PlanCall call = PlanCall::Run);
     // Frame `frame` into `slot` of the staging buffers, writing its view's
     // `parity` and reading its source's `source_parity`.
     void record(const Frame& frame, const FrameOutputs& out, uint32_t slot, uint32_t parity, uint32_t source_parity, bool prev_valid,
-                uint32_t phase = RRC_PHASE_FUSED);
+                PlanCall call = PlanCall::Run);
     void begin();
     struct Stats {
         rrc_frame_stats counts;
@@ -76,8 +76,6 @@ private:
     };
     Stats count_stats(const uint8_t* mask) const;
     void submit_and_wait();
-    void transition(const std::vector<const GpuImage*>& images, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags src_stage,
-                    VkAccessFlags src_access, VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
     void read_back(const FrameOutputs& out, uint32_t slot, const ViewState& view, uint32_t parity);
 
     std::unique_ptr<AccumulatorCore> core_;

@@ -16,6 +16,7 @@ set(_rrc_test_costs
   rrc_visibility_test/Cases/HitTestRecall 39
   rrc_sweep_test/Sweep 38
   documented_commands 29
+  rrc_plan_capture_test/PlanCapture 37
   bench_smoke 20
   rrc_sweep_test/RectifyStudy 17
   rrc_stability_long_test/LambdaSweep 16

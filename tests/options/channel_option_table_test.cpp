@@ -9,8 +9,8 @@
 #include "error.h"
 #include "validation.h"
 
-#include <rrc_pass_fill_4_spv.h>
-#include <rrc_pass_frame_4_spv.h>
+#include <rrc_module_fill_4_spv.h>
+#include <rrc_module_frame_4_spv.h>
 
 #include <gtest/gtest.h>
 
@@ -179,8 +179,8 @@ void expect_block_matches(const Spirv& module, const char* which) {
 }
 
 TEST(ChannelOptionTable, EveryParameterIsDeclaredWhereTheLibraryUploadsIt) {
-    expect_block_matches(Spirv(rrc_pass_frame_4_spv, sizeof rrc_pass_frame_4_spv), "rrc_pass_frame");
-    expect_block_matches(Spirv(rrc_pass_fill_4_spv, sizeof rrc_pass_fill_4_spv), "rrc_pass_fill");
+    expect_block_matches(Spirv(rrc_module_frame_4_spv, sizeof rrc_module_frame_4_spv), "rrc_module_frame");
+    expect_block_matches(Spirv(rrc_module_fill_4_spv, sizeof rrc_module_fill_4_spv), "rrc_module_fill");
     // And the upload holds each resolved value.
     Desc d;
     d.channel.lambda = 0.25f, d.channel.age_cap = 77, d.channel.rectify = 1, d.channel.rectify_gamma = 3.5f, d.channel.fill_age = 5;
@@ -207,7 +207,7 @@ TEST(ChannelOptionTable, FeatureWordOfTheDefaultsIsTheKernelsDefault) {
     EXPECT_EQ(rrc::channel_feature_word(rrc::resolve_context_desc(&d.context).channels[0]) & ~(1u << 1), 0u)
         << "a default channel (lambda 0.6: fp16) has no feature but fp16";
     // Each feature field is read by the per-channel passes: its selector is declared there.
-    const Spirv frame(rrc_pass_frame_4_spv, sizeof rrc_pass_frame_4_spv), fill(rrc_pass_fill_4_spv, sizeof rrc_pass_fill_4_spv);
+    const Spirv frame(rrc_module_frame_4_spv, sizeof rrc_module_frame_4_spv), fill(rrc_module_fill_4_spv, sizeof rrc_module_fill_4_spv);
     for (const Row& r : rows()) {
         const std::string selector = std::string("ch_") + r.member + "(i1;";
         if (r.width != 0) EXPECT_FALSE(frame.ids_named(selector).empty() && fill.ids_named(selector).empty()) << r.member << "'s field selector";

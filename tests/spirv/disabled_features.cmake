@@ -1,5 +1,5 @@
 # A disabled feature costs nothing (docs/PERFORMANCE.md): for each optional
-# feature of the kernels (compute/rrc_pass_*.comp, one module a pass), the
+# feature of the kernels (compute/rrc_module_*.comp, one module a pass), the
 # specialised SPIR-V of a configuration without it must equal, module by
 # module, the SPIR-V built with the feature's code removed (-DRRC_WITHOUT_<F>:
 # its specialization constant becomes a plain `const false` / `0u`; a channel
@@ -184,7 +184,7 @@ endfunction()
 function(rrc_compile name)
   foreach(m IN LISTS modules)
     rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} ${ARGN}
-            ${KERNEL_DIR}/rrc_pass_${m}.comp -o ${WORK_DIR}/${name}_${m}.spv)
+            ${KERNEL_DIR}/rrc_module_${m}.comp -o ${WORK_DIR}/${name}_${m}.spv)
   endforeach()
 endfunction()
 
@@ -375,7 +375,7 @@ set(slot_table "")
 foreach(n RANGE 1 ${fewer})
   foreach(m frame fill)
     rrc_run(${GLSLANG} -V --target-env vulkan1.1 --quiet -I${KERNEL_DIR} -I${INCLUDE_DIR} -DRRC_SLOTS=${n}
-            ${KERNEL_DIR}/rrc_pass_${m}.comp -o ${WORK_DIR}/slots${n}_${m}.spv)
+            ${KERNEL_DIR}/rrc_module_${m}.comp -o ${WORK_DIR}/slots${n}_${m}.spv)
     foreach(base defaults all_on)
       set(settings ${ID_CHANNEL_COUNT}:${n})
       if(base STREQUAL "all_on")

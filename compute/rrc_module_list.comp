@@ -7,9 +7,9 @@
 
 layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP_SIZE_Y) in;
 
-// This pass's bindings, exactly (rrc_pass_bindings.h; the library's layout is made from the same list).
+// This pass's bindings, exactly (rrc_module_bindings.h; the library's layout is made from the same list).
 #include "rrc_bindings.glsl"
-RRC_PASS_LIST_BINDINGS(RRC_DECLARE)
+RRC_MODULE_LIST_BINDINGS(RRC_DECLARE)
 
 #include "rrc_mask.glsl"
 #include "rrc_list.glsl"

@@ -1,6 +1,6 @@
 // The per-pixel passes: FUSED (the frame in one dispatch), CLASSIFY, RESOLVE
 // and RESOLVE_LISTED (the shading cache's passes; docs/PERFORMANCE.md, "The
-// frame plan"), one body selected by the PHASE specialization constant:
+// frame plan"), one body selected by the PASS specialization constant:
 // reverse reprojection, the epsilon-depth hit test and the lambda recursive
 // filter for up to RRC_MAX_CHANNELS channels.
 // Written for lavapipe's costs (every instruction and image operation is paid, a store most;
@@ -15,9 +15,9 @@
 
 layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP_SIZE_Y) in;
 
-// This pass's bindings, exactly (rrc_pass_bindings.h; the library's layout is made from the same list).
+// This pass's bindings, exactly (rrc_module_bindings.h; the library's layout is made from the same list).
 #include "rrc_bindings.glsl"
-RRC_PASS_FRAME_BINDINGS(RRC_DECLARE)
+RRC_MODULE_FRAME_BINDINGS(RRC_DECLARE)
 
 #include "rrc_reproject.glsl"
 #include "rrc_filter.glsl"
@@ -103,7 +103,7 @@ const bool VIEW_ANY = VIEW0 || VIEW1 || VIEW2 || VIEW3;
 void rrc_pixel_at(ivec2 px, bool store) {
     ivec2 size = rrc_size();
     rrc_store = store;
-    const bool LISTED = PHASE == RRC_PHASE_RESOLVE_LISTED;
+    const bool LISTED = PASS == RRC_PASS_RESOLVE_LISTED;
     RrcGeometry g;
     uint mask;
     const uint kGeometryBits = RRC_MASK_HIT | RRC_MASK_REFRESHED | RRC_MASK_BACKGROUND | RRC_MASK_INVALID_GEOMETRY;
@@ -114,22 +114,22 @@ void rrc_pixel_at(ivec2 px, bool store) {
         g.taps = rrc_taps(vec2(px) + 0.5, size);  // unused: folded away
     } else {
         g = rrc_reproject(px, size);
-        mask = PHASE == RRC_PHASE_RESOLVE ? rrc_classified(px) & kGeometryBits : rrc_cache_mask(px, size, g);
+        mask = PASS == RRC_PASS_RESOLVE ? rrc_classified(px) & kGeometryBits : rrc_cache_mask(px, size, g);
     }
     // Classify writes the mask only, unless every channel is REUSE.
-    const bool CHANNELS = PHASE != RRC_PHASE_CLASSIFY || ALL_REUSE;
+    const bool CHANNELS = PASS != RRC_PASS_CLASSIFY || ALL_REUSE;
     // Accumulating channels take the hit test's answer (a refresh is a hit to
     // them); REUSE channels reuse only on HIT.
     bool hit_any = (mask & (RRC_MASK_HIT | RRC_MASK_REFRESHED)) != 0u;
     bool hit_cached = (mask & RRC_MASK_HIT) != 0u;
     // Which pass writes this pixel's channels: classify the HITs, resolve_listed the rest.
-    bool channel_store = PHASE == RRC_PHASE_CLASSIFY ? store && hit_cached : LISTED ? store && !hit_cached : store;
+    bool channel_store = PASS == RRC_PASS_CLASSIFY ? store && hit_cached : LISTED ? store && !hit_cached : store;
     bool young = false;  // some channel with a fill has n < fill_age here (the slots' updates say)
     // The view turn theta, once for every slot with a view lobe (rrc_view_lobe.glsl), where the
     // channels blend: not in classify, which writes only REUSE channels (they have no lobe).
     // The lighting's turn phi adds to it (docs/CONVENTIONS.md, "The view-dependent history").
     float view_theta = 0.0;
-    if (VIEW_ANY && PHASE != RRC_PHASE_CLASSIFY) {
+    if (VIEW_ANY && PASS != RRC_PASS_CLASSIFY) {
         if (hit_any) view_theta = rrc_view_turn(px, size) + u_view.d.w;
     }
 
@@ -149,7 +149,7 @@ void rrc_pixel_at(ivec2 px, bool store) {
 
     if (store) imageStore(u_mask, px, uvec4(mask));
     if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px);
-    rrc_count(mask, PHASE != RRC_PHASE_RESOLVE && !LISTED, PHASE != RRC_PHASE_CLASSIFY);
+    rrc_count(mask, PASS != RRC_PASS_RESOLVE && !LISTED, PASS != RRC_PASS_CLASSIFY);
 }
 
 // FUSED, CLASSIFY and RESOLVE: one invocation a pixel.
@@ -179,7 +179,7 @@ void rrc_resolve_listed() {
 }
 
 void main() {
-    if (PHASE == RRC_PHASE_RESOLVE_LISTED)
+    if (PASS == RRC_PASS_RESOLVE_LISTED)
         rrc_resolve_listed();
     else
         rrc_pixel();
