@@ -91,7 +91,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     for (int k = 0; k < 3; ++k) f.camera_position[k] = pf.eye[k], f.prev_camera_position[k] = pf.prev_eye[k];
     f.channel_count = (uint32_t)channels_.size();
     f.channels = channels_.data();
-    if (with_stats) f.stats_buffer = stats_.buffer;
+    if (with_stats) f.stats_buffer = stats_.buffer, f.stats_buffer_size = 256;  // the size stated: rrc refuses a range past it
     const double t0 = now_ms();
     f.command_buffer = sub_->begin();
     full_barrier(f.command_buffer);
@@ -100,6 +100,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     if (config_.shading_cache == Config::Cache::Split || config_.shading_cache == Config::Cache::ClassifyFused) {
         auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
         list.buffer = quads_.buffer;
+        list.buffer_size = RRC_QUAD_LIST_BYTES(config_.width, config_.height);
         const bool split = config_.shading_cache == Config::Cache::Split;
         f.split_outputs = split && config_.split_outputs ? 1u : 0u;
         if (rrc_vulkan_record_classify(ctx_, &f, &list) != RRC_SUCCESS ||

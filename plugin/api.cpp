@@ -10,6 +10,7 @@
 #include <rrc/rrc.h>
 #include <rrc/rrc_vulkan.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -22,6 +23,7 @@ struct rrc_context {
     std::unique_ptr<rrc::StandaloneContext> standalone;
     std::unique_ptr<rrc::InteropContext> interop;
     std::string last_error;
+    std::atomic<bool> busy{false};  // a call is in progress (on_context)
     const rrc::ContextConfig& config() const { return standalone ? standalone->config() : interop->config(); }
     const rrc::VulkanDevice& device() const { return standalone ? standalone->device() : interop->device(); }
 };
@@ -99,6 +101,23 @@ void* desc_log_user(const rrc_context_desc* d) { return desc_readable(d) ? d->lo
 rrc_log_fn log_of(const rrc_context* c) { return c ? c->config().log : nullptr; }
 void* log_user_of(const rrc_context* c) { return c ? c->config().log_user : nullptr; }
 
+// A context is externally synchronised (rrc.h, "Thread safety"): a call that
+// finds another in progress on it (from a second thread, or from inside the
+// first one's log callback) is refused and touches nothing of the context.
+// The first call holds the context until its error is logged.
+template <typename Body>
+rrc_result on_context(rrc_context* c, Body&& body) {
+    if (c && c->busy.exchange(true))
+        return guarded(nullptr, log_of(c), log_user_of(c), [] {
+            rrc::fail(RRC_ERROR_UNSUPPORTED,
+                      "another call on this context is in progress (a second thread, or a call from its log callback): a context "
+                      "is externally synchronised");
+        });
+    const rrc_result r = guarded(c, log_of(c), log_user_of(c), std::forward<Body>(body));
+    if (c) c->busy = false;
+    return r;
+}
+
 rrc::StandaloneContext& standalone(rrc_context* c) {
     if (!c->standalone) rrc::fail(RRC_ERROR_UNSUPPORTED, "this context was made by rrc_vulkan_context_create: use rrc_vulkan_record_frame");
     return *c->standalone;
@@ -109,7 +128,7 @@ rrc::StandaloneContext& standalone(rrc_context* c) {
 template <typename Body>
 rrc_result with_context(const rrc_context* context, Body&& body) {
     rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
+    return on_context(c, [&] {
         checked(const_cast<rrc_context*>(context));
         body(c);
     });
@@ -175,6 +194,8 @@ rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vul
         if (!out_context) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_context is NULL");
         rrc::ContextConfig config = rrc::resolve_context_desc(desc);
         const rrc_vulkan_device_desc host = rrc::validate_vulkan_device_desc(device);
+        const char* env = std::getenv("RRC_VALIDATION");
+        if (env && std::strcmp(env, "1") == 0) config.validation = true;  // asked for: InteropContext says where it applies
         std::unique_ptr<rrc_context> ctx(new rrc_context);
         ctx->interop.reset(new rrc::InteropContext(config, host));
         *out_context = publish(std::move(ctx));
@@ -200,7 +221,7 @@ const char* rrc_context_last_error(const rrc_context* context) {
 
 rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, size_t capacity) {
     rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
+    return on_context(c, [&] {
         checked(const_cast<rrc_context*>(context));
         if (!out_name) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_name is NULL");
         const std::string& name = c->device().name;
@@ -212,9 +233,15 @@ rrc_result rrc_context_device_name(const rrc_context* context, char* out_name, s
 
 rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t* out_count) {
     rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
+    return on_context(c, [&] {
         checked(const_cast<rrc_context*>(context));
         if (!out_count) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_count is NULL");
+        // The layer's messages about an interop context's commands go to the
+        // host's own messenger: a count here would be 0 whatever happened.
+        if (c->interop)
+            rrc::fail(RRC_ERROR_UNSUPPORTED,
+                      "an interop context cannot count validation messages: the layer reports to the host's own instance "
+                      "(docs/INTEGRATION.md, \"What rrc checks and what it cannot\")");
         *out_count = c->device().validation_messages();
     });
 }
@@ -265,6 +292,9 @@ rrc_result rrc_vulkan_record_classify(rrc_context* context, const rrc_vulkan_fra
         if (f.split_outputs && rrc::all_reuse(c->config())) rrc::validate_channels(c->config(), f);
         const rrc_vulkan_quad_list l = rrc::read_struct<rrc_vulkan_quad_list>(list, "list");
         if (!l.buffer) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "list.buffer is VK_NULL_HANDLE");
+        if (l.buffer_size)
+            rrc::check_range("list.offset", l.offset, RRC_QUAD_LIST_BYTES(c->config().width, c->config().height), "list.buffer_size",
+                             l.buffer_size, "the quad list (RRC_QUAD_LIST_BYTES)");
         if (c->interop->stats_alignment() && l.offset % c->interop->stats_alignment() != 0)
             rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "list.offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
                       (unsigned long long)l.offset, (unsigned long long)c->interop->stats_alignment());
@@ -279,7 +309,7 @@ rrc_result rrc_vulkan_record_resolve(rrc_context* context, const rrc_vulkan_fram
 
 rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t* out_bytes) {
     rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
+    return on_context(c, [&] {
         checked(const_cast<rrc_context*>(context));
         if (!out_bytes) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "out_bytes is NULL");
         *out_bytes = c->standalone ? c->standalone->memory_bytes() : c->interop->memory_bytes();
@@ -290,7 +320,7 @@ rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes)
 
 rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs) {
     rrc_context* c = live_or_null(context);
-    return guarded(c, log_of(c), log_user_of(c), [&] {
+    return on_context(c, [&] {
         checked(context);
         const rrc::ContextConfig& config = c->config();
         if (count == 0) rrc::fail(RRC_ERROR_INVALID_ARGUMENT, "count is 0");

@@ -53,6 +53,7 @@ struct Frame {
     rrc_vulkan_image depth_image{}, reprojection_image{}, nocache_image{}, mask_image{}, object_id_image{};
     VkBuffer stats_buffer = VK_NULL_HANDLE;
     VkDeviceSize stats_offset = 0;
+    VkDeviceSize stats_buffer_size = 0;  // 0: not stated (a caller before 0.10)
     bool storage_inputs = false;  // the host's input images are read as storage images (rrc_vulkan_frame_desc)
     bool split_outputs = false;   // classify and resolve share the host's outputs (rrc_vulkan_frame_desc, 0.5)
 };

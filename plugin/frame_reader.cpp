@@ -63,7 +63,8 @@ Frame read_frame(const rrc_frame_desc* caller, size_t context_channels) {
 Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
     rrc_vulkan_frame_desc d;
     Frame f = read_common(caller, FramePath::Vulkan, d);
-    std::tie(f.command_buffer, f.stats_buffer, f.stats_offset) = std::tie(d.command_buffer, d.stats_buffer, d.stats_offset);
+    std::tie(f.command_buffer, f.stats_buffer, f.stats_offset, f.stats_buffer_size) =
+        std::tie(d.command_buffer, d.stats_buffer, d.stats_offset, d.stats_buffer_size);
     f.storage_inputs = d.storage_inputs != 0;
     f.split_outputs = d.split_outputs != 0;
     std::tie(f.depth_image, f.reprojection_image, f.nocache_image, f.mask_image, f.object_id_image) =

@@ -59,6 +59,11 @@ InteropContext::InteropContext(const ContextConfig& config, const rrc_vulkan_dev
     core_.reset(new AccumulatorCore(std::move(dev), config, /*interop=*/true, sets, d.pipeline_cache));
     for (uint32_t i = 0; i < sets; ++i) ring_.push_back(core_->pipeline().allocate_set());
     stats_alignment_ = core_->device().limits.minStorageBufferOffsetAlignment;
+    if (config.validation)
+        Log{config.log, config.log_user}(RRC_LOG_WARNING,
+                                          "rrc: validation (enable_validation or RRC_VALIDATION=1) has no effect on an interop context: "
+                                          "rrc records into the host's device, so enable the Khronos validation layer with synchronization "
+                                          "validation in the host's own instance");
 }
 
 InteropContext::~InteropContext() {

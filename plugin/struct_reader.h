@@ -41,7 +41,7 @@ RRC_STRUCT_INFO(rrc_vulkan_channel_images, RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES
 // 0.3: first published with the shading cache.
 RRC_STRUCT_INFO(rrc_classify_output, RRC_STRUCT_TYPE_CLASSIFY_OUTPUT, sizeof(rrc_classify_output));
 RRC_STRUCT_INFO(rrc_resolve_desc, RRC_STRUCT_TYPE_RESOLVE_DESC, sizeof(rrc_resolve_desc));
-RRC_STRUCT_INFO(rrc_vulkan_quad_list, RRC_STRUCT_TYPE_VULKAN_QUAD_LIST, sizeof(rrc_vulkan_quad_list));
+RRC_STRUCT_INFO(rrc_vulkan_quad_list, RRC_STRUCT_TYPE_VULKAN_QUAD_LIST, offsetof(rrc_vulkan_quad_list, buffer_size));  // 0.10 appends
 #undef RRC_STRUCT_INFO
 
 // Tags of base structs: never valid inside a `next` chain.
@@ -76,6 +76,14 @@ inline void check_chain(const void* next, const std::string& what) {
              RRC_VERSION_PATCH(RRC_API_VERSION));
 }
 
+// Rule 2's cap: a size no struct of any version has is refused before the
+// tail beyond the known struct is scanned (or an array strided by it).
+inline void check_size_cap(uint32_t size, const std::string& what) {
+    if (size > RRC_MAX_STRUCT_SIZE)
+        fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, above RRC_MAX_STRUCT_SIZE (%u): not a size of any version of the struct",
+             what.c_str(), (unsigned)size, (unsigned)RRC_MAX_STRUCT_SIZE);
+}
+
 // Rules 1, 2 and 5: a copy of the caller's struct with every member beyond
 // its `size` zero.  Throws rrc::Error naming `what`.
 template <typename T>
@@ -88,6 +96,7 @@ T read_struct(const void* p, const std::string& what) {
     if (h.size < Info::size_0_1)
         fail(RRC_ERROR_INVALID_STRUCT, "%s.size is %u, smaller than its first version's %zu", what.c_str(), (unsigned)h.size,
              Info::size_0_1);
+    check_size_cap(h.size, what);
     T out;
     std::memset(&out, 0, sizeof out);
     std::memcpy(&out, p, std::min<size_t>(h.size, sizeof out));
@@ -110,6 +119,7 @@ template <typename T>
 T* strided_element(T* base, uint32_t i, const std::string& what, const std::string& name) {
     using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
     const uint32_t stride = read_header(base).size;
+    check_size_cap(stride, what + "[0]");
     T* element = reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + (size_t)i * stride);
     const uint32_t size = read_header(element).size;
     if (size != stride)

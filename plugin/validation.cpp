@@ -3,6 +3,7 @@
 #include "error.h"
 #include "struct_reader.h"
 #include "vk_formats.h"
+#include "vk_names.h"
 
 #include <rrc/rrc_vulkan.h>
 
@@ -267,18 +268,24 @@ const char* source_name(rrc_reprojection r) {
 // NDC depth in exactly the encoding the context's epsilon is built for; a
 // colour image carries depth in .r and its precision is the host's choice.
 void check_depth_image_format(const ContextConfig& c, VkFormat f) {
-    if (!is_depth_format(f)) return;
+    if (!is_depth_format(f)) {
+        // Depth in a colour image: its .r, read through a float sampler.
+        if (f == VK_FORMAT_UNDEFINED || is_integer_format(f))
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %s: depth is a depth format or a float or normalised colour format",
+                 format_name(f).c_str());
+        return;
+    }
     if (c.depth_mode == RRC_DEPTH_MODE_LINEAR)
         fail(RRC_ERROR_INVALID_ARGUMENT,
-             "frame.depth.format is %d, a depth/stencil format, but LINEAR depth is view depth in a colour image", (int)f);
+             "frame.depth.format is %s, a depth/stencil format, but LINEAR depth is view depth in a colour image", format_name(f).c_str());
     const bool is_float = f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
     const bool is_unorm16 = f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_D16_UNORM_S8_UINT;
     const rrc_depth_format expected = is_float     ? RRC_DEPTH_FORMAT_FLOAT32
                                       : is_unorm16 ? RRC_DEPTH_FORMAT_UNORM16
                                                    : RRC_DEPTH_FORMAT_UNORM24;
     if (c.depth_format != expected)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %d (%s) but the context's depth_format is %u: epsilon would be wrong",
-             (int)f,
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is %s (%s) but the context's depth_format is %u: epsilon would be wrong",
+             format_name(f).c_str(),
              is_float     ? "FLOAT32"
              : is_unorm16 ? "UNORM16"
                           : "UNORM24",
@@ -289,8 +296,8 @@ void check_depth_image_format(const ContextConfig& c, VkFormat f) {
 // binding for it declares (rrc_vulkan.h).  Checked after every input is known present.
 void check_storage_format(const rrc_vulkan_image& img, VkFormat want, const std::string& what) {
     if (img.image && img.format != want)
-        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.format is %d; with storage_inputs it must be %d (%s)", what.c_str(), (int)img.format,
-             (int)want, want == VK_FORMAT_R32_SFLOAT ? "VK_FORMAT_R32_SFLOAT" : want == VK_FORMAT_R8_UINT ? "VK_FORMAT_R8_UINT" : "VK_FORMAT_R32G32B32A32_SFLOAT");
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.format is %s; with storage_inputs it must be %s", what.c_str(),
+             format_name(img.format).c_str(), format_name(want).c_str());
 }
 void check_storage_input_formats(const ContextConfig& c, const Frame& f) {
     check_storage_format(f.depth_image, VK_FORMAT_R32_SFLOAT, "depth");
@@ -314,7 +321,48 @@ void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_res
     }
 }
 
+// Every image rrc writes (the outputs, ages and the mask) is none of the
+// images it reads and no other it writes: a shared VkImage would be
+// overwritten while it is read, or written twice (docs/INTEGRATION.md, "What
+// rrc checks and what it cannot").  Images not given are VK_NULL_HANDLE.
+void check_distinct_images(const Frame& f) {
+    struct Named {
+        VkImage image;
+        std::string what;
+    };
+    std::vector<Named> reads{{f.depth_image.image, "depth"}, {f.reprojection_image.image, "reprojection"},
+                             {f.nocache_image.image, "nocache"}, {f.object_id_image.image, "object_id"}},
+        writes{{f.mask_image.image, "mask"}};
+    for (uint32_t i = 0; i < RRC_MAX_CHANNELS; ++i) {
+        const FrameChannel& ch = f.channels[i];
+        const std::string c = "channels[" + std::to_string(i) + "].";
+        reads.push_back({ch.samples_image.image, c + "samples"});
+        reads.push_back({ch.confidence_image.image, c + "confidence"});
+        reads.push_back({ch.fallback_image.image, c + "fallback"});
+        writes.push_back({ch.output_image.image, c + "output"});
+        writes.push_back({ch.age_image.image, c + "age"});
+    }
+    for (size_t w = 0; w < writes.size(); ++w) {
+        if (!writes[w].image) continue;
+        for (const Named& r : reads)
+            if (r.image == writes[w].image)
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is frame.%s.image: rrc would overwrite an input it reads",
+                     writes[w].what.c_str(), r.what.c_str());
+        for (size_t o = 0; o < w; ++o)
+            if (writes[o].image == writes[w].image)
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is frame.%s.image: two outputs in one image", writes[w].what.c_str(),
+                     writes[o].what.c_str());
+    }
+}
+
 }  // namespace
+
+// A host buffer's range: `bytes` written at `offset` lie within the size it states.
+void check_range(const char* offset_name, uint64_t offset, uint64_t bytes, const char* size_name, uint64_t size, const char* what) {
+    if (offset > size || size - offset < bytes)
+        fail(RRC_ERROR_SIZE_MISMATCH, "%s is %llu and %s %llu: the %llu bytes of %s written there would end past the buffer", offset_name,
+             (unsigned long long)offset, size_name, (unsigned long long)size, (unsigned long long)bytes, what);
+}
 
 void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_alignment) {
     const bool vulkan = f.path == FramePath::Vulkan;
@@ -362,12 +410,20 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
         need(f, f.object_id, f.object_id_image, RRC_ERROR_MISSING_INPUT, "object_id", " but the context was created with use_object_id");
         const VkFormat idf = f.object_id_image.format;
         if (vulkan && idf != VK_FORMAT_R16_UINT && idf != VK_FORMAT_R32_UINT)
-            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %d, must be VK_FORMAT_R16_UINT or VK_FORMAT_R32_UINT", (int)idf);
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.object_id.format is %s, must be %s or %s", format_name(idf).c_str(),
+                 format_name(VK_FORMAT_R16_UINT).c_str(), format_name(VK_FORMAT_R32_UINT).c_str());
     }
     // The channels' storage formats too (classify takes resolve's descriptor), before their other checks.
     if (vulkan && f.storage_inputs) check_storage_input_formats(c, f);
     if (vulkan && f.mask_image.image && !f.mask_image.view)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.view is VK_NULL_HANDLE with an image");
+    if (vulkan && f.mask_image.image && f.mask_image.format != VK_FORMAT_R8_UINT)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.format is %s, must be %s", format_name(f.mask_image.format).c_str(),
+             format_name(VK_FORMAT_R8_UINT).c_str());
+    if (vulkan && f.stats_buffer && f.stats_buffer_size)
+        check_range("frame.stats_offset", f.stats_offset, sizeof(rrc_vulkan_frame_stats), "frame.stats_buffer_size", f.stats_buffer_size,
+                    "rrc_vulkan_frame_stats");
+    if (vulkan) check_distinct_images(f);
     if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
              (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);
@@ -390,9 +446,12 @@ void validate_channels(const ContextConfig& c, const Frame& f) {
             need(f, ch.fallback, ch.fallback_image, RRC_ERROR_MISSING_INPUT, what + ".fallback",
                  " but channel \"" + c.channels[i].name + (c.channels[i].residual ? "\" has residual (the fallback is its base)" : "\" has fill_prior > 0"));
         if (vulkan) need(f, (const float*)nullptr, ch.output_image, RRC_ERROR_MISSING_INPUT, what + ".output", name);
+        if (vulkan && !is_float_format(ch.output_image.format))
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.output.format is %s: the accumulated value needs a float format (rrc_vulkan.h)",
+                 what.c_str(), format_name(ch.output_image.format).c_str());
         if (vulkan && ch.age_image.image && ch.age_image.format != VK_FORMAT_R16_UINT)
-            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %d, must be VK_FORMAT_R16_UINT", what.c_str(),
-                 (int)ch.age_image.format);
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.format is %s, must be %s", what.c_str(), format_name(ch.age_image.format).c_str(),
+                 format_name(VK_FORMAT_R16_UINT).c_str());
         if (vulkan && ch.age_image.image && !ch.age_image.view)
             fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.age.view is VK_NULL_HANDLE with an image", what.c_str());
     }

@@ -19,6 +19,10 @@ void validate_geometry(const ContextConfig& config, const Frame& frame, uint64_t
 void validate_channels(const ContextConfig& config, const Frame& frame);
 void validate_outputs(const ContextConfig& config, const FrameOutputs* outputs);
 
+// A host buffer's range: `bytes` at `offset` within the `size` the host
+// states (Vulkan cannot report a buffer's size); RRC_ERROR_SIZE_MISMATCH names both.
+void check_range(const char* offset_name, uint64_t offset, uint64_t bytes, const char* size_name, uint64_t size, const char* what);
+
 // Reads and checks a standalone frame in one call (rrc_frame_run's order).
 void validate_frame(const ContextConfig& config, const rrc_frame_desc* frame, rrc_frame_output* output);
 

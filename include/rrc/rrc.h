@@ -38,7 +38,11 @@
  * Thread safety
  * -------------
  * A context is externally synchronised: never call into one context from two
- * threads at once.  Distinct contexts are independent and may be driven from
+ * threads at once.  A call that finds another in progress on its context (a
+ * second thread, or a call from inside the first one's log callback) is
+ * refused with RRC_ERROR_UNSUPPORTED and touches nothing of the context
+ * (0.10; a cheap check, not a lock: it sees overlapping calls, not every
+ * misuse).  Distinct contexts are independent and may be driven from
  * different threads concurrently.  rrc_validate_context_desc(),
  * rrc_get_version() and rrc_result_to_string() are thread-safe.
  *
@@ -60,6 +64,8 @@
  *     library knows (a newer header's) is accepted when every byte beyond
  *     what the library knows is zero, and refused with RRC_ERROR_UNSUPPORTED
  *     otherwise (the caller asked for something this library cannot do).
+ *     A `size` above RRC_MAX_STRUCT_SIZE is RRC_ERROR_INVALID_STRUCT, refused
+ *     before any byte past the struct the library knows is read (0.10).
  *  3. Arrays of tagged structs (desc.channels, frame.channels,
  *     output.channels, and rrc_frame_run_batch's frames and outputs) are
  *     strided by their elements' `size`: element i
@@ -113,7 +119,12 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 9, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 10, 0)
+
+/** The largest `size` a tagged struct may state (Versioning, rule 2): far
+ *  above any struct of this API, so that a garbage size is refused before
+ *  the library reads past the caller's struct (0.10). */
+#define RRC_MAX_STRUCT_SIZE 4096u
 
 /** The version of the library actually loaded. */
 RRC_API uint32_t rrc_get_version(void);
@@ -437,7 +448,10 @@ RRC_API rrc_result rrc_context_memory_usage(const rrc_context* context, uint64_t
 /** Deprecated alias of rrc_context_memory_usage (0.1 name). */
 RRC_API rrc_result rrc_get_memory_usage(const rrc_context* context, uint64_t* out_bytes);
 
-/** Number of validation-layer messages seen so far (0 if validation is off). */
+/** Number of validation-layer messages seen so far (0 if validation is off).
+ *  A context of rrc_vulkan_context_create cannot count them (the layer
+ *  reports to the host's own instance): RRC_ERROR_UNSUPPORTED, nothing
+ *  written (0.10; before, it reported 0). */
 RRC_API rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t* out_count);
 
 /* ---- Frames (standalone: CPU arrays) ----------------------------------- */

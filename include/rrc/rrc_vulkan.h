@@ -158,6 +158,15 @@ typedef struct rrc_vulkan_frame_desc {
     double prev_camera_position[3]; /* as rrc_frame_desc.prev_camera_position */
     /* ---- 0.8 ---- */
     float lighting_turn; /* as rrc_frame_desc.lighting_turn (rrc.h) */
+    /* ---- 0.10 ---- */
+    /* The stats buffer's size in bytes (its VkBufferCreateInfo.size), which
+     * Vulkan cannot report.  Non-zero: stats_offset +
+     * sizeof(rrc_vulkan_frame_stats) must lie within it, else the frame is
+     * refused (RRC_ERROR_SIZE_MISMATCH) and nothing is recorded.  Zero: not
+     * stated (a caller before 0.10), unchecked: then a range past the
+     * buffer's end is written (docs/INTEGRATION.md, "What rrc checks and
+     * what it cannot"). */
+    VkDeviceSize stats_buffer_size;
 } rrc_vulkan_frame_desc;
 
 /** Creates a context on the host's device (no device of its own). */
@@ -203,6 +212,12 @@ typedef struct rrc_vulkan_quad_list {
     VkBuffer buffer;     /* STORAGE_BUFFER, INDIRECT_BUFFER and TRANSFER_DST usage */
     VkDeviceSize offset; /* a multiple of minStorageBufferOffsetAlignment (256 always is);
                             RRC_QUAD_LIST_BYTES(width, height) bytes from it are written */
+    /* ---- 0.10 ---- */
+    /* The buffer's size in bytes (VkBufferCreateInfo.size).  Non-zero: offset +
+     * RRC_QUAD_LIST_BYTES(width, height) must lie within it, else classify is
+     * refused (RRC_ERROR_SIZE_MISMATCH) and nothing is recorded.  Zero: not
+     * stated (a caller before 0.10), unchecked. */
+    VkDeviceSize buffer_size;
 } rrc_vulkan_quad_list;
 
 /** Records classify: barriers, the list's clear, one dispatch, barriers.

@@ -72,7 +72,7 @@ const rrc_abi_entry kLayout02[] = {
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
-    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 9, 0)) << "rule 6: the current header is 0.9.0";
+    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 10, 0)) << "rule 6: the current header is 0.10.0";
     EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), 0u);
     EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 4u) << "the library must be at least as new as its header";
 }
@@ -138,6 +138,9 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     EXPECT_GE(offsetof(rrc_channel_input, fallback), size01("rrc_channel_input"));
     EXPECT_GE(offsetof(rrc_vulkan_channel_images, fallback), size01("rrc_vulkan_channel_images"));
     EXPECT_EQ(sizeof(rrc_vulkan_frame_stats), 32u);
+    // 0.10: the host's buffer sizes, after 0.8's last member and the quad list's 0.3 size.
+    EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_buffer_size), offsetof(rrc_vulkan_frame_desc, lighting_turn) + sizeof(float));
+    EXPECT_EQ(offsetof(rrc_vulkan_quad_list, buffer_size), offsetof(rrc_vulkan_quad_list, offset) + sizeof(VkDeviceSize));
 }
 
 // ---- the scene: 8x4, PREV_CLIP at each pixel's own clip position, column 0

@@ -3,13 +3,14 @@
 // before any Vulkan object exists).
 //
 // The bytes drive every field of a context descriptor and its channels, then
-// (if the context is valid) of a frame and its output description, then of an
-// interop device descriptor.  Pointers are NULL or point at real memory sized
+// (if the context is valid) of a frame and its output description and of a
+// Vulkan frame and its channel images, then of an interop device descriptor.  Pointers are NULL or point at real memory sized
 // exactly as the structs claim, so AddressSanitizer catches any read beyond
 // what a count allows.  Validation must either accept or throw rrc::Error with
 // a known code and a non-empty message; anything else aborts.
 #include "config.h"
 #include "error.h"
+#include "frame.h"
 #include "validation.h"
 
 #include <rrc/rrc.h>
@@ -56,11 +57,15 @@ double fuzz_double(FuzzedDataProvider& in) {
 uint32_t fuzz_tag(FuzzedDataProvider& in, uint32_t right) {
     return in.ConsumeIntegralInRange<int>(0, 7) ? right : in.ConsumeIntegral<uint32_t>();
 }
-// Never above `right`: under the 0.2 struct rules (include/rrc/rrc.h,
-// Versioning) a caller's size promises that many readable bytes, and these
-// structs live in objects of exactly `right` bytes.  Larger sizes with zero
-// and non-zero tails are tested by tests/abi/struct_size_test.cpp.
+// Never above `right` but for sizes above RRC_MAX_STRUCT_SIZE: under the
+// struct rules (include/rrc/rrc.h, Versioning) a caller's size promises that
+// many readable bytes, and these structs live in objects of exactly `right`
+// bytes, so a size past the cap must be refused before anything past
+// `right` is read (AddressSanitizer sees a read past it).  Larger sizes
+// within the cap, with zero and non-zero tails, are tested by
+// tests/abi/struct_size_test.cpp.
 uint32_t fuzz_size(FuzzedDataProvider& in, uint32_t right) {
+    if (in.ConsumeIntegralInRange<int>(0, 15) == 0) return in.ConsumeIntegralInRange<uint32_t>(RRC_MAX_STRUCT_SIZE + 1, 0xFFFFFFFFu);
     return in.ConsumeIntegralInRange<int>(0, 7) ? right - (in.ConsumeBool() ? 0u : in.ConsumeIntegralInRange<uint32_t>(0, 64) % (right + 1))
                                                 : in.ConsumeIntegralInRange<uint32_t>(0, right);
 }
@@ -159,6 +164,64 @@ void fuzz_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
     o.channels = o.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? outs.get() : nullptr;
     try {
         rrc::validate_frame(config, &f, in.ConsumeIntegralInRange<int>(0, 3) ? &o : nullptr);
+    } catch (const rrc::Error& e) {
+        check_error(e);
+    }
+}
+
+// A Vulkan frame: handles from a pool of four (so that outputs meet inputs
+// and each other), formats anything, the statistics' offset and stated size
+// anything.  Validation reads no handle; it must refuse what would alias or
+// write past the stated range, and accept nothing else it cannot check.
+rrc_vulkan_image fuzz_image(FuzzedDataProvider& in) {
+    rrc_vulkan_image img{};
+    if (in.ConsumeIntegralInRange<int>(0, 3)) {
+        img.image = reinterpret_cast<VkImage>(uintptr_t(0x1000 * in.ConsumeIntegralInRange<int>(1, 4)));
+        img.view = reinterpret_cast<VkImageView>(uintptr_t(0x2000));
+    }
+    // Any value of the enumeration's range (0..VK_FORMAT_MAX_ENUM): outside it a C++ VkFormat does not exist.
+    img.format = (VkFormat)(in.ConsumeBool() ? in.ConsumeIntegralInRange<int32_t>(0, 130) : in.ConsumeIntegralInRange<int32_t>(0, VK_FORMAT_MAX_ENUM));
+    img.layout = (VkImageLayout)in.ConsumeIntegralInRange<int>(0, 8);
+    return img;
+}
+
+void fuzz_vulkan_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config) {
+    rrc_vulkan_frame_desc f;
+    fuzz_header(in, f, RRC_STRUCT_TYPE_VULKAN_FRAME_DESC);
+    if (in.ConsumeIntegralInRange<int>(0, 7)) f.command_buffer = reinterpret_cast<VkCommandBuffer>(uintptr_t(0x3000));
+    f.depth = fuzz_image(in);
+    f.reprojection = fuzz_image(in);
+    f.nocache = fuzz_image(in);
+    f.mask = fuzz_image(in);
+    f.object_id = fuzz_image(in);
+    for (int i = 0; i < 16; ++i) f.view_proj[i] = f.prev_view_proj[i] = i % 5 == 0 ? 1.0 : 0.0;
+    if (in.ConsumeBool()) f.stats_buffer = reinterpret_cast<VkBuffer>(uintptr_t(0x4000));
+    f.stats_offset = in.ConsumeBool() ? 256 * in.ConsumeIntegralInRange<uint64_t>(0, 4) : in.ConsumeIntegral<uint64_t>();
+    f.stats_buffer_size = in.ConsumeBool() ? 256 * in.ConsumeIntegralInRange<uint64_t>(0, 4) : in.ConsumeIntegral<uint64_t>();
+    f.storage_inputs = in.ConsumeBool();
+    f.split_outputs = in.ConsumeBool();
+    f.channel_count = in.ConsumeBool() ? (uint32_t)config.channels.size() : fuzz_small(in, 8);
+    auto images = fuzz_array<rrc_vulkan_channel_images>(in, f.channel_count, 8, RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES,
+                                                        [&](rrc_vulkan_channel_images& c) {
+                                                            c.samples = fuzz_image(in);
+                                                            c.confidence = fuzz_image(in);
+                                                            c.output = fuzz_image(in);
+                                                            c.age = fuzz_image(in);
+                                                            c.fallback = fuzz_image(in);
+                                                        });
+    f.channels = f.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? images.get() : nullptr;
+    try {
+        const rrc::Frame frame = rrc::read_frame(&f, config.channels.size());
+        rrc::validate_frame(config, frame, nullptr, 256);
+        // Accepted: what rrc writes lies within what the host stated, and no image it writes is one it reads.
+        if (frame.stats_buffer && frame.stats_buffer_size &&
+            (frame.stats_offset > frame.stats_buffer_size || frame.stats_buffer_size - frame.stats_offset < sizeof(rrc_vulkan_frame_stats)))
+            std::abort();
+        for (uint32_t i = 0; i < frame.channel_count; ++i) {
+            const VkImage out = frame.channels[i].output_image.image;
+            if (out && (out == frame.depth_image.image || out == frame.channels[i].samples_image.image || out == frame.mask_image.image))
+                std::abort();
+        }
     } catch (const rrc::Error& e) {
         check_error(e);
     }
@@ -269,6 +332,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #include <rrc_channel_options.def>
 #undef RRC_CHANNEL_OPTION
         fuzz_frame(in, config);
+        fuzz_vulkan_frame(in, config);
     }
     fuzz_vulkan_device(in);
     return 0;

@@ -7,6 +7,9 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
+#include <functional>
+
 using namespace rrc_test;
 
 namespace {
@@ -132,7 +135,21 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
     EXPECT_EQ(rrc_vulkan_context_create(&cd, &bad, &ctx), RRC_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(ctx, nullptr);
 
+    // Validation asked for (the test environment's RRC_VALIDATION=1, or the
+    // descriptor's) cannot apply to commands recorded into the host's device:
+    // the context says so, and does not count messages it cannot see.
+    std::vector<std::string> warnings;
+    cd.enable_validation = 1;
+    cd.log = [](void* user, rrc_log_level level, const char* message) {
+        if (level == RRC_LOG_WARNING) static_cast<std::vector<std::string>*>(user)->push_back(message);
+    };
+    cd.log_user = &warnings;
     ASSERT_EQ(rrc_vulkan_context_create(&cd, &dd, &ctx), RRC_SUCCESS) << rrc_last_error();
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("in the host's own instance"), std::string::npos) << warnings[0];
+    uint64_t count = 7;
+    EXPECT_EQ(rrc_context_validation_messages(ctx, &count), RRC_ERROR_UNSUPPORTED);
+    EXPECT_EQ(count, 7u) << "nothing written";
     rrc_frame_desc core = frame_desc();
     EXPECT_EQ(rrc_frame_run(ctx, &core, nullptr), RRC_ERROR_MISSING_INPUT);  // validated first...
     std::vector<float> depth(W * H, 0.5f), clip(W * H * 4, 0.0f), s(W * H * 4, 0.0f);
@@ -159,6 +176,156 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
     EXPECT_EQ(rrc_vulkan_record_frame(standalone.get(), &f), RRC_ERROR_UNSUPPORTED);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << host.messages().front();
+}
+
+// The mistakes a host can make that rrc can see (docs/INTEGRATION.md, "What
+// rrc checks and what it cannot"), one at a time between two clean frames:
+// each is refused with a message naming the member, records nothing (the
+// host's outputs and mask read back as before, the statistics bytes keep
+// their sentinel), and the next clean frame equals the standalone run that
+// never saw a mistake, bit for bit.
+TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
+    std::vector<rrc_channel_desc> channels = test_channels();
+    std::vector<SceneFrameInputs> inputs(2);
+    std::vector<FrameResult> expected;
+    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
+
+    VulkanHost host;
+    rrc_context* ctx = interop_context(device_desc(host), test_desc(channels));
+    ASSERT_NE(ctx, nullptr);
+    const VkImageLayout ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    SceneImages in_img(host, W, H, true, false);
+    HostImage out1 = zeroed_output(host, VK_FORMAT_R32_SFLOAT, W, H);
+    HostImage out4 = zeroed_output(host, VK_FORMAT_R32G32B32A32_SFLOAT, W, H);
+    HostImage mask = zeroed_output(host, VK_FORMAT_R8_UINT, W, H);
+    const VkDeviceSize stats_size = 256;
+    rrc_host::Buffer stats = host.create_buffer(stats_size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    const VkDeviceSize list_bytes = RRC_QUAD_LIST_BYTES(W, H);
+    rrc_host::Buffer quads = host.create_buffer(list_bytes,
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                true);
+    auto check_frame = [&](int t) {
+        EXPECT_EQ(read_back<float>(host, out1), expected[t].values[0]) << "frame " << t;
+        EXPECT_EQ(read_back<float>(host, out4), expected[t].values[1]) << "frame " << t;
+        EXPECT_EQ(read_back<uint8_t>(host, mask), expected[t].mask) << "frame " << t;
+    };
+    {
+        in_img.upload(host, inputs[0], ro, ro);  // first: the images' views carry the layout it leaves
+        VkCommandBuffer cmd = host.begin();
+        rrc_vulkan_channel_images ch[2] = {in_img.channel(1, out1), in_img.channel(4, out4)};
+        auto f = in_img.frame(inputs[0], ch, cmd);
+        f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
+        ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+        host.submit_and_wait(cmd);
+        check_frame(0);
+    }
+    const std::vector<float> before1 = read_back<float>(host, out1), before4 = read_back<float>(host, out4);
+    const std::vector<uint8_t> before_mask = read_back<uint8_t>(host, mask);
+    std::memset(stats.mapped, 0xAB, stats_size);
+
+    struct Mistake {
+        const char* name;
+        rrc_result code;
+        const char* message;  // what the message must name
+        std::function<void(rrc_vulkan_frame_desc&, rrc_vulkan_channel_images*)> make;
+        bool classify = false;
+        VkDeviceSize list_size = 0;
+    };
+    const std::vector<Mistake> mistakes = {
+        {"stats past its buffer", RRC_ERROR_SIZE_MISMATCH, "frame.stats_buffer_size",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) {
+             f.stats_buffer = stats.buffer, f.stats_offset = stats_size, f.stats_buffer_size = stats_size;
+         }},
+        {"an output that is an input", RRC_ERROR_INVALID_ARGUMENT, "frame.channels[0].output.image is frame.channels[0].samples.image",
+         [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images* ch) { ch[0].output = ch[0].samples; }},
+        {"two outputs in one image", RRC_ERROR_INVALID_ARGUMENT, "two outputs in one image",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) {
+             f.mask = view_of(out1, VK_IMAGE_LAYOUT_GENERAL);
+             f.mask.format = VK_FORMAT_R8_UINT;  // as declared: only the image is channel 0's output
+         }},
+        {"an integer output", RRC_ERROR_INVALID_ARGUMENT, "frame.channels[0].output.format is R8Uint",
+         [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images* ch) { ch[0].output.format = VK_FORMAT_R8_UINT; }},
+        {"an undefined depth format", RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is Undefined",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.depth.format = VK_FORMAT_UNDEFINED; }},
+        {"an integer depth format", RRC_ERROR_INVALID_ARGUMENT, "frame.depth.format is R32Uint",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.depth.format = VK_FORMAT_R32_UINT; }},
+        {"a mask not R8_UINT", RRC_ERROR_INVALID_ARGUMENT, "frame.mask.format",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.mask.format = VK_FORMAT_R32_UINT; }},
+        {"a garbage size", RRC_ERROR_INVALID_STRUCT, "RRC_MAX_STRUCT_SIZE",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.size = 0x7FFFFFFFu; }},
+        {"a garbage channel size", RRC_ERROR_INVALID_STRUCT, "RRC_MAX_STRUCT_SIZE",
+         [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images* ch) { ch[0].size = 0x7FFFFFFFu; }},
+        {"a quad list past its buffer", RRC_ERROR_SIZE_MISMATCH, "list.buffer_size",
+         [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images*) {}, true, list_bytes - 4},
+    };
+    for (const Mistake& m : mistakes) {
+        SCOPED_TRACE(m.name);
+        VkCommandBuffer cmd = host.begin();
+        rrc_vulkan_channel_images ch[2] = {in_img.channel(1, out1), in_img.channel(4, out4)};
+        auto f = in_img.frame(inputs[1], ch, cmd);
+        f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
+        m.make(f, ch);
+        rrc_result r;
+        if (m.classify) {
+            auto list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
+            list.buffer = quads.buffer;
+            list.buffer_size = m.list_size;
+            r = rrc_vulkan_record_classify(ctx, &f, &list);
+        } else {
+            r = rrc_vulkan_record_frame(ctx, &f);
+        }
+        EXPECT_EQ(r, m.code) << rrc_last_error();
+        EXPECT_NE(std::string(rrc_last_error()).find(m.message), std::string::npos) << rrc_last_error();
+        host.submit_and_wait(cmd);  // nothing was recorded into it
+        EXPECT_EQ(read_back<float>(host, out1), before1);
+        EXPECT_EQ(read_back<float>(host, out4), before4);
+        EXPECT_EQ(read_back<uint8_t>(host, mask), before_mask);
+        const unsigned char* bytes = static_cast<const unsigned char*>(stats.mapped);
+        EXPECT_EQ(std::count(bytes, bytes + stats_size, 0xAB), (long)stats_size) << "the statistics buffer was written";
+    }
+    {
+        // The context as if it had never seen them.
+        in_img.upload(host, inputs[1], ro, ro);
+        VkCommandBuffer cmd = host.begin();
+        rrc_vulkan_channel_images ch[2] = {in_img.channel(1, out1), in_img.channel(4, out4)};
+        auto f = in_img.frame(inputs[1], ch, cmd);
+        f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
+        f.stats_buffer = stats.buffer, f.stats_offset = 0, f.stats_buffer_size = stats_size;  // in range: accepted
+        ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
+        host.submit_and_wait(cmd);
+        check_frame(1);
+        rrc_vulkan_frame_stats s;
+        std::memcpy(&s, stats.mapped, sizeof s);
+        EXPECT_EQ(s.hits, expected[1].stats.hits);
+        const unsigned char* bytes = static_cast<const unsigned char*>(stats.mapped);
+        EXPECT_EQ(std::count(bytes + sizeof s, bytes + stats_size, 0xAB), (long)(stats_size - sizeof s)) << "written past the counters";
+    }
+    rrc_context_destroy(ctx);
+    in_img.destroy(host);
+    for (HostImage* img : {&out1, &out4, &mask}) host.destroy(*img);
+    static_cast<rrc_host::VulkanBootstrap&>(host).destroy(stats);
+    static_cast<rrc_host::VulkanBootstrap&>(host).destroy(quads);
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
+}
+
+// The standalone path's share of the same rule: a garbage size is refused
+// before anything past the struct is read, and the context keeps working.
+TEST(Standalone, AGarbageSizeIsRefusedBeforeItIsRead) {
+    std::vector<SceneFrameInputs> inputs(1);
+    std::vector<FrameResult> expected;
+    ASSERT_NO_FATAL_FAILURE(run_standalone(inputs, expected));
+    std::vector<rrc_channel_desc> channels = test_channels();
+    Context ctx(test_desc(channels));
+    ASSERT_TRUE(ctx);
+    rrc_frame_desc bad = inputs[0].desc;
+    bad.size = 0x7FFFFFFFu;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &bad, nullptr), RRC_ERROR_INVALID_STRUCT);
+    EXPECT_NE(std::string(rrc_last_error()).find("RRC_MAX_STRUCT_SIZE"), std::string::npos) << rrc_last_error();
+    const FrameResult r = ctx.run(inputs[0].desc);
+    EXPECT_EQ(r.values[0], expected[0].values[0]);
+    EXPECT_EQ(r.mask, expected[0].mask);
 }
 
 }  // namespace

@@ -791,4 +791,40 @@ TEST(ApiCamera, NonFiniteMatrices) {
     done("ApiCamera.NonFiniteMatrices");
 }
 
+// rrc.h, "Thread safety": a call that finds another in progress on its
+// context (here, deterministically, from inside the first call's log
+// callback) is refused without touching the context, which keeps working.
+TEST(ApiThreadSafety, ACallInsideAnotherOnTheSameContextIsRefused) {
+    struct Probe {
+        rrc_context* ctx = nullptr;
+        const rrc_frame_desc* frame = nullptr;
+        int calls = 0;
+        rrc_result inner = RRC_SUCCESS;
+        std::string message;
+    } probe;
+    rrc_context_desc d = one_channel_desc(4, 4);
+    d.log = [](void* user, rrc_log_level level, const char*) {
+        Probe& p = *static_cast<Probe*>(user);
+        if (level != RRC_LOG_ERROR || p.calls++) return;  // once: the inner refusal logs too
+        p.inner = rrc_frame_run(p.ctx, p.frame, nullptr);
+        p.message = rrc_last_error();
+    };
+    d.log_user = &probe;
+    rrc_context* raw = nullptr;  // not rrc_test::Context: it puts its own log callback in the descriptor
+    ASSERT_EQ(rrc_context_create(&d, &raw), RRC_SUCCESS) << rrc_last_error();
+    std::unique_ptr<rrc_context, void (*)(rrc_context*)> ctx(raw, rrc_context_destroy);
+    StaticFrame f(4, 4);
+    probe.ctx = ctx.get();
+    probe.frame = &f.desc;
+    EXPECT_EQ(rrc_frame_run(ctx.get(), nullptr, nullptr), RRC_ERROR_INVALID_ARGUMENT);  // its error is logged while it holds the context
+    EXPECT_EQ(probe.inner, RRC_ERROR_UNSUPPORTED);
+    EXPECT_NE(probe.message.find("another call on this context is in progress"), std::string::npos) << probe.message;
+    EXPECT_NE(std::string(rrc_context_last_error(ctx.get())).find("frame"), std::string::npos) << "the refused call wrote the context's error";
+    std::vector<uint8_t> mask(16, 0xEE);
+    rrc_frame_output o = mask_output(mask);
+    EXPECT_EQ(rrc_frame_run(ctx.get(), &f.desc, &o), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_NE(mask, std::vector<uint8_t>(16, 0xEE)) << "the context works after the refusal";
+    done("ApiThreadSafety.ACallInsideAnotherOnTheSameContextIsRefused");
+}
+
 }  // namespace

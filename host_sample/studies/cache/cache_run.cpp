@@ -226,6 +226,7 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
                 f.split_outputs = 1;
                 rrc_vulkan_quad_list list = rrc_host::rrc_struct<rrc_vulkan_quad_list>(RRC_STRUCT_TYPE_VULKAN_QUAD_LIST);
                 list.buffer = m.list.buffer;
+                list.buffer_size = RRC_QUAD_LIST_BYTES(s.width, s.height);  // as created: rrc refuses a list past it
                 auto record = [&](VkCommandBuffer c, bool classify) {
                     f.command_buffer = c;
                     const rrc_result r = classify ? rrc_vulkan_record_classify(ctx, &f, &list) : rrc_vulkan_record_resolve(ctx, &f);
