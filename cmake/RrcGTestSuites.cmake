@@ -37,6 +37,14 @@ function(rrc_gtest_suites target)
   math(EXPR calls "${calls} + 1")
   set_property(TARGET ${target} PROPERTY RRC_GTEST_SUITES_CALLS ${calls})
 
+  # A release-pass label: the release build makes this executable (CMakeLists.txt, rrc_release_pass).
+  foreach(label IN LISTS ARG_LABELS)
+    if(label IN_LIST RRC_RELEASE_PASS_LABELS)
+      add_dependencies(rrc_release_pass ${target})
+      break()
+    endif()
+  endforeach()
+
   set(base "${CMAKE_CURRENT_BINARY_DIR}/${target}_suites${calls}")
   get_target_property(emulator ${target} CROSSCOMPILING_EMULATOR)
   if(NOT emulator)
