@@ -2,6 +2,7 @@
 // Public headers only (include/rrc/) plus the host bootstrap of
 // host_sample/common, as any engine would use the library.
 #include "analysis.h"
+#include "rrc_interop.h"
 #include "bench_images.h"
 #include "config.h"
 #include "interop_run.h"
@@ -194,6 +195,7 @@ int main(int argc, char** argv) {
         bo.application = "rrc-bench";
         bo.validation = opt.validation;
         bo.device_name = opt.device;
+        bo.features = rrc_host::rrc_features();  // what rrc needs (rrc_vulkan_get_requirements)
         VulkanBootstrap vk(bo);
         info.device = vk.device_name();
         std::fprintf(stderr, "rrc-bench: %s, commit %s, %zu configuration(s), %d repetitions each\n", info.device.c_str(),

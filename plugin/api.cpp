@@ -3,9 +3,11 @@
 #include "error.h"
 #include "frame.h"
 #include "interop_context.h"
+#include "presets.h"
 #include "standalone_context.h"
 #include "struct_reader.h"
 #include "validation.h"
+#include "vk_requirements.h"
 
 #include <rrc/rrc.h>
 #include <rrc/rrc_vulkan.h>
@@ -172,6 +174,38 @@ const char* rrc_result_to_string(rrc_result r) {
 }
 
 const char* rrc_last_error(void) { return t_last_error.c_str(); }
+
+// Presets (rrc.h, "Presets"): the row found and the caller's header read
+// before anything is written.
+rrc_result rrc_channel_preset(rrc_preset preset, uint32_t flags, uint32_t tuning, rrc_channel_desc* channel) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        const rrc::PresetRow* row = rrc::find_preset(preset, flags, tuning);
+        rrc::read_members<rrc_channel_desc>(channel, "channel");
+        rrc::write_channel_preset(*row, channel);
+    });
+}
+
+rrc_result rrc_context_preset(rrc_preset preset, uint32_t flags, uint32_t tuning, rrc_context_desc* context) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        const rrc::PresetRow* row = rrc::find_preset(preset, flags, tuning);
+        rrc::read_members<rrc_context_desc>(context, "context");
+        rrc::write_context_preset(*row, context);
+    });
+}
+
+rrc_result rrc_vulkan_get_requirements(rrc_vulkan_requirements* out) {
+    return guarded(nullptr, nullptr, nullptr, [&] {
+        rrc::read_members<rrc_vulkan_requirements>(out, "out");
+        const rrc_vulkan_requirements r = rrc::device_requirements();
+        using R = rrc_vulkan_requirements;
+        rrc::write_member(out, offsetof(R, api_version), r.api_version);
+        rrc::write_member(out, offsetof(R, features), r.features);
+        rrc::write_member(out, offsetof(R, device_extension_count), r.device_extension_count);
+        rrc::write_member(out, offsetof(R, device_extensions), r.device_extensions);
+        rrc::write_member(out, offsetof(R, max_per_stage_storage_images), r.max_per_stage_storage_images);
+        rrc::write_member(out, offsetof(R, optional_instance_extension), r.optional_instance_extension);
+    });
+}
 
 rrc_result rrc_validate_context_desc(const rrc_context_desc* desc) {
     return guarded(nullptr, nullptr, nullptr, [&] { rrc::resolve_context_desc(desc); });

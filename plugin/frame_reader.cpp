@@ -67,6 +67,14 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
         std::tie(d.command_buffer, d.stats_buffer, d.stats_offset, d.stats_buffer_size);
     f.storage_inputs = d.storage_inputs != 0;
     f.split_outputs = d.split_outputs != 0;
+    rrc_vulkan_image_extents e;
+    if ((f.extents_given = find_extension(d.next, "frame.next (rrc_vulkan_image_extents)", e))) {
+        if (e.count == 0 || e.count > RRC_MAX_IMAGE_EXTENTS)
+            fail(RRC_ERROR_INVALID_ARGUMENT, "frame.next (rrc_vulkan_image_extents).count is %u, must be 1..%u", e.count,
+                 RRC_MAX_IMAGE_EXTENTS);
+        if (!e.images) fail(RRC_ERROR_INVALID_ARGUMENT, "frame.next (rrc_vulkan_image_extents).images is NULL");
+        f.extents.assign(e.images, e.images + e.count);
+    }
     std::tie(f.depth_image, f.reprojection_image, f.nocache_image, f.mask_image, f.object_id_image) =
         std::tie(d.depth, d.reprojection, d.nocache, d.mask, d.object_id);
     read_channels<rrc_vulkan_channel_images>(f, d, context_channels, [](FrameChannel& to, const rrc_vulkan_channel_images& from) {

@@ -1,4 +1,5 @@
 #include "validation.h"
+#include "vk_requirements.h"
 
 #include "error.h"
 #include "struct_reader.h"
@@ -321,30 +322,42 @@ void need(const Frame& f, const P* array, const rrc_vulkan_image& image, rrc_res
     }
 }
 
-// Every image rrc writes (the outputs, ages and the mask) is none of the
-// images it reads and no other it writes: a shared VkImage would be
-// overwritten while it is read, or written twice (docs/INTEGRATION.md, "What
-// rrc checks and what it cannot").  Images not given are VK_NULL_HANDLE.
-void check_distinct_images(const Frame& f) {
-    struct Named {
-        VkImage image;
-        std::string what;
-    };
-    std::vector<Named> reads{{f.depth_image.image, "depth"}, {f.reprojection_image.image, "reprojection"},
-                             {f.nocache_image.image, "nocache"}, {f.object_id_image.image, "object_id"}},
-        writes{{f.mask_image.image, "mask"}};
+// The images a Vulkan frame names, by member: what rrc reads, what it writes.
+// Images not given are VK_NULL_HANDLE.
+struct NamedImage {
+    VkImage image;
+    std::string what;
+};
+struct FrameImages {
+    std::vector<NamedImage> reads, writes;
+};
+FrameImages frame_images(const Frame& f) {
+    FrameImages m;
+    m.reads = {{f.depth_image.image, "depth"}, {f.reprojection_image.image, "reprojection"}, {f.nocache_image.image, "nocache"},
+               {f.object_id_image.image, "object_id"}};
+    m.writes = {{f.mask_image.image, "mask"}};
     for (uint32_t i = 0; i < RRC_MAX_CHANNELS; ++i) {
         const FrameChannel& ch = f.channels[i];
         const std::string c = "channels[" + std::to_string(i) + "].";
-        reads.push_back({ch.samples_image.image, c + "samples"});
-        reads.push_back({ch.confidence_image.image, c + "confidence"});
-        reads.push_back({ch.fallback_image.image, c + "fallback"});
-        writes.push_back({ch.output_image.image, c + "output"});
-        writes.push_back({ch.age_image.image, c + "age"});
+        m.reads.push_back({ch.samples_image.image, c + "samples"});
+        m.reads.push_back({ch.confidence_image.image, c + "confidence"});
+        m.reads.push_back({ch.fallback_image.image, c + "fallback"});
+        m.writes.push_back({ch.output_image.image, c + "output"});
+        m.writes.push_back({ch.age_image.image, c + "age"});
     }
+    return m;
+}
+
+// Every image rrc writes (the outputs, ages and the mask) is none of the
+// images it reads and no other it writes: a shared VkImage would be
+// overwritten while it is read, or written twice (docs/INTEGRATION.md, "What
+// rrc checks and what it cannot").
+void check_distinct_images(const Frame& f) {
+    const FrameImages m = frame_images(f);
+    const std::vector<NamedImage>&reads = m.reads, &writes = m.writes;
     for (size_t w = 0; w < writes.size(); ++w) {
         if (!writes[w].image) continue;
-        for (const Named& r : reads)
+        for (const NamedImage& r : reads)
             if (r.image == writes[w].image)
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is frame.%s.image: rrc would overwrite an input it reads",
                      writes[w].what.c_str(), r.what.c_str());
@@ -353,6 +366,31 @@ void check_distinct_images(const Frame& f) {
                 fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is frame.%s.image: two outputs in one image", writes[w].what.c_str(),
                      writes[o].what.c_str());
     }
+}
+
+// The host's stated extents (rrc_vulkan_image_extents, rrc_vulkan.h): every
+// image the frame binds is listed once (or twice alike) and is the context's size.
+void check_extents(const ContextConfig& c, const Frame& f) {
+    if (!f.extents_given) return;
+    const FrameImages m = frame_images(f);
+    for (const std::vector<NamedImage>* list : {&m.reads, &m.writes})
+        for (const NamedImage& n : *list) {
+            if (!n.image) continue;
+            const rrc_vulkan_image_extent* found = nullptr;
+            for (const rrc_vulkan_image_extent& e : f.extents) {
+                if (e.image != n.image) continue;
+                if (found && (found->width != e.width || found->height != e.height))
+                    fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is listed twice in rrc_vulkan_image_extents, as %ux%u and %ux%u",
+                         n.what.c_str(), found->width, found->height, e.width, e.height);
+                found = &e;
+            }
+            if (!found)
+                fail(RRC_ERROR_INVALID_ARGUMENT, "frame.%s.image is not listed in the frame's rrc_vulkan_image_extents (frame.next)",
+                     n.what.c_str());
+            if (found->width != c.width || found->height != c.height)
+                fail(RRC_ERROR_SIZE_MISMATCH, "frame.%s.image is %ux%u (rrc_vulkan_image_extents), the context is %ux%u", n.what.c_str(),
+                     found->width, found->height, c.width, c.height);
+        }
 }
 
 }  // namespace
@@ -424,6 +462,7 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
         check_range("frame.stats_offset", f.stats_offset, sizeof(rrc_vulkan_frame_stats), "frame.stats_buffer_size", f.stats_buffer_size,
                     "rrc_vulkan_frame_stats");
     if (vulkan) check_distinct_images(f);
+    if (vulkan) check_extents(c, f);
     if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
              (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);
@@ -495,6 +534,7 @@ rrc_vulkan_device_desc validate_vulkan_device_desc(const rrc_vulkan_device_desc*
              VK_API_VERSION_MINOR(d->vulkan_api_version));
     if (d->max_frames_in_flight > 16)
         fail(RRC_ERROR_INVALID_ARGUMENT, "device.max_frames_in_flight is %u, at most 16", d->max_frames_in_flight);
+    if (d->enabled_features) check_enabled_features(*d->enabled_features, "device.enabled_features");
     return desc;
 }
 

@@ -1,6 +1,7 @@
 #include "vulkan_device.h"
 
 #include "error.h"
+#include "vk_requirements.h"
 
 #include <cstdlib>
 #include <cstring>
@@ -221,22 +222,14 @@ void VulkanDevice::pick_physical_device(const std::string& filter) {
 void VulkanDevice::check_physical_device() {
     VkPhysicalDeviceFeatures f;
     fi.GetPhysicalDeviceFeatures(physical, &f);
-    if (!f.shaderStorageImageWriteWithoutFormat)
-        fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" lacks shaderStorageImageWriteWithoutFormat", name.c_str());
     VkPhysicalDeviceProperties p;
     fi.GetPhysicalDeviceProperties(physical, &p);
     limits = p.limits;
-    if (p.limits.maxPerStageDescriptorStorageImages < 64)  // bindings 0-5, 9, 26 (1 each), 10-21, 24 and 25 (x4)
-        fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs 64", name.c_str(),
-             p.limits.maxPerStageDescriptorStorageImages);
-    const VkFormat needed[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
-                               VK_FORMAT_R8_UINT,    VK_FORMAT_R16_UINT,            VK_FORMAT_R32_UINT};
-    for (VkFormat fmt : needed) {
+    check_physical_device_requirements(p, f, [&](VkFormat fmt) {
         VkFormatProperties fp;
         fi.GetPhysicalDeviceFormatProperties(physical, fmt, &fp);
-        if (!(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
-            fail(RRC_ERROR_UNSUPPORTED, "device \"%s\": VkFormat %d is not usable as a storage image", name.c_str(), (int)fmt);
-    }
+        return (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+    });
 }
 
 void VulkanDevice::create_device() {
@@ -254,8 +247,7 @@ void VulkanDevice::create_device() {
     qci.queueFamilyIndex = queue_family;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
-    VkPhysicalDeviceFeatures enabled{};
-    enabled.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+    const VkPhysicalDeviceFeatures enabled = device_requirements().features;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;

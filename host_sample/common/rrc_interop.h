@@ -8,6 +8,9 @@
 
 #include <rrc/rrc_vulkan.h>
 
+#include <stdexcept>
+#include <string>
+
 namespace rrc_host {
 
 /** The bootstrap's instance, device and queue family, loader entry from volk. */
@@ -21,7 +24,16 @@ inline rrc_vulkan_device_desc vulkan_device_desc(const VulkanBootstrap& vk, uint
     d.get_instance_proc_addr = vkGetInstanceProcAddr;
     d.max_frames_in_flight = max_frames_in_flight;
     d.debug_utils_enabled = vk.debug_utils ? 1u : 0u;
+    d.enabled_features = &vk.enabled_features;  // 0.11: rrc checks that its features are among them
     return d;
+}
+
+/** The device features rrc needs (rrc_vulkan_get_requirements): what a
+ *  BootstrapOptions enables for it. */
+inline VkPhysicalDeviceFeatures rrc_features() {
+    auto r = rrc_struct<rrc_vulkan_requirements>(RRC_STRUCT_TYPE_VULKAN_REQUIREMENTS);
+    if (rrc_vulkan_get_requirements(&r) != RRC_SUCCESS) throw std::runtime_error(std::string("rrc_vulkan_get_requirements: ") + rrc_last_error());
+    return r.features;
 }
 
 /** `img` as the kernel sees it, in `layout` (final_layout 0: left as it was). */

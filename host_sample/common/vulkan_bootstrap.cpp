@@ -66,14 +66,23 @@ struct Candidate {
     int preference = 1 << 30;
 };
 
-Candidate examine(VkPhysicalDevice pd) {
+// Every feature `wanted` sets, `has` sets too (VkPhysicalDeviceFeatures is an array of VkBool32).
+bool has_features(const VkPhysicalDeviceFeatures& has, const VkPhysicalDeviceFeatures& wanted) {
+    const VkBool32* h = &has.robustBufferAccess;
+    const VkBool32* w = &wanted.robustBufferAccess;
+    for (size_t i = 0; i < sizeof(VkPhysicalDeviceFeatures) / sizeof(VkBool32); ++i)
+        if (w[i] && !h[i]) return false;
+    return true;
+}
+
+Candidate examine(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures& wanted) {
     Candidate c;
     c.device = pd;
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(pd, &p);
     VkPhysicalDeviceFeatures f;
     vkGetPhysicalDeviceFeatures(pd, &f);
-    if (p.apiVersion < VK_API_VERSION_1_1 || !f.shaderStorageImageWriteWithoutFormat) return c;
+    if (p.apiVersion < VK_API_VERSION_1_1 || !has_features(f, wanted)) return c;
     auto families = enumerate<VkQueueFamilyProperties>(
         [pd](uint32_t* n, VkQueueFamilyProperties* q) { vkGetPhysicalDeviceQueueFamilyProperties(pd, n, q); });
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
@@ -111,6 +120,7 @@ std::vector<std::string> VulkanBootstrap::messages() const {
 VulkanBootstrap::VulkanBootstrap(const BootstrapOptions& options) {
     try {
         create_instance(options);
+        enabled_features = options.features;
         choose_physical_device(wanted_device(options.device_name));
         create_device();
     } catch (...) {
@@ -165,7 +175,7 @@ void VulkanBootstrap::choose_physical_device(const std::string& wanted) {
         enumerate<VkPhysicalDevice>([this](uint32_t* n, VkPhysicalDevice* d) { return vkEnumeratePhysicalDevices(instance, n, d); });
     Candidate best;
     for (VkPhysicalDevice pd : devices) {
-        Candidate c = examine(pd);
+        Candidate c = examine(pd, enabled_features);
         if (c.family < 0) continue;
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(pd, &p);
@@ -173,7 +183,7 @@ void VulkanBootstrap::choose_physical_device(const std::string& wanted) {
         if (c.preference < best.preference) best = c;
     }
     if (best.family < 0)
-        throw std::runtime_error(wanted.empty() ? "no Vulkan 1.1 device with graphics+compute and shaderStorageImageWriteWithoutFormat"
+        throw std::runtime_error(wanted.empty() ? "no Vulkan 1.1 device with graphics+compute and the features asked for (rrc_vulkan_get_requirements)"
                                                 : "no suitable Vulkan device whose name contains \"" + wanted + "\"");
     physical = best.device;
     family = (uint32_t)best.family;
@@ -187,12 +197,10 @@ void VulkanBootstrap::create_device() {
     queue_info.queueFamilyIndex = family;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
-    VkPhysicalDeviceFeatures enabled{};
-    enabled.shaderStorageImageWriteWithoutFormat = VK_TRUE;  // rrc's kernel writes any float output format
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue_info;
-    info.pEnabledFeatures = &enabled;
+    info.pEnabledFeatures = &enabled_features;
     vk_check(vkCreateDevice(physical, &info, nullptr, &device), "vkCreateDevice");
     volkLoadDevice(device);
     vkGetDeviceQueue(device, family, 0, &queue);

@@ -26,6 +26,9 @@ struct BootstrapOptions {
     std::string application = "rrc-host";
     bool validation = false;  // VK_LAYER_KHRONOS_validation + synchronization validation (throws if missing)
     std::string device_name;  // substring of the device name; "" = RRC_DEVICE, else discrete > integrated > any
+    // The features to enable; a device that lacks one is passed over.  rrc's
+    // come from rrc_vulkan_get_requirements (rrc_interop.h, rrc_features()).
+    VkPhysicalDeviceFeatures features{};
 };
 
 /** A 2D image with one mip level and one layer, its memory and a view. */
@@ -59,8 +62,7 @@ void image_barriers(VkCommandBuffer cmd, VkPipelineStageFlags src_stages, VkPipe
 /** Instance (optional validation, every warning and error counted, those of
  *  vkCreateInstance and vkDestroyInstance included), physical device, one
  *  graphics+compute queue, a command pool, and resource helpers.  The device
- *  enables shaderStorageImageWriteWithoutFormat, which rrc's kernel needs to
- *  write any float output format. */
+ *  enables the options' features (what rrc needs: rrc_vulkan_get_requirements). */
 class VulkanBootstrap {
 public:
     explicit VulkanBootstrap(const BootstrapOptions& options);  // throws std::runtime_error
@@ -83,6 +85,7 @@ public:
     bool debug_utils = false;             // VK_EXT_debug_utils enabled (object names, labels)
     bool timestamps = false;              // the queue family has valid timestamp bits
     bool validation = false;
+    VkPhysicalDeviceFeatures enabled_features{};  // what vkCreateDevice enabled (rrc_vulkan_device_desc.enabled_features)
 
     std::string device_name() const { return properties.deviceName; }
     uint64_t message_count() const;

@@ -1,4 +1,5 @@
 #include "gpu.h"
+#include "rrc_interop.h"
 
 namespace rrc_sample {
 
@@ -14,6 +15,7 @@ rrc_host::BootstrapOptions bootstrap_options(const GpuOptions& o) {
     b.application = "rrc-sample";
     b.validation = o.validation;
     b.device_name = o.device_name;
+    b.features = rrc_host::rrc_features();  // what rrc needs (rrc_vulkan_get_requirements)
     return b;
 }
 

@@ -80,7 +80,7 @@
  *     know is RRC_ERROR_UNSUPPORTED; a base struct's tag in a chain, a type
  *     twice, an extension on a parent that does not take it, or a chain
  *     longer than RRC_MAX_CHAIN (a cycle) is RRC_ERROR_INVALID_STRUCT.
- *     Version 0.4 defines no extension yet.
+ *     Version 0.11 defines the first: rrc_vulkan_image_extents (rrc_vulkan.h).
  *  6. Existing exported functions keep their signatures; a better name is
  *     added beside an old one, which stays exported as an alias until 1.0.
  *
@@ -119,7 +119,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 10, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 11, 0)
 
 /** The largest `size` a tagged struct may state (Versioning, rule 2): far
  *  above any struct of this API, so that a garbage size is refused before
@@ -423,6 +423,49 @@ typedef struct rrc_context_desc {
  *  the code create would fail with; the message (naming the field) is
  *  available from rrc_last_error().  Cheap: fuzzers call it many times. */
 RRC_API rrc_result rrc_validate_context_desc(const rrc_context_desc* desc);
+
+/* ---- Presets (0.11): one application's settings, tuned and measured ----- *
+ * A preset fills the members of a description that an application's best
+ * measured setting decides; docs/guide/ has one guide per application: what
+ * the host renders each frame, the inputs, each value and what it buys.
+ *
+ *   rrc_channel_desc ch = {RRC_STRUCT_TYPE_CHANNEL_DESC, NULL, sizeof ch, "shadow", 1};
+ *   rrc_channel_preset(RRC_PRESET_PCF_SHADOWS, RRC_PRESET_FLAG_BASE, RRC_API_VERSION, &ch);
+ *
+ * flags: RRC_PRESET_FLAG_BASE, for PCF_SHADOWS, ENV_BUMP and SOFT_SHADOWS only: the
+ * host renders the application's deterministic base every frame and passes it
+ * as the channel's fallback image (the residual, docs/CONVENTIONS.md "The
+ * residual"; the guide says what the base is).  Without it, the best measured
+ * setting that needs no image but the sample.  Any other flag, or the flag
+ * with another preset, is RRC_ERROR_INVALID_ARGUMENT.
+ *
+ * tuning: the RRC_API_VERSION whose values to take.  A later version that
+ * re-tunes a preset adds its new values under its own version and keeps
+ * every earlier tuning, so passing the RRC_API_VERSION you compiled (and
+ * tested) against gives the same values from every later library.  0: the
+ * loaded library's latest.  A version before 0.11 takes 0.11's (the first);
+ * one newer than the loaded library is RRC_ERROR_UNSUPPORTED.
+ *
+ * What is written: the channel's size, tag and version rules apply (rule 1);
+ * the preset writes lambda, blend, filter, age_cap and every member from
+ * rectify on, each only where the caller's `size` holds it (rule 4),
+ * including the ones it leaves off (as 0).  type, next, size, name,
+ * components, precision and confidence stay the caller's.  On an error
+ * nothing is written.  The result always passes validation. */
+RRC_DEFINE_ENUM(rrc_preset, RRC_PRESET, uint32_t)
+#define RRC_PRESET_FLAG_BASE 0x1u /* the host renders the base (the residual variant) */
+
+RRC_API rrc_result rrc_channel_preset(rrc_preset preset, uint32_t flags, uint32_t tuning, rrc_channel_desc* channel);
+
+/** The context members an application fixes, as rrc_channel_preset (flags
+ *  and tuning alike).  OFFLINE (Cycles passes, docs/guide/offline.md): LINEAR
+ *  depth, plain MOTION vectors in pixels with y up (motion_scale {1/W, -1/H}:
+ *  set width and height first, else RRC_ERROR_INVALID_ARGUMENT), tau and the
+ *  FIXED depth test tau needs.  SHADING_CACHE: refresh_policy, refresh_period,
+ *  refresh_tiles and max_lifetime.  PCF_SHADOWS, ENV_BUMP and SOFT_SHADOWS fix
+ *  no context member: nothing is written.  Members are written only within
+ *  the caller's `size`; on an error nothing is written. */
+RRC_API rrc_result rrc_context_preset(rrc_preset preset, uint32_t flags, uint32_t tuning, rrc_context_desc* context);
 
 /* ---- Context ----------------------------------------------------------- */
 

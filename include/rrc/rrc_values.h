@@ -87,6 +87,14 @@
     X(RRC_MASK_INVALID_SAMPLE, 8)    /* some channel's sample was not finite */   \
     X(RRC_MASK_INVALID_GEOMETRY, 16) /* non-finite depth or reprojection data */
 
+/* ---- rrc_preset: one application's settings (rrc_channel_preset; docs/guide/) */
+#define RRC_PRESET_VALUES(X)                                                                          \
+    X(RRC_PRESET_PCF_SHADOWS, 1)   /* amortized PCF: each frame k random shadow-map compares */        \
+    X(RRC_PRESET_ENV_BUMP, 2)      /* env-mapped bump mapping: each frame k reflections of the footprint */ \
+    X(RRC_PRESET_SOFT_SHADOWS, 3)  /* area-light soft shadows: each frame one light point's shadow */ \
+    X(RRC_PRESET_SHADING_CACHE, 4) /* the shading cache: shade only the misses (REUSE) */            \
+    X(RRC_PRESET_OFFLINE, 5)       /* path-traced sequences (Cycles passes: linear depth, pixel motion) */
+
 /* ---- rrc_log_level ------------------------------------------------------- */
 #define RRC_LOG_LEVEL_VALUES(X) \
     X(RRC_LOG_INFO, 0)          \

@@ -24,8 +24,9 @@
  * visible to any later stage.  History, age and previous depth are owned by
  * the library (ping-pong; rrc_get_memory_usage reports the bytes).
  *
- * Device requirements: Vulkan 1.1, the feature
- * shaderStorageImageWriteWithoutFormat enabled, 64 storage images per stage.
+ * Device requirements: rrc_vulkan_get_requirements (0.11) returns them: the
+ * Vulkan version, the features to enable, the device extensions (none) and
+ * the limits rrc needs; creation checks them against the physical device.
  */
 #ifndef RRC_RRC_VULKAN_H
 #define RRC_RRC_VULKAN_H
@@ -41,6 +42,31 @@ extern "C" {
 #define RRC_STRUCT_TYPE_VULKAN_FRAME_DESC 0x52524311u
 #define RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES 0x52524312u
 #define RRC_STRUCT_TYPE_VULKAN_QUAD_LIST 0x52524313u /* 0.3 */
+#define RRC_STRUCT_TYPE_VULKAN_REQUIREMENTS 0x52524314u /* 0.11 */
+#define RRC_STRUCT_TYPE_EXT_VULKAN_IMAGE_EXTENTS 0x525243E0u /* 0.11, on rrc_vulkan_frame_desc.next */
+
+/** What rrc needs of the host's Vulkan device, whatever the context
+ *  description (0.11).  Written by rrc_vulkan_get_requirements up to the
+ *  caller's `size`. */
+typedef struct rrc_vulkan_requirements {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_REQUIREMENTS */
+    const void* next;     /* NULL */
+    uint32_t size;        /* sizeof(rrc_vulkan_requirements) */
+    uint32_t api_version; /* written: the lowest VkApplicationInfo.apiVersion / device version, VK_API_VERSION_1_1 */
+    /* Written: VK_TRUE for each feature the host must enable at vkCreateDevice
+     * (OR it into its own VkPhysicalDeviceFeatures or VkPhysicalDeviceFeatures2.features),
+     * VK_FALSE for the rest: shaderStorageImageWriteWithoutFormat. */
+    VkPhysicalDeviceFeatures features;
+    uint32_t device_extension_count;           /* written: the device extensions rrc needs: 0 */
+    const char* const* device_extensions;      /* written: their names (NULL when none); static storage */
+    uint32_t max_per_stage_storage_images;     /* written: the maxPerStageDescriptorStorageImages rrc needs: 64 */
+    const char* optional_instance_extension;   /* written: VK_EXT_DEBUG_UTILS_EXTENSION_NAME: with it rrc labels its
+                                                  commands (rrc_vulkan_device_desc.debug_utils_enabled) */
+} rrc_vulkan_requirements;
+
+/** Fills `out` (its type and size set by the caller).  Needs no context, no
+ *  device and no Vulkan call: call it before creating the host's device. */
+RRC_API rrc_result rrc_vulkan_get_requirements(rrc_vulkan_requirements* out);
 
 /** The host's Vulkan objects.  The library uses them and destroys none. */
 typedef struct rrc_vulkan_device_desc {
@@ -58,6 +84,15 @@ typedef struct rrc_vulkan_device_desc {
     const VkAllocationCallbacks* allocator;           /* optional, used for every object the library makes */
     uint32_t max_frames_in_flight;                    /* recorded frames pending at once; 0 = 2, at most 16 */
     uint32_t debug_utils_enabled;                     /* non-zero: VK_EXT_debug_utils is enabled on the instance; dispatches get labels */
+    /* ---- 0.11 (a 0.10 caller's size ends before this: read as NULL) ---- */
+    /* Optional: the features the host enabled on `device` (what it passed as
+     * VkDeviceCreateInfo.pEnabledFeatures or VkPhysicalDeviceFeatures2.features),
+     * which Vulkan cannot report.  Non-NULL: creation is refused
+     * (RRC_ERROR_UNSUPPORTED, naming the feature) unless every feature of
+     * rrc_vulkan_requirements.features is VK_TRUE in it.  NULL: not stated,
+     * unchecked.  Either way creation checks that the physical device
+     * supports them, its API version and its limits. */
+    const VkPhysicalDeviceFeatures* enabled_features;
 } rrc_vulkan_device_desc;
 
 /** One host image as the kernel sees it. */
@@ -168,6 +203,32 @@ typedef struct rrc_vulkan_frame_desc {
      * what it cannot"). */
     VkDeviceSize stats_buffer_size;
 } rrc_vulkan_frame_desc;
+
+/* ---- Image extents (0.11): what Vulkan cannot report -------------------- *
+ * An extension on rrc_vulkan_frame_desc.next (rrc.h Versioning, rule 5) for
+ * rrc_vulkan_record_frame, _classify and _resolve: the host states the extent
+ * it created its images with (VkImageCreateInfo.extent).  With it, every
+ * image the frame binds must be listed, and each must be the context's width
+ * x height: else the call is refused (RRC_ERROR_INVALID_ARGUMENT for an image
+ * not listed or listed twice with two extents, RRC_ERROR_SIZE_MISMATCH for
+ * an extent other than the context's) and nothing is recorded.  Images
+ * listed but not bound are ignored, so one table of all the host's images
+ * serves every frame.  Without it, extents are unchecked: an image larger
+ * than the context is written only in its top-left corner, a smaller one
+ * reads garbage (docs/INTEGRATION.md, "What rrc checks and what it cannot"). */
+typedef struct rrc_vulkan_image_extent {
+    VkImage image;
+    uint32_t width, height;
+} rrc_vulkan_image_extent;
+
+typedef struct rrc_vulkan_image_extents {
+    rrc_struct_type type; /* RRC_STRUCT_TYPE_EXT_VULKAN_IMAGE_EXTENTS */
+    const void* next;     /* the rest of the chain */
+    uint32_t size;        /* sizeof(rrc_vulkan_image_extents) */
+    uint32_t count;       /* 1..RRC_MAX_IMAGE_EXTENTS */
+    const rrc_vulkan_image_extent* images;
+} rrc_vulkan_image_extents;
+#define RRC_MAX_IMAGE_EXTENTS 4096u
 
 /** Creates a context on the host's device (no device of its own). */
 RRC_API rrc_result rrc_vulkan_context_create(const rrc_context_desc* desc, const rrc_vulkan_device_desc* device, rrc_context** out_context);

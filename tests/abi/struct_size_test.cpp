@@ -72,7 +72,7 @@ const rrc_abi_entry kLayout02[] = {
 
 TEST(AbiLayout, HeaderVersions) {
     EXPECT_EQ(rrc_abi_0_1_header_version, RRC_MAKE_VERSION(0, 1, 0)) << "abi_0_1_layout.c must see tests/abi/rrc_0_1";
-    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 10, 0)) << "rule 6: the current header is 0.10.0";
+    EXPECT_EQ((uint32_t)RRC_API_VERSION, RRC_MAKE_VERSION(0, 11, 0)) << "rule 6: the current header is 0.11.0";
     EXPECT_EQ(RRC_VERSION_MAJOR(rrc_get_version()), 0u);
     EXPECT_GE(RRC_VERSION_MINOR(rrc_get_version()), 4u) << "the library must be at least as new as its header";
 }
@@ -98,10 +98,12 @@ TEST(AbiLayout, Every01MemberKeepsItsOffsetSizeAndTag) {
 // rrc_vulkan_frame_desc (stats_buffer, stats_offset, object_id, storage_inputs),
 // rrc_context_desc (depth_test, use_object_id; 0.3: refresh_policy,
 // refresh_period, refresh_tiles, max_lifetime), rrc_frame_desc (object_id),
-// rrc_frame_output (0.3: refreshed), rrc_channel_desc and rrc_channel_input (0.4: the finishing steps).
+// rrc_frame_output (0.3: refreshed), rrc_channel_desc and rrc_channel_input (0.4: the finishing steps),
+// rrc_vulkan_device_desc (0.11: enabled_features).
 TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
-    const char* const appended[] = {"rrc_vulkan_channel_images", "rrc_vulkan_frame_desc", "rrc_context_desc", "rrc_frame_desc",
-                                    "rrc_frame_output",          "rrc_channel_desc",      "rrc_channel_input"};
+    const char* const appended[] = {"rrc_vulkan_channel_images", "rrc_vulkan_frame_desc", "rrc_context_desc",
+                                    "rrc_frame_desc",            "rrc_frame_output",      "rrc_channel_desc",
+                                    "rrc_channel_input",         "rrc_vulkan_device_desc"};
     for (const rrc_abi_entry* e = rrc_abi_0_1_layout; e->struct_name; ++e) {
         if (e->member) continue;
         size_t now = 0;
@@ -141,6 +143,8 @@ TEST(AbiLayout, OnlyTheAppendedStructsGrew) {
     // 0.10: the host's buffer sizes, after 0.8's last member and the quad list's 0.3 size.
     EXPECT_GE(offsetof(rrc_vulkan_frame_desc, stats_buffer_size), offsetof(rrc_vulkan_frame_desc, lighting_turn) + sizeof(float));
     EXPECT_EQ(offsetof(rrc_vulkan_quad_list, buffer_size), offsetof(rrc_vulkan_quad_list, offset) + sizeof(VkDeviceSize));
+    // 0.11: the host's declared features, after the device description's 0.1 size.
+    EXPECT_GE(offsetof(rrc_vulkan_device_desc, enabled_features), size01("rrc_vulkan_device_desc"));
 }
 
 // ---- the scene: 8x4, PREV_CLIP at each pixel's own clip position, column 0

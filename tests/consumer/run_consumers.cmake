@@ -2,6 +2,8 @@
 # (host_sample/examples/minimal_standalone.c) twice: with find_package(rrc)
 # and with pkg-config.
 # -DBUILD_DIR=<rrc build> -DSOURCE_DIR=<rrc source> -DWORK=<scratch dir>
+# -DLIBRARY_ONLY=ON: installs with README's library-only command instead
+# (.ci/install-library, its own Release build of the library alone).
 file(REMOVE_RECURSE ${WORK})
 set(prefix ${WORK}/prefix)
 function(run)
@@ -11,7 +13,17 @@ function(run)
   endif()
   message(STATUS "${out}")
 endfunction()
-run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+if(LIBRARY_ONLY)
+  run(bash ${SOURCE_DIR}/.ci/install-library ${prefix} ${WORK}/library-build)
+  # The library alone: no test, program or benchmark was configured.
+  foreach(target_dir tests host_sample bench)
+    if(EXISTS ${WORK}/library-build/${target_dir})
+      message(FATAL_ERROR "the library-only build configured ${target_dir}/")
+    endif()
+  endforeach()
+else()
+  run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+endif()
 include(GNUInstallDirs)
 set(libdir ${prefix}/${CMAKE_INSTALL_LIBDIR})
 foreach(f include/rrc/rrc.h include/rrc/rrc_vulkan.h ${CMAKE_INSTALL_LIBDIR}/cmake/rrc/rrcConfig.cmake

@@ -210,6 +210,21 @@ void fuzz_vulkan_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config)
                                                             c.fallback = fuzz_image(in);
                                                         });
     f.channels = f.channel_count && in.ConsumeIntegralInRange<int>(0, 7) ? images.get() : nullptr;
+    // Now and then the host's stated extents (rrc_vulkan_image_extents): pool images, mostly the context's size.
+    rrc_vulkan_image_extents ext;
+    std::vector<rrc_vulkan_image_extent> listed;
+    if (!f.next && in.ConsumeIntegralInRange<int>(0, 3) == 0) {
+        fuzz_header(in, ext, RRC_STRUCT_TYPE_EXT_VULKAN_IMAGE_EXTENTS);
+        const uint32_t n = in.ConsumeIntegralInRange<uint32_t>(0, 6);
+        for (uint32_t i = 0; i < n; ++i) {
+            const VkImage image = reinterpret_cast<VkImage>(uintptr_t(0x1000 * in.ConsumeIntegralInRange<int>(1, 4)));
+            const uint32_t w = in.ConsumeBool() ? config.width : fuzz_small(in, 64), h = in.ConsumeBool() ? config.height : fuzz_small(in, 64);
+            listed.push_back({image, w, h});
+        }
+        ext.count = (uint32_t)listed.size();
+        ext.images = listed.empty() ? nullptr : listed.data();
+        f.next = &ext;
+    }
     try {
         const rrc::Frame frame = rrc::read_frame(&f, config.channels.size());
         rrc::validate_frame(config, frame, nullptr, 256);
@@ -217,6 +232,10 @@ void fuzz_vulkan_frame(FuzzedDataProvider& in, const rrc::ContextConfig& config)
         if (frame.stats_buffer && frame.stats_buffer_size &&
             (frame.stats_offset > frame.stats_buffer_size || frame.stats_buffer_size - frame.stats_offset < sizeof(rrc_vulkan_frame_stats)))
             std::abort();
+        // Accepted with stated extents: the depth image (when bound) is listed, only at the context's size.
+        if (frame.extents_given && frame.depth_image.image)
+            for (const rrc_vulkan_image_extent& e : listed)
+                if (e.image == frame.depth_image.image && (e.width != config.width || e.height != config.height)) std::abort();
         for (uint32_t i = 0; i < frame.channel_count; ++i) {
             const VkImage out = frame.channels[i].output_image.image;
             if (out && (out == frame.depth_image.image || out == frame.channels[i].samples_image.image || out == frame.mask_image.image))

@@ -224,6 +224,21 @@ TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
     const std::vector<uint8_t> before_mask = read_back<uint8_t>(host, mask);
     std::memset(stats.mapped, 0xAB, stats_size);
 
+    // The host's stated extents (rrc_vulkan_image_extents on frame.next): every image the frame binds.
+    std::vector<rrc_vulkan_image_extent> table;
+    auto ext = rrc_host::rrc_struct<rrc_vulkan_image_extents>(RRC_STRUCT_TYPE_EXT_VULKAN_IMAGE_EXTENTS);
+    auto state_extents = [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images* ch, uint32_t w, uint32_t h) {
+        table.clear();
+        for (const rrc_vulkan_image* img : {&f.depth, &f.reprojection, &f.nocache, &f.mask, &f.object_id})
+            if (img->image) table.push_back({img->image, w, h});
+        for (int c = 0; c < 2; ++c)
+            for (const rrc_vulkan_image* img : {&ch[c].samples, &ch[c].confidence, &ch[c].output, &ch[c].age, &ch[c].fallback})
+                if (img->image) table.push_back({img->image, w, h});
+        ext.count = (uint32_t)table.size(), ext.images = table.data();
+        f.next = &ext;
+    };
+    const rrc_struct_header unknown{0x525243FFu, nullptr, sizeof(rrc_struct_header)};
+
     struct Mistake {
         const char* name;
         rrc_result code;
@@ -258,6 +273,29 @@ TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
          [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images* ch) { ch[0].size = 0x7FFFFFFFu; }},
         {"a quad list past its buffer", RRC_ERROR_SIZE_MISMATCH, "list.buffer_size",
          [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images*) {}, true, list_bytes - 4},
+        {"images larger than the context", RRC_ERROR_SIZE_MISMATCH, "is 96x64 (rrc_vulkan_image_extents), the context is 48x32",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images* ch) { state_extents(f, ch, 2 * W, 2 * H); }},
+        {"a reprojection image smaller than the frame", RRC_ERROR_SIZE_MISMATCH, "frame.reprojection.image is 24x16",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images* ch) {
+             state_extents(f, ch, W, H);
+             for (auto& e : table)
+                 if (e.image == f.reprojection.image) e.width = W / 2, e.height = H / 2;
+         }},
+        {"an image the extents leave out", RRC_ERROR_INVALID_ARGUMENT, "frame.channels[1].output.image is not listed",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images* ch) {
+             state_extents(f, ch, W, H);
+             ext.count = (uint32_t)(std::remove_if(table.begin(), table.end(), [&](const rrc_vulkan_image_extent& e) {
+                                        return e.image == ch[1].output.image;
+                                    }) - table.begin());
+         }},
+        {"the same image with two extents", RRC_ERROR_INVALID_ARGUMENT, "listed twice",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images* ch) {
+             state_extents(f, ch, W, H);
+             table.push_back({f.depth.image, W + 1, H});
+             ext.count = (uint32_t)table.size(), ext.images = table.data();
+         }},
+        {"an extension this library does not know", RRC_ERROR_UNSUPPORTED, "does not know",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.next = &unknown; }},
     };
     for (const Mistake& m : mistakes) {
         SCOPED_TRACE(m.name);
@@ -292,6 +330,7 @@ TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
         auto f = in_img.frame(inputs[1], ch, cmd);
         f.mask = view_of(mask, VK_IMAGE_LAYOUT_GENERAL);
         f.stats_buffer = stats.buffer, f.stats_offset = 0, f.stats_buffer_size = stats_size;  // in range: accepted
+        state_extents(f, ch, W, H);                                                             // stated and right: accepted
         ASSERT_EQ(rrc_vulkan_record_frame(ctx, &f), RRC_SUCCESS) << rrc_last_error();
         host.submit_and_wait(cmd);
         check_frame(1);
@@ -308,6 +347,39 @@ TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
     static_cast<rrc_host::VulkanBootstrap&>(host).destroy(quads);
     host.shutdown();
     EXPECT_EQ(host.message_count(), 0u) << "validation messages, first: " << host.messages().front();
+}
+
+// What rrc needs of the device, queried (the host under test enabled exactly
+// that: vulkan_host.cpp), and a host's declared features checked at creation.
+TEST(Interop, RequirementsAreQueriedAndDeclaredFeaturesChecked) {
+    auto req = rrc_host::rrc_struct<rrc_vulkan_requirements>(RRC_STRUCT_TYPE_VULKAN_REQUIREMENTS);
+    ASSERT_EQ(rrc_vulkan_get_requirements(&req), RRC_SUCCESS) << rrc_last_error();
+    EXPECT_EQ(req.api_version, (uint32_t)VK_API_VERSION_1_1);
+    EXPECT_EQ(req.features.shaderStorageImageWriteWithoutFormat, (VkBool32)VK_TRUE);
+    EXPECT_EQ(req.features.robustBufferAccess, (VkBool32)VK_FALSE);
+    EXPECT_EQ(req.device_extension_count, 0u);
+    EXPECT_EQ(req.max_per_stage_storage_images, 64u);
+    EXPECT_STREQ(req.optional_instance_extension, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    auto wrong = req;
+    wrong.type = RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC;
+    EXPECT_EQ(rrc_vulkan_get_requirements(&wrong), RRC_ERROR_INVALID_STRUCT);
+
+    VulkanHost host;
+    std::vector<rrc_channel_desc> channels = test_channels();
+    rrc_vulkan_device_desc d = device_desc(host);
+    EXPECT_EQ(host.enabled_features.shaderStorageImageWriteWithoutFormat, (VkBool32)VK_TRUE);
+    const VkPhysicalDeviceFeatures none{};
+    d.enabled_features = &none;  // a host that says it enabled nothing
+    const rrc_context_desc desc = test_desc(channels);
+    rrc_context* ctx = nullptr;
+    EXPECT_EQ(rrc_vulkan_context_create(&desc, &d, &ctx), RRC_ERROR_UNSUPPORTED);
+    EXPECT_NE(std::string(rrc_last_error()).find("shaderStorageImageWriteWithoutFormat"), std::string::npos) << rrc_last_error();
+    EXPECT_EQ(ctx, nullptr);
+    d.enabled_features = &host.enabled_features;
+    ASSERT_EQ(rrc_vulkan_context_create(&desc, &d, &ctx), RRC_SUCCESS) << rrc_last_error();
+    rrc_context_destroy(ctx);
+    host.shutdown();
+    EXPECT_EQ(host.message_count(), 0u);
 }
 
 // The standalone path's share of the same rule: a garbage size is refused

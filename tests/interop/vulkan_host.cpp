@@ -1,4 +1,5 @@
 #include "interop/vulkan_host.h"
+#include "rrc_interop.h"
 
 #include <stdexcept>
 
@@ -25,6 +26,7 @@ rrc_host::BootstrapOptions test_host_options() {
     rrc_host::BootstrapOptions o;
     o.application = "rrc-interop-test";
     o.validation = true;  // the tests fail on any message
+    o.features = rrc_host::rrc_features();  // what rrc needs (rrc_vulkan_get_requirements)
     return o;
 }
 

@@ -12,6 +12,7 @@
 // is never recorded.  It prints the captured commands once per distinct
 // shape (docs/PERFORMANCE.md, "The frame plan").
 #include "plan/plan_table.h"
+#include "rrc_interop.h"
 
 #include "bench_images.h"    // bench/
 #include "interop_run.h"
@@ -404,6 +405,7 @@ TEST(PlanCapture, EveryBenchConfigurationRecordsItsPlanOnBothPaths) {
     rrc_host::BootstrapOptions bo;
     bo.application = "rrc-plan-capture";
     bo.validation = true;
+    bo.features = rrc_host::rrc_features();  // what rrc needs (rrc_vulkan_get_requirements)
     rrc_host::VulkanBootstrap vk(bo);
     Capture capture;
     size_t checked = 0;
