@@ -1,5 +1,5 @@
 # Fails when an example outgrows its budget, counted as `wc -l` counts (newlines):
-# minimal_standalone.c 120 lines, every file of interop/ (C++ and GLSL) 350, the
+# minimal_standalone.c 120 lines, every file of interop/ (C++ and GLSL) 380, the
 # C++ formatted with .clang-format (raster pass, validation, frame and shading
 # cache, checks).
 # cmake -DDIR=<host_sample/examples> -P line_budget.cmake
@@ -16,7 +16,7 @@ endfunction()
 
 set(failed FALSE)
 file(GLOB interop ${DIR}/interop/*)
-foreach(budget "120;${DIR}/minimal_standalone.c" "350;${interop}")
+foreach(budget "120;${DIR}/minimal_standalone.c" "380;${interop}")
   list(POP_FRONT budget limit)
   count_lines(lines ${budget})
   message(STATUS "${lines} of ${limit} lines: ${budget}")

@@ -7,6 +7,7 @@
 #include <rrc/rrc.h>
 
 #include <algorithm>
+#include <cstring>
 #include <optional>
 #include <utility>
 #include <cstdio>
@@ -131,7 +132,9 @@ std::string usage() {
            "  --pcf-fill-radius R      the pcf fill's window half width (default 0: the library's, 2, the preset)\n"
            "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
-           "                           fallback image (default 4; 0 = no fallback)\n"
+           "                           fallback image (default: the preset's, 4 with the base, 0 with --no-base; 0 = no fallback)\n"
+           "  --no-base                the library's presets without their bases (docs/reference/presets.md): rrc-sample\n"
+           "                           renders no pcf, env or soft base and passes rrc no fallback image\n"
            "  --blur-sigma S           the pcf channel's Gaussian blur (with --history-filter gaussian; default 0: the library's 0.5)\n"
            "  --pcf-smoothstep E0,E1   display only: show smoothstep(E0, E1, pcf) (never fed back to rrc)\n"
            "  --pcf-threshold X        display only: show pcf >= X as 1, else 0 (after the smoothstep, if any)\n"
@@ -209,9 +212,15 @@ Options parse_options(int argc, const char* const* argv) {
     // The signals whose channel gets the blur bound; not given: the presets' (channel_presets.h).
     std::optional<uint32_t> blur_bound;
     float blur_bound_px2 = 0.0f;
+    // --no-base picks the presets every other option then changes: read it first.
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--no-base") == 0) o.base = false;
+    if (!o.base) o.channels = ChannelPresets(false), o.pcf_base = 0, o.env_base = 0;
     rrc_host::ArgCursor c(argc, argv);
     while (c.next()) {
-        if (c.option("--scene"))
+        if (c.flag("--no-base"))
+            continue;  // read above
+        else if (c.option("--scene"))
             o.scene = scene_name(c);
         else if (c.option("--frames"))
             o.frames = (int)c.integer(1, 100000);
@@ -341,7 +350,7 @@ Options parse_options(int argc, const char* const* argv) {
     // The fill's fallback is the PCSS estimate, worth --fill-prior samples; without a fill rrc takes none.
     // The fill's members go to rrc only with a fill (the library refuses them without one).
     const bool fill = o.channels.soft.fill_age != 0;
-    o.channels.soft.fill_prior = fill ? o.fill_prior : 0.0f;
+    o.channels.soft.fill_prior = !fill ? 0.0f : o.fill_prior >= 0.0f ? o.fill_prior : o.channels.soft.fill_prior;
     o.channels.soft.fill_radius = fill ? o.fill_radius : 0u;
     o.channels.soft.fill_depth_tolerance = fill ? o.fill_depth_tolerance : 0.0f;
     // pcf's window: the preset's unless given; rrc refuses a window without a fill, so --pcf-fill 0
@@ -349,10 +358,10 @@ Options parse_options(int argc, const char* const* argv) {
     if (o.channels.pcf.fill_age == 0 && o.pcf_fill_radius > 0) throw OptionError("--pcf-fill-radius needs the pcf fill (--pcf-fill T > 0)");
     o.channels.pcf.fill_radius = o.channels.pcf.fill_age == 0 ? 0u
                                  : o.pcf_fill_radius >= 0  ? (uint32_t)o.pcf_fill_radius
-                                                           : ChannelPresets{}.pcf.fill_radius;
+                                                           : ChannelPresets(o.base).pcf.fill_radius;
     // Not given, --antilag keeps the presets' channels and constants (--antilag-gamma/-threshold
     // override them); given, the listed channels get the given constants or the library's.
-    const ChannelPresets presets;
+    const ChannelPresets presets(o.base);
     uint32_t preset_bits = 0;
     for (auto [bit, ch] : {std::pair<uint32_t, const ChannelSettings*>{kSignalPcf, &presets.pcf}, {kSignalEnv, &presets.env},
                            {kSignalSoft, &presets.soft}})

@@ -23,16 +23,17 @@ struct Options {
     float epsilon_scale = 0.0f;         // > 0: rrc's epsilon_scale (ulps of FLOAT32 depth), a FIXED test; 0 = none given
     uint32_t depth_test = 0;            // RRC_DEPTH_TEST_*; 0 = the library's default (ADAPTIVE when no epsilon is given)
     float soft_prior = 4.0f;            // PCSS fallback weight, in samples (see README.md)
-    float fill_prior = kSampleFillPrior;  // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill)
+    float fill_prior = -1.0f;           // --fill-prior: the PCSS fallback's weight in rrc's fill (with --soft-fill); < 0: the preset's
     uint32_t fill_radius = 0;           // --fill-radius (0: the library's default)
     int pcf_fill_radius = -1;           // --pcf-fill-radius (-1: the preset's, the library's 5x5)
     float fill_depth_tolerance = 0.0f;  // --fill-depth-tolerance (0: the library's default)
     // Without --soft-fill the three fill options are parsed but rrc gets no fill members.
-    ChannelPresets channels;                 // --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
+    bool base = true;                        // --no-base: the library's presets without their bases (none rendered)
+    ChannelPresets channels;                 // the presets, then --lambda, --blend, --history-filter (pcf and env), --soft-age-cap
     // env's view lobe (channel_presets.h): in pixels of the camera's vertical angle (run_sample
     // turns it into radians with the scene's fov and --size); --env-view-lobe A sets radians
     // instead (channels.env.view_lobe), and then this is 0.
-    float env_view_lobe_px = 0.0f;  // 0: the preset's lobe in radians (kEnvResidualViewLobe, channel_presets.h)
+    float env_view_lobe_px = 0.0f;  // 0: the preset's lobe in radians (docs/reference/presets.md)
     uint32_t seed = 0;                       // ensemble member: moves every random stream
     uint32_t pcf_pattern = 0;                // 0 uniform disk (unbiased for the target), 1 the paper's rotated Poisson disk
     uint32_t env_base = kSampleEnvBase;      // --env-residual's base: 1 centre, 2 unbumped, 3 smooth, 4 filtered (the preset); 0 off

@@ -743,7 +743,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     // The view lobe (0.7): env only; the preset's in radians at every size (channel_presets.h),
     // replaced by one in pixels of the vertical angle when those are given.
     EXPECT_EQ(o.env_view_lobe_px, 0.0f);
-    EXPECT_EQ(o.channels.env.view_lobe, kEnvResidualViewLobe);
+    EXPECT_EQ(o.channels.env.view_lobe, ChannelPresets{}.env.view_lobe);
     const char* lobe_18[] = {"rrc-sample", "--env-view-lobe-px", "18"};
     EXPECT_EQ(parse_options(3, lobe_18).env_view_lobe_px, kEnvViewLobePixels);
     EXPECT_EQ(parse_options(3, lobe_18).channels.env.view_lobe, 0.0f) << "the pixels replace the preset's radians";
@@ -776,7 +776,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_THROW(parse_options(5, window_without_fill), OptionError);
     const char* too_wide[] = {"rrc-sample", "--pcf-fill-radius", "5"};
     EXPECT_THROW(parse_options(3, too_wide), OptionError) << "above RRC_MAX_FILL_RADIUS";
-    // The presets chosen from rrc-sweep's fronts (channel_presets.h, docs/PERFORMANCE.md).
+    // The library's presets as the sample takes them (docs/reference/presets.md).
     const ChannelPresets p;
     EXPECT_EQ(p.pcf.lambda, 0.9f);
     EXPECT_EQ(p.pcf.rectify, 0u);
@@ -787,7 +787,7 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     EXPECT_EQ(p.soft.residual, 1u);
     EXPECT_EQ(p.pcf.residual, 1u) << "against the bilinear compares (README.md, \"The pcf residual\")";
     EXPECT_EQ(p.env.residual, 1u) << "against the filtered reflections (README.md, \"The env residual\")";
-    EXPECT_EQ(p.env.view_lobe, kEnvResidualViewLobe) << "a lobe in radians, wide enough to leave the camera's motion alone";
+    EXPECT_EQ(p.env.view_lobe, 0.08f) << "a lobe in radians, wide enough to leave the camera's motion alone";
     EXPECT_GT(p.env.view_lobe, 4.0f * 0.0174533f) << "capped at age 4 or more behind a light turning 1 degree a frame";
     EXPECT_EQ(p.env.blur_bound, 0.0f) << "not measured on env";
     EXPECT_EQ(p.pcf.fill_age, 4u);

@@ -6,6 +6,7 @@
 
 #include <rrc/rrc_vulkan.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -67,11 +68,11 @@ const VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, k
 const Use kDiscard{kCompute | kCopy, 0, VK_IMAGE_LAYOUT_UNDEFINED};  // after the last frame's compute and copies; contents dropped
 const Use kColour{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-const Use kSampled{kCompute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};  // rrc's inputs
 const Use kStorage{kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_GENERAL};                  // the miss shader's image
 const Use kCopied{kCopy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};  // rrc's outputs between frames
 
-// An image as rrc is given it: in `use`'s layout when its commands start, and left in it (docs/INTEGRATION.md, step 2).
+// An image as rrc is given it: in `use`'s layout when its commands start, and left in it; rrc's barriers move it to what its
+// kernel needs and back, after any earlier stage's writes (docs/INTEGRATION.md, "What rrc checks and what it cannot").
 rrc_vulkan_image make_image(VkFormat format, VkImageUsageFlags usage, Use use) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, nullptr, 0, VK_IMAGE_TYPE_2D, format, VkExtent3D{W, H, 1}, 1, 1};
     info.samples = VK_SAMPLE_COUNT_1_BIT, info.usage = usage;
@@ -158,15 +159,16 @@ int main(int argc, char** argv) {
     volkLoadInstance(instance);
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     if (validation) VK(vkCreateDebugUtilsMessengerEXT(instance, &messenger_info, nullptr, &messenger));
-    // The first device, family 0 (graphics + compute; an engine chooses).  rrc needs shaderStorageImageWriteWithoutFormat.
+    // The first device, family 0 (graphics + compute; an engine chooses), with the features rrc asks for.
     uint32_t count = 1, family = 0;
     vkEnumeratePhysicalDevices(instance, &count, &physical);
     const float priority = 1;
     const VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &priority};
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.synchronization2 = features13.dynamicRendering = VK_TRUE;
-    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13};
-    features2.features.shaderStorageImageWriteWithoutFormat = VK_TRUE;
+    rrc_vulkan_requirements needs{RRC_STRUCT_TYPE_VULKAN_REQUIREMENTS, nullptr, sizeof needs};  // what rrc needs: Vulkan 1.1, features
+    RRC(rrc_vulkan_get_requirements(&needs));
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &features13, needs.features};
     const char* extension = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;  // this program's, as are dynamic rendering, synchronization2
     const VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features2, 0, 1, &queue_info, 0, nullptr, 1, &extension};
     VK(vkCreateDevice(physical, &device_info, nullptr, &device));
@@ -176,19 +178,23 @@ int main(int argc, char** argv) {
     const VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, family};
     CREATE(CommandPool, pool, pool_info);
     // rrc on the engine's device (step 1); --cache: one REUSE channel, a pure shading cache.
-    rrc_channel_desc channel{RRC_STRUCT_TYPE_CHANNEL_DESC, nullptr, sizeof channel, "signal", 1, RRC_HISTORY_FP32, 0.5f};
-    channel.blend = cache ? RRC_BLEND_REUSE : RRC_BLEND_FIXED;
+    // The channel's settings from rrc's presets (docs/guide/): a shadow-like signal with no base to render, or the cache.
+    rrc_channel_desc channel{RRC_STRUCT_TYPE_CHANNEL_DESC, nullptr, sizeof channel, "signal", 1, RRC_HISTORY_FP32};
+    RRC(rrc_channel_preset(cache ? RRC_PRESET_SHADING_CACHE : RRC_PRESET_PCF_SHADOWS, 0, RRC_API_VERSION, &channel));
     rrc_context_desc desc{RRC_STRUCT_TYPE_CONTEXT_DESC, nullptr, sizeof desc, RRC_API_VERSION, W, H, RRC_DEPTH_MODE_REVERSED};
     desc.reprojection = RRC_REPROJECTION_PREV_CLIP, desc.channel_count = 1, desc.channels = &channel;
+    if (cache) RRC(rrc_context_preset(RRC_PRESET_SHADING_CACHE, 0, RRC_API_VERSION, &desc));  // its refresh policy
     rrc_vulkan_device_desc host{RRC_STRUCT_TYPE_VULKAN_DEVICE_DESC, nullptr, sizeof host, instance, physical, device, family};
     host.vulkan_api_version = VK_API_VERSION_1_3, host.get_instance_proc_addr = vkGetInstanceProcAddr;
     host.max_frames_in_flight = 1, host.debug_utils_enabled = validation;  // with validation, rrc labels its dispatches
+    host.enabled_features = &features2.features;                          // what this device enabled: rrc checks its own
     rrc_context* ctx;
     RRC(rrc_vulkan_context_create(&desc, &host, &ctx));
     const VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT, target = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled,
                             result = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    const auto depth = make_image(VK_FORMAT_R32_SFLOAT, target, kSampled), signal = make_image(VK_FORMAT_R32_SFLOAT, target, kSampled);
-    const auto clip = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, target, kSampled);
+    // The render pass's targets, handed to rrc in the layout the pass left them in.
+    const auto depth = make_image(VK_FORMAT_R32_SFLOAT, target, kColour), signal = make_image(VK_FORMAT_R32_SFLOAT, target, kColour);
+    const auto clip = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, target, kColour);
     const auto shaded = make_image(VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT | sampled, kStorage);  // the miss shader's (--cache)
     const auto output = make_image(VK_FORMAT_R32_SFLOAT, result, kCopied), mask = make_image(VK_FORMAT_R8_UINT, result, kCopied);
     rrc_vulkan_channel_images images{RRC_STRUCT_TYPE_VULKAN_CHANNEL_IMAGES, nullptr, sizeof images, cache ? shaded : signal, {}, output};
@@ -237,7 +243,6 @@ int main(int argc, char** argv) {
         const VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         VK(vkBeginCommandBuffer(cmd, &begin));
         barrier(cmd, {transition(depth, kDiscard, kColour), transition(clip, kDiscard, kColour), transition(signal, kDiscard, kColour)});
-        if (t == 0) barrier(cmd, {transition(output, kDiscard, kCopied), transition(mask, kDiscard, kCopied)});
         VkRenderingAttachmentInfo targets[3] = {{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, depth.view, kColour.layout},
                                                 {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, clip.view, kColour.layout},
                                                 {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, nullptr, signal.view, kColour.layout}};
@@ -250,22 +255,25 @@ int main(int argc, char** argv) {
         vkCmdPushConstants(cmd, ground_layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof camera, camera);
         vkCmdDraw(cmd, 4, 1, 0, (uint32_t)t);
         vkCmdEndRendering(cmd);
-        // rrc samples its inputs in SHADER_READ_ONLY_OPTIMAL; it moves its outputs to GENERAL and back to the copy's layout.
-        barrier(cmd, {transition(depth, kColour, kSampled), transition(clip, kColour, kSampled), transition(signal, kColour, kSampled),
-                      transition(shaded, kDiscard, kStorage)});
+        // No barrier of the host's: rrc's own make the pass's writes visible and move each image between the layout it is
+        // given and its final_layout (here the same).  On the first frame the outputs' contents are UNDEFINED: discarded.
         rrc_vulkan_frame_desc frame{RRC_STRUCT_TYPE_VULKAN_FRAME_DESC, nullptr, sizeof frame, cmd, (uint64_t)t};
         frame.depth = depth, frame.reprojection = clip, frame.mask = mask, frame.channel_count = 1, frame.channels = &images;
+        images.output.layout = frame.mask.layout = t == 0 ? VK_IMAGE_LAYOUT_UNDEFINED : kCopied.layout;
+        images.output.final_layout = frame.mask.final_layout = kCopied.layout;
         frame.split_outputs = 1;  // classify writes the hits, resolve the listed quads ("What each call writes")
         if (!cache) {
             RRC(rrc_vulkan_record_frame(ctx, &frame));
         } else {
             const rrc_vulkan_quad_list list{RRC_STRUCT_TYPE_VULKAN_QUAD_LIST, nullptr, sizeof list, buffer, 0};
             RRC(rrc_vulkan_record_classify(ctx, &frame, &list));  // ends with a barrier to the indirect read and the shader
+            barrier(cmd, {transition(shaded, kDiscard, kStorage)});  // the miss shader's own image, for its writes
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, miss);
             vkCmdPushDescriptorSetKHR(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, miss_layout, 0, 2, writes);
             vkCmdPushConstants(cmd, miss_layout, cs, 0, sizeof value, &value);
             vkCmdDispatchIndirect(cmd, buffer, 4 * RRC_QUAD_LIST_DISPATCH);
-            RRC(rrc_vulkan_record_resolve(ctx, &frame));  // its barriers make the miss shader's writes visible to it
+            images.output.layout = frame.mask.layout = kCopied.layout;  // where classify left them
+            RRC(rrc_vulkan_record_resolve(ctx, &frame));                 // its barriers make the miss shader's writes visible to it
         }
         // rrc's last barriers made its writes visible to any later stage: copy them out for the host.
         VkBufferImageCopy region{kOutput, 0, 0, VkImageSubresourceLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {}, VkExtent3D{W, H, 1}};
@@ -280,16 +288,20 @@ int main(int argc, char** argv) {
         const VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO, nullptr, 0, nullptr, nullptr, 1, &cmd};
         VK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE));
         VK(vkQueueWaitIdle(queue));  // an engine waits for the frame's fence
-        // A hit blends frame 0's value with this frame's (lambda 0.5) or, with --cache, keeps it; any other pixel takes this frame's
-        // (docs/CONVENTIONS.md).  A quad is listed iff a pixel of it is not a hit ("Classify, the quad list and resolve").
+        // --cache: a hit keeps frame 0's value, any other pixel (a refreshed one too) takes this frame's.  Otherwise the preset blends a hit's history
+        // with this frame's sample, shows young pixels as a mean of their neighbours and may drop a history that changed this
+        // much (docs/reference/presets.md): every value lies between frame 0's and this frame's.  A quad is listed iff a pixel
+        // of it is not a hit ("Classify, the quad list and resolve").
         const float* out = (const float*)(mapped + kOutput);
         const uint8_t* bits = (const uint8_t*)(mapped + kMask);
         uint32_t hits = 0, background = 0, quads = 0, wrong = 0;
         for (uint32_t i = 0; i < W * H; ++i) {
             hits += bits[i] == RRC_MASK_HIT;
             background += bits[i] == RRC_MASK_BACKGROUND;
-            wrong += bits[i] != 0 && bits[i] != RRC_MASK_HIT && bits[i] != RRC_MASK_BACKGROUND;
-            wrong += std::abs(out[i] - (bits[i] != RRC_MASK_HIT ? value : cache ? previous : 0.5f * (previous + value))) > 1e-6f;
+            wrong += bits[i] != 0 && bits[i] != RRC_MASK_HIT && bits[i] != RRC_MASK_BACKGROUND && bits[i] != RRC_MASK_REFRESHED;
+            const float lo = t ? std::min(previous, value) : value, hi = t ? std::max(previous, value) : value;
+            wrong += cache ? std::abs(out[i] - (bits[i] != RRC_MASK_HIT ? value : previous)) > 1e-6f
+                           : !(out[i] >= lo - 1e-6f && out[i] <= hi + 1e-6f);
             const uint32_t q = 2 * (i / (W / 2)) * W + 2 * (i % (W / 2));  // top-left pixel of quad i of W * H / 4
             quads += i < W * H / 4 && (bits[q] & bits[q + 1] & bits[q + W] & bits[q + W + 1] & RRC_MASK_HIT) == 0;
         }

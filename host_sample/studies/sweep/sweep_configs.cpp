@@ -92,13 +92,12 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
             // spells: the targets under motion are theirs (docs/PERFORMANCE.md, "Targets under
             // motion").  pcf's: the residual against kSamplePcfBaseTaps bilinear compares (its
             // base pass is timed with its rrc pass; testbed README.md, "The pcf residual").  soft's: Catmull-Rom, the fill with rrc-sample's PCSS estimate as its
-            // prior, worth kSampleFillPrior samples, and the residual against the stable estimate
+            // prior (the library preset's fill_prior), and the residual against the stable estimate
             // (README.md, "The soft preset rows": its centre-light map and PCSS pass are timed
             // with its rrc pass).  env's preset (the view lobe scaled to the size) is not a row.
             if (o.finishing && app.signal == rrc_sample::kSignalPcf) run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
             if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
                 rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
-                preset.fill_prior = rrc_sample::kSampleFillPrior;
                 run.configs.push_back({app, preset});
                 // The preset with its cure off: the same channel fed the sample itself, the PCSS
                 // estimate as the fill's fallback (README.md, "The soft residual").

@@ -133,10 +133,11 @@ struct Engine {
         s.ages = false;  // no row reads them: rrc's time is the channel's without the optional age output
         // No base here (rrc-sample's soft preset takes the stable PCSS estimate as its residual's
         // base, pcf's its bilinear compares, env's its filtered reflections): the preset rows set
-        // their own channel, which turns it back on.
+        // their own channel, which turns them back on.
         s.channels.pcf.residual = 0;
         s.channels.env.residual = 0;
         s.channels.soft.residual = 0;
+        s.channels.soft.fill_prior = 0.0f;  // nor the PCSS estimate as the fill's prior
         return s;
     }
     /** The same for one signal, its channel set to `channel` (a configuration the sweep or the study tries). */

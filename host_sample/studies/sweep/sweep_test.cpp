@@ -361,7 +361,6 @@ TEST(SweepConfigs, SoftPresetRowsAreTheSamplesPresetWithAndWithoutItsResidual) {
     o.lambdas = {0.6f};
     const uint32_t all = rrc_sample::kSignalPcf | rrc_sample::kSignalEnv | rrc_sample::kSignalSoft;
     rrc_sample::ChannelSettings expected = rrc_sample::ChannelPresets{}.soft;
-    expected.fill_prior = rrc_sample::kSampleFillPrior;
     ASSERT_EQ(expected.residual, 1u) << "the soft preset accumulates the residual (testbed README.md, \"The soft residual\")";
     rrc_sample::ChannelSettings plain = expected;
     plain.residual = 0;

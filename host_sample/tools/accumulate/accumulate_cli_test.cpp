@@ -1059,11 +1059,11 @@ TEST(AccumulateTool, ObjectIdChannel) {
 // tool's defaults and its own keys.
 TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     // The values section 7 documents: a change here is a change there.
-    EXPECT_FLOAT_EQ(rrc_cli::kBlenderPresetLambda, 0.85f);
-    EXPECT_EQ(rrc_cli::kBlenderPresetBlend, RRC_BLEND_AGE_AWARE);
-    EXPECT_EQ(rrc_cli::kBlenderPresetFilter, RRC_HISTORY_FILTER_BILINEAR);
-    EXPECT_EQ(rrc_cli::kBlenderPresetFillAge, 4u);
-    EXPECT_EQ(rrc_cli::kBlenderPresetRectify, 1u);
+    EXPECT_FLOAT_EQ(rrc_cli::blender_preset_channel().lambda, 0.85f);
+    EXPECT_EQ(rrc_cli::blender_preset_channel().blend, RRC_BLEND_AGE_AWARE);
+    EXPECT_EQ(rrc_cli::blender_preset_channel().filter, RRC_HISTORY_FILTER_BILINEAR);
+    EXPECT_EQ(rrc_cli::blender_preset_channel().fill_age, 4u);
+    EXPECT_EQ(rrc_cli::blender_preset_channel().rectify, 1u);
 
     TempDir dir;
     rrc_exr::ExrImage img;

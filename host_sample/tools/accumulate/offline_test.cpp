@@ -58,14 +58,14 @@ using namespace rrc_cli_test;
 const std::string kLayer = "ViewLayer.";
 
 // The signal --preset blender accumulates without --signal, spelt out as a
-// --signal (options.h: kBlenderPresetLambda, kBlenderPresetBlend, kBlenderPresetFilter, kBlenderPresetFillAge,
-// kBlenderPresetRectify).
+// --signal (options.h: blender_preset_channel(), the library's RRC_PRESET_OFFLINE:
+// lambda, blend, filter, fill age, rectify).
 std::string preset_signal() {
     char lambda[32];
-    std::snprintf(lambda, sizeof lambda, "%g", static_cast<double>(rrc_cli::kBlenderPresetLambda));
-    return kLayer + "Combined:lambda=" + lambda + ",blend=" + rrc_host::enum_name(rrc_host::kBlendNames, rrc_cli::kBlenderPresetBlend) +
-           ",filter=" + rrc_host::enum_name(rrc_host::kHistoryFilterNames, rrc_cli::kBlenderPresetFilter) +
-           ",fill=" + std::to_string(rrc_cli::kBlenderPresetFillAge) + ",rectify=" + (rrc_cli::kBlenderPresetRectify ? "on" : "off");
+    std::snprintf(lambda, sizeof lambda, "%g", static_cast<double>(rrc_cli::blender_preset_channel().lambda));
+    return kLayer + "Combined:lambda=" + lambda + ",blend=" + rrc_host::enum_name(rrc_host::kBlendNames, rrc_cli::blender_preset_channel().blend) +
+           ",filter=" + rrc_host::enum_name(rrc_host::kHistoryFilterNames, rrc_cli::blender_preset_channel().filter) +
+           ",fill=" + std::to_string(rrc_cli::blender_preset_channel().fill_age) + ",rectify=" + (rrc_cli::blender_preset_channel().rectify ? "on" : "off");
 }
 
 std::string frame_path(const std::string& pattern, int f) { return rrc_cli::format_frame_path(pattern, f); }
@@ -196,7 +196,7 @@ TEST(OfflineOptions, BlenderPresetSetsWhatBlenderWrites) {
     EXPECT_EQ(r.options.reproject, rrc_cli::Reproject::Motion);
     EXPECT_EQ(r.options.motion_units, rrc_cli::MotionUnits::Pixels);
     EXPECT_TRUE(r.options.motion_y_up);
-    EXPECT_EQ(r.options.tau, rrc_cli::kBlenderPresetTau);
+    EXPECT_EQ(r.options.tau, rrc_cli::blender_preset_tau());
     EXPECT_EQ(r.options.background_threshold, 0.0f);  // the library's 1e10: Blender's sky
 
     // Explicit options win over the preset.
@@ -319,7 +319,7 @@ TEST(BlenderConvention, PresetMatchesTheReference) {
     rrc_context_desc ctx = rrc_test::context_desc(W, H, channels);
     ctx.depth_mode = RRC_DEPTH_MODE_LINEAR;
     ctx.reprojection = RRC_REPROJECTION_MOTION;
-    ctx.tau = rrc_cli::kBlenderPresetTau;
+    ctx.tau = rrc_cli::blender_preset_tau();
 
     rrc_ref::PreviousFrame prev;
     int64_t compared = 0, pixels = 0, near = 0, hits = 0, tested = 0;
@@ -406,7 +406,7 @@ TEST(BlenderConvention, ChannelOptionsReproduceThePreset) {
     sc.camera_speed = 3.0;  // enough vertical motion for the y sign to matter
     const rrc_scene::Scene scene(sc);
     write_blender_sequence(scene, dir / "in/f_%d.exr", 1, 3);
-    const std::string tau = std::to_string(rrc_cli::kBlenderPresetTau);
+    const std::string tau = std::to_string(rrc_cli::blender_preset_tau());
     std::string err;
     ASSERT_EQ(run_tool({"--preset", "blender", "--input", dir / "in/f_%d.exr", "--frames", "1-3", "--output", dir / "a/%d.exr", "--quiet"},
                        nullptr, &err),
@@ -819,7 +819,7 @@ TEST(BlenderPresetTau, HitAndFalseHitRates) {
         double strict_ratio() const { return checked ? double(strict) / double(checked) : 0.0; }
     };
     const int W = 96, H = 64, frames = 8;
-    const std::vector<double> taus = {0.0025, 0.005, 0.01, 0.02, 0.03, double(rrc_cli::kBlenderPresetTau), 0.05, 0.08};
+    const std::vector<double> taus = {0.0025, 0.005, 0.01, 0.02, 0.03, double(rrc_cli::blender_preset_tau()), 0.05, 0.08};
     std::vector<Rates> table;
     for (double speed : {1.0, 3.0}) {
         rrc_scene::SceneConfig sc = blender_scene_config(W, H);
@@ -868,13 +868,13 @@ TEST(BlenderPresetTau, HitAndFalseHitRates) {
     std::printf("| camera speed | tau | hit ratio | false hits | strict false hits |\n|---|---|---|---|---|\n");
     for (const Rates& r : table)
         std::printf("| %.0fx | %g%s | %.2f%% | %.3f%% | %.3f%% |\n", r.speed, r.tau,
-                    r.tau == double(rrc_cli::kBlenderPresetTau) ? " (preset)" : "", 100.0 * r.hit_ratio(), 100.0 * r.false_ratio(),
+                    r.tau == double(rrc_cli::blender_preset_tau()) ? " (preset)" : "", 100.0 * r.hit_ratio(), 100.0 * r.false_ratio(),
                     100.0 * r.strict_ratio());
     for (double speed : {1.0, 3.0}) {
         auto at = [&](double tau) {
             return *std::find_if(table.begin(), table.end(), [&](const Rates& r) { return r.tau == tau && r.speed == speed; });
         };
-        const Rates preset = at(rrc_cli::kBlenderPresetTau), loosest = at(0.08), tightest = at(0.0025);
+        const Rates preset = at(rrc_cli::blender_preset_tau()), loosest = at(0.08), tightest = at(0.0025);
         // Nearly every hit the loosest tolerance finds...
         EXPECT_GT(preset.hits, loosest.hits * 97 / 100) << "speed " << speed;
         // ...with few false hits (the loosest admits several times more).
@@ -989,7 +989,7 @@ TEST(BlenderRender, ObjectIdsRuleOutTapsOnOtherObjects) {
     run(in,
         {"--depth-mode", "linear", "--reproject", "motion", "--depth-channel", "ViewLayer.Depth.Z", "--motion-channels",
          "ViewLayer.Vector.X,ViewLayer.Vector.Y", "--motion-units", "pixels", "--motion-y", "up", "--tau",
-         std::to_string(rrc_cli::kBlenderPresetTau), "--signal", preset_signal(), "--quiet"},
+         std::to_string(rrc_cli::blender_preset_tau()), "--signal", preset_signal(), "--quiet"},
         dir / "plain/%d.exr", nullptr);
     for (int f = 1; f <= 3; ++f) {
         const auto none = rrc_exr::read_exr(frame_path(dir / "none/%d.exr", f)).channels;

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 #include <sstream>
 
 namespace rrc_cli {
@@ -84,14 +85,31 @@ const char* depth_mode_name(rrc_depth_mode m) { return rrc_host::enum_name(rrc_h
 
 const char* depth_test_name(rrc_depth_test t) { return rrc_host::enum_name(kDepthTestNames, t); }
 
+rrc_channel_desc blender_preset_channel() {
+    rrc_channel_desc d{RRC_STRUCT_TYPE_CHANNEL_DESC, nullptr, sizeof d};
+    if (rrc_channel_preset(RRC_PRESET_OFFLINE, 0, RRC_API_VERSION, &d) != RRC_SUCCESS)
+        throw std::runtime_error(std::string("rrc_channel_preset: ") + rrc_last_error());
+    return d;
+}
+
+rrc_context_desc blender_preset_context(uint32_t width, uint32_t height) {
+    rrc_context_desc d{RRC_STRUCT_TYPE_CONTEXT_DESC, nullptr, sizeof d, RRC_API_VERSION, width, height};
+    if (rrc_context_preset(RRC_PRESET_OFFLINE, 0, RRC_API_VERSION, &d) != RRC_SUCCESS)
+        throw std::runtime_error(std::string("rrc_context_preset: ") + rrc_last_error());
+    return d;
+}
+
+float blender_preset_tau() { return blender_preset_context(1, 1).tau; }
+
 SignalOptions blender_preset_signal(const std::string& layer) {
+    const rrc_channel_desc d = blender_preset_channel();
     SignalOptions s;
     s.layer = layer;
-    s.lambda = kBlenderPresetLambda;
-    s.blend = kBlenderPresetBlend;
-    s.filter = kBlenderPresetFilter;
-    s.fill_age = kBlenderPresetFillAge;
-    s.rectify = kBlenderPresetRectify;
+    s.lambda = d.lambda;
+    s.blend = d.blend;
+    s.filter = d.filter;
+    s.fill_age = d.fill_age;
+    s.rectify = d.rectify;
     return s;
 }
 
@@ -498,13 +516,13 @@ Exit status: 0 success, 1 an error (missing, truncated or corrupt file,
 missing channel, library error, validation message), 2 a bad command line.
 )";
     char tau[32];
-    std::snprintf(tau, sizeof tau, "%g", static_cast<double>(kBlenderPresetTau));
+    std::snprintf(tau, sizeof tau, "%g", static_cast<double>(blender_preset_tau()));
     for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
+    const rrc_channel_desc preset = blender_preset_channel();
     char preset_signal[96];
     std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u,rectify=%s",
-                  static_cast<double>(kBlenderPresetLambda), rrc_host::enum_name(rrc_host::kBlendNames, kBlenderPresetBlend),
-                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, kBlenderPresetFilter), kBlenderPresetFillAge,
-                  kBlenderPresetRectify ? "on" : "off");
+                  static_cast<double>(preset.lambda), rrc_host::enum_name(rrc_host::kBlendNames, preset.blend),
+                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, preset.filter), preset.fill_age, preset.rectify ? "on" : "off");
     const std::string marker = "@PRESET_SIGNAL@";
     for (std::size_t p; (p = text.find(marker)) != std::string::npos;) text.replace(p, marker.size(), preset_signal);
     return text;
@@ -719,11 +737,13 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
     }
     if (o.preset == "blender") {
         // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
-        if (!c.given("--depth-mode")) o.depth_mode = RRC_DEPTH_MODE_LINEAR;
-        if (!c.given("--reproject")) o.reproject = Reproject::Motion;
-        if (!c.given("--motion-units")) o.motion_units = MotionUnits::Pixels;
-        if (!c.given("--motion-y")) o.motion_y_up = true;
-        if (!c.given("--tau")) o.tau = kBlenderPresetTau;
+        // The library's RRC_PRESET_OFFLINE context: its motion_scale {1/W, -1/H} says pixels (not 1) and y up (negative).
+        const rrc_context_desc p = blender_preset_context(2, 2);
+        if (!c.given("--depth-mode")) o.depth_mode = p.depth_mode;
+        if (!c.given("--reproject") && p.reprojection == RRC_REPROJECTION_MOTION) o.reproject = Reproject::Motion;
+        if (!c.given("--motion-units") && p.motion_scale[0] != 1.0f) o.motion_units = MotionUnits::Pixels;
+        if (!c.given("--motion-y")) o.motion_y_up = p.motion_scale[1] < 0.0f;
+        if (!c.given("--tau")) o.tau = p.tau;
     } else if (!o.view_layer.empty()) {
         return fail("option --view-layer needs --preset blender");
     }

@@ -16,28 +16,17 @@ enum class Reproject { PrevClip, Motion, Camera };
 enum class MotionUnits { Uv, Pixels };    /* --motion-units: uv (of the image) or pixels */
 enum class Progress { Auto, Bar, Lines }; /* --progress; auto: a bar on a terminal, lines otherwise */
 
-/** --preset blender's relative depth tolerance (tau for LINEAR depth with
- *  plain motion vectors), chosen from the hit and false-hit rates measured
- *  in docs/OFFLINE.md. */
-constexpr float kBlenderPresetTau = 0.04f;
-
-/** --preset blender's accumulation of <view layer>.Combined when no --signal
- *  is given, chosen from the error-against-render-time study of Cycles
- *  sequences in docs/OFFLINE.md, section 7 (blender/error_study.py).  An
- *  explicit --signal takes the tool's defaults and its own keys. */
-constexpr float kBlenderPresetLambda = 0.85f;
-constexpr rrc_blend kBlenderPresetBlend = RRC_BLEND_AGE_AWARE;
-constexpr rrc_history_filter kBlenderPresetFilter = RRC_HISTORY_FILTER_BILINEAR;
-/** ... with the spatial fill below age 4 (fill=4, the library's 5x5 window).  Chosen on the
- *  320x180 strafing sequences of docs/OFFLINE.md, section 7, "The spatial fill and a jittered
- *  camera", where it won on all six renders (centred and jittered first samples); the small
- *  96x64 check scene prefers Catmull-Rom at lambda 0.8 (the same section). */
-constexpr uint32_t kBlenderPresetFillAge = 4;
-/** ... and rectified (rectify=on, the library's gamma 1: docs/CONVENTIONS.md, "Rectification").
- *  Chosen on the same renders (docs/OFFLINE.md, section 7, "Rectification, and a sequence held
- *  out"): it lowered the RMSE on all nine of them, the 96x64 check scene's included, and met the
- *  target on a sequence held out of every choice. */
-constexpr uint32_t kBlenderPresetRectify = 1;
+/** --preset blender's accumulation of <view layer>.Combined when no --signal is
+ *  given: the library's RRC_PRESET_OFFLINE channel at this tool's tuning
+ *  (docs/reference/presets.md; chosen in docs/OFFLINE.md, section 7).  An
+ *  explicit --signal takes the tool's defaults and its own keys.  Throws
+ *  std::runtime_error if the library refuses. */
+rrc_channel_desc blender_preset_channel();
+/** The context members the preset fixes (RRC_PRESET_OFFLINE: LINEAR depth, plain
+ *  motion vectors in pixels with y up, tau) for a width x height sequence. */
+rrc_context_desc blender_preset_context(uint32_t width, uint32_t height);
+/** The preset's relative depth tolerance (tau for LINEAR depth with plain motion vectors). */
+float blender_preset_tau();
 
 /** One --signal NAME[:key=value,...]; the defaults are the paper's filter. */
 struct SignalOptions {
@@ -90,7 +79,7 @@ struct Options {
     /* --preset blender: Blender 3.x multilayer EXR passes.  Applied by
      * parse_arguments to every option not given: --depth-mode linear,
      * --reproject motion, --motion-units pixels, --motion-y up, --tau
-     * kBlenderPresetTau; the channel names (<view layer>.Depth.Z,
+     * blender_preset_tau(); the channel names (<view layer>.Depth.Z,
      * <view layer>.Vector.X/Y, signal <view layer>.Combined, object ids
      * <view layer>.IndexOB.X if present) are resolved from the first frame
      * by discover_layout, which gives the signal blender_preset_signal()'s
@@ -142,8 +131,8 @@ const std::vector<std::string>& value_options();
 std::string usage_text();
 
 /** The signal --preset blender accumulates when no --signal is given: `layer`
- *  (<view layer>.Combined) with kBlenderPresetLambda, kBlenderPresetBlend,
- *  kBlenderPresetFilter and kBlenderPresetFillAge, the other keys the tool's defaults. */
+ *  (<view layer>.Combined) with blender_preset_channel()'s lambda, blend,
+ *  filter, fill age and rectification, the other keys the tool's defaults. */
 SignalOptions blender_preset_signal(const std::string& layer);
 
 /** "NAME[:key=value,...]"; on failure returns false and sets error. */
