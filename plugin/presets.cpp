@@ -21,7 +21,7 @@ using Tuning = PresetRow;
 
 constexpr ContextValues kNoContext{};
 constexpr ContextValues kOfflineContext{true, RRC_DEPTH_MODE_LINEAR, RRC_REPROJECTION_MOTION, 0.04f};
-constexpr ContextValues kCacheContext{false, 0, 0, 0.0f, true, RRC_REFRESH_TILED, 4, {2, 2}, 8};
+constexpr ContextValues kCacheContext{false, 0, 0, 0.0f, true, RRC_REFRESH_TILED, 4, {0, 0}, 8};  // {0, 0}: {4, 1}, vertical strips
 
 // One row per preset and variant, per tuning; a re-tune appends rows under
 // its own version and keeps these (rrc.h, "Presets").
@@ -34,7 +34,7 @@ constexpr Tuning kTunings[] = {
     {kFirstTuning, RRC_PRESET_ENV_BUMP, true,
      {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.08f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_ENV_BUMP, false,
-     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0}, kNoContext},
+     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.05f, 0}, kNoContext},
     {kFirstTuning, RRC_PRESET_SOFT_SHADOWS, true,
      {0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, 8, 4.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_SOFT_SHADOWS, false,

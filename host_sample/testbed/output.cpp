@@ -132,6 +132,9 @@ void OutputWriter::write(const FrameOutput& f) const {
         add_layer(img, "raw", s.raw, s.components);
         add_layer(img, "accumulated", s.accumulated, s.components);
         add_layer(img, "reference", s.reference, s.components);
+        // Checkpoints: the brute force at 4x the samples, and the residual's base (the guides' pictures, docs/guide/).
+        if (!s.brute_force.empty()) add_layer(img, "brute_force_4x", s.brute_force, s.components);
+        if (!s.base.empty()) add_layer(img, "base", s.base, s.components);
         if (soft) {
             add_layer(img, "shown", s.shown, 1);
             add_layer(img, "pcss", s.pcss, 1);
