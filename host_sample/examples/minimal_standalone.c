@@ -19,7 +19,9 @@ int main(void) {
     uint64_t messages = 0;
     int i, t, ok;
 
-    /* Every descriptor starts with its type tag and size; a member left out is zero, its default. */
+    /* Every descriptor starts with its type tag and size; a member left out is zero, its default.  The paper's plain
+     * filter at lambda 1/2, whose values this program checks; an application takes its settings from
+     * rrc_channel_preset (docs/guide/). */
     rrc_channel_desc shadow = {.type = RRC_STRUCT_TYPE_CHANNEL_DESC, .size = sizeof shadow, .name = "shadow",
                                .components = 1, .precision = RRC_HISTORY_FP32, .lambda = 0.5f};
     rrc_context_desc desc = {.type = RRC_STRUCT_TYPE_CONTEXT_DESC, .size = sizeof desc, .api_version = RRC_API_VERSION,

@@ -168,8 +168,11 @@ RunResult Bench::run(const CacheConfig& config, void (*progress)(int, int)) {
         throw std::invalid_argument("rrc-cache: octaves must be in 1.." + std::to_string(kMaxOctaves));
     Impl::Shaders& k = m.shaders_for(config.octaves);
 
-    // The cache: one 4-component REUSE channel (fp16 history, bilinear, as the paper).
-    std::vector<rrc_channel_desc> channels{rrc_host::channel("shade", 4, 0.0f, RRC_HISTORY_FP16, RRC_BLEND_REUSE)};
+    // The cache: one 4-component channel (fp16 history) from the library's preset (REUSE, bilinear, as the
+    // paper); the refresh policy is the run's (the study's grid, not the preset's).
+    std::vector<rrc_channel_desc> channels{rrc_host::channel("shade", 4, 0.0f, RRC_HISTORY_FP16)};
+    if (rrc_channel_preset(RRC_PRESET_SHADING_CACHE, 0, RRC_API_VERSION, &channels[0]) != RRC_SUCCESS)
+        throw std::runtime_error(std::string("rrc_channel_preset: ") + rrc_last_error());
     rrc_context_desc desc = rrc_host::context_desc(s.width, s.height, channels);
     desc.depth_mode = RRC_DEPTH_MODE_REVERSED;
     desc.near_plane = m.scene.near_plane;

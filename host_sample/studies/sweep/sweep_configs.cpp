@@ -48,8 +48,8 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     }
                     if (app.signal == rrc_sample::kSignalSoft) {
                         rrc_sample::ChannelSettings fl = c;
-                        fl.age_cap = 64;  // the soft preset's cap
-                        fl.fill_age = 8;
+                        fl.age_cap = rrc_sample::ChannelPresets{}.soft.age_cap;  // the soft preset's cap and fill
+                        fl.fill_age = rrc_sample::ChannelPresets{}.soft.fill_age;
                         run.configs.push_back({app, fl});
                     }
                 }
