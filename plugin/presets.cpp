@@ -25,24 +25,25 @@ constexpr ContextValues kCacheContext{false, 0, 0, 0.0f, true, RRC_REFRESH_TILED
 
 // One row per preset and variant, per tuning; a re-tune appends rows under
 // its own version and keeps these (rrc.h, "Presets").
-//  lambda, blend, filter, age_cap, fill_age, fill_prior, rectify, antilag, antilag_gamma, antilag_threshold, blur_bound, view_lobe, residual
+//  lambda, blend, filter, age_cap, fill_age, fill_radius, fill_prior, rectify, antilag, antilag_gamma, antilag_threshold,
+//  blur_bound, view_lobe, residual
 constexpr Tuning kTunings[] = {
     {kFirstTuning, RRC_PRESET_PCF_SHADOWS, true,
-     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
+     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_PCF_SHADOWS, false,
-     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0.0f, 0, 1, 0.25f, 0.25f, 0.25f, 0.0f, 0}, kNoContext},
+     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 1, 0.0f, 0, 1, 0.25f, 0.25f, 0.25f, 0.0f, 0}, kNoContext},
     {kFirstTuning, RRC_PRESET_ENV_BUMP, true,
-     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.08f, 1}, kNoContext},
+     {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.08f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_ENV_BUMP, false,
-     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.05f, 0}, kNoContext},
+     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 2, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.05f, 0}, kNoContext},
     {kFirstTuning, RRC_PRESET_SOFT_SHADOWS, true,
-     {0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, 8, 4.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
+     {0.95f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM, 64, 8, 0, 4.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_SOFT_SHADOWS, false,
-     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, 8, 0.0f, 0, 0, 0.0f, 0.0f, 0.5f, 0.0f, 0}, kNoContext},
+     {0.8f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 64, 8, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.5f, 0.0f, 0}, kNoContext},
     {kFirstTuning, RRC_PRESET_SHADING_CACHE, false,
-     {0.0f, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR, 0, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0}, kCacheContext},
+     {0.0f, RRC_BLEND_REUSE, RRC_HISTORY_FILTER_BILINEAR, 0, 0, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0}, kCacheContext},
     {kFirstTuning, RRC_PRESET_OFFLINE, false,
-     {0.85f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0.0f, 1, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0}, kOfflineContext},
+     {0.85f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0, 0.0f, 1, 0, 0.0f, 0.0f, 0.0f, 0.0f, 0}, kOfflineContext},
 };
 
 bool takes_base(rrc_preset p) { return p == RRC_PRESET_PCF_SHADOWS || p == RRC_PRESET_ENV_BUMP || p == RRC_PRESET_SOFT_SHADOWS; }
@@ -82,7 +83,7 @@ void write_channel_preset(const PresetRow& row, rrc_channel_desc* caller) {
     write_member(caller, offsetof(C, rectify_gamma), 0.0f);
     write_member(caller, offsetof(C, blur_sigma), 0.0f);
     write_member(caller, offsetof(C, fill_age), v.fill_age);
-    write_member(caller, offsetof(C, fill_radius), 0u);
+    write_member(caller, offsetof(C, fill_radius), v.fill_radius);
     write_member(caller, offsetof(C, fill_depth_tolerance), 0.0f);
     write_member(caller, offsetof(C, fill_prior), v.fill_prior);
     write_member(caller, offsetof(C, antilag), v.antilag);

@@ -8,12 +8,12 @@ namespace rrc {
 
 // Every member a channel preset decides; zero is off, or the library's
 // default, as in rrc_channel_desc.  The members it does not list
-// (rectify_gamma, blur_sigma, fill_radius, fill_depth_tolerance) it writes as 0.
+// (rectify_gamma, blur_sigma, fill_depth_tolerance) it writes as 0.
 struct PresetChannel {
     float lambda;
     rrc_blend blend;
     rrc_history_filter filter;
-    uint32_t age_cap, fill_age;
+    uint32_t age_cap, fill_age, fill_radius;
     float fill_prior;
     uint32_t rectify, antilag;
     float antilag_gamma, antilag_threshold, blur_bound, view_lobe;

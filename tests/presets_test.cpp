@@ -151,7 +151,7 @@ TEST(Presets, ContextPresetsFixWhatTheApplicationFixes) {
 
 // docs/reference/presets.md's table: one row per preset and variant,
 // "| `RRC_PRESET_X` | variant | λ | blend | filter | age cap | fill age |
-// fill prior | rectify | anti-lag γ_a / T | blur bound | view lobe | residual |".
+// fill radius | fill prior | rectify | anti-lag γ_a / T | blur bound | view lobe | residual |".
 TEST(Presets, EachPresetIsItsRowInTheDocs) {
     const std::string text = rrc_test::read_source("docs/reference/presets.md");
     std::map<std::string, std::vector<std::string>> rows;
@@ -165,7 +165,7 @@ TEST(Presets, EachPresetIsItsRowInTheDocs) {
             cells.push_back(cell);
         }
         if (!cells.empty() && cells.back().empty()) cells.pop_back();
-        if (cells.size() != 13) continue;  // the context members' table
+        if (cells.size() != 14) continue;  // the context members' table
         rows[cells[0] + "/" + cells[1]] = cells;
     }
     ASSERT_EQ(rows.size(), sizeof kVariants / sizeof kVariants[0]) << "one row per preset and variant";
@@ -188,12 +188,13 @@ TEST(Presets, EachPresetIsItsRowInTheDocs) {
         EXPECT_EQ(r[4], filters[c.filter]);
         EXPECT_EQ(r[5], c.age_cap ? num(c.age_cap) : "255");
         EXPECT_EQ(r[6], c.fill_age ? num(c.fill_age) : "off");
-        EXPECT_EQ(r[7], c.fill_prior > 0 ? num(c.fill_prior) : "-");
-        EXPECT_EQ(r[8], c.rectify ? "on" : "off");
-        EXPECT_EQ(r[9], c.antilag ? num(c.antilag_gamma) + " / " + num(c.antilag_threshold) : "off");
-        EXPECT_EQ(r[10], c.blur_bound > 0 ? num(c.blur_bound) : "off");
-        EXPECT_EQ(r[11], c.view_lobe > 0 ? num(c.view_lobe) : "off");
-        EXPECT_EQ(r[12], c.residual ? "on" : "off");
+        EXPECT_EQ(r[7], !c.fill_age ? "-" : c.fill_radius ? num(c.fill_radius) : "2");  // 0: RRC_DEFAULT_FILL_RADIUS
+        EXPECT_EQ(r[8], c.fill_prior > 0 ? num(c.fill_prior) : "-");
+        EXPECT_EQ(r[9], c.rectify ? "on" : "off");
+        EXPECT_EQ(r[10], c.antilag ? num(c.antilag_gamma) + " / " + num(c.antilag_threshold) : "off");
+        EXPECT_EQ(r[11], c.blur_bound > 0 ? num(c.blur_bound) : "off");
+        EXPECT_EQ(r[12], c.view_lobe > 0 ? num(c.view_lobe) : "off");
+        EXPECT_EQ(r[13], c.residual ? "on" : "off");
     }
 }
 
