@@ -52,7 +52,7 @@ constexpr uint32_t kSampleEnvBase = SAMPLE_ENV_BASE_FILTERED;
 constexpr float kEnvViewLobePixels = 18.0f;
 
 /** The pcf preset's base with RRC_PRESET_FLAG_BASE: this many bilinear shadow compares, as many
- *  as the per-frame signal's k = 4 taps (rrc-sample's --pcf-residual default; docs/guide/pcf.md). */
+ *  as the per-frame signal's k = 4 taps (rrc-sample's --pcf-residual default; docs/guide/pcf-shadows.md). */
 constexpr uint32_t kSamplePcfBaseTaps = 4;
 
 /** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2 (docs/PERFORMANCE.md,

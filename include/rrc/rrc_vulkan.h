@@ -95,12 +95,20 @@ typedef struct rrc_vulkan_device_desc {
     const VkPhysicalDeviceFeatures* enabled_features;
 } rrc_vulkan_device_desc;
 
-/** One host image as the kernel sees it. */
+/** One host image as the kernel sees it.  What Vulkan cannot report, the host
+ *  gets right and rrc cannot check (docs/INTEGRATION.md, "What rrc checks and
+ *  what it cannot"): its usage (SAMPLED for inputs, STORAGE for outputs, ages and
+ *  the mask), its extent (the context's; state it with rrc_vulkan_image_extents
+ *  to have it checked), no aliasing of another image's memory. */
 typedef struct rrc_vulkan_image {
     VkImage image;
-    VkImageView view;           /* 2D, one mip, one layer; for depth formats a DEPTH-aspect view */
+    VkImageView view;           /* 2D, one mip, one layer; for depth formats a view of the DEPTH aspect only
+                                   (D32_SFLOAT_S8_UINT counts as D32); Vulkan cannot report a view's aspects */
     VkFormat format;            /* the view's format */
-    VkImageLayout layout;       /* its layout when the recorded commands start */
+    VkImageLayout layout;       /* its layout when the recorded commands start, whatever it is (an attachment
+                                   layout straight out of a render pass too; UNDEFINED discards an output's
+                                   contents, for its first frame): rrc's barriers move it and cover any
+                                   earlier stage's writes */
     VkImageLayout final_layout; /* the layout to leave it in; VK_IMAGE_LAYOUT_UNDEFINED = `layout` */
 } rrc_vulkan_image;
 
@@ -137,7 +145,9 @@ typedef struct rrc_vulkan_frame_desc {
     rrc_struct_type type; /* RRC_STRUCT_TYPE_VULKAN_FRAME_DESC */
     const void* next;
     uint32_t size;
-    VkCommandBuffer command_buffer; /* recording, outside a render pass, of the context's queue family */
+    VkCommandBuffer command_buffer; /* recording, outside a render pass, of the context's queue family (Vulkan
+                                       reports no command buffer state: unchecked); at most max_frames_in_flight
+                                       recorded frames pending, and the context destroyed only after they finished */
     uint64_t frame_index;
     uint32_t reset;
     rrc_vulkan_image depth;        /* required, SAMPLED: D16/D24/D32 (depth view) or a colour format with depth in .r */
