@@ -188,8 +188,7 @@ rrc_result rrc_channel_preset(rrc_preset preset, uint32_t flags, uint32_t tuning
 rrc_result rrc_context_preset(rrc_preset preset, uint32_t flags, uint32_t tuning, rrc_context_desc* context) {
     return guarded(nullptr, nullptr, nullptr, [&] {
         const rrc::PresetRow* row = rrc::find_preset(preset, flags, tuning);
-        rrc::read_members<rrc_context_desc>(context, "context");
-        rrc::write_context_preset(*row, context);
+        rrc::write_context_preset(*row, rrc::read_members<rrc_context_desc>(context, "context"), context);
     });
 }
 

@@ -5,7 +5,7 @@
 #include "presets.h"
 
 #include "error.h"
-#include "struct_reader.h"
+#include "struct_reader.h"  // write_member
 
 #include <cstddef>
 #include <cstring>
@@ -15,19 +15,15 @@ namespace {
 
 constexpr uint32_t kFirstTuning = RRC_MAKE_VERSION(0, 11, 0);
 
-using ChannelValues = PresetChannel;
-using ContextValues = PresetContext;
-using Tuning = PresetRow;
-
-constexpr ContextValues kNoContext{};
-constexpr ContextValues kOfflineContext{true, RRC_DEPTH_MODE_LINEAR, RRC_REPROJECTION_MOTION, 0.04f};
-constexpr ContextValues kCacheContext{false, 0, 0, 0.0f, true, RRC_REFRESH_TILED, 4, {0, 0}, 8};  // {0, 0}: {4, 1}, vertical strips
+constexpr PresetContext kNoContext{};
+constexpr PresetContext kOfflineContext{true, RRC_DEPTH_MODE_LINEAR, RRC_REPROJECTION_MOTION, 0.04f};
+constexpr PresetContext kCacheContext{false, 0, 0, 0.0f, true, RRC_REFRESH_TILED, 4, {0, 0}, 8};  // {0, 0}: {4, 1}, vertical strips
 
 // One row per preset and variant, per tuning; a re-tune appends rows under
 // its own version and keeps these (rrc.h, "Presets").
 //  lambda, blend, filter, age_cap, fill_age, fill_radius, fill_prior, rectify, antilag, antilag_gamma, antilag_threshold,
 //  blur_bound, view_lobe, residual
-constexpr Tuning kTunings[] = {
+constexpr PresetRow kTunings[] = {
     {kFirstTuning, RRC_PRESET_PCF_SHADOWS, true,
      {0.9f, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR, 0, 4, 0, 0.0f, 0, 0, 0.0f, 0.0f, 0.0f, 0.0f, 1}, kNoContext},
     {kFirstTuning, RRC_PRESET_PCF_SHADOWS, false,
@@ -65,8 +61,8 @@ const PresetRow* find_preset(rrc_preset preset, uint32_t flags, uint32_t tuning)
         fail(RRC_ERROR_UNSUPPORTED, "tuning %u.%u is newer than this library (%u.%u): its presets' values are unknown here",
              RRC_VERSION_MAJOR(want), RRC_VERSION_MINOR(want), RRC_VERSION_MAJOR(library), RRC_VERSION_MINOR(library));
     if (want < kFirstTuning) want = kFirstTuning;
-    const Tuning* best = nullptr;
-    for (const Tuning& t : kTunings)
+    const PresetRow* best = nullptr;
+    for (const PresetRow& t : kTunings)
         if (t.preset == preset && t.base == base && t.version <= want && (!best || t.version > best->version)) best = &t;
     if (!best) fail(RRC_ERROR_INVALID_ARGUMENT, "no tuning of preset %u", (unsigned)preset);  // every preset has a 0.11 row
     return best;
@@ -74,7 +70,7 @@ const PresetRow* find_preset(rrc_preset preset, uint32_t flags, uint32_t tuning)
 
 void write_channel_preset(const PresetRow& row, rrc_channel_desc* caller) {
     using C = rrc_channel_desc;
-    const ChannelValues& v = row.channel;
+    const PresetChannel& v = row.channel;
     write_member(caller, offsetof(C, lambda), v.lambda);
     write_member(caller, offsetof(C, blend), v.blend);
     write_member(caller, offsetof(C, filter), v.filter);
@@ -94,11 +90,10 @@ void write_channel_preset(const PresetRow& row, rrc_channel_desc* caller) {
     write_member(caller, offsetof(C, residual), v.residual);
 }
 
-void write_context_preset(const PresetRow& row, rrc_context_desc* caller) {
+void write_context_preset(const PresetRow& row, const rrc_context_desc& d, rrc_context_desc* caller) {
     using D = rrc_context_desc;
-    const ContextValues& v = row.context;
+    const PresetContext& v = row.context;
     if (v.fixes_geometry) {
-        const rrc_context_desc d = read_members<rrc_context_desc>(caller, "context");
         if (d.width == 0 || d.height == 0)
             fail(RRC_ERROR_INVALID_ARGUMENT, "context.width/height is %ux%u: the OFFLINE preset's motion_scale {1/W, -1/H} needs them set",
                  d.width, d.height);

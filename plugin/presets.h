@@ -44,7 +44,9 @@ struct PresetRow {
 const PresetRow* find_preset(rrc_preset preset, uint32_t flags, uint32_t tuning);
 // Writes the row's members within the caller's size (Versioning, rule 4).
 void write_channel_preset(const PresetRow& row, rrc_channel_desc* caller);
-// Throws for OFFLINE without width and height; writes nothing then.
-void write_context_preset(const PresetRow& row, rrc_context_desc* caller);
+// `read` is the caller's description as read by the struct rules (its size
+// and width and height); throws for OFFLINE without width and height, and
+// writes nothing then.
+void write_context_preset(const PresetRow& row, const rrc_context_desc& read, rrc_context_desc* caller);
 
 }  // namespace rrc

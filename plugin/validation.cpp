@@ -352,8 +352,7 @@ FrameImages frame_images(const Frame& f) {
 // images it reads and no other it writes: a shared VkImage would be
 // overwritten while it is read, or written twice (docs/INTEGRATION.md, "What
 // rrc checks and what it cannot").
-void check_distinct_images(const Frame& f) {
-    const FrameImages m = frame_images(f);
+void check_distinct_images(const FrameImages& m) {
     const std::vector<NamedImage>&reads = m.reads, &writes = m.writes;
     for (size_t w = 0; w < writes.size(); ++w) {
         if (!writes[w].image) continue;
@@ -370,9 +369,8 @@ void check_distinct_images(const Frame& f) {
 
 // The host's stated extents (rrc_vulkan_image_extents, rrc_vulkan.h): every
 // image the frame binds is listed once (or twice alike) and is the context's size.
-void check_extents(const ContextConfig& c, const Frame& f) {
+void check_extents(const ContextConfig& c, const Frame& f, const FrameImages& m) {
     if (!f.extents_given) return;
-    const FrameImages m = frame_images(f);
     for (const std::vector<NamedImage>* list : {&m.reads, &m.writes})
         for (const NamedImage& n : *list) {
             if (!n.image) continue;
@@ -461,8 +459,11 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
     if (vulkan && f.stats_buffer && f.stats_buffer_size)
         check_range("frame.stats_offset", f.stats_offset, sizeof(rrc_vulkan_frame_stats), "frame.stats_buffer_size", f.stats_buffer_size,
                     "rrc_vulkan_frame_stats");
-    if (vulkan) check_distinct_images(f);
-    if (vulkan) check_extents(c, f);
+    if (vulkan) {
+        const FrameImages images = frame_images(f);
+        check_distinct_images(images);
+        check_extents(c, f, images);
+    }
     if (vulkan && f.stats_buffer && stats_alignment && f.stats_offset % stats_alignment != 0)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.stats_offset is %llu, not a multiple of the device's minStorageBufferOffsetAlignment %llu",
              (unsigned long long)f.stats_offset, (unsigned long long)stats_alignment);

@@ -2,17 +2,32 @@
 // for the checks at creation.
 #include "vk_requirements.h"
 
+#include "error.h"
+#include "vk_names.h"
+
 #include <cstring>
 
 namespace rrc {
+namespace {
 
-const VkFormat kStorageFormats[7] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                     VK_FORMAT_R8_UINT,    VK_FORMAT_R16_UINT,            VK_FORMAT_R32_UINT};
+// The formats rrc's own images and the kernel's direct loads use as storage images.
+const VkFormat kStorageFormats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                   VK_FORMAT_R8_UINT,    VK_FORMAT_R16_UINT,            VK_FORMAT_R32_UINT};
 
-// Storage images of any format are written without a declared format (the
-// kernel binds the host's outputs whatever their float format).
-const RequiredFeature kRequiredFeatures[1] = {
+// The features rrc needs, by name.  Storage images of any format are written
+// without a declared format (the kernel binds the host's outputs whatever
+// their float format).
+struct RequiredFeature {
+    VkBool32 VkPhysicalDeviceFeatures::*member;
+    const char* name;
+};
+const RequiredFeature kRequiredFeatures[] = {
     {&VkPhysicalDeviceFeatures::shaderStorageImageWriteWithoutFormat, "shaderStorageImageWriteWithoutFormat"}};
+
+// Bindings 0-5, 9, 26 (1 each), 10-21, 24 and 25 (x4): compute/rrc_module_bindings.h.
+constexpr uint32_t kStorageImagesPerStage = 64;
+
+}  // namespace
 
 rrc_vulkan_requirements device_requirements() {
     rrc_vulkan_requirements r;
@@ -26,6 +41,21 @@ rrc_vulkan_requirements device_requirements() {
     r.max_per_stage_storage_images = kStorageImagesPerStage;
     r.optional_instance_extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
     return r;
+}
+
+void check_physical_device_requirements(const VkPhysicalDeviceProperties& p, const VkPhysicalDeviceFeatures& f,
+                                        const std::function<bool(VkFormat)>& supports_storage) {
+    if (p.apiVersion < VK_API_VERSION_1_1)
+        fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" supports Vulkan %u.%u, rrc needs 1.1", p.deviceName, VK_API_VERSION_MAJOR(p.apiVersion),
+             VK_API_VERSION_MINOR(p.apiVersion));
+    for (const RequiredFeature& r : kRequiredFeatures)
+        if (!(f.*r.member)) fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" lacks the feature %s", p.deviceName, r.name);
+    if (p.limits.maxPerStageDescriptorStorageImages < kStorageImagesPerStage)
+        fail(RRC_ERROR_UNSUPPORTED, "device \"%s\" allows %u storage images per stage, the kernel needs %u", p.deviceName,
+             p.limits.maxPerStageDescriptorStorageImages, kStorageImagesPerStage);
+    for (VkFormat fmt : kStorageFormats)
+        if (!supports_storage(fmt))
+            fail(RRC_ERROR_UNSUPPORTED, "device \"%s\": %s is not usable as a storage image", p.deviceName, format_name(fmt).c_str());
 }
 
 void check_enabled_features(const VkPhysicalDeviceFeatures& enabled, const char* what) {

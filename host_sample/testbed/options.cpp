@@ -129,7 +129,8 @@ std::string usage() {
            "                           default 8, the preset; 0 = off); the display then shows rrc's output, not the\n"
            "                           --soft-prior blend\n"
            "  --fill-radius R          the soft fill's window half width (default 0: the library's, 2)\n"
-           "  --pcf-fill-radius R      the pcf fill's window half width (default 0: the library's, 2, the preset)\n"
+           "  --pcf-fill-radius R      the pcf fill's window half width (default: the preset's, 0 = the library's 2 with the\n"
+           "                           base, 1 with --no-base)\n"
            "  --fill-depth-tolerance D the fill's relative depth tolerance (default 0: the library's, 0.005)\n"
            "  --fill-prior P           the PCSS estimate's weight in the fill, in samples, passed to rrc as the soft channel's\n"
            "                           fallback image (default: the preset's, 4 with the base, 0 with --no-base; 0 = no fallback)\n"
@@ -356,12 +357,12 @@ Options parse_options(int argc, const char* const* argv) {
     // pcf's window: the preset's unless given; rrc refuses a window without a fill, so --pcf-fill 0
     // leaves it at 0 and refuses one given.
     if (o.channels.pcf.fill_age == 0 && o.pcf_fill_radius > 0) throw OptionError("--pcf-fill-radius needs the pcf fill (--pcf-fill T > 0)");
+    const ChannelPresets presets(o.base);
     o.channels.pcf.fill_radius = o.channels.pcf.fill_age == 0 ? 0u
                                  : o.pcf_fill_radius >= 0  ? (uint32_t)o.pcf_fill_radius
-                                                           : ChannelPresets(o.base).pcf.fill_radius;
+                                                           : presets.pcf.fill_radius;
     // Not given, --antilag keeps the presets' channels and constants (--antilag-gamma/-threshold
     // override them); given, the listed channels get the given constants or the library's.
-    const ChannelPresets presets(o.base);
     uint32_t preset_bits = 0;
     for (auto [bit, ch] : {std::pair<uint32_t, const ChannelSettings*>{kSignalPcf, &presets.pcf}, {kSignalEnv, &presets.env},
                            {kSignalSoft, &presets.soft}})

@@ -15,6 +15,7 @@ std::vector<App> apps_of(uint32_t signals) {
 }
 
 std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
+    const rrc_sample::ChannelPresets presets;  // the library's (rrc_channel_preset), with their bases
     std::vector<rrc_history_filter> filters = {RRC_HISTORY_FILTER_BILINEAR};
     if (o.catmull_rom) filters.push_back(RRC_HISTORY_FILTER_CATMULL_ROM);
     std::vector<RrcRun> runs;
@@ -48,8 +49,8 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     }
                     if (app.signal == rrc_sample::kSignalSoft) {
                         rrc_sample::ChannelSettings fl = c;
-                        fl.age_cap = rrc_sample::ChannelPresets{}.soft.age_cap;  // the soft preset's cap and fill
-                        fl.fill_age = rrc_sample::ChannelPresets{}.soft.fill_age;
+                        fl.age_cap = presets.soft.age_cap;  // the soft preset's cap and fill
+                        fl.fill_age = presets.soft.fill_age;
                         run.configs.push_back({app, fl});
                     }
                 }
@@ -95,9 +96,9 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
             // prior (the library preset's fill_prior), and the residual against the stable estimate
             // (README.md, "The soft preset rows": its centre-light map and PCSS pass are timed
             // with its rrc pass).  env's preset (the view lobe scaled to the size) is not a row.
-            if (o.finishing && app.signal == rrc_sample::kSignalPcf) run.configs.push_back({app, rrc_sample::ChannelPresets{}.pcf});
+            if (o.finishing && app.signal == rrc_sample::kSignalPcf) run.configs.push_back({app, presets.pcf});
             if (o.finishing && app.signal == rrc_sample::kSignalSoft) {
-                rrc_sample::ChannelSettings preset = rrc_sample::ChannelPresets{}.soft;
+                const rrc_sample::ChannelSettings preset = presets.soft;
                 run.configs.push_back({app, preset});
                 // The preset with its cure off: the same channel fed the sample itself, the PCSS
                 // estimate as the fill's fallback (README.md, "The soft residual").
