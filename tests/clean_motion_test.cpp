@@ -13,7 +13,7 @@
 //     (tests/reference, run on its own chain of frames) within 1 %: the
 //     deviation is the conventions' math, not the kernel's arithmetic;
 //   - that deviation is within the preset's bound (kBounds), the figures
-//     docs/CONVENTIONS.md states; a preset re-tuned to blur more fails here;
+//     docs/measurements/clean-input.md states; a preset re-tuned to blur more fails here;
 //   - a wrong variant (the preset at a fixed lambda of 0.98 through the Gaussian
 //     filter, sigma 0.8, with no clamp or shortening)
 //     exceeds the bound: the bound catches added blur.
