@@ -58,13 +58,20 @@ float sun_test(ivec2 c, float z, int size) {
 }
 float sun_test(vec2 texel, float z, int size) { return sun_test(ivec2(floor(texel)), z, size); }
 
-// The bilinear shadow compare at q (texel i covers [i, i+1), its centre i + 1/2).
+// The bilinear shadow compare at q (texel i covers [i, i+1), its centre i + 1/2):
+// the four texels i .. i + (1, 1) in one textureGather, centred on their shared
+// corner i + 1 so that the gather's texel choice, floor(uv size - 1/2) = i, is
+// exact; the sampler's CLAMP_TO_EDGE clamps them as sun_test does.  One gather
+// is one sampled fetch where four texelFetch are four (on lavapipe each is a
+// call of a generated function), and it reads the same texels, so the result is
+// bit for bit the four fetches' (docs/guide/pcf-shadows.md, "When not to use it, and what it costs").
 float bilinear_test(vec2 q, float z, int size) {
     vec2 p = q - 0.5, f = fract(p);
     ivec2 i = ivec2(floor(p));
-    float t00 = sun_test(i, z, size), t10 = sun_test(i + ivec2(1, 0), z, size);
-    float t01 = sun_test(i + ivec2(0, 1), z, size), t11 = sun_test(i + ivec2(1, 1), z, size);
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+    // Gather order: (i, i+1), (i+1, i+1), (i+1, i), (i, i).
+    vec4 d = textureGather(sun_map, (vec2(i) + 1.0) / float(size), 0);
+    vec4 t = vec4(lessThanEqual(vec4(z), d));
+    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
 }
 
 // The residual's base (above).
