@@ -10,7 +10,8 @@
 # and of the brute force at 4k in one frame, and the ratios.
 # RRC_SAMPLE picks the program (default build/release/bin/rrc-sample), OUT the
 # scratch directory (default /tmp/rrc_presets), VARIANTS the variants (default
-# "base no-base").
+# "base no-base"), EXTRA more rrc-sample options for every run (a setting tried
+# against the presets, e.g. EXTRA="--history-filter catmull_rom").
 set -e
 bin=${RRC_SAMPLE:-build/release/bin/rrc-sample}
 out=${OUT:-/tmp/rrc_presets}
@@ -23,7 +24,7 @@ for size in "$@"; do
         for s in 0 1 2 3; do
             echo "measure_presets: $size $variant seed $s" >&2
             # shellcheck disable=SC2086
-            $bin --size "$size" --frames 60 --reference-every 10 --no-images --quiet --seed $s $flag --out "$out/${size}_${variant}_$s" >/dev/null
+            $bin --size "$size" --frames 60 --reference-every 10 --no-images --quiet --seed $s $flag ${EXTRA:-} --out "$out/${size}_${variant}_$s" >/dev/null
         done
         for signal in pcf env soft; do
             base_row="$signal, the residual's base alone"
