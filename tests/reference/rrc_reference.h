@@ -115,7 +115,7 @@ struct Options {
     // Multiplies every fp32 error bound.  1 = the first-order worst case of a
     // straightforward fp32 evaluation of the conventions' formulas.  0 turns
     // the near_* flags into "exactly on a threshold" only.  Measured against
-    // the lavapipe kernel (tests/kernel_reference_test.cpp, 15 cases): no mask
+    // the lavapipe kernel (tests/kernels/kernel_reference_test.cpp, 15 cases): no mask
     // flip outside the margin at 1 or 0.5, 3 at 0.25 (camera_standard), so the
     // worst case is not loose by much.  FLOAT32's default 4-ulp epsilon lies
     // inside that error for most hits: expect them all flagged (and a few real

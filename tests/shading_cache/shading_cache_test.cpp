@@ -1,5 +1,5 @@
 // The shading cache (docs/CONVENTIONS.md, "The shading cache"), what
-// tests/cache_reference_test.cpp leaves open:
+// tests/shading_cache/cache_reference_test.cpp leaves open:
 //   - the REUSE variants it does not run (1 component fp16 bilinear, 4
 //     components fp32 nearest) next to an accumulating channel, against the
 //     independent reference fed the kernel's previous outputs;

@@ -1,5 +1,5 @@
 // Bad input at every entry point of the C API (docs/STABILITY.md, "Bad input"), beyond the
-// descriptor cases of tests/api_validation_test.cpp: each case is a test that
+// descriptor cases of tests/api/api_validation_test.cpp: each case is a test that
 // checks the specific code, a message naming the field, outputs left exactly
 // as they were, and the context's history intact (the next good frame hits
 // everywhere with the age one higher, so no frame of a refused call ran).

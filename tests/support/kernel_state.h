@@ -1,6 +1,6 @@
 // The reference's previous frame from the kernel's own outputs: the reference
 // runs each frame from the kernel's stored state, so errors do not compound
-// (tests/kernel_reference_test.cpp).
+// (tests/kernels/kernel_reference_test.cpp).
 #pragma once
 
 #include "reference/rrc_reference.h"

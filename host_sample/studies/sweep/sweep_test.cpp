@@ -231,7 +231,7 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     ASSERT_TRUE(preset && without);
     EXPECT_LT(preset->metrics.rmse, without->metrics.rmse);
     // b is deterministic, so the residual's noise is the sample's: with a linear fetch to fp32
-    // rounding (tests/residual_reference_test.cpp: every displayed value is a twin's fed s - b,
+    // rounding (tests/kernels/residual_reference_test.cpp: every displayed value is a twin's fed s - b,
     // plus b).  The preset's Catmull-Rom clamps its fetch to the bilinear taps' range, the one
     // step that is not linear in the history: here within 3 % (1.6 % on this run); a b with
     // noise of its own would add its variance.

@@ -5,7 +5,7 @@
 //     (rrc_frame_run) and split (rrc_frame_classify + rrc_frame_resolve, the
 //     REUSE samples NaN outside the listed quads): mask, listed quads (as a
 //     set), counts, values and ages, one frame at a time from the kernel's
-//     own previous state (as tests/kernel_reference_test.cpp);
+//     own previous state (as tests/kernels/kernel_reference_test.cpp);
 //   - on a static scene each policy refreshes every pixel exactly once every
 //     n frames, also with frame indices past 2^32 that skip by 3;
 //   - under a camera pan the maximum lifetime forces the refresh at the

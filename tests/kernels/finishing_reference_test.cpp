@@ -4,7 +4,7 @@
 //   - rectification: gamma 1 and 2.5, 1 and 4 components, fp16 and fp32, with
 //     confidence, on noisy samples whose signal changes (a brightening front
 //     sweeps the image), one frame at a time from the kernel's own previous
-//     state as tests/kernel_reference_test.cpp does;
+//     state as tests/kernels/kernel_reference_test.cpp does;
 //   - the GAUSSIAN history filter: blur_sigma default and 0.8, the same mix;
 //   - the spatial fill: fill_age 4 and 8, radius 1 and 2, with and without a
 //     fallback, RUNNING_MEAN and REUSE channels, in each depth mode: the output
