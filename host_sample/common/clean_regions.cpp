@@ -120,8 +120,10 @@ double CleanSums::rmse(int r) const {
     return n ? std::sqrt(e / (double)n) : 0.0;
 }
 
-void add_clean_errors(CleanSums& s, const std::vector<uint8_t>& regions, const float* in, const float* out, int stride, int components) {
+void add_clean_errors(CleanSums& s, const std::vector<uint8_t>& regions, const float* in, const float* out, int stride, int components,
+                      const uint8_t* scored) {
     for (size_t p = 0; p < regions.size(); ++p) {
+        if (scored && !scored[p]) continue;
         double e = 0.0;
         bool finite = true;
         for (int c = 0; c < components; ++c) {

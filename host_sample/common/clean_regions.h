@@ -62,9 +62,11 @@ struct CleanSums {
     double rmse(int region) const;  // region == kCleanRegionCount: over every pixel
 };
 
-/** Adds one frame: `input` and `output` hold `stride` floats a pixel, the first `components` compared. */
+/** Adds one frame: `input` and `output` hold `stride` floats a pixel, the first `components` compared.
+ *  scored (optional): only the pixels where it is non-zero count (an application that scores part
+ *  of the image, such as the sweep's env on its sphere). */
 void add_clean_errors(CleanSums& sums, const std::vector<uint8_t>& regions, const float* input, const float* output, int stride,
-                      int components);
+                      int components, const uint8_t* scored = nullptr);
 
 /** The report's table (markdown): a row per region and the total, each with its RMSE, its share of
  *  the squared error and its share of the pixels. */
