@@ -51,13 +51,13 @@ std::vector<uint8_t> dilated(const std::vector<uint8_t>& in, int w, int h, int r
     return out;
 }
 
-std::string num(double v, const char* fmt) {
+}  // namespace
+
+std::string clean_number(double v, const char* fmt) {
     char b[64];
     std::snprintf(b, sizeof b, fmt, v);
     return b;
 }
-
-}  // namespace
 
 const char* clean_region_name(int r) {
     static const char* const names[kCleanRegionCount] = {"background", "edge", "filled", "miss", "young", "history"};
@@ -148,9 +148,9 @@ std::string clean_table(const CleanSums& s) {
     for (int r = 0; r <= kCleanRegionCount; ++r) {
         const double e = r == kCleanRegionCount ? sse : s.sse[r];
         const double n = r == kCleanRegionCount ? pixels : (double)s.pixels[r];
-        t += std::string("| ") + (r == kCleanRegionCount ? "all" : clean_region_name(r)) + " | " + num(s.rmse(r), "%.4g") + " | " +
-             (sse > 0 ? num(100.0 * e / sse, "%.1f%%") : std::string("-")) + " | " +
-             (pixels > 0 ? num(100.0 * n / pixels, "%.1f%%") : std::string("-")) + " |\n";
+        t += std::string("| ") + (r == kCleanRegionCount ? "all" : clean_region_name(r)) + " | " + clean_number(s.rmse(r), "%.4g") + " | " +
+             (sse > 0 ? clean_number(100.0 * e / sse, "%.1f%%") : std::string("-")) + " | " +
+             (pixels > 0 ? clean_number(100.0 * n / pixels, "%.1f%%") : std::string("-")) + " |\n";
     }
     return t;
 }
@@ -160,8 +160,8 @@ std::string clean_csv_rows(const std::string& prefix, const CleanSums& s) {
     for (int r = 0; r <= kCleanRegionCount; ++r) {
         const bool all = r == kCleanRegionCount;
         t += prefix + "," + clean_region_name(r) + "," + std::to_string(all ? s.total_pixels() : s.pixels[r]) + "," +
-             std::to_string(all ? s.total_values() : s.values[r]) + "," + num(all ? s.total_sse() : s.sse[r], "%.9g") + "," +
-             num(s.rmse(r), "%.6g") + "\n";
+             std::to_string(all ? s.total_values() : s.values[r]) + "," + clean_number(all ? s.total_sse() : s.sse[r], "%.9g") + "," +
+             clean_number(s.rmse(r), "%.6g") + "\n";
     }
     return t;
 }

@@ -74,5 +74,7 @@ std::string clean_table(const CleanSums& sums);
 /** CSV lines "<prefix>,region,pixels,values,sse,rmse" (no header), a line per region and "all". */
 std::string clean_csv_rows(const std::string& prefix, const CleanSums& sums);
 constexpr const char* kCleanCsvColumns = "region,pixels,values,sse,rmse";
+/** A number as the reports print it: `v` through printf's `fmt`. */
+std::string clean_number(double v, const char* fmt);
 
 }  // namespace rrc_host

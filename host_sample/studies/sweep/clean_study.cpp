@@ -41,11 +41,7 @@ std::vector<uint8_t> bytes_of(const rrc_sample::Readback& r, int slot) {
     return v;
 }
 
-std::string num(double v, const char* fmt) {
-    char b[64];
-    std::snprintf(b, sizeof b, fmt, v);
-    return b;
-}
+using rrc_host::clean_number;
 
 }  // namespace
 
@@ -187,20 +183,20 @@ void write_clean_files(const SweepOptions& o, const CleanResult& r, const std::s
     md << "\n";
     for (const CleanRow& row : r.rows) {
         const double sse = row.sums.total_sse(), px = (double)row.sums.total_pixels();
-        md << "| " << row.app.name << " | " << row.preset << " | " << num(row.sums.rmse(rrc_host::kCleanRegionCount), "%.4f") << " |";
+        md << "| " << row.app.name << " | " << row.preset << " | " << clean_number(row.sums.rmse(rrc_host::kCleanRegionCount), "%.4f") << " |";
         for (int g = 0; g < rrc_host::kCleanRegionCount; ++g) {
             if (!row.sums.pixels[g]) {
                 md << " - |";
                 continue;
             }
-            md << " " << num(row.sums.rmse(g), "%.4f") << " (" << num(sse > 0 ? 100.0 * row.sums.sse[g] / sse : 0.0, "%.0f") << "% / "
-               << num(100.0 * (double)row.sums.pixels[g] / px, "%.0f") << "%) |";
+            md << " " << clean_number(row.sums.rmse(g), "%.4f") << " (" << clean_number(sse > 0 ? 100.0 * row.sums.sse[g] / sse : 0.0, "%.0f") << "% / "
+               << clean_number(100.0 * (double)row.sums.pixels[g] / px, "%.0f") << "%) |";
         }
         md << "\n";
     }
     md << "\n| app | row | blend | lambda | filter | fill_age | residual |\n|---|---|---|---|---|---|---|\n";
     for (const CleanRow& row : r.rows)
-        md << "| " << row.app.name << " | " << row.preset << " | " << blend_label(row.channel.blend) << " | " << num(row.channel.lambda, "%.2f")
+        md << "| " << row.app.name << " | " << row.preset << " | " << blend_label(row.channel.blend) << " | " << clean_number(row.channel.lambda, "%.2f")
            << " | " << filter_label(row.channel) << " | " << row.channel.fill_age << " | " << row.channel.residual << " |\n";
 }
 

@@ -1187,6 +1187,25 @@ TEST(AccumulateTool, StaticSequenceEndToEnd) {
     EXPECT_EQ(dir_entries(dir.path() / "out"), (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
 }
 
+namespace {
+
+// Frames 5-7 of write_static_sequence (RGB color) with object ids obj.X: 1 everywhere, from frame 6
+// 2 on the right half.  clean_color: color.R the same every frame (color then never changes).
+void write_object_id_sequence(const std::string& pattern, int w, int h, bool clean_color) {
+    write_static_sequence(pattern, 5, 7, SceneOptions::rgb());
+    for (int f = 5; f <= 7; ++f) {
+        const std::string path = rrc_cli::format_frame_path(pattern, f);
+        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
+        std::vector<float>& id = img.channels["obj.X"];
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
+        if (clean_color) img.channels["color.R"].assign(std::size_t(w) * h, 0.3f);
+        rrc_exr::write_exr(path, img);
+    }
+}
+
+}  // namespace
+
 // Object ids through the library: a still camera, so every pixel reprojects
 // onto its own texel (weight 1; its neighbours' weights are 0 up to fp32
 // rounding).  Frame 6 gives the right half a new id: with --object-id those
@@ -1196,15 +1215,7 @@ TEST(AccumulateTool, StaticSequenceEndToEnd) {
 TEST(AccumulateTool, ObjectIdsEndToEnd) {
     TempDir dir;
     const int w = 16, h = 12;
-    write_static_sequence(dir / "in/f_%d.exr", 5, 7, SceneOptions::rgb());
-    for (int f = 5; f <= 7; ++f) {
-        const std::string path = rrc_cli::format_frame_path(dir / "in/f_%d.exr", f);
-        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
-        std::vector<float>& id = img.channels["obj.X"];
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
-        rrc_exr::write_exr(path, img);
-    }
+    write_object_id_sequence(dir / "in/f_%d.exr", w, h, false);
     auto masks = [&](std::vector<std::string> extra, const std::string& out_dir) {
         std::vector<std::string> args = {"--input", dir / "in/f_%d.exr", "--output", dir / (out_dir + "/%d.exr"), "--frames", "5-7"};
         args.insert(args.end(), extra.begin(), extra.end());
@@ -1363,16 +1374,7 @@ std::map<std::string, std::pair<uint64_t, double>> clean_rows(const std::string&
 TEST(AccumulateTool, CleanReportByRegion) {
     TempDir dir;
     const int w = 16, h = 12;
-    write_static_sequence(dir / "in/f_%d.exr", 5, 7, SceneOptions::rgb());
-    for (int f = 5; f <= 7; ++f) {
-        const std::string path = rrc_cli::format_frame_path(dir / "in/f_%d.exr", f);
-        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
-        std::vector<float>& id = img.channels["obj.X"];
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
-        img.channels["color.R"].assign(std::size_t(w) * h, 0.3f);  // still in time: a clean input
-        rrc_exr::write_exr(path, img);
-    }
+    write_object_id_sequence(dir / "in/f_%d.exr", w, h, true);
     std::string out, err;
     ASSERT_EQ(run_tool({"--input", dir / "in/f_%d.exr", "--output", dir / "out/%d.exr", "--frames", "5-7", "--object-id", "obj.X",
                         "--signal", "shadow:history=fp32", "--signal", "color:history=fp32", "--clean-report", dir / "clean.csv",
