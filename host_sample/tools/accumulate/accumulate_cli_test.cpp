@@ -1,6 +1,7 @@
 // Tests of rrc-accumulate's option parser, of rrc_exr_io, and of the tool's
-// checks (which run before any rrc context exists).  One end-to-end test
-// runs a small sequence through the library and is skipped without a device.
+// checks (which run before any rrc context exists), of the clean report's
+// regions on hand-made frames; end-to-end tests run small sequences through
+// the library (--clean-report among them).
 //
 // Links: rrc_accumulate_core (which brings rrc and rrc_exr_io), GTest::gtest_main.
 #include "accumulate.h"
