@@ -2,6 +2,7 @@
 // (docs/PERFORMANCE.md, "Error against run time").  Runs the sweep, writes
 // the CSVs, then fronts.py for the Pareto fronts, plots and verdicts.
 #include "bias_output.h"
+#include "clean_study.h"
 #include "rectify_study.h"
 #include "sweep_options.h"
 #include "sweep_output.h"
@@ -27,13 +28,13 @@
 
 namespace {
 
-// The end both runs share: fail on validation messages, then the plotting script (matplotlib: Debian's python3-matplotlib).
+// The end every run shares: fail on validation messages, then the plotting script if any (matplotlib: Debian's python3-matplotlib).
 int finish(const rrc_sweep::SweepOptions& o, uint64_t validation_messages, const char* script) {
     if (o.validation && validation_messages) {
         std::cerr << "rrc-sweep: " << validation_messages << " validation message(s)\n";
         return 1;
     }
-    if (!o.plots) return 0;
+    if (!o.plots || !script) return 0;
     const std::string py = std::string(RRC_SWEEP_PYTHON) + " '" + script + "' '" + o.out + "'";
     if (std::system(py.c_str()) == 0) return 0;
     std::cerr << "rrc-sweep: " << std::filesystem::path(script).filename().string() << " failed (" << py << ")\n";
@@ -50,6 +51,12 @@ int main(int argc, char** argv) {
     std::string command = "rrc-sweep";
     for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
     try {
+        if (o.study == "clean") {
+            const CleanResult r = run_clean_study(o, &std::cout);
+            write_clean_files(o, r, command);
+            std::cout << "rrc-sweep --study clean: " << r.rows.size() << " rows in " << (int)r.seconds << " s; " << o.out << "/clean.md\n";
+            return finish(o, r.validation_messages, nullptr);
+        }
         if (o.study == "rectify") {
             const RectifyResult r = run_rectify_study(o, &std::cout);
             write_rectify_files(o, r, command);

@@ -11,7 +11,7 @@ namespace {
 
 using Name = rrc_host::EnumName<const char*>;
 constexpr Name kMotionNames[] = {{"all", "all"}, {"camera-still", "camera-still"}, {"still", "still"}};
-constexpr Name kStudyNames[] = {{"rectify", "rectify"}};
+constexpr Name kStudyNames[] = {{"rectify", "rectify"}, {"clean", "clean"}};
 constexpr Name kClockNames[] = {{"auto", "auto"}, {"wall", "wall"}, {"timestamps", "timestamps"}};
 
 std::vector<int> ints(const std::vector<long>& v) { return std::vector<int>(v.begin(), v.end()); }
@@ -62,6 +62,11 @@ std::string sweep_usage() {
            "                           lag error with the light moving, static variance with it fixed, rectify off/on;\n"
            "                           its defaults unless given: --size 192x128 --checkpoints 23,4 --lambdas 0.6,0.8,0.9\n"
            "                           --taps 4 --light-speed 1 --motion still --out out/rectify\n"
+           "  --study clean            what rrc adds to a clean input (README.md, \"Clean input\"): each application's target\n"
+           "                           (--reference-samples) as its per-frame signal, accumulated with\n"
+           "                           rrc-sample's preset with and without its base, and the output against that frame's\n"
+           "                           input by region (background, edge, filled, miss, young, history): clean.md and\n"
+           "                           clean.csv; its defaults unless given: --frames 24 --checkpoints 8,1 --out out/clean\n"
            "  --rectify-gammas LIST    the study's rectify-on rows, one per gamma (default 0.5,1,1.5)\n"
            "  --antilag-gammas LIST    the study's lag-detector rows (pcf, env), one per gamma_a (default 1,0.75,0.25;\n"
            "                           --no-antilag drops them)\n"
@@ -171,6 +176,14 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
         if (!c.given("--motion")) o.motion = "still";
         if (!c.given("--out")) o.out = "out/rectify";
         if (o.light_speed == 0.0f) throw OptionError("--study rectify: the light must move (--light-speed not 0)");
+    }
+    if (o.study == "clean") {
+        // Noise-free input: one run says all (the seeds change nothing); frames from 8 on, as the
+        // error study's, every frame scored.
+        if (!c.given("--frames")) o.frames = 24;
+        if (!c.given("--checkpoints")) o.first_checkpoint = 8, o.checkpoint_every = 1;
+        if (!c.given("--out")) o.out = "out/clean";
+        if (o.bias_maps) throw OptionError("--bias-maps: the sweep's, not --study clean's");
     }
     if (o.bias_maps && o.first_checkpoint < o.change_window)
         throw OptionError("--bias-maps: the first checkpoint must be at least --change-window frames from the reset");

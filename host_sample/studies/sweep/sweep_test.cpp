@@ -5,8 +5,11 @@
 // paper's rotated pattern has, and accumulation beats one frame.  The moving
 // light turns the sun as stated, and the rectification study's lag error
 // sees it: some pixels change, rrc lags behind them, rectification cuts it.
+// The clean-input study returns a still scene's input nearly unchanged and
+// adds error under motion, its regions covering every scored pixel.
 // The time model is tested on made-up timings only (SweepTime): a measured
 // time on a loaded machine may legitimately be 0 (README.md, "Definitions").
+#include "clean_study.h"
 #include "ensemble.h"
 #include "rectify_study.h"
 #include "scene.h"
@@ -495,3 +498,48 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
 }
 
 }  // namespace
+
+namespace {
+
+SweepOptions small_clean_study(const char* motion) {
+    const char* argv[] = {"rrc-sweep", "--study", "clean", "--size", "40x24", "--frames", "10", "--reference-samples", "16",
+                          "--motion", motion, "--validation", "--quiet"};
+    SweepOptions o = parse_sweep_options(13, argv);
+    o.out = "";
+    return o;
+}
+
+}  // namespace
+
+// README.md, "Clean input": with nothing moving, pcf's and soft's targets (exact, and a fixed grid
+// on the light) are the same every frame, so away from edges every preset returns them up to fp16
+// history's rounding; with the camera and the torus moving, resampling and the fill add error.
+// env's target is a fresh estimate every frame (its own noise stays in the input).  The regions
+// take every scored pixel, never the background.
+TEST(CleanStudy, StillInputComesBackAndMotionAddsError) {
+    const SweepOptions still_options = small_clean_study("still");
+    EXPECT_EQ(still_options.checkpoints(), (std::vector<int>{8, 9})) << "the study's defaults: frames 8.. every frame";
+    const CleanResult still = run_clean_study(still_options, nullptr);
+    const CleanResult moving = run_clean_study(small_clean_study("all"), nullptr);
+    EXPECT_EQ(still.validation_messages, 0u);
+    EXPECT_EQ(moving.validation_messages, 0u);
+    ASSERT_EQ(still.rows.size(), moving.rows.size());
+    ASSERT_EQ(still.rows.size(), 6u) << "pcf, env, soft x the preset with and without its base";
+    EXPECT_EQ(moving.scored_frames, 2);
+    using namespace rrc_host;
+    for (size_t i = 0; i < still.rows.size(); ++i) {
+        const CleanSums &s = still.rows[i].sums, &m = moving.rows[i].sums;
+        const std::string row = std::string(still.rows[i].app.name) + ", " + still.rows[i].preset;
+        EXPECT_GT(m.total_pixels(), 0u) << row;
+        EXPECT_LE(m.total_pixels(), 2u * 40u * 24u) << row;
+        EXPECT_EQ(m.skipped, 0u) << row;
+        EXPECT_EQ(m.pixels[kCleanBackground], 0u) << row << ": the background is never scored";
+        EXPECT_EQ(s.pixels[kCleanMiss] + s.pixels[kCleanYoung], 0u) << row << ": a still frame 8 frames after the reset";
+        EXPECT_GT(m.pixels[kCleanHistory], 0u) << row;
+        EXPECT_GT(m.pixels[kCleanEdge], 0u) << row;
+        if (i % 2) EXPECT_EQ(m.total_pixels(), moving.rows[i - 1].sums.total_pixels()) << row << ": both rows score the same pixels";
+        if (still.rows[i].app.signal == rrc_sample::kSignalEnv) continue;
+        EXPECT_LT(s.rmse(kCleanHistory), 2e-3) << row;
+        EXPECT_GT(m.rmse(kCleanRegionCount), 0.01) << row;
+    }
+}

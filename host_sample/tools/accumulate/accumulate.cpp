@@ -1,6 +1,7 @@
 // rrc-accumulate: the main loop.
 #include "accumulate.h"
 
+#include "clean_report.h"
 #include "sequence.h"
 
 #include <png_io.h>
@@ -130,6 +131,7 @@ void check_no_overwrite(const Options& o) {
             check_output(format_frame_path(o.coherence_pattern, f), "coherence map (frame " + std::to_string(f) + ")");
     }
     if (!o.reference_pattern.empty()) check_output(metrics_path(o), "metrics file");
+    if (!o.clean_report.empty()) check_output(o.clean_report, "clean report");
 }
 
 namespace {
@@ -327,6 +329,10 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
         double ratio_sum = 0.0;
         int64_t ratio_count = 0, processed = 0;
         std::vector<MetricSums> metric_totals(k);
+        std::vector<uint32_t> fill_ages;
+        for (const rrc_channel_desc& c : channel_descs) fill_ages.push_back(c.fill_age);
+        std::unique_ptr<CleanReport> clean;
+        if (!o.clean_report.empty()) clean.reset(new CleanReport(o, layout, fill_ages));
         std::string csv = "frame,layer,hit_ratio,values,input_rmse,input_psnr_db,output_rmse,output_psnr_db\n";
         for (int64_t f = o.first_frame; f <= o.last_frame; ++f) {
             const auto t_frame = Clock::now();
@@ -464,6 +470,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
                                    number(psnr_db(out_mse, o.psnr_peak), "%.1f") + " dB";
                 }
             }
+            if (clean) clean->add_frame(f, data, result);
             details += format(", %.2f ms (rrc_frame_run), %.1f ms total", run_ms, ms_since(t_frame));
             if (st.invalid_samples || st.invalid_geometry)
                 details += ", " + std::to_string(st.invalid_samples) + " invalid samples, " + std::to_string(st.invalid_geometry) +
@@ -490,6 +497,7 @@ int run_accumulate(const Options& o, std::ostream& out, std::ostream& err) {
                     << " (PSNR " << number(psnr_db(out_mse, o.psnr_peak), "%.2f") << " dB); per frame in " << csv_path << "\n";
             }
         }
+        if (clean) clean->finish(out);
         out << "rrc-accumulate: " << processed << (processed == 1 ? " frame" : " frames") << ", mean hit ratio "
             << (ratio_count ? format("%.1f%%", ratio_sum / static_cast<double>(ratio_count)) : std::string("n/a"))
             << " (frames after the first)" << format(", total %.2f s", ms_since(t_start) / 1000.0) << ", device " << device;

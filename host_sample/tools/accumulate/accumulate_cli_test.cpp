@@ -1,12 +1,14 @@
 // Tests of rrc-accumulate's option parser, of rrc_exr_io, and of the tool's
-// checks (which run before any rrc context exists).  One end-to-end test
-// runs a small sequence through the library and is skipped without a device.
+// checks (which run before any rrc context exists), of the clean report's
+// regions on hand-made frames; end-to-end tests run small sequences through
+// the library (--clean-report among them).
 //
 // Links: rrc_accumulate_core (which brings rrc and rrc_exr_io), GTest::gtest_main.
 #include "accumulate.h"
 #include "options.h"
 #include "sequence.h"
 
+#include <clean_regions.h>
 #include <exr_io.h>
 
 #include <gtest/gtest.h>
@@ -22,6 +24,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1185,6 +1188,25 @@ TEST(AccumulateTool, StaticSequenceEndToEnd) {
     EXPECT_EQ(dir_entries(dir.path() / "out"), (std::vector<std::string>{"acc_005.exr", "acc_006.exr", "acc_007.exr"}));
 }
 
+namespace {
+
+// Frames 5-7 of write_static_sequence (RGB color) with object ids obj.X: 1 everywhere, from frame 6
+// 2 on the right half.  clean_color: color.R the same every frame (color then never changes).
+void write_object_id_sequence(const std::string& pattern, int w, int h, bool clean_color) {
+    write_static_sequence(pattern, 5, 7, SceneOptions::rgb());
+    for (int f = 5; f <= 7; ++f) {
+        const std::string path = rrc_cli::format_frame_path(pattern, f);
+        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
+        std::vector<float>& id = img.channels["obj.X"];
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
+        if (clean_color) img.channels["color.R"].assign(std::size_t(w) * h, 0.3f);
+        rrc_exr::write_exr(path, img);
+    }
+}
+
+}  // namespace
+
 // Object ids through the library: a still camera, so every pixel reprojects
 // onto its own texel (weight 1; its neighbours' weights are 0 up to fp32
 // rounding).  Frame 6 gives the right half a new id: with --object-id those
@@ -1194,15 +1216,7 @@ TEST(AccumulateTool, StaticSequenceEndToEnd) {
 TEST(AccumulateTool, ObjectIdsEndToEnd) {
     TempDir dir;
     const int w = 16, h = 12;
-    write_static_sequence(dir / "in/f_%d.exr", 5, 7, SceneOptions::rgb());
-    for (int f = 5; f <= 7; ++f) {
-        const std::string path = rrc_cli::format_frame_path(dir / "in/f_%d.exr", f);
-        rrc_exr::ExrImage img = rrc_exr::read_exr(path);
-        std::vector<float>& id = img.channels["obj.X"];
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) id.push_back(f >= 6 && i >= w / 2 ? 2.0f : 1.0f);
-        rrc_exr::write_exr(path, img);
-    }
+    write_object_id_sequence(dir / "in/f_%d.exr", w, h, false);
     auto masks = [&](std::vector<std::string> extra, const std::string& out_dir) {
         std::vector<std::string> args = {"--input", dir / "in/f_%d.exr", "--output", dir / (out_dir + "/%d.exr"), "--frames", "5-7"};
         args.insert(args.end(), extra.begin(), extra.end());
@@ -1227,4 +1241,185 @@ TEST(AccumulateTool, ObjectIdsEndToEnd) {
             EXPECT_EQ(bool(int(with_ids[1][k]) & RRC_MASK_HIT), !right) << "frame 6 pixel (" << i << ", " << j << ")";
             if (!boundary) EXPECT_TRUE(int(with_ids[2][k]) & RRC_MASK_HIT) << "frame 7 pixel (" << i << ", " << j << ")";
         }
+}
+
+// ======================================================================
+// --clean-report: the output against its own input, by region
+// (clean_regions.h; docs/OFFLINE.md, "What rrc adds to a clean input")
+// ======================================================================
+
+TEST(AccumulateOptions, CleanReportAndFrom) {
+    ParseResult r = parse_with({"--clean-report", "out/clean.md", "--from", "2"});
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_EQ(r.options.clean_report, "out/clean.md");
+    EXPECT_EQ(r.options.clean_from, 2);
+    // The error study's default first frame, or the range's first when the range ends before it.
+    EXPECT_EQ(parse({"--input", "i/%d.exr", "--output", "o/%d.exr", "--frames", "0-20", "--clean-report", "c.csv"}).options.clean_from, 8);
+    EXPECT_EQ(parse_with({"--clean-report", "c.csv"}).options.clean_from, 1);
+    expect_error(parse_with({"--clean-report", "clean.txt"}), "--clean-report");
+    expect_error(parse_with({"--from", "2"}), "--from needs --clean-report");
+    expect_error(parse_with({"--clean-report", "c.md", "--from", "4"}), "after the last frame");
+}
+
+namespace {
+
+// A CleanFrame over vectors the test owns.
+struct HandFrame {
+    uint32_t w, h;
+    std::vector<uint8_t> mask;
+    std::vector<uint16_t> age;
+    std::vector<float> u;
+    std::vector<uint32_t> id;
+    rrc_host::CleanFrame frame(uint32_t fill_age, bool ids) const {
+        rrc_host::CleanFrame f;
+        f.width = w, f.height = h, f.mask = mask.data(), f.age = age.data(), f.inverse_depth = u.data();
+        f.object_id = ids ? id.data() : nullptr;
+        f.fill_age = fill_age;
+        return f;
+    }
+};
+
+}  // namespace
+
+// An 8x4 frame: a plane whose u (1/depth) falls linearly from left to right (no seed: its second
+// difference is 0) except column 6, a surface in front (a jump); pixel (0, 0) is background;
+// column 2 misses; columns 0-1 are hits of age 2, columns 3-5 hits of age 9.
+TEST(CleanRegions, HandMadeFrame) {
+    HandFrame g{8, 4};
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            g.u.push_back(x == 6 ? 2.0f : 1.0f - 0.05f * x);
+            g.mask.push_back(x == 2 ? 0 : RRC_MASK_HIT);
+            g.age.push_back(x == 2 ? 1 : x < 2 ? 2 : 9);
+            g.id.push_back(1);
+        }
+    g.mask[0] = RRC_MASK_BACKGROUND, g.age[0] = 0, g.u[0] = 0.0f;
+    using namespace rrc_host;
+    // Seeds: (0, 0) the background, and (1, 0) and (0, 1) whose second differences reach it; the
+    // jump at column 6 seeds columns 5 and 6.  Dilated by 1 px: columns 0-2 of rows 0-1, columns
+    // 0-1 of row 2, and columns 4-7.
+    const std::vector<uint8_t> r = clean_regions(g.frame(0, false));
+    auto at = [&](uint32_t x, uint32_t y) { return (int)r[y * 8 + x]; };
+    EXPECT_EQ(at(0, 0), kCleanBackground);
+    EXPECT_EQ(at(2, 1), kCleanEdge);
+    EXPECT_EQ(at(1, 2), kCleanEdge);
+    EXPECT_EQ(at(0, 3), kCleanYoung);  // age 2 < 4, a hit
+    EXPECT_EQ(at(2, 2), kCleanMiss);
+    EXPECT_EQ(at(2, 3), kCleanMiss);
+    EXPECT_EQ(at(3, 2), kCleanHistory);
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 4; x < 8; ++x) EXPECT_EQ(at(x, y), kCleanEdge) << x << "," << y;
+    // With a fill of age 3 the young hit and the miss (age 1) are filled; age 9 is still history.
+    const std::vector<uint8_t> filled = clean_regions(g.frame(3, false));
+    EXPECT_EQ((int)filled[3 * 8 + 0], kCleanFilled);
+    EXPECT_EQ((int)filled[3 * 8 + 2], kCleanFilled);
+    EXPECT_EQ((int)filled[2 * 8 + 3], kCleanHistory);
+    // An object-id boundary between columns 2 and 3 makes columns 1-4 edges.
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 3; x < 8; ++x) g.id[y * 8 + x] = 2;
+    const std::vector<uint8_t> ids = clean_regions(g.frame(0, true));
+    EXPECT_EQ((int)ids[3 * 8 + 1], kCleanEdge);
+    EXPECT_EQ((int)ids[3 * 8 + 0], kCleanYoung);
+    EXPECT_EQ((int)ids[3 * 8 + 2], kCleanEdge);
+    EXPECT_EQ(clean_regions(g.frame(0, false))[3 * 8 + 2], (uint8_t)kCleanMiss) << "ids only count when given";
+
+    // The errors: identity gives 0, a perturbed output more, and the regions add up to the total.
+    std::vector<float> in(32), out(32);
+    for (size_t p = 0; p < 32; ++p) in[p] = out[p] = 0.1f * (float)p;
+    CleanSums same;
+    add_clean_errors(same, r, in.data(), out.data(), 1, 1);
+    EXPECT_EQ(same.total_sse(), 0.0);
+    EXPECT_EQ(same.total_pixels(), 32u);
+    out[3 * 8 + 2] += 0.5f;  // a miss
+    out[2 * 8 + 3] -= 0.25f; // history
+    out[1 * 8 + 1] = std::numeric_limits<float>::quiet_NaN();
+    CleanSums s;
+    add_clean_errors(s, r, in.data(), out.data(), 1, 1);
+    EXPECT_NEAR(s.sse[kCleanMiss], 0.25, 1e-6);
+    EXPECT_NEAR(s.sse[kCleanHistory], 0.0625, 1e-6);
+    EXPECT_NEAR(s.total_sse(), 0.3125, 1e-6);
+    EXPECT_EQ(s.skipped, 1u);
+    EXPECT_EQ(s.total_pixels(), 31u);
+    EXPECT_NEAR(s.rmse(kCleanRegionCount), std::sqrt(0.3125 / 31.0), 1e-7);
+    EXPECT_NE(clean_table(s).find("| miss | 0.3536 | 80.0% | 6.5% |"), std::string::npos) << clean_table(s);
+}
+
+namespace {
+
+// rrc-accumulate --clean-report FILE.csv's rows: (frame, layer, region) -> (pixels, sse).
+std::map<std::string, std::pair<uint64_t, double>> clean_rows(const std::string& path) {
+    std::map<std::string, std::pair<uint64_t, double>> rows;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "frame,layer,region,pixels,values,sse,rmse");
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string item; std::getline(ss, item, ',');) f.push_back(item);
+        if (f.size() != 7) {
+            ADD_FAILURE() << line;
+            continue;
+        }
+        rows[f[0] + "/" + f[1] + "/" + f[2]] = {std::stoull(f[3]), std::stod(f[5])};
+    }
+    return rows;
+}
+
+}  // namespace
+
+// Three frames of a still camera; frame 6 gives the right half a new object id, so with ids its
+// pixels miss (docs/OFFLINE.md, "Object ids"): at frame 6 columns 6-9 are edges (within 1 px of the
+// boundary between 7 and 8), 10-15 misses, 0-5 young hits (age 2).  color.G and color.B are the same
+// every frame (a clean input: rrc must return it), shadow.Y flips every frame (what rrc averages).
+TEST(AccumulateTool, CleanReportByRegion) {
+    TempDir dir;
+    const int w = 16, h = 12;
+    write_object_id_sequence(dir / "in/f_%d.exr", w, h, true);
+    std::string out, err;
+    ASSERT_EQ(run_tool({"--input", dir / "in/f_%d.exr", "--output", dir / "out/%d.exr", "--frames", "5-7", "--object-id", "obj.X",
+                        "--signal", "shadow:history=fp32", "--signal", "color:history=fp32", "--clean-report", dir / "clean.csv",
+                        "--quiet"},
+                       &out, &err),
+              0)
+        << err;
+    EXPECT_NE(out.find("shadow against its own input, frames 5-7"), std::string::npos) << out;
+    const auto rows = clean_rows(dir / "clean.csv");
+    auto pixels = [&](const std::string& key) { return rows.count(key) ? rows.at(key).first : 999u; };
+    auto sse = [&](const std::string& key) { return rows.count(key) ? rows.at(key).second : -1.0; };
+    // Frame 5 misses everywhere: out = s, no error.
+    EXPECT_EQ(pixels("5/shadow/miss"), 192u);
+    EXPECT_EQ(sse("5/shadow/all"), 0.0);
+    EXPECT_EQ(pixels("6/shadow/edge"), 48u);
+    EXPECT_EQ(pixels("6/shadow/miss"), 72u);
+    EXPECT_EQ(pixels("6/shadow/young"), 72u);
+    EXPECT_EQ(pixels("6/shadow/history"), 0u);
+    EXPECT_EQ(sse("6/shadow/miss"), 0.0);
+    // The flipping signal: a blend is never the frame's own sample (lambda 0.6: 0.6 away on each hit).
+    EXPECT_NEAR(sse("6/shadow/young"), 72 * 0.36, 1e-3);
+    // The clean one: what rrc adds is nothing but rounding.
+    EXPECT_LT(sse("7/color/all"), 1e-8);
+    for (int f = 5; f <= 7; ++f)
+        for (const char* layer : {"shadow", "color"}) {
+            const std::string pre = std::to_string(f) + "/" + layer + "/";
+            uint64_t n = 0;
+            double e = 0.0;
+            for (int r = 0; r < rrc_host::kCleanRegionCount; ++r) {
+                n += pixels(pre + rrc_host::clean_region_name(r));
+                e += sse(pre + rrc_host::clean_region_name(r));
+            }
+            EXPECT_EQ(n, pixels(pre + "all")) << pre;
+            EXPECT_EQ(n, 192u) << pre;
+            EXPECT_NEAR(e, sse(pre + "all"), 1e-9 + 1e-6 * e) << pre;
+        }
+    // The markdown form: the summary's tables.
+    ASSERT_EQ(run_tool({"--input", dir / "in/f_%d.exr", "--output", dir / "out2/%d.exr", "--frames", "5-7", "--signal", "shadow",
+                        "--clean-report", dir / "clean.md", "--from", "6", "--quiet"},
+                       &out, &err),
+              0)
+        << err;
+    std::ifstream md(dir / "clean.md");
+    const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("frames 6-7 (2 frames)"), std::string::npos) << text;
+    EXPECT_NE(text.find("| history |"), std::string::npos) << text;
 }

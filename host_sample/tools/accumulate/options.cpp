@@ -483,6 +483,16 @@ Measurements and pictures:
   --psnr-peak P          PSNR = 10 log10(P^2 / MSE) (1)
   --coherence PATTERN    a PNG per frame: green hit, red miss, blue refreshed,
                          dark grey background, magenta invalid geometry
+  --clean-report FILE    what rrc adds to a clean input: per frame and signal
+                         the accumulated output against that frame's own input,
+                         RMSE over all pixels and by region (background, edge,
+                         filled, miss, young, history; docs/OFFLINE.md, "What
+                         rrc adds to a clean input"), each with its share of
+                         the squared error and of the pixels; FILE ending in
+                         .md gets the summary tables, in .csv the rows per
+                         frame; the summary is also printed
+  --from N               the --clean-report summary's first frame (8; the
+                         range's first when it ends before frame 8)
 
 Device and output:
   --device NAME          the first Vulkan device whose name contains NAME
@@ -560,6 +570,8 @@ const std::vector<std::string>& value_options() {
                                                    "--reference",
                                                    "--metrics",
                                                    "--psnr-peak",
+                                                   "--clean-report",
+                                                   "--from",
                                                    "--progress"};
     return names;
 }
@@ -584,6 +596,15 @@ std::string parse_value_option(rrc_host::ArgCursor& c, Options& o) {
     } else if (arg == "--preset") {
         if (value != "blender") return where + "the only preset is blender (Blender 3.x multilayer EXR passes)";
         o.preset = value;
+    } else if (arg == "--clean-report") {
+        const bool md = value.size() > 3 && value.compare(value.size() - 3, 3, ".md") == 0;
+        const bool csv = value.size() > 4 && value.compare(value.size() - 4, 4, ".csv") == 0;
+        if (!md && !csv) return where + "expected a file name ending in .md or .csv";
+        o.clean_report = value;
+    } else if (arg == "--from") {
+        int64_t f = 0;
+        if (!parse_int(value, f) || f > 999999999) return where + "expected a frame number";
+        o.clean_from = f;
     } else if (arg == "--view-layer" || arg == "--depth-channel" || arg == "--nocache-channel" || arg == "--metrics" ||
                arg == "--object-id") {
         if (value.empty()) return "option " + arg + ": the name is empty";
@@ -761,6 +782,12 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
         return fail("option --metrics needs --reference PATTERN (the frames to measure against)");
     if (!o.reference_pattern.empty() && o.reference_pattern == o.input_pattern)
         return fail("option --reference: the reference pattern equals the input pattern");
+    if (c.given("--from") && o.clean_report.empty()) return fail("option --from needs --clean-report FILE");
+    // A range that ends before the default first frame is summarised whole.
+    if (!c.given("--from") && o.clean_from > o.last_frame) o.clean_from = o.first_frame;
+    if (!o.clean_report.empty() && o.clean_from > o.last_frame)
+        return fail("option --from " + std::to_string(o.clean_from) + ": after the last frame (" + std::to_string(o.last_frame) +
+                    "); the --clean-report summary would be empty");
     return r;
 }
 

@@ -105,6 +105,10 @@ struct Options {
     std::string reference_pattern; /* --reference: converged frames to measure against */
     std::string metrics_file;      /* --metrics: CSV path; default <output directory>/metrics.csv */
     float psnr_peak = 1.0f;        /* --psnr-peak: PSNR = 10 log10(peak^2 / MSE) */
+    /* --clean-report FILE.md|FILE.csv: the output against each frame's own input, by region
+     * (clean_regions.h; docs/OFFLINE.md, "What rrc adds to a clean input"). */
+    std::string clean_report;
+    int64_t clean_from = 8; /* --from N: the report's summary is over frames >= N (the error study's) */
 
     std::string device;                 /* --device */
     bool validation = false;            /* --validation */
