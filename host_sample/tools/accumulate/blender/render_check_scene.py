@@ -47,6 +47,24 @@
 #                 filter over the frames; scene.json gives each frame's
 #                 "jitter" in pixels, x right, y down.  Cycles' Vector pass
 #                 leaves the shift out (unjittered vectors)
+# The fence sequence (docs/OFFLINE.md, section 7, "A fence of thin poles"; every
+# option off by default, so the sequences above are unchanged):
+#   fence=N       N thin upright poles (pass indices 10..) in a row at y =
+#                 fence_y= (-4), evenly over x in [-fence_span/2,
+#                 fence_span/2] (fence_span= 11), 3.2 high, their diameters
+#                 cycling through fence_d= (0.021,0.038,0.052,0.065: 1.2-4
+#                 px at 320x180 seen from the strafe, 5.3 away)
+#   bricks=1      a brick wall behind the scene (pass index 8): a vertical
+#                 plane at y = wall_y= (2), 24 wide, 4 high, with Cycles'
+#                 procedural brick texture, bricks 0.25 x 0.125 and mortar
+#                 0.01 (a third of a pixel at 320x180)
+#   mover=ball    the moving object is a glossy striped ball of radius
+#                 ball_r= (0.45) that rolls on the ground at mover_vel=
+#                 (its z is ignored): it turns by its distance / radius
+#   light=area    an area light (a 1.5-wide square, 400 W, facing down from
+#                 z = 5) instead of the sun, moving by light_vel= (0.12,0,0)
+#                 a frame from light_x0= (-1.5), so that the shadows move
+#   threads=N     Cycles' threads (Blender's default: every core)
 import bpy
 import json
 import math
@@ -58,7 +76,8 @@ keys = dict(a.split("=", 1) for a in argv if "=" in a)
 argv = [a for a in argv if "=" not in a]
 keys_given = dict(keys)
 unknown = set(keys) - {"seed", "size", "offset", "filter", "bounces", "camera", "cam_x0", "cam_speed", "pan", "mover",
-                       "mover_vel", "spin", "pillars", "jitter", "jitter_width"}
+                       "mover_vel", "spin", "pillars", "jitter", "jitter_width", "fence", "fence_y", "fence_span",
+                       "fence_d", "bricks", "wall_y", "ball_r", "light", "light_vel", "light_x0", "threads"}
 if unknown:
     sys.exit("render_check_scene.py: unknown option(s) " + ", ".join(sorted(unknown)))
 out_dir = os.path.abspath(argv[0] if argv else "blender_check")
@@ -75,13 +94,24 @@ camera_path = keys.get("camera", "check")
 cam_x0, cam_speed, pan = float(keys.get("cam_x0", "-1.8")), float(keys.get("cam_speed", "0.15")), float(keys.get("pan", "0"))
 mover_kind = keys.get("mover", "sphere")
 mover_vel = [float(v) for v in keys.get("mover_vel", "0.25,0,0.15").split(",")]
+fence = int(keys.get("fence", "0"))
+fence_y, fence_span = float(keys.get("fence_y", "-4")), float(keys.get("fence_span", "11"))
+fence_d = [float(v) for v in keys.get("fence_d", "0.021,0.038,0.052,0.065").split(",")]
+bricks = keys.get("bricks", "0") == "1"
+wall_y = float(keys.get("wall_y", "2"))
+ball_r = float(keys.get("ball_r", "0.45"))
+light_kind = keys.get("light", "sun")
+light_vel = [float(v) for v in keys.get("light_vel", "0.12,0,0").split(",")]
+light_x0 = float(keys.get("light_x0", "-1.5"))
+threads = int(keys["threads"]) if "threads" in keys else None
 spin = float(keys.get("spin", "0"))
 pillars = int(keys.get("pillars", "0"))
 jitter_kind = keys.get("jitter", "none")
 jitter_width = float(keys.get("jitter_width", "1"))  # jitter_camera.py's default for the reference's 1.5 px, whatever filter= is
-if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube") or len(mover_vel) != 3 \
-        or jitter_kind not in ("none", "filter"):
-    sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube, mover_vel=X,Y,Z, jitter=none|filter")
+if camera_path not in ("check", "strafe") or mover_kind not in ("sphere", "cube", "ball") or len(mover_vel) != 3 \
+        or jitter_kind not in ("none", "filter") or light_kind not in ("sun", "area") or len(light_vel) != 3:
+    sys.exit("render_check_scene.py: camera=check|strafe, mover=sphere|cube|ball, mover_vel=X,Y,Z, jitter=none|filter, "
+             "light=sun|area, light_vel=X,Y,Z")
 os.makedirs(out_dir, exist_ok=True)
 
 W, H = int(size[0]), int(size[1])
@@ -100,6 +130,9 @@ scene.cycles.filter_width = filter_width
 scene.cycles.sample_offset = 0
 if bounces is not None:
     scene.cycles.max_bounces = bounces
+if threads is not None:
+    scene.render.threads_mode = 'FIXED'
+    scene.render.threads = threads
 if offset_per_frame:
     def set_sample_offset(sc, *_):
         sc.cycles.sample_offset = max(sc.frame_current - 1, 0) * samples
@@ -172,6 +205,23 @@ if mover_kind == "sphere":
     sphere.data.materials.append(material("Sphere", (0.7, 0.2, 0.1, 1.0)))
     bpy.ops.object.shade_smooth()
     start = (1.0, -0.5, 1.2)
+elif mover_kind == "ball":  # glossy, with stripes so that its rolling shows
+    start = (1.0, -0.5, ball_r)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=ball_r, location=start, segments=48, ring_count=24)
+    sphere = bpy.context.active_object
+    sphere.name = "Ball"
+    m = material("Ball", (0.7, 0.2, 0.1, 1.0))
+    bsdf = m.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Roughness"].default_value = 0.08
+    bsdf.inputs["Specular"].default_value = 0.9
+    stripes = m.node_tree.nodes.new("ShaderNodeTexChecker")
+    stripes.inputs["Scale"].default_value = 3.0
+    stripes.inputs["Color1"].default_value = (0.7, 0.2, 0.1, 1.0)
+    stripes.inputs["Color2"].default_value = (0.9, 0.85, 0.2, 1.0)
+    m.node_tree.links.new(stripes.outputs["Color"], bsdf.inputs["Base Color"])
+    sphere.data.materials.append(m)
+    bpy.ops.object.shade_smooth()
+    mover_vel[2] = 0.0
 else:  # a spinning cube: its vectors vary across its faces
     bpy.ops.mesh.primitive_cube_add(size=0.9, location=(1.0, -0.5, 0.45))
     sphere = bpy.context.active_object
@@ -181,8 +231,14 @@ else:  # a spinning cube: its vectors vary across its faces
 sphere.pass_index = 3
 # By default the sphere moves right and up: both signs of the vector show.
 keys = (0, frames + 1)  # linear between, so every frame moves alike
-keyed(sphere, {f: tuple(start[i] + mover_vel[i] * f for i in range(3)) for f in keys},
-      {f: (0.0, 0.0, math.radians(spin * f)) for f in keys} if spin else None)
+if mover_kind == "ball":  # rolling without slipping: the turn is the distance over the radius, about (-vy, vx, 0)
+    speed = math.hypot(mover_vel[0], mover_vel[1])
+    heading = math.atan2(mover_vel[1], mover_vel[0])
+    roll = {f: (0.0, speed * f / ball_r, heading) for f in keys}  # Euler XYZ: Rz(heading) Ry(roll), the roll about the path's normal
+    keyed(sphere, {f: tuple(start[i] + mover_vel[i] * f for i in range(3)) for f in keys}, roll)
+else:
+    keyed(sphere, {f: tuple(start[i] + mover_vel[i] * f for i in range(3)) for f in keys},
+          {f: (0.0, 0.0, math.radians(spin * f)) for f in keys} if spin else None)
 statics = [plane, cube]
 for i in range(pillars):  # evenly spread across the view, 5.5 in front of the scene's centre
     bpy.ops.mesh.primitive_cylinder_add(radius=0.18, depth=3.0, location=(-3.0 + 6.0 * (i + 0.5) / pillars, -4.5, 1.5))
@@ -191,6 +247,40 @@ for i in range(pillars):  # evenly spread across the view, 5.5 in front of the s
     pillar.pass_index = 4 + i
     pillar.data.materials.append(material("Pillar%d" % i, (0.8, 0.75, 0.6, 1.0)))
     statics.append(pillar)
+for i in range(fence):  # thin poles, 1-4 px wide, evenly over the strafe's whole view
+    d = fence_d[i % len(fence_d)]
+    x = -fence_span / 2 + fence_span * (i + 0.5) / fence
+    bpy.ops.mesh.primitive_cylinder_add(vertices=12, radius=d / 2, depth=3.2, location=(x, fence_y, 1.6))
+    pole = bpy.context.active_object
+    pole.name = "Pole%d" % i
+    pole.pass_index = 10 + i
+    pole.data.materials.append(material("Pole%d" % i, (0.85, 0.85, 0.8, 1.0)))
+    statics.append(pole)
+if bricks:  # sub-pixel mortar: aliasing that a 1-sample frame cannot resolve
+    bpy.ops.mesh.primitive_plane_add(size=1, location=(0, wall_y, 2.0), rotation=(math.radians(90), 0, 0))
+    wall = bpy.context.active_object
+    wall.name = "Wall"
+    wall.scale = (24.0, 4.0, 1.0)
+    wall.pass_index = 8
+    m = material("Wall", (0.55, 0.2, 0.12, 1.0))
+    nt = m.node_tree
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    brick = nt.nodes.new("ShaderNodeTexBrick")
+    brick.inputs["Scale"].default_value = 1.0  # world units: the plane's object coordinates times its scale
+    brick.inputs["Color1"].default_value = (0.55, 0.2, 0.12, 1.0)
+    brick.inputs["Color2"].default_value = (0.4, 0.15, 0.1, 1.0)
+    brick.inputs["Mortar"].default_value = (0.85, 0.85, 0.8, 1.0)
+    brick.inputs["Mortar Size"].default_value = 0.01
+    brick.inputs["Brick Width"].default_value = 0.25
+    brick.inputs["Row Height"].default_value = 0.125
+    scale = nt.nodes.new("ShaderNodeVectorMath")
+    scale.operation = 'MULTIPLY'
+    scale.inputs[1].default_value = (24.0, 4.0, 1.0)
+    nt.links.new(coord.outputs["Object"], scale.inputs[0])
+    nt.links.new(scale.outputs["Vector"], brick.inputs["Vector"])
+    nt.links.new(brick.outputs["Color"], nt.nodes["Principled BSDF"].inputs["Base Color"])
+    wall.data.materials.append(m)
+    statics.append(wall)
 
 cam_data = bpy.data.cameras.new("Camera")
 cam_data.lens = 35.0
@@ -219,12 +309,21 @@ if jitter_kind == "filter":
     import jitter_camera
     jitters = jitter_camera.key_jitter(cam_data, range(0, frames + 2), jitter_width, W, H)
 
-sun = bpy.data.lights.new("Sun", type='SUN')
-sun.energy = 1.5
-sun.angle = math.radians(15.0)  # soft shadows: noisy penumbrae at few samples
-light = bpy.data.objects.new("Sun", sun)
-light.rotation_euler = (math.radians(40), 0, math.radians(30))
-scene.collection.objects.link(light)
+if light_kind == "sun":
+    sun = bpy.data.lights.new("Sun", type='SUN')
+    sun.energy = 1.5
+    sun.angle = math.radians(15.0)  # soft shadows: noisy penumbrae at few samples
+    light = bpy.data.objects.new("Sun", sun)
+    light.rotation_euler = (math.radians(40), 0, math.radians(30))
+    scene.collection.objects.link(light)
+else:  # an area light sliding along: shadows that move over static surfaces
+    area = bpy.data.lights.new("Area", type='AREA')
+    area.energy = 400.0
+    area.size = 1.5
+    light = bpy.data.objects.new("Area", area)
+    scene.collection.objects.link(light)
+    lstart = (light_x0, -1.5, 5.0)
+    keyed(light, {f: tuple(lstart[i] + light_vel[i] * f for i in range(3)) for f in keys})
 
 
 def mat(m):
