@@ -9,7 +9,7 @@ section 7, gives the results and how the preset's defaults follow from them.
         [--decompose BLEND,VALUE,FILTER ...] [--scene-args 'KEY=VALUE ...'] [--spps 1,2,4,8,16] \
         [--timing-frames 12] [--centre-spp 256]
     python3 host_sample/tools/accumulate/blender/error_study.py WORK_DIR --evaluate NAME \
-        [--tool ...] [--rrc-args 'OPTIONS'] [--eval-signal SPEC ...] [--spp 1]
+        [--tool ...] [--rrc-args 'OPTIONS'] [--eval-signal SPEC ...] [--spp 1] [--split-ids A-B] [--clean-input]
 
 The second form renders nothing: it evaluates rrc-accumulate settings on the
 renders a first run left in WORK_DIR (it reads that run's size, frames,
@@ -26,6 +26,20 @@ on the 320x180 sequences of docs/OFFLINE.md, section 7:
         --tool build/release/bin/rrc-accumulate --evaluate mytry --rrc-args '--some-option value' \
         --eval-signal 'ViewLayer.Combined:lambda=0.8,blend=age_aware,filter=catmull_rom'
     done
+
+--clean-input (with --evaluate) feeds rrc-accumulate the reference renders
+themselves (colours, depth, vectors, ids): the RMSE of its output against
+those same frames is what rrc adds to a clean input (the decomposition's
+"blur and lag", measured directly); it writes WORK_DIR/evaluate/NAME.md with
+that RMSE, its ratio to the 4-spp RMSE and where the squared error lies.
+That split (in both modes): the pixels whose object index (IndexOB) lies
+in --split-ids A-B (thin geometry: the fence's poles are 10-24), then the
+other pixels younger than --young (4) samples after the frame (the output's
+age channel: misses, disocclusions), then the rest; each as a share of the
+MSE over frames >= --from and of the pixels.  On the fence sequence:
+
+    nice -n 15 /usr/bin/python3 host_sample/tools/accumulate/blender/error_study.py /work/blender_seqs/fence \
+      --tool build/release/bin/rrc-accumulate --evaluate clean --clean-input --split-ids 10-24
 
 The decomposition assumes that rrc is linear in the samples for a fixed
 geometry (decompose()); an option whose weights depend on the colours (a lag
@@ -403,6 +417,12 @@ def main():
     ap.add_argument("--rrc-args", default="", help="options appended to every rrc-accumulate command (space-separated)")
     ap.add_argument("--eval-signal", action="append", default=[], help="with --evaluate: a --signal SPEC (repeatable)")
     ap.add_argument("--spp", type=int, default=1, help="with --evaluate: the input sequence's spp")
+    ap.add_argument("--clean-input", action="store_true",
+                    help="with --evaluate: accumulate the reference renders themselves (what rrc adds to a clean input)")
+    ap.add_argument("--split-ids", metavar="A-B", default="",
+                    help="with --evaluate: split the squared error into the pixels of object indices A..B, the other "
+                         "pixels younger than --young samples, and the rest")
+    ap.add_argument("--young", type=int, default=4, help="with --evaluate: the age below which a pixel counts as young")
     ap.add_argument("--jitter", action="store_true",
                     help="render the 1- and 2-spp sequences (and the centre-sampled image) with the camera jittered "
                          "through the pixel filter (render_check_scene.py jitter=filter); the reference and the "
@@ -572,12 +592,16 @@ def evaluate(args, work):
         sys.exit("no %d-spp sequence in %s (it has %s)" % (args.spp, work, st["spps"]))
     args.rrc_dir = os.path.join("evaluate", args.evaluate)
     brute4 = rrc_run(args, work, "brute_4spp", os.path.join(work, "spp4"), None)["input_rmse"]
+    if args.clean_input:
+        return evaluate_clean(args, work, brute4)
     seed_dirs = [os.path.join(work, "spp1_seed%d" % k) for k in range(1, st["seeds"] + 1)] if args.spp == 1 else []
     rows = []
     for i, spec in enumerate([None] + args.eval_signal):
         text = spec or "the preset's defaults"
         d = decompose(args, work, args.spp, None, seed_dirs, spec=spec, text=text, name="eval%d_%dspp" % (i, args.spp))
         d["ratio_to_4spp"] = d["rmse"] / brute4
+        d["regions"] = region_split(args, work, os.path.join(work, args.rrc_dir, "eval%d_%dspp" % (i, args.spp)),
+                                    os.path.join(work, "spp%d" % args.spp))
         rows.append(d)
         log("%s: RMSE %.5f = %.3fx 4 spp; MSE %.3e = variance %.3e + blur/lag %.3e + centre sampling %.3e" %
             (text, d["rmse"], d["ratio_to_4spp"], d["mse"], d["variance"], d["blur_lag"], d["centre"]))
@@ -594,6 +618,71 @@ def evaluate(args, work):
                  (d["config"], d["rmse"], d["ratio_to_4spp"], d["mse"], pc(d["variance"], d), pc(d["blur_lag"], d),
                   pc(d["centre"], d), "%.2e" % d["variance_seeds"] if "seeds" in d else "",
                   "%.2e" % d["bias2_seeds"] if "seeds" in d else ""))
+    L += region_table(args, rows)
+    os.makedirs(os.path.join(work, "evaluate"), exist_ok=True)
+    with open(os.path.join(work, "evaluate", args.evaluate + ".md"), "w") as fp:
+        fp.write("\n".join(L) + "\n")
+    log("\n".join(L))
+
+
+def region_split(args, work, out_dir, inputs):
+    """Shares of the MSE over frames >= --from (and of the pixels) of: the --split-ids objects' pixels (the
+    input frame's IndexOB), the other pixels younger than --young after the frame (the output's age), the rest."""
+    lo, hi = (int(v) for v in args.split_ids.split("-")) if args.split_ids else (None, None)
+    names = (["ids %d-%d" % (lo, hi)] if args.split_ids else []) + ["age < %d" % args.young, "the rest"]
+    err, cnt, total, npx = dict.fromkeys(names, 0.0), dict.fromkeys(names, 0.0), 0.0, 0
+    for f in range(args.first, args.frames + 1):
+        acc = os.path.join(out_dir, "acc_%04d.exr" % f)
+        e = np.mean((read_rgb(acc) - read_rgb(os.path.join(work, "ref", "frame_%04d.exr" % f))) ** 2, axis=2)
+        young = read_channel(acc, LAYER + ".age") < args.young
+        rest = np.ones_like(young)
+        if args.split_ids:
+            ids = np.rint(read_channel(os.path.join(inputs, "frame_%04d.exr" % f), "ViewLayer.IndexOB.X"))
+            obj = (ids >= lo) & (ids <= hi)
+            err[names[0]] += np.sum(e[obj]); cnt[names[0]] += np.sum(obj)
+            young &= ~obj
+            rest &= ~obj
+        rest &= ~young
+        err[names[-2]] += np.sum(e[young]); cnt[names[-2]] += np.sum(young)
+        err[names[-1]] += np.sum(e[rest]); cnt[names[-1]] += np.sum(rest)
+        total += np.sum(e)
+        npx += e.size
+    return {n: {"mse_share": err[n] / total, "pixels": cnt[n] / npx} for n in names}
+
+
+def region_table(args, rows):
+    names = list(rows[0]["regions"])
+    L = ["", "Where the squared error lies (frames %d..%d; share of the MSE, share of the pixels):" % (args.first, args.frames), "",
+         "| setting | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+    for d in rows:
+        L.append("| %s | %s |" % (d["config"], " | ".join("%.0f%% of the MSE, %.1f%% px" % (100 * d["regions"][n]["mse_share"],
+                                                                                         100 * d["regions"][n]["pixels"]) for n in names)))
+    return L
+
+
+def evaluate_clean(args, work, brute4):
+    """--evaluate NAME --clean-input: rrc-accumulate on the reference renders, measured against them."""
+    rows = []
+    inputs = os.path.join(work, "ref_as_input")  # rrc-accumulate refuses a reference pattern equal to the input's
+    if not os.path.lexists(inputs):
+        os.symlink("ref", inputs)
+    for i, spec in enumerate([None] + args.eval_signal):
+        text = spec or "the preset's defaults"
+        r = rrc_run(args, work, "clean%d" % i, inputs, spec)
+        d = {"config": text, "rmse": r["output_rmse"], "ratio_to_4spp": r["output_rmse"] / brute4, "hit_ratio": r["hit_ratio"],
+             "regions": region_split(args, work, r["dir"], os.path.join(work, "ref"))}
+        rows.append(d)
+        log("%s on the clean input: RMSE %.5f = %.3fx 4 spp (hit ratio %.1f%%)" % (text, d["rmse"], d["ratio_to_4spp"],
+                                                                                100 * d["hit_ratio"]))
+    L = ["Sequence %s (%s, %d frames, render_check_scene.py %s): the reference renders as the input, error over frames %d..%d" %
+         (work, args.size, args.frames, args.scene_args or "(the check scene)", args.first, args.frames), "",
+         "Command: " + " ".join(sys.argv), "",
+         "rrc-accumulate --preset blender %s [--signal SPEC] on the reference; 4-spp RMSE %.5f" % (args.rrc_args, brute4), "",
+         "| setting | RMSE | / 4-spp RMSE | MSE | hit ratio |", "|---|---|---|---|---|"]
+    for d in rows:
+        L.append("| %s | %.5f | %.3f | %.3e | %.1f%% |" % (d["config"], d["rmse"], d["ratio_to_4spp"], d["rmse"] ** 2,
+                                                         100 * d["hit_ratio"]))
+    L += region_table(args, rows)
     os.makedirs(os.path.join(work, "evaluate"), exist_ok=True)
     with open(os.path.join(work, "evaluate", args.evaluate + ".md"), "w") as fp:
         fp.write("\n".join(L) + "\n")
