@@ -55,7 +55,7 @@ What it does, all under WORK_DIR (renders and rrc runs are kept and reused
 while their command, and for rrc the tool, are unchanged):
   1. Renders render_check_scene.py (moving camera, moving sphere, soft sun
      shadow, checkered ground; --scene-args passes it KEY=VALUE options for
-     another camera path, mover or pillars) at --spps (1, 2, 4, 8 and 16) spp
+     another camera path, mover, pillars or the fence) at --spps (1, 2, 4, 8 and 16) spp
      with an animated seed
      (base seed 0), a reference at --ref-spp with another base seed, a
      centre-sampled image (pixel filter 0.01 px, --centre-spp: what a frame's
