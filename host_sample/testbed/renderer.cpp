@@ -106,13 +106,16 @@ FrameOutput Renderer::render(int index, bool reset, bool checkpoint) {
     stamp(kGBuffer);
     label(gpu_, cmd, "signals");
     const bool confidence = s_.channels.pcf.confidence != 0;
-    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence, s_.render.env_base};
+    // pcf's residual base (README.md, "The pcf residual") is written by the pcf pass itself,
+    // which reads the pixel's G-buffer and light transform once for both.
+    const uint32_t pcf_base_taps = (sig & kSignalPcf) ? s_.render.pcf_base : 0u;
+    const Sampling sampling{s_.render.seed, s_.render.pcf_pattern, confidence, s_.render.env_base, pcf_base_taps};
     signals_->record(cmd, sig, state, sampling);
     // soft's fallback: the PCSS estimate, or the stable PCSS estimate as the residual's base,
     // which rrc subtracts and adds back (README.md, "The soft residual").
     const Image* soft_fallback = (sig & kSignalSoft) ? post_->record_soft_fallback(cmd, parity_, s_.channels.soft) : nullptr;
-    // pcf's residual base (README.md, "The pcf residual"), in the signal passes' time.
-    const Image* pcf_base = (sig & kSignalPcf) ? signals_->record_pcf_base(cmd, s_.render.pcf_base) : nullptr;
+    // pcf's residual base, written above, made visible to rrc.
+    const Image* pcf_base = (sig & kSignalPcf) ? signals_->record_pcf_base(cmd, pcf_base_taps, true) : nullptr;
     stamp(kSignals);
     const Image* env_base = s_.channels.env.residual ? &signals_->env_base() : nullptr;
     rrc_->record(cmd, gbuffer_->images(), signals_->raw(), state, (uint64_t)index, reset, &signals_->pcf_confidence(), soft_fallback,

@@ -15,8 +15,8 @@ const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, TEX = VK_DESCRIP
                        IMG = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 const VkImageLayout RO = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, GEN = VK_IMAGE_LAYOUT_GENERAL;
 
-struct SamplesPush {  // signal_pcf.comp (the first five) and signal_env.comp
-    uint32_t samples, reference, seed, pattern, confidence, env_base;
+struct SamplesPush {  // signal_pcf.comp and signal_env.comp (the first six)
+    uint32_t samples, reference, seed, pattern, confidence, env_base, pcf_base;
 };
 constexpr uint32_t kPcfBasePass = SAMPLE_PCF_BASE_PASS;  // signal_pcf.comp's `reference` value of the base pass
 
@@ -106,7 +106,7 @@ SignalPasses::~SignalPasses() {
 }
 
 void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameState& state, const Sampling& sampling) {
-    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern, sampling.pcf_confidence ? 1u : 0u, sampling.env_base};
+    const SamplesPush one{0, 0, sampling.seed, sampling.pcf_pattern, sampling.pcf_confidence ? 1u : 0u, sampling.env_base, sampling.pcf_base};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, 0, &one, width_, height_);
     if (signals & kSignalSoft) {
@@ -115,10 +115,10 @@ void SignalPasses::record(VkCommandBuffer cmd, uint32_t signals, const FrameStat
     }
 }
 
-const Image* SignalPasses::record_pcf_base(VkCommandBuffer cmd, uint32_t taps) {
+const Image* SignalPasses::record_pcf_base(VkCommandBuffer cmd, uint32_t taps, bool written) {
     if (taps == 0) return nullptr;
-    const SamplesPush base{taps, kPcfBasePass, 0, 0, 0, 0};  // deterministic: no seed, no pattern
-    pcf_.dispatch(cmd, 0, &base, width_, height_);
+    const SamplesPush base{taps, kPcfBasePass, 0, 0, 0, 0, 0};  // deterministic: no seed, no pattern
+    if (!written) pcf_.dispatch(cmd, 0, &base, width_, height_);
     compute_to_compute(cmd);
     return &pcf_base_;
 }
@@ -133,7 +133,7 @@ void SignalPasses::record_many(VkCommandBuffer cmd, uint32_t signals, uint32_t s
                                const std::vector<glm::vec3>& light_points, const Scene& scene, ShadowPass& shadows) {
     // The set (1 reference, 2 brute force) picks the stream.  Brute force stays the plain mean; the
     // reference writes the confidence-weighted target beside the exact one when asked.
-    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern, set == 1 && sampling.pcf_confidence ? 1u : 0u, 0};
+    const SamplesPush many{samples, set, sampling.seed, sampling.pcf_pattern, set == 1 && sampling.pcf_confidence ? 1u : 0u, 0, 0};
     if (signals & kSignalPcf) pcf_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalEnv) env_.dispatch(cmd, set, &many, width_, height_);
     if (signals & kSignalSoft) {

@@ -35,6 +35,7 @@ struct Sampling {
     uint32_t pcf_pattern = 0;     // 0 uniform disk, 1 the paper's rotated Poisson disk
     bool pcf_confidence = false;  // confidence-weighted taps, w written to confidence() (signal_pcf.comp)
     uint32_t env_base = 0;        // the per-frame env pass also writes env_base(): 1 centre sample, 2 unbumped (signal_env.comp)
+    uint32_t pcf_base = 0;        // the per-frame pcf pass also writes pcf_base(): that many bilinear compares (record_pcf_base)
 };
 
 class SignalPasses {
@@ -67,8 +68,9 @@ public:
     /** The pcf residual's base (README.md, "The pcf residual"): the mean of `taps` bilinear shadow
      *  compares at fixed points of the frame's PCF disk (signal_pcf.comp), deterministic; written to
      *  pcf_base() and made visible to later compute passes, which the result points to (nullptr,
-     *  nothing recorded, when taps is 0). */
-    const Image* record_pcf_base(VkCommandBuffer cmd, uint32_t taps);
+     *  nothing recorded, when taps is 0).  `written`: the per-frame pass wrote it already
+     *  (Sampling::pcf_base, the same taps), so only the barrier is recorded. */
+    const Image* record_pcf_base(VkCommandBuffer cmd, uint32_t taps, bool written = false);
 
     const SignalImages& raw() const { return raw_; }
     const SignalImages& reference() const { return ref_; }

@@ -51,6 +51,8 @@ layout(push_constant) uniform Push {
     uint seed;        // the ensemble member: moves every random stream
     uint pattern;     // 0 uniform disk, 1 rotated Poisson
     uint confidence;  // non-zero: confidence-weighted taps (above); w in o_confidence
+    uint env_base;    // signal_env.comp's (the push block is shared)
+    uint base_taps;   // per frame: > 0 also writes the residual's base, that many compares, in this pass
 } pc;
 
 float sun_test(ivec2 c, float z, int size) {
@@ -137,6 +139,7 @@ void main() {
         }
         imageStore(o_signal, px, vec4(1.0));
         imageStore(o_confidence, px, vec4(1.0));
+        if (pc.reference == 0u && pc.base_taps > 0u) imageStore(o_base, px, vec4(1.0));
         return;
     }
     vec3 p = texelFetch(g_position, px, 0).xyz + nm.xyz * u.sun_dir.w;  // normal offset
@@ -189,4 +192,8 @@ void main() {
     bool weighted = pc.confidence != 0u && c_sum > 0.0;
     imageStore(o_signal, px, vec4(weighted ? c_lit / c_sum : lit / float(n)));
     imageStore(o_confidence, px, vec4(pc.confidence != 0u ? c_sum / float(n) : 1.0));
+    // The residual's base in the per-frame pass itself: the pixel's G-buffer reads and its
+    // transform to the light, most of a pass's cost, are paid once for both (the base pass,
+    // reference 3, pays them again; docs/measurements/presets.md, "The pcf base's fetches").
+    if (pc.reference == 0u && pc.base_taps > 0u) imageStore(o_base, px, vec4(base_estimate(texel, radius, z, size, pc.base_taps)));
 }
