@@ -9,23 +9,16 @@
 namespace rrc_host {
 namespace {
 
-/** Where an edge starts: the background, a jump of u (its second difference along x or y above
- *  kCleanDepthJump * u: 0 on planes, large across surfaces) or another object id among the four
- *  neighbours. */
+/** Where an edge starts: the background, a jump of u (inverse_depth_jump) or another object id
+ *  among the four neighbours. */
 std::vector<uint8_t> edge_seeds(const CleanFrame& f) {
-    const int w = (int)f.width, h = (int)f.height;
+    const uint32_t w = f.width, h = f.height;
     std::vector<uint8_t> seed((size_t)w * h, 0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
             const size_t p = (size_t)y * w + x;
             bool s = (f.mask[p] & RRC_MASK_BACKGROUND) != 0;
-            if (f.inverse_depth) {
-                const float* u = f.inverse_depth;
-                const float tau = kCleanDepthJump * u[p];
-                s = s || !(u[p] > 0.0f);
-                if (!s && x > 0 && x + 1 < w) s = std::abs(u[p - 1] - 2.0f * u[p] + u[p + 1]) > tau;
-                if (!s && y > 0 && y + 1 < h) s = std::abs(u[p - w] - 2.0f * u[p] + u[p + w]) > tau;
-            }
+            if (f.inverse_depth) s = s || !(f.inverse_depth[p] > 0.0f) || inverse_depth_jump(f.inverse_depth, w, h, x, y, kCleanDepthJump);
             if (f.object_id && !s) {
                 const uint32_t id = f.object_id[p];
                 s = (x > 0 && f.object_id[p - 1] != id) || (x + 1 < w && f.object_id[p + 1] != id) ||
@@ -36,22 +29,35 @@ std::vector<uint8_t> edge_seeds(const CleanFrame& f) {
     return seed;
 }
 
-/** Pixels within `r` (Chebyshev) of a set pixel. */
-std::vector<uint8_t> dilated(const std::vector<uint8_t>& in, int w, int h, int r) {
-    std::vector<uint8_t> out(in.size(), 0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
+}  // namespace
+
+std::vector<uint8_t> dilate_chebyshev(const std::vector<uint8_t>& in, uint32_t w, uint32_t h, int radius) {
+    std::vector<uint8_t> rows(in.size(), 0), out(in.size(), 0);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
             if (!in[(size_t)y * w + x]) continue;
-            for (int dy = -r; dy <= r; ++dy)
-                for (int dx = -r; dx <= r; ++dx) {
-                    const int xx = x + dx, yy = y + dy;
-                    if (xx >= 0 && yy >= 0 && xx < w && yy < h) out[(size_t)yy * w + xx] = 1;
-                }
+            for (int dx = -radius; dx <= radius; ++dx) {
+                const int xx = (int)x + dx;
+                if (xx >= 0 && xx < (int)w) rows[(size_t)y * w + xx] = 1;
+            }
+        }
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            if (!rows[(size_t)y * w + x]) continue;
+            for (int dy = -radius; dy <= radius; ++dy) {
+                const int yy = (int)y + dy;
+                if (yy >= 0 && yy < (int)h) out[(size_t)yy * w + x] = 1;
+            }
         }
     return out;
 }
 
-}  // namespace
+bool inverse_depth_jump(const float* u, uint32_t w, uint32_t h, uint32_t x, uint32_t y, float jump) {
+    const size_t p = (size_t)y * w + x;
+    const float tau = jump * u[p];
+    if (x > 0 && x + 1 < w && std::abs(u[p - 1] - 2.0f * u[p] + u[p + 1]) > tau) return true;
+    return y > 0 && y + 1 < h && std::abs(u[p - w] - 2.0f * u[p] + u[p + w]) > tau;
+}
 
 std::string clean_number(double v, const char* fmt) {
     char b[64];
@@ -73,7 +79,7 @@ float clean_inverse_depth(uint32_t mode, float z) {
 
 std::vector<uint8_t> clean_regions(const CleanFrame& f) {
     if (!f.mask || !f.age) throw std::invalid_argument("clean_regions: the mask and the age are required");
-    const std::vector<uint8_t> edge = dilated(edge_seeds(f), (int)f.width, (int)f.height, kCleanEdgeRadius);
+    const std::vector<uint8_t> edge = dilate_chebyshev(edge_seeds(f), f.width, f.height, kCleanEdgeRadius);
     const uint32_t young = f.fill_age ? f.fill_age : kCleanYoungAge;
     std::vector<uint8_t> region(edge.size());
     for (size_t p = 0; p < region.size(); ++p) {

@@ -43,6 +43,15 @@ struct CleanFrame {
     uint32_t fill_age = 0;                  // the channel's fill_age; 0 = no fill
 };
 
+/** Pixels within `radius` (Chebyshev) of a set pixel of `in` (w x h): a separable box dilation.
+ *  The sweep's bias regions dilate their edges with it too. */
+std::vector<uint8_t> dilate_chebyshev(const std::vector<uint8_t>& in, uint32_t w, uint32_t h, int radius);
+
+/** Whether u (w x h, proportional to 1 / view depth, as CleanFrame::inverse_depth) jumps at (x, y):
+ *  its second difference along x or y above jump * u (0 on planes, large across surfaces).  The
+ *  sweep's bias regions seed their edges with it too. */
+bool inverse_depth_jump(const float* u, uint32_t w, uint32_t h, uint32_t x, uint32_t y, float jump);
+
 /** u of clean_frame.inverse_depth from a depth in one of rrc's modes (RRC_DEPTH_MODE_*). */
 float clean_inverse_depth(uint32_t depth_mode, float depth);
 

@@ -1,5 +1,7 @@
 #include "bias_regions.h"
 
+#include "clean_regions.h"
+
 #include <rrc/rrc.h>
 
 #include <algorithm>
@@ -12,31 +14,8 @@ namespace {
 
 constexpr uint8_t kMaskHit = RRC_MASK_HIT, kMaskBackground = RRC_MASK_BACKGROUND, kMaskRefreshed = RRC_MASK_REFRESHED;
 
-/** Pixels within `radius` (Chebyshev) of a set pixel: a separable box dilation. */
-std::vector<uint8_t> dilate(const std::vector<uint8_t>& in, uint32_t w, uint32_t h, int radius) {
-    std::vector<uint8_t> rows(in.size(), 0), out(in.size(), 0);
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            if (!in[y * w + x]) continue;
-            for (int dx = -radius; dx <= radius; ++dx) {
-                const int xx = (int)x + dx;
-                if (xx >= 0 && xx < (int)w) rows[y * w + xx] = 1;
-            }
-        }
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            if (!rows[y * w + x]) continue;
-            for (int dy = -radius; dy <= radius; ++dy) {
-                const int yy = (int)y + dy;
-                if (yy >= 0 && yy < (int)h) out[yy * w + x] = 1;
-            }
-        }
-    return out;
-}
-
 /** Where an edge starts: the background, an rrc miss (a disocclusion) or a depth jump. The depth is
- *  reversed z, affine in 1/z and so affine in screen space on any plane: its second difference is 0
- *  on planes and large across a jump between surfaces. */
+ *  reversed z, proportional to 1/z (rrc_host::inverse_depth_jump). */
 std::vector<uint8_t> edge_seeds(const RegionFrame& g, float jump) {
     const uint32_t w = g.width, h = g.height;
     std::vector<uint8_t> s(g.depth.size(), 0);
@@ -45,10 +24,8 @@ std::vector<uint8_t> edge_seeds(const RegionFrame& g, float jump) {
         for (uint32_t x = 0; x < w; ++x) {
             const size_t p = (size_t)y * w + x;
             const uint8_t m = g.mask.empty() ? kMaskHit : g.mask[p];
-            bool seed = d(x, y) <= 0.0f || (m & kMaskBackground) || !(m & (kMaskHit | kMaskRefreshed));
-            const float tau = jump * d(x, y);
-            if (!seed && x > 0 && x + 1 < w) seed = std::abs(d(x - 1, y) - 2.0f * d(x, y) + d(x + 1, y)) > tau;
-            if (!seed && y > 0 && y + 1 < h) seed = std::abs(d(x, y - 1) - 2.0f * d(x, y) + d(x, y + 1)) > tau;
+            const bool seed = d(x, y) <= 0.0f || (m & kMaskBackground) || !(m & (kMaskHit | kMaskRefreshed)) ||
+                              rrc_host::inverse_depth_jump(g.depth.data(), w, h, x, y, jump);
             s[p] = seed ? 1 : 0;
         }
     return s;
@@ -116,7 +93,7 @@ RegionMap classify_regions(const RegionFrame& g, const CheckpointTarget& now, co
     if (g.material.size() != n || g.depth.size() != n || changed.size() != n || (!g.mask.empty() && g.mask.size() != n) ||
         (!g.age.empty() && g.age.size() != n))
         throw std::runtime_error("classify_regions: the frame's images differ in size");
-    const std::vector<uint8_t> edge = dilate(edge_seeds(g, t.depth_jump), g.width, g.height, t.edge_radius);
+    const std::vector<uint8_t> edge = rrc_host::dilate_chebyshev(edge_seeds(g, t.depth_jump), g.width, g.height, t.edge_radius);
     RegionMap m;
     for (size_t i = 0; i < now.pixels.size(); ++i) {
         const size_t p = now.pixels[i];
