@@ -37,6 +37,14 @@ function(rrc_gtest_suites target)
   math(EXPR calls "${calls} + 1")
   set_property(TARGET ${target} PROPERTY RRC_GTEST_SUITES_CALLS ${calls})
 
+  # Under the sanitizers a test program's own sources build at -O0: the same
+  # checks, half the compile time of -O1, and its tests' time is spent in the
+  # driver, the reference and the programs' libraries, which keep -O1
+  # (docs/PERFORMANCE.md, "The test suite's time").
+  if(RRC_SANITIZE)
+    target_compile_options(${target} PRIVATE -O0)
+  endif()
+
   # A release-pass label: the release build makes this executable (CMakeLists.txt, rrc_release_pass).
   foreach(label IN LISTS ARG_LABELS)
     if(label IN_LIST RRC_RELEASE_PASS_LABELS)
