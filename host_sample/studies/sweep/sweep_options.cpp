@@ -53,6 +53,10 @@ std::string sweep_usage() {
            "                           soft with the fill rows' settings)\n"
            "  --no-view-lobe           no rows for the view lobe (env only: age-aware, bilinear, alpha 0.0245 rad; its\n"
            "                           age cap is 1 on the mirror sphere)\n"
+           "  --pcf-base-in-signal     the pcf signal pass also writes the residual's base, as rrc-sample's renderer\n"
+           "                           does (its G-buffer reads and light transform paid once): every pcf row's signal\n"
+           "                           time then holds the base, and a residual row's rrc time rrc's dispatch alone\n"
+           "                           (default: the base is a pass of its own, timed with rrc)\n"
            "  --signals LIST           pcf,env,soft (default: every signal the scene uses)\n"
            "  --motion M               all (default: the sample's moving camera and torus), camera-still (the torus\n"
            "                           still moves: its shadow lags, no camera resampling) or still (nothing moves)\n"
@@ -143,6 +147,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
             o.blur_bound = false;
         else if (c.flag("--no-view-lobe"))
             o.view_lobe = false;
+        else if (c.flag("--pcf-base-in-signal"))
+            o.pcf_base_in_signal = true;
         else if (c.option("--signals"))
             o.signals = rrc_sample::signal_bits(c);
         else if (c.option("--motion"))
@@ -185,6 +191,8 @@ SweepOptions parse_sweep_options(int argc, const char* const* argv) {
         if (!c.given("--out")) o.out = "out/clean";
         if (o.bias_maps) throw OptionError("--bias-maps: the sweep's, not --study clean's");
     }
+    if (o.pcf_base_in_signal && !o.study.empty())
+        throw OptionError("--pcf-base-in-signal: the sweep's, not --study " + o.study + "'s");
     if (o.bias_maps && o.first_checkpoint < o.change_window)
         throw OptionError("--bias-maps: the first checkpoint must be at least --change-window frames from the reset");
     if (o.study == "rectify" && o.bias_maps) throw OptionError("--bias-maps: the sweep's, not --study rectify's");

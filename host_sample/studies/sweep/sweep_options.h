@@ -28,6 +28,7 @@ struct SweepOptions {
     bool antilag = true;                  // 0.5's lag detector as age-aware rows, pcf and env (sweep_configs.cpp)
     bool blur_bound = true;               // 0.6's blur bound as age-aware rows, pcf, env and soft (sweep_configs.cpp)
     bool view_lobe = true;                // 0.7's view lobe as age-aware rows, env only (sweep_configs.cpp)
+    bool pcf_base_in_signal = false;      // the pcf signal pass writes the residual's base, as rrc-sample's renderer does
     uint32_t signals = 0;                 // rrc_sample Signal bits; 0 = every signal the scene uses
     std::string motion = "all";           // all (the sample's), camera-still (the torus moves), still (nothing moves)
     float light_speed = 0.0f;             // the moving light: degrees a frame the sun and environment turn (Scene::light_speed)

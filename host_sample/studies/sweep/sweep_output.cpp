@@ -81,6 +81,11 @@ void write_sweep_files(const SweepOptions& o, const SweepResult& r, const std::s
       << "- time of a row: the application's signal pass at k samples plus its share of rrc, each pass in a submission of its own "
       << "(medians over frames 2.. of every seed; brute force timed one configuration a frame inside the rrc runs' frames, an rrc "
       << "row's signal pass = the brute-force pass at its k, its rrc time pooled over every run)\n"
+      << "- pcf residual's base: "
+      << (o.pcf_base_in_signal ? "written by the pcf signal pass (--pcf-base-in-signal): a residual row's signal time holds it and is "
+                                 "that row's own pass, timed in its runs"
+                               : "a pass of its own, timed with rrc")
+      << "\n"
       << "- clock: " << r.clock << "; timestamps / wall clock (signal passes and rrc, median per frame): " << num(r.stamps_over_wall, "%.3f")
       << "\n"
       << "- rrc's sharing probe: the default channels alone " << num(r.rrc_alone_sum_ms, "%.3f") << " ms together, in one context "

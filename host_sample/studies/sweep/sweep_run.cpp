@@ -320,6 +320,9 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             for (const App& a : run_apps) run_sigs |= a.signal;
             for (int seed = 0; seed < o.seeds; ++seed) {
                 const Sampling sampling{kFirstSeed + (uint32_t)seed, run.pattern};
+                // --pcf-base-in-signal: the pcf pass writes the base too (Sampling::pcf_base).
+                Sampling pcf_sampling = sampling;
+                if (o.pcf_base_in_signal) pcf_sampling.pcf_base = rrc_sample::kSamplePcfBaseTaps;
                 std::vector<std::vector<float>> previous(stages.size());
                 Timing floor{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
                 for (int f = 0; f <= last; ++f) {
@@ -355,7 +358,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                                 e.signals.record(c, a.signal, state, sampling, rrc_sample::lamp_frame_points(scene.lamp, f, run.k, sampling.seed),
                                                  scene, e.shadows);
                             else
-                                e.signals.record(c, a.signal, state, sampling);
+                                e.signals.record(c, a.signal, state, a.signal == kSignalPcf ? pcf_sampling : sampling);
                         }));
                     for (size_t i = 0; i < stages.size(); ++i)
                         stage_t.push_back(timed_pass([&](VkCommandBuffer c) {
@@ -368,7 +371,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
                                 soft_fallback = pcss[i]->record_soft_fallback(c, 0, run.configs[i].channel);
                             }
                             if (run.configs[i].app.signal == kSignalPcf && run.configs[i].channel.residual)
-                                pcf_base = e.signals.record_pcf_base(c, rrc_sample::kSamplePcfBaseTaps);
+                                pcf_base = e.signals.record_pcf_base(c, rrc_sample::kSamplePcfBaseTaps, o.pcf_base_in_signal);
                             stages[i]->record(c, e.gbuffer.images(), e.signals.raw(), state, (uint64_t)f, f == 0, nullptr, soft_fallback,
                                               nullptr, pcf_base);
                         }));
@@ -504,11 +507,15 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
             result.brute.push_back(row);
         }
         // The signal pass of an rrc row is the brute-force pass at the same k (the same estimator, the
-        // same work), timed one configuration a frame across every run: both sides on one clock.
-        for (RrcRow& row : result.rrc)
+        // same work), timed one configuration a frame across every run: both sides on one clock.  With
+        // --pcf-base-in-signal a pcf residual row's pass also writes its base: that row keeps its own
+        // pass's time, measured in its runs.
+        for (RrcRow& row : result.rrc) {
+            if (o.pcf_base_in_signal && row.config.app.signal == kSignalPcf && row.config.channel.residual) continue;
             for (const BruteRow& b : result.brute)
                 if (b.config.app.signal == row.config.app.signal && b.config.k == row.k && b.config.pattern == row.pattern)
                     row.signal_ms = b.signal_ms;
+        }
     }
     result.stamps_over_wall = median(clock.ratio);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

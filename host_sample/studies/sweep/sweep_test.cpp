@@ -9,6 +9,7 @@
 // adds error under motion, its regions covering every scored pixel.
 // The time model is tested on made-up timings only (SweepTime): a measured
 // time on a loaded machine may legitimately be 0 (README.md, "Definitions").
+#include "bias_output.h"  // row_label
 #include "clean_study.h"
 #include "ensemble.h"
 #include "rectify_study.h"
@@ -245,6 +246,47 @@ TEST(Sweep, EstimatorsAreUnbiasedAndAccumulationBeatsOneFrame) {
     const BruteRow* rot = brute_row(r, 1u, 4, 1);
     ASSERT_NE(rot, nullptr);
     EXPECT_GT(rot->metrics.bias2, 0.05 * rot->metrics.variance);
+}
+
+// --pcf-base-in-signal moves the pcf residual's base into the signal pass (as rrc-sample's
+// renderer does): only where it is timed changes, so every row's error is the same, bit for bit.
+TEST(PcfBaseInSignal, TheSameBaseAndTheSameRows) {
+    SweepOptions o;
+    o.width = 64;
+    o.height = 40;
+    o.frames = 6;
+    o.first_checkpoint = 4;
+    o.checkpoint_every = 1;
+    o.seeds = 2;
+    o.signals = rrc_sample::kSignalPcf;
+    o.rrc_taps = {4};
+    o.brute_taps = {4};
+    o.lambdas = {0.9f};
+    o.catmull_rom = false;
+    o.rotated = false;
+    o.blur_bound = false;
+    o.view_lobe = false;
+    o.validation = true;
+    o.quiet = true;
+    const SweepResult apart = run_sweep(o, nullptr);
+    o.pcf_base_in_signal = true;
+    const SweepResult fused = run_sweep(o, nullptr);
+    EXPECT_EQ(apart.validation_messages, 0u);
+    EXPECT_EQ(fused.validation_messages, 0u);
+    ASSERT_EQ(apart.rrc.size(), fused.rrc.size());
+    int residual_rows = 0;
+    for (size_t i = 0; i < apart.rrc.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(row_label(apart.rrc[i]), row_label(fused.rrc[i]));
+        EXPECT_EQ(apart.rrc[i].metrics.rmse, fused.rrc[i].metrics.rmse);
+        EXPECT_EQ(apart.rrc[i].metrics.variance, fused.rrc[i].metrics.variance);
+        residual_rows += apart.rrc[i].config.channel.residual ? 1 : 0;
+    }
+    EXPECT_GE(residual_rows, 1) << "rrc-sample's pcf preset row, with its residual";
+    const char* study[] = {"rrc-sweep", "--pcf-base-in-signal", "--study", "clean"};
+    EXPECT_THROW(parse_sweep_options(4, study), OptionError);
+    const char* flag[] = {"rrc-sweep", "--pcf-base-in-signal"};
+    EXPECT_TRUE(parse_sweep_options(2, flag).pcf_base_in_signal);
 }
 
 TEST(SweepConfigs, LagDetectorRowsArePcfRectifiedAndEnvNeverSoft) {
