@@ -114,8 +114,12 @@
 #define RRC_BINDING_QUADS 31
 // The fill list (library-owned): the pixels the spatial fill runs on,
 // appended by the pass that writes their channels (docs/CONVENTIONS.md,
-// "The spatial fill"): a count, a VkDispatchIndirectCommand of groups of
-// RRC_FILL_LIST_PER_GROUP pixels, then one word x | y << 16 a pixel.
+// "The spatial fill"), in RRC_FILL_LISTS sub-lists, one a band of rows, so
+// that the appends do not all contend for one counter (docs/PERFORMANCE.md,
+// "The frame plan"): a VkDispatchIndirectCommand {the sub-lists' groups of
+// RRC_FILL_LIST_PER_GROUP pixels, 1, 1}, each sub-list's count on a 64-byte
+// line of its own, then the sub-lists, RRC_FILL_LIST_CAPACITY words each,
+// one word x | y << 16 a pixel.
 #define RRC_BINDING_FILL_LIST 32
 // The view buffer (library-owned, RRC_SPEC_VIEW_LOBE contexts only): this
 // frame's camera for the view lobe, std430 { mat4 Q; vec4 d; }: Q =
@@ -130,10 +134,18 @@
 // at creation): each slot's PARAM rows (rrc_channel_options.def).  Bound to
 // the passes that run channels (frame, fill).
 #define RRC_BINDING_CHANNEL_PARAMS 34
-#define RRC_FILL_LIST_COUNT 0u
-#define RRC_FILL_LIST_DISPATCH 1u
-#define RRC_FILL_LIST_FIRST 4u
+#define RRC_FILL_LIST_DISPATCH 0u
+#define RRC_FILL_LISTS 16u
+#define RRC_FILL_LIST_COUNTS 16u        // sub-list k's count: word RRC_FILL_LIST_COUNTS + k * RRC_FILL_LIST_COUNT_STRIDE
+#define RRC_FILL_LIST_COUNT_STRIDE 16u  // words: one 64-byte line a count
+#define RRC_FILL_LIST_FIRST (RRC_FILL_LIST_COUNTS + RRC_FILL_LISTS * RRC_FILL_LIST_COUNT_STRIDE)
 #define RRC_FILL_LIST_PER_GROUP 128u  // the kernel's workgroup width (plugin/accumulate_pipeline.h kGroupX)
+// Row y of an h-row frame goes to sub-list y / RRC_FILL_LIST_BAND(h): a band
+// of rows a sub-list, so that each sub-list is in raster order and workers
+// that take the frame's workgroups in ranges append to different ones.  A
+// sub-list's capacity, in words, for a w x h frame: its band's pixels.
+#define RRC_FILL_LIST_BAND(h) (((h) + RRC_FILL_LISTS - 1u) / RRC_FILL_LISTS)
+#define RRC_FILL_LIST_CAPACITY(w, h) (RRC_FILL_LIST_BAND(h) * (w))
 // Counter indices in it (the member order of rrc_vulkan_frame_stats).
 #define RRC_STAT_HITS 0
 #define RRC_STAT_MISSES 1

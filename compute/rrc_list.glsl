@@ -4,8 +4,8 @@
 // list pass appends the quads with a pixel that is not a HIT, RESOLVE_LISTED
 // runs over them (docs/PERFORMANCE.md, "The frame plan").  The fill list
 // (u_fill; docs/CONVENTIONS.md, "The spatial fill"): the passes that write
-// channels append the pixels younger than a fill age, the fill pass runs
-// over them.  GLSL passes no buffer to a function, and a pass declares only
+// channels append the pixels younger than a fill age to its sub-lists, the
+// fill pass runs over them.  GLSL passes no buffer to a function, and a pass declares only
 // the list it uses (rrc_module_bindings.h): so a pass defines its own appender.
 #ifndef RRC_LIST_GLSL
 #define RRC_LIST_GLSL
@@ -27,8 +27,16 @@
 // rrc_list_quad(q): quad q into classify's quad list.
 #define RRC_QUAD_LIST_APPENDER \
     RRC_LIST_APPENDER(rrc_list_quad, u_quads.words, RRC_QUAD_LIST_COUNT, RRC_QUAD_LIST_DISPATCH, RRC_QUAD_LIST_FIRST_QUAD, RRC_QUADS_PER_GROUP)
-// rrc_list_fill(px): pixel px into the fill list.
-#define RRC_FILL_LIST_APPENDER \
-    RRC_LIST_APPENDER(rrc_list_fill, u_fill.words, RRC_FILL_LIST_COUNT, RRC_FILL_LIST_DISPATCH, RRC_FILL_LIST_FIRST, RRC_FILL_LIST_PER_GROUP)
+// rrc_list_fill(px, size): pixel px of a frame of `size` into its sub-list of
+// the fill list (rrc_kernel_interface.h).  The dispatch's x counts every
+// sub-list's groups: the slot that starts a group adds one.
+#define RRC_FILL_LIST_APPENDER                                                                          \
+    void rrc_list_fill(ivec2 xy, ivec2 size) {                                                          \
+        uint list = uint(xy.y) / RRC_FILL_LIST_BAND(uint(size.y));                                      \
+        uint slot = atomicAdd(u_fill.words[RRC_FILL_LIST_COUNTS + list * RRC_FILL_LIST_COUNT_STRIDE], 1u); \
+        u_fill.words[RRC_FILL_LIST_FIRST + list * RRC_FILL_LIST_CAPACITY(uint(size.x), uint(size.y)) + slot] = \
+            uint(xy.x) | (uint(xy.y) << 16);                                                            \
+        if (slot % RRC_FILL_LIST_PER_GROUP == 0u) atomicAdd(u_fill.words[RRC_FILL_LIST_DISPATCH], 1u);  \
+    }
 
 #endif

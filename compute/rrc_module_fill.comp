@@ -47,7 +47,8 @@ bool rrc_fill_similar(float d_q, float d_p, float tau) {
 #undef RRC_CH
 #endif
 
-// FILL: one invocation a listed pixel (the fill list, indirect), after the
+// FILL: one invocation a listed pixel (the fill list, indirect: the
+// sub-lists' groups one after another, rrc_kernel_interface.h), after the
 // frame's channels, bound as the next frame would be (its history inputs are
 // this frame's results, its previous depth this frame's depth): the
 // displayed value of every channel with a fill, into u_host_out
@@ -55,10 +56,19 @@ bool rrc_fill_similar(float d_q, float d_p, float tau) {
 // value is its history value, which the frame's pass wrote there.
 void rrc_fill() {
     ivec2 size = imageSize(u_prev_depth);
-    uint slot = gl_GlobalInvocationID.x;
-    uint count = u_fill.words[RRC_FILL_LIST_COUNT];
+    // The group's sub-list and its first slot there: the sub-lists' groups in order.
+    uint list = 0u, group = gl_WorkGroupID.x, count = u_fill.words[RRC_FILL_LIST_COUNTS];
+    for (uint groups = (count + RRC_FILL_LIST_PER_GROUP - 1u) / RRC_FILL_LIST_PER_GROUP;
+         group >= groups && list + 1u < RRC_FILL_LISTS;
+         groups = (count + RRC_FILL_LIST_PER_GROUP - 1u) / RRC_FILL_LIST_PER_GROUP) {
+        group -= groups;
+        ++list;
+        count = u_fill.words[RRC_FILL_LIST_COUNTS + list * RRC_FILL_LIST_COUNT_STRIDE];
+    }
+    uint slot = group * RRC_FILL_LIST_PER_GROUP + gl_LocalInvocationID.x;
     rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)
-    uint word = u_fill.words[RRC_FILL_LIST_FIRST + min(slot, max(count, 1u) - 1u)];
+    uint first = RRC_FILL_LIST_FIRST + list * RRC_FILL_LIST_CAPACITY(uint(size.x), uint(size.y));
+    uint word = u_fill.words[first + min(slot, max(count, 1u) - 1u)];
     ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
     float d_p = imageLoad(u_prev_depth, px).r;
     bool fill_here = !rrc_is_background(d_p);

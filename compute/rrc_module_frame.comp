@@ -148,7 +148,7 @@ void rrc_pixel_at(ivec2 px, bool store) {
     }
 
     if (store) imageStore(u_mask, px, uvec4(mask));
-    if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px);
+    if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px, size);
     rrc_count(mask, PASS != RRC_PASS_RESOLVE && !LISTED, PASS != RRC_PASS_CLASSIFY);
 }
 

@@ -33,7 +33,8 @@ AccumulatorCore::AccumulatorCore(std::unique_ptr<VulkanDevice> device, const Con
     mask_ = GpuImage(*dev_, VK_FORMAT_R8_UINT, config_.width, config_.height);
     stats_placeholder_ = HostBuffer(*dev_, RRC_STAT_COUNT * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     quads_placeholder_ = HostBuffer(*dev_, (RRC_QUAD_LIST_FIRST_QUAD + 1) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    const size_t fill_words = RRC_FILL_LIST_FIRST + (config_.fill_mask() ? (size_t)config_.width * config_.height : 1);
+    const size_t fill_words =
+        RRC_FILL_LIST_FIRST + (config_.fill_mask() ? (size_t)RRC_FILL_LISTS * RRC_FILL_LIST_CAPACITY(config_.width, config_.height) : 1);
     fill_list_ = HostBuffer(*dev_, fill_words * sizeof(uint32_t),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             /*device_local=*/true);

@@ -262,7 +262,12 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
         steps.push_back(barrier(PlanResource::ViewBuffer, kTransfer, kTransferWrite, kCompute, kRead));
     }
     // The fill list starts empty, after the previous frame's fill (its indirect read and its loads).
-    if (clears_fill_list) clear(steps, PlanResource::FillList, {0, 0, 1, 1}, kCompute | kIndirect, kRead | kWrite | kIndirectRead);
+    if (clears_fill_list) {
+        // The dispatch {0, 1, 1} and every sub-list's count 0 (rrc_kernel_interface.h).
+        std::vector<uint32_t> header(RRC_FILL_LIST_FIRST, 0u);
+        header[RRC_FILL_LIST_DISPATCH + 1] = header[RRC_FILL_LIST_DISPATCH + 2] = 1;
+        clear(steps, PlanResource::FillList, std::move(header), kCompute | kIndirect, kRead | kWrite | kIndirectRead);
+    }
     steps.insert(steps.end(), passes.begin(), passes.end());
     // The list to the host: its indirect dispatch and miss shader (rrc_vulkan.h), or the CPU.
     if (r.call == PlanCall::Classify)
@@ -371,7 +376,12 @@ std::string describe_plan(const FramePlan& plan, const ContextConfig& c) {
             }
             case PlanStep::Kind::Clear: {
                 std::string words;
-                for (uint32_t v : s.words) words += (words.empty() ? "" : ", ") + std::to_string(v);
+                // A run of one value is written once, with its length: "0 x269".
+                for (size_t i = 0, n; i < s.words.size(); i += n) {
+                    for (n = 1; i + n < s.words.size() && s.words[i + n] == s.words[i];) ++n;
+                    words += (words.empty() ? "" : ", ") + std::to_string(s.words[i]) + (n > 3 ? " x" + std::to_string(n) : "");
+                    if (n <= 3) n = 1;
+                }
                 out += std::string("  clear ") + resource_name(s.resource) + " {" + words + "}\n";
                 break;
             }

@@ -36,7 +36,7 @@ struct PlanRequest {
 enum class PlanResource {
     Memory,           // a global memory barrier: every resource
     LibraryImages,    // every image the library owns (initialised to zero, GENERAL)
-    FillList,         // the fill list's header (count and indirect dispatch)
+    FillList,         // the fill list's header (the indirect dispatch and the sub-lists' counts)
     ViewBuffer,       // the view lobe's camera
     QuadList,         // classify's quad list (interop: the host's buffer)
     Stats,            // interop: the host's statistics buffer
