@@ -1,7 +1,8 @@
 #!/bin/sh
-# The pictures of the per-application guides (docs/guide/img/): crops of one
+# The pictures of README.md and the per-application guides (docs/guide/img/): crops of one
 # frame side by side, made with OpenImageIO's oiiotool from the programs' own
 # outputs.
+#   readme (README.md's picture): pcf's one frame, rrc's output and the reference;
 #   pcf, env, soft: rrc-sample at 1024x640, seed 0, its presets with their bases,
 #     frame 59 (a checkpoint): one frame's samples, rrc's output, the brute force at
 #     4x the samples, the reference (exr/<signal>_0059.exr's layers);
@@ -27,6 +28,7 @@ crop() {
         --mosaic:pad=4 4x1 -o "$img/$1.png"
 }
 crop pcf "Y,Y,Y" 320x200+540+340
+oiiotool "$out/pcf_raw.png" "$out/pcf_accumulated.png" "$out/pcf_reference.png" --mosaic:pad=4 3x1 -o "$img/readme.png"
 crop soft "Y,Y,Y" 320x200+540+340
 crop env "R,G,B" 256x200+130+280
 "$bin/rrc-cache" --size 1024x640 --frames 24 --periods 4 --policies tiled --no-stereo --octaves 8 --no-plot --out "$out/cache" >/dev/null
