@@ -161,7 +161,7 @@ std::vector<Target> evaluate_targets(const std::vector<Row>& rows, const Lineari
     else
         t.push_back(absent("standalone", sa_goal, "the standalone configuration at 1920x1080"));
 
-    // The shading cache (docs/PERFORMANCE.md, "The shading cache's cost").
+    // The shading cache (docs/measurements/PERFORMANCE.md, "The shading cache's cost").
     const Row* cache = find(rows, "cache_1x4");
     const std::string cache_goal = "classify + resolve / roof <= 1.6 (1080p, one REUSE rgba16f channel)";
     if (cache && cache->config.width == 1920 && cache->config.height == 1080) {
@@ -196,7 +196,7 @@ std::vector<Target> evaluate_targets(const std::vector<Row>& rows, const Lineari
                   "fused", 1.10, cache ? fmt("; listed %.1f%% of pixels", 100.0 * cache->listed_fraction()) : "",
                   "cache_1x4 and cache_1x4_fused at 1920x1080");
 
-    // The fill at a stated young fraction (docs/PERFORMANCE.md, "What is
+    // The fill at a stated young fraction (docs/measurements/PERFORMANCE.md, "What is
     // timed"): young12_fill against its twin without the fill.
     const Row* young = find(rows, "young12");
     const Row* fill = find(rows, "young12_fill");

@@ -1,4 +1,4 @@
-// The checks docs/PERFORMANCE.md sets: linearity in the pixel count and the
+// The checks docs/measurements/PERFORMANCE.md sets: linearity in the pixel count and the
 // targets, each reported as met, missed (by how much) or not measured (its
 // configurations were not in the run).
 #pragma once

@@ -102,7 +102,7 @@ std::vector<Config> full_sweep() {
     }
     // The fill at a stated young fraction: the fill works on young pixels
     // only, so its cost is set against its twin without the fill at the same
-    // nocache share (young12), round by round (docs/PERFORMANCE.md, "Targets").
+    // nocache share (young12), round by round (docs/measurements/PERFORMANCE.md, "Targets").
     // young12_fill_residual: the fill with the residual (rrc-sample's pcf preset).
     const struct {
         const char* name;
@@ -128,7 +128,7 @@ std::vector<Config> full_sweep() {
 
 std::vector<std::string> short_sweep_names() {
     // depth_fixed, cache_1x4_fused and young12 are the denominators of the
-    // ADAPTIVE, shading cache and fill targets (docs/PERFORMANCE.md, "Targets").
+    // ADAPTIVE, shading cache and fill targets (docs/measurements/PERFORMANCE.md, "Targets").
     return {"base", "ch_3x1", "src_camera", "src_motion", "res_256x160", "res_1280x720", "res_3840x2160", "sampled_inputs",
             "standalone", "depth_fixed", "cache_1x4", "cache_1x4_fused", "cache_1x4_classify_fused", "young12", "young12_fill"};
 }

@@ -1,7 +1,7 @@
 // One benchmark configuration and the sweep around the base: every factor of
-// the sweep (docs/PERFORMANCE.md, "Full sweep") is varied alone, so a row's change against `base` is that
+// the sweep (docs/measurements/PERFORMANCE.md, "Full sweep") is varied alone, so a row's change against `base` is that
 // factor's cost.  The short default run is a subset that still covers the
-// targets of docs/PERFORMANCE.md (channels, sources, linearity, standalone).
+// targets of docs/measurements/PERFORMANCE.md (channels, sources, linearity, standalone).
 #pragma once
 
 #include <rrc/rrc.h>
@@ -34,7 +34,7 @@ struct Config {
     // The share of pixels the nocache mask marks (with nocache): 1 % by
     // default.  Those pixels miss every frame (age 1), so the share sets how
     // many pixels are young (age < fill_age): the fill rows' workload
-    // (docs/PERFORMANCE.md, "What is timed").
+    // (docs/measurements/PERFORMANCE.md, "What is timed").
     float nocache_share = 0.01f;
     // A row of the fill's cost at a stated young fraction: --nocache-share
     // sets its nocache_share.
@@ -66,7 +66,7 @@ struct Config {
 constexpr uint32_t kYoungAge = 8;
 /** The young rows' nocache share: chosen so that about 12 % of all pixels
  *  (surface pixels of age < kYoungAge over the frame's pixels) are young at
- *  1080p (docs/PERFORMANCE.md, "What is timed"). */
+ *  1080p (docs/measurements/PERFORMANCE.md, "What is timed"). */
 constexpr float kYoungNocacheShare = 0.08f;
 
 /** Every configuration of --full, base first. */

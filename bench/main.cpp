@@ -1,4 +1,4 @@
-// rrc-bench: rrc's kernel timed against its roof (docs/PERFORMANCE.md).
+// rrc-bench: rrc's kernel timed against its roof (docs/measurements/PERFORMANCE.md).
 // Public headers only (include/rrc/) plus the host bootstrap of
 // host_sample/common, as any engine would use the library.
 #include "analysis.h"
@@ -106,7 +106,7 @@ std::vector<Row> measure_all(VulkanBootstrap& vk, const std::vector<Config>& con
             j.interop = std::make_unique<InteropBench>(vk, j.config, *j.scene, j.images, log);
             // A pixel is young until kYoungAge frames of history: before that the
             // fill works on every surface pixel, so rows whose cost depends on the
-            // young fraction start from a steady state (docs/PERFORMANCE.md, "What is timed").
+            // young fraction start from a steady state (docs/measurements/PERFORMANCE.md, "What is timed").
             if (young_sensitive(j.config)) j.interop->prime((int)kYoungAge);
             if (!j.standalone) drop_arrays(*j.scene);  // on the device now; the interop frames need only the matrices
         }

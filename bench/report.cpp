@@ -223,7 +223,7 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
                       100.0 * r.young_fraction());
         o << line;
     }
-    // What the young column counts (docs/PERFORMANCE.md, "What is timed"): the fill's workload.
+    // What the young column counts (docs/measurements/PERFORMANCE.md, "What is timed"): the fill's workload.
     o << "\nyoung %: surface pixels of age < " << kYoungAge << " (channel 0; the fill's pixels at fill_age " << kYoungAge
       << ") over all pixels of the untimed statistics frame.";
     for (const Row& r : rows)

@@ -1,6 +1,6 @@
 // The run's outputs: the table on stdout, bench.csv and bench.json (one row
 // per configuration, the same columns), and report.md, the tables
-// docs/PERFORMANCE.md quotes.
+// docs/measurements/PERFORMANCE.md quotes.
 #pragma once
 
 #include "analysis.h"

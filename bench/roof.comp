@@ -1,7 +1,7 @@
 #version 450
 // The roof of a configuration: a copy kernel that reads, once each, every
 // byte the API makes rrc's kernel read and writes every output once
-// (docs/PERFORMANCE.md, "The roof", lists them).  No kernel that honours the
+// (docs/measurements/PERFORMANCE.md, "The roof", lists them).  No kernel that honours the
 // API can move fewer bytes, so kernel time / roof time is how far the kernel
 // is from the memory bound; repacking inside the library moves only the
 // kernel, never this.

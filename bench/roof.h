@@ -14,7 +14,7 @@ struct RoofBytes {
     uint64_t total() const { return read + written; }
 };
 
-/** The bytes the API implies for `config` (docs/PERFORMANCE.md, "The roof"),
+/** The bytes the API implies for `config` (docs/measurements/PERFORMANCE.md, "The roof"),
  *  from formats alone: per-pixel sums times the pixel count. */
 RoofBytes roof_bytes_from_api(const Config& config);
 

@@ -12,7 +12,7 @@ cmake_minimum_required(VERSION 3.25)
 
 set(width 128)
 set(height 64)
-# name -> bytes read and written per pixel (docs/PERFORMANCE.md, "The roof").
+# name -> bytes read and written per pixel (docs/measurements/PERFORMANCE.md, "The roof").
 set(expect_base "32;9")               # depth 4, PREV_CLIP 16, prev depth 4, samples 4, fp16 history 2, age 2 | mask 1, depth copy 4, value 2, age 2
 set(expect_ch_2x4 "76;25")            # 2 x (samples 16, history 8, age 2) | 2 x (values 8, age 2)
 set(expect_fp32 "34;11")              # fp32 history 4 | value 4

@@ -8,7 +8,7 @@
 # Vulkan context costs about 0.35 s more than the next ones in the same process
 # (fresh pages for the driver's and the library's allocations, the driver and
 # the validation layer loaded and relocated), more under the sanitizers, and
-# the suite has some 700 cases (docs/PERFORMANCE.md, "The test suite's time").
+# the suite has some 700 cases (docs/measurements/PERFORMANCE.md, "The test suite's time").
 # A case still gets a fresh context of its own: every test makes its context
 # (tests/support/rrc_test_context.h), so a validation message fails the case
 # that caused it, and the output of a failed suite names the failing cases.
@@ -40,7 +40,7 @@ function(rrc_gtest_suites target)
   # Under the sanitizers a test program's own sources build at -O0: the same
   # checks, half the compile time of -O1, and its tests' time is spent in the
   # driver, the reference and the programs' libraries, which keep -O1
-  # (docs/PERFORMANCE.md, "The test suite's time").
+  # (docs/measurements/PERFORMANCE.md, "The test suite's time").
   if(RRC_SANITIZE)
     target_compile_options(${target} PRIVATE -O0)
   endif()

@@ -6,7 +6,7 @@
 // compiles only the path it uses; the depth mode and the push constants are
 // rrc_depth.glsl's.  Built with
 // -DRRC_WITHOUT_<FEATURE>, a feature's constant is a plain `false` instead:
-// tests/spirv compares that build with the specialised one (docs/PERFORMANCE.md).
+// tests/spirv compares that build with the specialised one (docs/measurements/PERFORMANCE.md).
 #ifndef RRC_REPROJECT_GLSL
 #define RRC_REPROJECT_GLSL
 
@@ -111,7 +111,7 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // a step (a neighbour of the other sign and at least STEP_RATIO of |s|, |s|
 // above the noise) the larger such |n|, else 0.
 //
-// Written for lavapipe, which pays every operation (docs/PERFORMANCE.md,
+// Written for lavapipe, which pays every operation (docs/measurements/PERFORMANCE.md,
 // "Inside the kernel"); each shortcut gives the same bits as the plain
 // formula.  Finite s, s-, s+ imply finite a, c, b (a non-finite tap makes s
 // inf or NaN), and the result is 0 otherwise, so finiteness is |x| < inf on

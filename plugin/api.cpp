@@ -274,7 +274,7 @@ rrc_result rrc_context_validation_messages(const rrc_context* context, uint64_t*
         if (c->interop)
             rrc::fail(RRC_ERROR_UNSUPPORTED,
                       "an interop context cannot count validation messages: the layer reports to the host's own instance "
-                      "(docs/INTEGRATION.md, \"What rrc checks and what it cannot\")");
+                      "(docs/guide/integration.md, \"What rrc checks and what it cannot\")");
         *out_count = c->device().validation_messages();
     });
 }

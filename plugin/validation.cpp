@@ -265,7 +265,7 @@ const char* source_name(rrc_reprojection r) {
     return r == RRC_REPROJECTION_PREV_CLIP ? "PREV_CLIP" : r == RRC_REPROJECTION_MOTION ? "MOTION" : "MOTION_DEPTH";
 }
 
-// The depth-format rule of docs/INTEGRATION.md: a depth/stencil image holds
+// The depth-format rule of docs/guide/integration.md: a depth/stencil image holds
 // NDC depth in exactly the encoding the context's epsilon is built for; a
 // colour image carries depth in .r and its precision is the host's choice.
 void check_depth_image_format(const ContextConfig& c, VkFormat f) {
@@ -350,7 +350,7 @@ FrameImages frame_images(const Frame& f) {
 
 // Every image rrc writes (the outputs, ages and the mask) is none of the
 // images it reads and no other it writes: a shared VkImage would be
-// overwritten while it is read, or written twice (docs/INTEGRATION.md, "What
+// overwritten while it is read, or written twice (docs/guide/integration.md, "What
 // rrc checks and what it cannot").
 void check_distinct_images(const FrameImages& m) {
     const std::vector<NamedImage>&reads = m.reads, &writes = m.writes;

@@ -1,6 +1,6 @@
 // What rrc needs of a Vulkan device, written once: rrc_vulkan_get_requirements
 // returns it, and both paths check a device against it at creation
-// (rrc_vulkan.h, "Device requirements"; docs/INTEGRATION.md, "What rrc checks
+// (rrc_vulkan.h, "Device requirements"; docs/guide/integration.md, "What rrc checks
 // and what it cannot").  The query is device-free.
 #pragma once
 

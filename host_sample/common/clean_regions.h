@@ -1,4 +1,4 @@
-// What rrc adds to a clean input, by region (docs/OFFLINE.md, "What rrc adds
+// What rrc adds to a clean input, by region (docs/measurements/OFFLINE.md, "What rrc adds
 // to a clean input"): on a noise-free input the accumulated output should be
 // nearly the input itself, so its error against the frame's own input is what
 // reprojection, resampling and the fill add.  Every pixel is put in one region

@@ -6,7 +6,7 @@
 // code.  It is written once here, so a fix to device choice or to message
 // counting reaches both.  Only Vulkan (through volk, VK_NO_PROTOTYPES) is
 // used: rrc itself is reached through include/rrc/ by the callers, as
-// docs/INTEGRATION.md describes.
+// docs/guide/integration.md describes.
 #pragma once
 
 #include <volk.h>

@@ -1,4 +1,4 @@
-/* The minimal C host on the standalone path (docs/INTEGRATION.md, "A minimal
+/* The minimal C host on the standalone path (docs/guide/integration.md, "A minimal
  * C host (standalone path)"): a static camera over a flat surface; the
  * signal alternates 0, 1, 0, 1, ... and rrc's lambda filter with
  * lambda = 0.5 averages it.  Plain C99 on <rrc/rrc.h> alone; it exits

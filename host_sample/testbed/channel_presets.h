@@ -55,7 +55,7 @@ constexpr float kEnvViewLobePixels = 18.0f;
  *  as the per-frame signal's k = 4 taps (rrc-sample's --pcf-residual default; docs/guide/pcf-shadows.md). */
 constexpr uint32_t kSamplePcfBaseTaps = 4;
 
-/** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2 (docs/PERFORMANCE.md,
+/** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2 (docs/measurements/PERFORMANCE.md,
  *  "The blur bound: what it buys, measured"). */
 constexpr float kSampleBlurBound = 0.5f;
 

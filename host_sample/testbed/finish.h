@@ -1,5 +1,5 @@
 // The finishing steps' measurements (README.md, "Finishing steps"; the
-// figures in docs/finish/): the errors of young (newly disoccluded)
+// figures in docs/measurements/finish/): the errors of young (newly disoccluded)
 // soft-shadow pixels by age, the error of every display on each checkpoint (a
 // convergence curve), and raw float dumps of the displays for figures.  The
 // fill's figures come from rrc's own fill (--soft-fill), whose output is the

@@ -17,8 +17,8 @@ constexpr size_t kMaxObjects = 64;  // the scenes have 17 objects
 // The oracle's visibility tolerance (README.md, "Recall and false hits"): the previous ray must meet the point's own
 // object within 1e-4 of the point's distance (t is in units of that distance).
 constexpr double kVisibleTolerance = 1e-4;
-// The straddling bound (docs/ACCURACY.md, "Hit test against true visibility"): a previous-depth tap counts when its bilinear
-// weight exceeds this (docs/ACCURACY.md's strict false hits use the same bound).
+// The straddling bound (docs/measurements/ACCURACY.md, "Hit test against true visibility"): a previous-depth tap counts when its bilinear
+// weight exceeds this (docs/measurements/ACCURACY.md's strict false hits use the same bound).
 constexpr double kTapWeight = 1e-3;
 // Excluded beside the image border (README.md, "Recall and false hits"): 2^-20 in uv, 1e-3 px at 1024 wide, a few
 // fp32 ulps of the clip position's x/w.

@@ -162,7 +162,7 @@ TEST(RrcSample, ShortSequenceUnderValidationLayer) {
 
 // The default run's frames 0-14 (256x160; one signal, no reference, no files: hits do not
 // depend on them) at the library's default depth test (no epsilon given: ADAPTIVE for this
-// API 0.2 caller; docs/INTEGRATION.md, "Changes since 0.1") with the G-buffer's object ids (the default): rrc must find almost
+// API 0.2 caller; docs/guide/integration.md, "Changes since 0.1") with the G-buffer's object ids (the default): rrc must find almost
 // every truly visible pixel off silhouettes and never reuse a point that was hidden.  FIXED
 // 4 ulp reaches 79.4% here (293 096 of 369 280).
 TEST(RrcSample, DefaultDepthTestRecallAndNoFalseHits) {
@@ -179,7 +179,7 @@ TEST(RrcSample, DefaultDepthTestRecallAndNoFalseHits) {
     VisibilityStats v;
     for (const FrameRecord& f : r.frames) v += f.visibility;
     EXPECT_GT(v.clean_visible, 100000u);
-    // The target is 99% (docs/ACCURACY.md, "Hit test against true visibility"); measured 99.38% here (366 986 of 369 280;
+    // The target is 99% (docs/measurements/ACCURACY.md, "Hit test against true visibility"); measured 99.38% here (366 986 of 369 280;
     // lavapipe); 98.1% before the step rule took the smooth side's curvature beside silhouettes (docs/CONVENTIONS.md, "The ADAPTIVE test").
     EXPECT_GE(v.recall(), 0.99) << v.clean_hits << " hits of " << v.clean_visible << " visible pixels; missed: ground "
                                 << v.missed_by_material[kMatGround] << ", stone " << v.missed_by_material[kMatStone] << ", sphere "

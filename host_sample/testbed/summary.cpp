@@ -256,7 +256,7 @@ void write_summary_files(const RunResult& run, const std::string& out_dir) {
     f << "- " << signals_label(run) << ": " << fmt("%.2f", a.signals) << " ms with k = " << o.taps << " samples; brute force at 4k"
       << ((run.signals & kSignalSoft) ? " (soft: its 4 shadow maps included)" : "") << ": " << fmt("%.2f", a.brute)
       << " ms (checkpoints). GPU timestamps in one command buffer, no barrier between passes: on a CPU device such as "
-         "lavapipe they are not the passes' own cost (docs/BIAS.md, \"What the sample's signal-pass time measures\"); "
+         "lavapipe they are not the passes' own cost (docs/measurements/BIAS.md, \"What the sample's signal-pass time measures\"); "
          "rrc-sweep times each pass in its own submission\n";
     if (!a.order.empty()) {
         f << "\nError against the brute-force reference, mean over checkpoint frames (PSNR with peak 1; pcf and soft over every "

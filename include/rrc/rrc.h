@@ -15,7 +15,7 @@
  * filter) are in docs/CONVENTIONS.md; every choice this header leaves to the
  * library is written down there.
  *
- * Every member and function by concept: docs/INTEGRATION.md, "The API by concept".
+ * Every member and function by concept: docs/guide/integration.md, "The API by concept".
  *
  * Lifetime
  * --------
@@ -84,7 +84,7 @@
  *  6. Existing exported functions keep their signatures; a better name is
  *     added beside an old one, which stays exported as an alias until 1.0.
  *
- * docs/INTEGRATION.md lists the changes of each minor version.
+ * docs/guide/integration.md lists the changes of each minor version.
  *
  * Conventions of this header: one prefix (rrc_, RRC_), fixed-width fields,
  * enums stored as uint32_t, no bool, no unions, zero means default.
@@ -219,7 +219,7 @@ RRC_DEFINE_ENUM(rrc_history_precision, RRC_HISTORY_PRECISION, uint32_t)
  *  Why: a history rounded to nearest fp16 stops moving once
  *  (1 - lambda)|s - H| < ulp(H)/2, i.e. it may stall up to 2^-11/(1 - lambda)
  *  of H away from the signal (bias 3.6e-2 at lambda 0.999 on a noisy signal;
- *  docs/STABILITY.md).  REUSE never blends: it keeps fp16. */
+ *  docs/measurements/STABILITY.md).  REUSE never blends: it keeps fp16. */
 #define RRC_FP16_MAX_LAMBDA 0.95
 
 /** Bits of the per-pixel mask (rrc_frame_output.mask is uint8_t). */
@@ -246,7 +246,7 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_MAX_ANTILAG_THRESHOLD 2.0f        /* the relative gap is below 2 */
 #define RRC_MAX_BLUR_BOUND 64.0f              /* rrc_channel_desc.blur_bound (0.6), px^2: a blur of 8 px standard deviation */
 #define RRC_MAX_VIEW_LOBE 3.14159265f         /* rrc_channel_desc.view_lobe (0.7), radians: pi */
-#define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/PERFORMANCE.md "The spatial fill (soft shadows)") */
+#define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/measurements/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
 
@@ -593,7 +593,7 @@ RRC_API rrc_result rrc_frame_run(rrc_context* context, const rrc_frame_desc* fra
  *  changes.  Staging memory grows to the largest batch: count * (inputs + outputs). */
 RRC_API rrc_result rrc_frame_run_batch(rrc_context* context, uint32_t count, const rrc_frame_desc* frames, rrc_frame_output* outputs);
 
-/* ---- The shading cache, split in two (0.3; docs/INTEGRATION.md) -------- *
+/* ---- The shading cache, split in two (0.3; docs/guide/integration.md) -------- *
  * rrc_frame_run shades nothing for the host: it takes a sample at every
  * pixel.  A host whose shading is expensive runs each frame in two calls
  * instead, and shades only the quads classify lists:

@@ -4,7 +4,7 @@
  * <vulkan/vulkan.h> (define VK_NO_PROTOTYPES first if you use volk: this
  * header calls no Vulkan function).
  *
- * Model (docs/INTEGRATION.md has the full walk-through and an input table)
+ * Model (docs/guide/integration.md has the full walk-through and an input table)
  * ---------------------------------------------------------------------
  *   rrc_vulkan_context_create()  once, on the host's instance/device
  *   rrc_vulkan_record_frame()    per frame: records barriers and one dispatch
@@ -96,7 +96,7 @@ typedef struct rrc_vulkan_device_desc {
 } rrc_vulkan_device_desc;
 
 /** One host image as the kernel sees it.  What Vulkan cannot report, the host
- *  gets right and rrc cannot check (docs/INTEGRATION.md, "What rrc checks and
+ *  gets right and rrc cannot check (docs/guide/integration.md, "What rrc checks and
  *  what it cannot"): its usage (SAMPLED for inputs, STORAGE for outputs, ages and
  *  the mask), its extent (the context's; state it with rrc_vulkan_image_extents
  *  to have it checked), no aliasing of another image's memory. */
@@ -179,7 +179,7 @@ typedef struct rrc_vulkan_frame_desc {
      * samples R32_SFLOAT (1 component) or R32G32B32A32_SFLOAT (4),
      * confidence R32_SFLOAT.  The kernel then reads them with storage loads,
      * not through samplers: on lavapipe a sampler fetch costs several
-     * storage loads (docs/PERFORMANCE.md, "Sampled or storage inputs").
+     * storage loads (docs/measurements/PERFORMANCE.md, "Sampled or storage inputs").
      * Zero: any sampled format, as above.  Object ids are sampled either way. */
     uint32_t storage_inputs;
     /* ---- 0.3 ---- */
@@ -194,7 +194,7 @@ typedef struct rrc_vulkan_frame_desc {
      * adds at the listed quads' pixels) and, when every channel is REUSE, the
      * output and age images at every HIT; resolve then writes them only at
      * the listed quads' pixels, so the images are complete after resolve
-     * without a full-frame copy (docs/INTEGRATION.md, "The shading cache").
+     * without a full-frame copy (docs/guide/integration.md, "The shading cache").
      * Classify then moves the output, age and mask images as resolve does.
      * rrc_vulkan_record_frame ignores it. */
     uint32_t split_outputs;
@@ -209,7 +209,7 @@ typedef struct rrc_vulkan_frame_desc {
      * sizeof(rrc_vulkan_frame_stats) must lie within it, else the frame is
      * refused (RRC_ERROR_SIZE_MISMATCH) and nothing is recorded.  Zero: not
      * stated (a caller before 0.10), unchecked: then a range past the
-     * buffer's end is written (docs/INTEGRATION.md, "What rrc checks and
+     * buffer's end is written (docs/guide/integration.md, "What rrc checks and
      * what it cannot"). */
     VkDeviceSize stats_buffer_size;
 } rrc_vulkan_frame_desc;
@@ -225,7 +225,7 @@ typedef struct rrc_vulkan_frame_desc {
  * listed but not bound are ignored, so one table of all the host's images
  * serves every frame.  Without it, extents are unchecked: an image larger
  * than the context is written only in its top-left corner, a smaller one
- * reads garbage (docs/INTEGRATION.md, "What rrc checks and what it cannot"). */
+ * reads garbage (docs/guide/integration.md, "What rrc checks and what it cannot"). */
 typedef struct rrc_vulkan_image_extent {
     VkImage image;
     uint32_t width, height;

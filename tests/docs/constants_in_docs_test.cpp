@@ -85,15 +85,15 @@ const char* const kSampleHelp = "host_sample/testbed/options.cpp";          // u
 
 TEST(ConstantsInDocs, MaskBits) {
     expect_mask_list("docs/CONVENTIONS.md", "The mask bits:");
-    expect_mask_list("docs/INTEGRATION.md", "| mask | storage R8_UINT / `uint8_t[W*H]` | bits:");
-    expect_mask_list("docs/OFFLINE.md", "`rrc.mask` (bits");
+    expect_mask_list("docs/guide/integration.md", "| mask | storage R8_UINT / `uint8_t[W*H]` | bits:");
+    expect_mask_list("docs/measurements/OFFLINE.md", "`rrc.mask` (bits");
     expect_mask_list(kAccumulateHelp, "the integer value of the per-pixel bitfield");
 }
 
 TEST(ConstantsInDocs, Limits) {
     expect_value<unsigned>("RRC_MAX_CHANNELS", RRC_MAX_CHANNELS,
                            {{"README.md", "Limits: up to "},
-                            {"docs/OFFLINE.md", "can be accumulated alongside, up to "},
+                            {"docs/measurements/OFFLINE.md", "can be accumulated alongside, up to "},
                             {kAccumulateHelp, "accumulate EXR layer NAME (repeatable, at most "}});
     expect_value<unsigned>("RRC_MAX_AGE_CAP", RRC_MAX_AGE_CAP,
                            {{"README.md", "ages up to "},
@@ -107,13 +107,13 @@ TEST(ConstantsInDocs, Limits) {
 
 TEST(ConstantsInDocs, Fp16MaxLambda) {
     expect_value<double>("RRC_FP16_MAX_LAMBDA", RRC_FP16_MAX_LAMBDA,
-                         {{"docs/CONVENTIONS.md", "`RRC_FP16_MAX_LAMBDA` = "}, {"docs/STABILITY.md", "`RRC_FP16_MAX_LAMBDA` = "}});
+                         {{"docs/CONVENTIONS.md", "`RRC_FP16_MAX_LAMBDA` = "}, {"docs/measurements/STABILITY.md", "`RRC_FP16_MAX_LAMBDA` = "}});
 }
 
 TEST(ConstantsInDocs, DefaultAgeCap) {
     expect_value<unsigned>("RRC_DEFAULT_AGE_CAP", RRC_DEFAULT_AGE_CAP,
                            {{"docs/CONVENTIONS.md", "Age cap: default "},
-                            {"docs/STABILITY.md", "A running mean with the default cap "},
+                            {"docs/measurements/STABILITY.md", "A running mean with the default cap "},
                             {"include/rrc/rrc.h", "saturation of the age count; 0 = default "},
                             {kAccumulateHelp, "max_age=1..65535 ("}});
 }
@@ -121,7 +121,7 @@ TEST(ConstantsInDocs, DefaultAgeCap) {
 TEST(ConstantsInDocs, DefaultTau) {
     expect_value<float>("RRC_DEFAULT_TAU", RRC_DEFAULT_TAU,
                         {{"docs/CONVENTIONS.md", "τ default "},
-                         {"docs/OFFLINE.md", "The library's default τ = "},
+                         {"docs/measurements/OFFLINE.md", "The library's default τ = "},
                          {"include/rrc/rrc.h", "MOTION tests; 0 = default "},
                          {kAccumulateHelp, "relative tolerance for linear-depth tests ("}});
 }
@@ -144,8 +144,8 @@ TEST(ConstantsInDocs, DefaultEpsilonScale) {
 TEST(ConstantsInDocs, DefaultBackgroundThreshold) {
     expect_value<float>("RRC_DEFAULT_BACKGROUND_THRESHOLD", RRC_DEFAULT_BACKGROUND_THRESHOLD,
                         {{"docs/CONVENTIONS.md", "background iff d ≥ threshold (default "},
-                         {"docs/INTEGRATION.md", "sky = +inf or ≥ `background_threshold` ("},
-                         {"docs/OFFLINE.md", "`background_threshold` "},
+                         {"docs/guide/integration.md", "sky = +inf or ≥ `background_threshold` ("},
+                         {"docs/measurements/OFFLINE.md", "`background_threshold` "},
                          {"include/rrc/rrc.h", "LINEAR: d >= this is background; 0 = default "},
                          {kAccumulateHelp, "linear depth >= T is background ("}});
 }

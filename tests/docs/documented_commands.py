@@ -26,9 +26,9 @@ PROGRAMS = ("rrc-sample", "rrc-sample-peers", "rrc-sweep", "rrc-cache", "rrc-acc
 # Snippets that cannot be checked, each with its reason: (file, a regular expression the snippet matches).
 EXEMPT = [
     # Prose naming rrc-blender-check's mode, not a command line.
-    ("docs/OFFLINE.md", r"^rrc-blender-check --hits$"),
+    ("docs/measurements/OFFLINE.md", r"^rrc-blender-check --hits$"),
     # Prose with a placeholder value T (the fill age), not a command line.
-    ("docs/finish/README.md", r"^rrc-sample --soft-fill T$"),
+    ("docs/measurements/finish/README.md", r"^rrc-sample --soft-fill T$"),
 ]
 
 

@@ -178,7 +178,7 @@ TEST(Interop, WrongModeAndBadInputAreRefused) {
     EXPECT_EQ(host.message_count(), 0u) << host.messages().front();
 }
 
-// The mistakes a host can make that rrc can see (docs/INTEGRATION.md, "What
+// The mistakes a host can make that rrc can see (docs/guide/integration.md, "What
 // rrc checks and what it cannot"), one at a time between two clean frames:
 // each is refused with a message naming the member, records nothing (the
 // host's outputs and mask read back as before, the statistics bytes keep

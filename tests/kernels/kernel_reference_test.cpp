@@ -12,7 +12,7 @@
 //     texel edge: near_nearest_edge);
 //   - zero false hits against exact visibility for PREV_CLIP and MOTION_DEPTH.
 // With RRC_ACCURACY_REPORT=<file> set, the measured table is written there
-// (docs/ACCURACY.md is made this way; see that file for the command).
+// (docs/measurements/ACCURACY.md is made this way; see that file for the command).
 #include "reference/rrc_reference.h"
 #include "scenes/false_hits.h"
 #include "support/rrc_test_context.h"
@@ -237,7 +237,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, KernelVsReference,
                          });
 
 // Writes the measured table when asked: RRC_ACCURACY_REPORT names a markdown
-// file whose text between the two markers below is replaced (docs/ACCURACY.md).
+// file whose text between the two markers below is replaced (docs/measurements/ACCURACY.md).
 class AccuracyReport : public ::testing::Environment {
 public:
     void TearDown() override {

@@ -32,7 +32,7 @@ namespace {
 const int kW = 64, kH = 40, kFrames = 6;
 
 // The channels: a packed fp16 scalar with the lag detector and a fill whose
-// prior is the base (the soft shadow's settings, docs/INTEGRATION.md), and an
+// prior is the base (the soft shadow's settings, docs/guide/integration.md), and an
 // fp32 RGBA Catmull-Rom channel, rectified.
 std::vector<rrc_channel_desc> residual_channels(bool residual, bool fill) {
     std::vector<rrc_channel_desc> c = {

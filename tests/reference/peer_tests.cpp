@@ -19,7 +19,7 @@
 //               c8fc17d281665927e414b6b8117873cccbac0990); reconstructedDepthBilinearWeightThreshold
 //               0.05 (ffx_fsr2_common.h of the same line); hit/miss: the lock rule's
 //               depthClipThreshold 0.99 (ffx_fsr2_postprocess_lock_status.h).
-// Simplifications common to all (stated in docs/COMPARISON.md, "How the peers were rebuilt"):
+// Simplifications common to all (stated in docs/measurements/COMPARISON.md, "How the peers were rebuilt"):
 //   * double precision throughout; no fp16 packing of normals or depth (NRD, Falcor pack them).
 //   * every test gets the same exact previous texel coordinate q (peer_tests.h).
 //   * a pixel on the background is never a hit (the oracle calls any hit there false).

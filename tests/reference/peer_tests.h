@@ -1,5 +1,5 @@
 // The reprojection validity tests of the peers our users already run, in
-// double precision, for docs/COMPARISON.md only: none of them is an option of
+// double precision, for docs/measurements/COMPARISON.md only: none of them is an option of
 // the library.  Each is rebuilt from its public source with its shipped
 // defaults (peer_tests.cpp cites file and commit beside every formula and
 // states each simplification).

@@ -126,7 +126,7 @@ TEST(Visibility, AgreesWithFalseHitEvaluator) {
 
 TEST(Visibility, StoredBackgroundIsExcludedAsQuantised) {
     // STANDARD fp32 with far/near 1e9: z = 1 - n/d rounds to 1 for every
-    // surface (docs/STABILITY.md, depth precision): the library sees sky.
+    // surface (docs/measurements/STABILITY.md, depth precision): the library sees sky.
     SceneConfig c;
     c.near_plane = 1e-7;
     c.camera_motion = false;

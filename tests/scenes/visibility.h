@@ -1,5 +1,5 @@
 // The oracle of true visibility: which pixels of a frame a depth test should
-// hit (docs/ACCURACY.md, "Hit test against true visibility"), so a test can score a hit/miss mask by recall and false hits.
+// hit (docs/measurements/ACCURACY.md, "Hit test against true visibility"), so a test can score a hit/miss mask by recall and false hits.
 //
 // Definition, per pixel (i, j) of frame t against the previous frame t' (all
 // in double; d the planar view depth):

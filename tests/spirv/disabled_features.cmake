@@ -1,4 +1,4 @@
-# A disabled feature costs nothing (docs/PERFORMANCE.md): for each optional
+# A disabled feature costs nothing (docs/measurements/PERFORMANCE.md): for each optional
 # feature of the kernels (compute/rrc_module_*.comp, one module a pass), the
 # specialised SPIR-V of a configuration without it must equal, module by
 # module, the SPIR-V built with the feature's code removed (-DRRC_WITHOUT_<F>:
@@ -349,7 +349,7 @@ endforeach()
 
 # ---- One module a channel count ----------------------------------------------
 # The library builds the per-channel passes once for each channel count n (compute/CMakeLists.txt,
-# -DRRC_SLOTS=n) and gives a context of n channels the n-slot module (docs/PERFORMANCE.md, "One
+# -DRRC_SLOTS=n) and gives a context of n channels the n-slot module (docs/measurements/PERFORMANCE.md, "One
 # module a channel count"). Specialised as such a context (CHANNEL_COUNT n; the defaults base, and
 # the all_on base with every feature on), it must equal the full module specialised the same:
 # the slots it leaves out are code no n-channel context runs.

@@ -1,4 +1,4 @@
-// Age saturation (docs/STABILITY.md, "Long cases", row "age cap"): with the cap at its type's maximum
+// Age saturation (docs/measurements/STABILITY.md, "Long cases", row "age cap"): with the cap at its type's maximum
 // (RRC_MAX_AGE_CAP = 65535, ages are 16-bit) a static 2x2 image runs
 // cap + 10 frames in batches; the age must count 1, 2, ... up to 65535 and
 // stay there, never wrap to 0, in every channel and blend (checked on every

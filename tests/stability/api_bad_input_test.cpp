@@ -1,4 +1,4 @@
-// Bad input at every entry point of the C API (docs/STABILITY.md, "Bad input"), beyond the
+// Bad input at every entry point of the C API (docs/measurements/STABILITY.md, "Bad input"), beyond the
 // descriptor cases of tests/api/api_validation_test.cpp: each case is a test that
 // checks the specific code, a message naming the field, outputs left exactly
 // as they were, and the context's history intact (the next good frame hits

@@ -1,4 +1,4 @@
-// Depth precision (docs/STABILITY.md, "Depth precision: FIXED and the ADAPTIVE default side by side"):
+// Depth precision (docs/measurements/STABILITY.md, "Depth precision: FIXED and the ADAPTIVE default side by side"):
 // the analytic scene (tests/scenes) with static
 // geometry and a moving camera, PREV_CLIP reprojection, 96x64, 8 frames,
 // across near/far ratios 1e2 .. 1e9 in standard-Z float depth (precision
@@ -45,7 +45,7 @@ struct DepthCase {
 const double kInf = std::numeric_limits<double>::infinity();
 // 2^17 ulps of z: 0.8% .. 1.6% of z, i.e. of the view depth for reversed-Z
 // (z ~ n/d): LINEAR's default tau = 1% expressed in ulps.  The default 4 ulps cannot accept
-// the bilinear depth fetch on curved surfaces (see docs/STABILITY.md).
+// the bilinear depth fetch on curved surfaces (see docs/measurements/STABILITY.md).
 constexpr float kWideUlps = 131072.0f;
 
 std::vector<DepthCase> base_cases() {

@@ -1,4 +1,4 @@
-// Determinism (docs/STABILITY.md, "Fast cases", rows "determinism"): bit-identical outputs
+// Determinism (docs/measurements/STABILITY.md, "Fast cases", rows "determinism"): bit-identical outputs
 //  - across repeated runs in one process;
 //  - with lavapipe on 1 and on 2 threads: LP_NUM_THREADS is read when the
 //    driver starts, so this test runs itself as a child process per thread

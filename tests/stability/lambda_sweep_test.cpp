@@ -1,4 +1,4 @@
-// Stiff λ over 10,000 frames of a stationary noisy signal (docs/STABILITY.md,
+// Stiff λ over 10,000 frames of a stationary noisy signal (docs/measurements/STABILITY.md,
 // "Reading the tables": λ sweep).  Every component of every pixel of a 32x32 static image of
 // 4-component channels (4096 independent signals) gets s = 0.5 + U(-0.2, 0.2)
 // each frame; FIXED blend, NEAREST history (each pixel keeps its own history:
@@ -35,7 +35,7 @@ constexpr int kW = 32, kH = 32, kC = 4, kFrames = 10000, kEvery = 5;
 constexpr int kChunk = 100;
 constexpr double kMean = 0.5, kAmp = 0.2, kSigma2 = kAmp * kAmp / 3.0;  // uniform ±a: a²/3
 const char* const kArea = "λ sweep (10,000 frames, 32x32x4 signals, s = 0.5 + U(±0.2))";
-// The λ values of docs/STABILITY.md's λ sweep, plus RRC_FP16_MAX_LAMBDA itself: the largest λ
+// The λ values of docs/measurements/STABILITY.md's λ sweep, plus RRC_FP16_MAX_LAMBDA itself: the largest λ
 // whose fp16 history is kept.
 const double kLambdas[] = {0.0, 1e-6, 0.5, 0.9, RRC_FP16_MAX_LAMBDA, 0.99, 0.999, 0.9999};
 
@@ -173,7 +173,7 @@ TEST(LambdaSweep, BiasAndVarianceOver10000Frames) {
                format("bias %+.2e (the double filter on the same samples: %+.2e); var/law %.3f, law (1-λ)/(1+λ) = %.3g; "
                       "numeric %+.1e (max %.1e)",
                       bias, bias_exact, var_ratio, law, numeric, c.max_dev));
-        // The bias bound (docs/STABILITY.md, "Reading the tables"); at λ = 0.9999 the first sample still
+        // The bias bound (docs/measurements/STABILITY.md, "Reading the tables"); at λ = 0.9999 the first sample still
         // weighs e^-2 after 10,000 frames, so only the numeric part is bounded.
         if (c.lambda <= 0.999f) EXPECT_LT(std::fabs(bias), 1e-3) << name;
         EXPECT_LT(std::fabs(numeric), 1e-4) << name;

@@ -1,4 +1,4 @@
-// Extreme magnitudes (docs/STABILITY.md, "Fast cases", rows "magnitudes"): every pixel of an 8x16 static image holds one
+// Extreme magnitudes (docs/measurements/STABILITY.md, "Fast cases", rows "magnitudes"): every pixel of an 8x16 static image holds one
 // magnitude class, from denormals through 1e-30 .. 1e30 to FLT_MAX, both
 // signs, the fp16 overflow range (> 65504) and pixels that swing between
 // ±1e30 or between 1e-30 and 1e30 from frame to frame.  Samples vary by

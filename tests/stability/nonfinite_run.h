@@ -1,4 +1,4 @@
-// Non-finite samples over many frames (docs/STABILITY.md): the analytic scene
+// Non-finite samples over many frames (docs/measurements/STABILITY.md): the analytic scene
 // (moving camera and object, reversed-Z, PREV_CLIP) at 16x16 with 1% of the
 // samples of each signal replaced by NaN, +Inf or -Inf, and 1% of the
 // confidences too, through four channels (fp32/fp16, 1/4 components, every

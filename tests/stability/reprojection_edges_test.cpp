@@ -1,4 +1,4 @@
-// Reprojection edge cases (docs/STABILITY.md): motion far off-screen, vectors
+// Reprojection edge cases (docs/measurements/STABILITY.md): motion far off-screen, vectors
 // of a million pixels, previous clip w <= 0 (behind the previous camera, even
 // where x/w, y/w, z/w would land inside the image), NaN or Inf in depth,
 // motion or previous clip, points just outside the image: all misses, never

@@ -1,4 +1,4 @@
-// Reset, resolution change and skipped frame indices (docs/STABILITY.md).
+// Reset, resolution change and skipped frame indices (docs/measurements/STABILITY.md).
 //  - reset: every pixel a miss on that frame, every channel stores exactly
 //    its sample (confidence weight = w), age 1: nothing from before survives;
 //    inside one batch as well as alone.

@@ -1,4 +1,4 @@
-// The measured table of docs/STABILITY.md: each stability test adds rows
+// The measured table of docs/measurements/STABILITY.md: each stability test adds rows
 // (case, the bound it asserts, the value it measured) as it runs; with
 // RRC_STABILITY_REPORT=<file> set, the executable replaces the text between
 // its own pair of markers in that file when it finishes:

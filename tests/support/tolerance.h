@@ -1,4 +1,4 @@
-// The kernel-vs-reference value tolerance, in one place (docs/ACCURACY.md):
+// The kernel-vs-reference value tolerance, in one place (docs/measurements/ACCURACY.md):
 //   |kernel - reference| <= 1e-6 + 1e-5 |r|          (filter arithmetic, fp32)
 //                          + one fp16 step at |r|     (fp16 history only)
 //                          + 4 * S * 2^-24 * max(W,H) (sample position)
@@ -14,7 +14,7 @@
 namespace rrc_test {
 
 // Allowed error from the sample position, in units of spread x coordinate
-// resolution; the measured maxima are 0.65 (docs/ACCURACY.md).
+// resolution; the measured maxima are 0.65 (docs/measurements/ACCURACY.md).
 constexpr double kPositionFactor = 4.0;
 
 inline double fp16_step(double v) {

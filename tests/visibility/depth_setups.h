@@ -1,5 +1,5 @@
-// The depth setups the visibility suite scores (docs/ACCURACY.md, "Hit test against true
-// visibility"), shared by the suite and the peers' comparison (docs/COMPARISON.md) so both
+// The depth setups the visibility suite scores (docs/measurements/ACCURACY.md, "Hit test against true
+// visibility"), shared by the suite and the peers' comparison (docs/measurements/COMPARISON.md) so both
 // score the same cases: FLOAT32 STANDARD up to far/near 1e4, REVERSED finite and infinite up
 // to 1e9, UNORM16 up to 1e3 STANDARD and 1e4 REVERSED, UNORM24, LINEAR.  Likewise the thin
 // card's depth setups and wall angles, which both score as the thin-card cases.

@@ -1,4 +1,4 @@
-// The hit test against true visibility (docs/ACCURACY.md, "Hit test against true visibility").  Each case renders an
+// The hit test against true visibility (docs/measurements/ACCURACY.md, "Hit test against true visibility").  Each case renders an
 // analytic scene (tests/scenes), scores the library's hit mask with the
 // oracle of tests/scenes/visibility.h and runs twice on the same frames:
 //   default  the context desc with no epsilon, epsilon_scale or tau and
@@ -321,7 +321,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, ThinCard, ::testing::ValuesIn(card_cases()),
 
 // ---- The oracle against a known-good test --------------------------------
 
-// docs/STABILITY.md measured FIXED with epsilon = 2^17 ulps of z (about 1% of
+// docs/measurements/STABILITY.md measured FIXED with epsilon = 2^17 ulps of z (about 1% of
 // d for reversed-Z) at >= 99.8% of the false-hit evaluator's visible pixels
 // with no false hit.  The oracle must agree on its own pixels: a recall far
 // below would mean it calls occluded pixels visible (or mis-places taps), a

@@ -29,7 +29,7 @@ const char kSection[] =
     "(its gap 1e-3 d along the central ray), each of which must miss. Regenerate:\n\n"
     "```sh\n"
     "cmake --build build/release --target rrc_visibility_test &&\n"
-    "  RRC_HIT_TEST_REPORT=$PWD/docs/ACCURACY.md XDG_RUNTIME_DIR=/tmp RRC_VALIDATION=1 \\\n"
+    "  RRC_HIT_TEST_REPORT=$PWD/docs/measurements/ACCURACY.md XDG_RUNTIME_DIR=/tmp RRC_VALIDATION=1 \\\n"
     "  VK_ICD_FILENAMES=$(ls /usr/share/vulkan/icd.d/lvp_icd.*.json) \\\n"
     "  build/release/tests/visibility/rrc_visibility_test\n"
     "```\n\n";
@@ -64,7 +64,7 @@ public:
                  {&r.name, &r.scored, &r.excluded, &r.recall_fixed, &r.recall_default, &r.false_fixed, &r.false_default})
                 table << "| " << *cell << (cell == &r.false_default ? " |\n" : " ");
         // The date and the identical-mask count say which library the default
-        // column measured (ADAPTIVE became the default in 0.2: docs/INTEGRATION.md, "Changes since 0.1").
+        // column measured (ADAPTIVE became the default in 0.2: docs/guide/integration.md, "Changes since 0.1").
         char date[32];
         const std::time_t now = std::time(nullptr);
         std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));

@@ -1,5 +1,5 @@
-// The hit-test table of docs/ACCURACY.md: each case adds one row as it runs;
-// with RRC_HIT_TEST_REPORT=<path to docs/ACCURACY.md> set, the executable
+// The hit-test table of docs/measurements/ACCURACY.md: each case adds one row as it runs;
+// with RRC_HIT_TEST_REPORT=<path to docs/measurements/ACCURACY.md> set, the executable
 // replaces the text between
 //   <!-- hit-test-recall:begin --> and <!-- hit-test-recall:end -->
 // when it finishes (and appends the markers, under a short section, if the

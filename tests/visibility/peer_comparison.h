@@ -1,4 +1,4 @@
-// docs/COMPARISON.md's measurement: rrc's hit test (ADAPTIVE, the default,
+// docs/measurements/COMPARISON.md's measurement: rrc's hit test (ADAPTIVE, the default,
 // and FIXED, both through the double-precision reference,
 // tests/reference/run_frame.cpp) beside each peer's validity test
 // (tests/reference/peer_tests.h), scored by the analytic scenes' oracle

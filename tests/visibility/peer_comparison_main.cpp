@@ -1,8 +1,8 @@
-// rrc_peer_comparison: measures docs/COMPARISON.md (peer_comparison.h) and
+// rrc_peer_comparison: measures docs/measurements/COMPARISON.md (peer_comparison.h) and
 // rewrites its tables between
 //   <!-- peer-comparison:begin --> and <!-- peer-comparison:end -->
-// and the pictures of where each test fails (docs/comparison/).
-//   rrc_peer_comparison [--doc docs/COMPARISON.md] [--images docs/comparison] [--only SUBSTRING]
+// and the pictures of where each test fails (docs/measurements/comparison/).
+//   rrc_peer_comparison [--doc docs/measurements/COMPARISON.md] [--images docs/measurements/comparison] [--only SUBSTRING]
 // Without --doc it prints the tables; --only keeps the cases whose name contains SUBSTRING.
 #include <cstdio>
 #include <cstring>
@@ -22,7 +22,7 @@ namespace {
 const char kBegin[] = "<!-- peer-comparison:begin -->";
 const char kEnd[] = "<!-- peer-comparison:end -->";
 
-// The cases pictured (docs/COMPARISON.md, "Where each test fails").
+// The cases pictured (docs/measurements/COMPARISON.md, "Where each test fails").
 const char* const kPictured[] = {"objects_prev_clip_reversed_f32_inf_near_0_1", "grazing_prev_clip_standard_f32_1e4",
                                  "objects_prev_clip_standard_u24_1e4", "card_80deg_prev_clip_standard_f32"};
 constexpr int kScale = 4;

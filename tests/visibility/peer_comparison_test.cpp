@@ -1,4 +1,4 @@
-// docs/COMPARISON.md's generator (peer_comparison.h) on one small case: its
+// docs/measurements/COMPARISON.md's generator (peer_comparison.h) on one small case: its
 // rrc ADAPTIVE masks, made by the double-precision reference, are the
 // library's (the visibility suite's) wherever the reference is sure of the
 // decision, with the suite's 0 false hits; and every test's counts are

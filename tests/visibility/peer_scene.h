@@ -3,7 +3,7 @@
 // depth derivatives SVGF's G-buffer writes computed on each pixel's own
 // tangent plane (as a rasteriser's quad derivatives of one triangle), and the
 // reprojection from the frame's fp32 prev_clip (the input rrc's PREV_CLIP
-// test reads).  docs/COMPARISON.md, "How the peers were rebuilt".
+// test reads).  docs/measurements/COMPARISON.md, "How the peers were rebuilt".
 #pragma once
 
 #include "peer_tests.h"

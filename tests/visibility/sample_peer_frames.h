@@ -1,6 +1,6 @@
 // rrc-sample-peers (sample_peers_main.cpp): the peers' validity tests
 // (tests/reference/peer_tests.h) on rrc-sample's read-back G-buffers, scored
-// by its ray-cast oracle (oracle.h).  docs/COMPARISON.md, "rrc-sample".
+// by its ray-cast oracle (oracle.h).  docs/measurements/COMPARISON.md, "rrc-sample".
 #pragma once
 
 #include "oracle.h"

@@ -1,4 +1,4 @@
-// The interop path as an engine drives it (docs/INTEGRATION.md, "The interop path, step by step"): its own device (volk), a raster
+// The interop path as an engine drives it (docs/guide/integration.md, "The interop path, step by step"): its own device (volk), a raster
 // pass writing depth, previous clip position and a signal, then rrc recorded into the same command buffer; two frames, the camera pans.
 // --cache: the shading cache ("The shading cache: shade only the misses"): classify, a miss shader dispatched indirectly on rrc's quad
 // list, resolve.  Exits 1 on a wrong result or, with RRC_VALIDATION=1 (validation layer, synchronization validation), on any message.
@@ -72,7 +72,7 @@ const Use kStorage{kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYO
 const Use kCopied{kCopy, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};  // rrc's outputs between frames
 
 // An image as rrc is given it: in `use`'s layout when its commands start, and left in it; rrc's barriers move it to what its
-// kernel needs and back, after any earlier stage's writes (docs/INTEGRATION.md, "What rrc checks and what it cannot").
+// kernel needs and back, after any earlier stage's writes (docs/guide/integration.md, "What rrc checks and what it cannot").
 rrc_vulkan_image make_image(VkFormat format, VkImageUsageFlags usage, Use use) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, nullptr, 0, VK_IMAGE_TYPE_2D, format, VkExtent3D{W, H, 1}, 1, 1};
     info.samples = VK_SAMPLE_COUNT_1_BIT, info.usage = usage;

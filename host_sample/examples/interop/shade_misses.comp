@@ -1,5 +1,5 @@
 #version 450
-// The miss shader (docs/INTEGRATION.md, "The frame, interop"), dispatched indirectly: invocation n shades rrc's listed quad n.
+// The miss shader (docs/guide/integration.md, "The frame, interop"), dispatched indirectly: invocation n shades rrc's listed quad n.
 #extension GL_GOOGLE_include_directive : require
 #include "rrc/rrc_values.h"
 layout(local_size_x = RRC_QUADS_PER_GROUP) in;

@@ -1,4 +1,4 @@
-// rrc-cache: the shading cache (docs/INTEGRATION.md, "The shading cache") on
+// rrc-cache: the shading cache (docs/guide/integration.md, "The shading cache") on
 // rrc-sample's temple scene with an 8-octave Perlin shader: frame time and
 // error against shading every pixel every frame, for each refresh policy and
 // period, with and without a maximum lifetime, and a stereo pair whose second

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""The finishing steps' figures (docs/finish/), from rrc-sample runs.
+"""The finishing steps' figures (docs/measurements/finish/), from rrc-sample runs.
 
-  python3 host_sample/studies/finish/finish.py --sample build/release/bin/rrc-sample --out out/finish --docs docs/finish
+  python3 host_sample/studies/finish/finish.py --sample build/release/bin/rrc-sample --out out/finish --docs docs/measurements/finish
 
 Runs rrc-sample a few times (lavapipe: about 3 minutes in all), then writes the tables
 (tables.md) and the figures (PNG, matplotlib) into --docs:
@@ -78,7 +78,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sample", default="build/release/bin/rrc-sample")
     ap.add_argument("--out", default="out/finish")
-    ap.add_argument("--docs", default="docs/finish")
+    ap.add_argument("--docs", default="docs/measurements/finish")
     ap.add_argument("--young-frames", type=int, default=24)
     ap.add_argument("--fill", type=int, default=8, help="T of the fill")
     ap.add_argument("--smoothstep", default="0.2,0.8")

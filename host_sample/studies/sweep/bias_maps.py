@@ -10,7 +10,7 @@ python3-openimageio).
 
 usage: bias_maps.py OUT [--checkpoints T,T...] [--dpi N]
        bias_maps.py --table OUT...   one markdown table of every OUT's age-aware bilinear rows, rectified rows
-                                     and brute force (docs/BIAS.md), on stdout
+                                     and brute force (docs/measurements/BIAS.md), on stdout
 """
 import csv
 import glob
@@ -166,7 +166,7 @@ def maps(out, app, labels, by, only=None, dpi=110):
     path = os.path.join(out, "bias_%s.png" % app)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
-    # 256 colours are plenty for a colour map and a few region colours, and keep the file small (docs/bias/).
+    # 256 colours are plenty for a colour map and a few region colours, and keep the file small (docs/measurements/bias/).
     from PIL import Image
     Image.open(path).convert("RGB").quantize(colors=256).save(path, optimize=True)
 

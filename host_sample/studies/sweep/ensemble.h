@@ -1,5 +1,5 @@
 // Error statistics of one configuration over an ensemble of seeds, against
-// one fixed target per checkpoint frame (docs/PERFORMANCE.md, "Error against
+// one fixed target per checkpoint frame (docs/measurements/PERFORMANCE.md, "Error against
 // run time"): mean squared error, squared bias and variance per pixel, the
 // reference's own noise subtracted, and the flicker on static pixels.
 // CPU only, no Vulkan: the sweep feeds it the values it read back.

@@ -1,5 +1,5 @@
 // rrc-sweep: error against run time for rrc-sample's three applications
-// (docs/PERFORMANCE.md, "Error against run time").  Runs the sweep, writes
+// (docs/measurements/PERFORMANCE.md, "Error against run time").  Runs the sweep, writes
 // the CSVs, then fronts.py for the Pareto fronts, plots and verdicts.
 #include "bias_output.h"
 #include "clean_study.h"

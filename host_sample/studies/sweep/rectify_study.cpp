@@ -54,7 +54,7 @@ std::vector<StudyConfig> study_configs(const SweepOptions& o, uint32_t sigs) {
             // The lag detector (docs/CONVENTIONS.md, "The lag detector") on the same FIXED
             // blend, rectification off: the cure the moving light's lag target is about. Not on
             // soft, whose one-sample binary blocks make it drop right histories
-            // (docs/PERFORMANCE.md, "The lag detector (0.5): what it buys, measured").
+            // (docs/measurements/PERFORMANCE.md, "The lag detector (0.5): what it buys, measured").
             if (o.antilag && app.signal != kSignalSoft)
                 for (float gamma : o.antilag_gammas) {
                     rrc_sample::ChannelSettings on = off;

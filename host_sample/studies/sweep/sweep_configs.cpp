@@ -55,7 +55,7 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     }
                 }
             // The lag detector (docs/CONVENTIONS.md, "The lag detector"), on the presets'
-            // blend at the settings docs/PERFORMANCE.md ("The lag detector (0.5): what it
+            // blend at the settings docs/measurements/PERFORMANCE.md ("The lag detector (0.5): what it
             // buys, measured") found best: pcf rectified as its preset is, env without;
             // never on soft (a block of nine binary samples agrees by chance, and the
             // detector then drops right histories: worse at every setting tried).
@@ -90,7 +90,7 @@ std::vector<RrcRun> rrc_runs(const SweepOptions& o, uint32_t signals) {
                     run.configs.push_back({app, v});
                 }
             // rrc-sample's pcf and soft presets (testbed/channel_presets.h), which no row above
-            // spells: the targets under motion are theirs (docs/PERFORMANCE.md, "Targets under
+            // spells: the targets under motion are theirs (docs/measurements/PERFORMANCE.md, "Targets under
             // motion").  pcf's: the residual against kSamplePcfBaseTaps bilinear compares (its
             // base pass is timed with its rrc pass; testbed README.md, "The pcf residual").  soft's: Catmull-Rom, the fill with rrc-sample's PCSS estimate as its
             // prior (the library preset's fill_prior), and the residual against the stable estimate

@@ -50,15 +50,15 @@ const char* filter_label(rrc_history_filter filter);
 /** The filter with the finishing steps and cures a row adds ("bilinear+rectify", "bilinear+fill8",
  *  "bilinear+rectify+antilag", "bilinear+rectify+blur0.5"): the sweep's filter column. */
 std::string filter_label(const rrc_sample::ChannelSettings& c);
-/** The lag detector's rows (--no-antilag drops them): gamma_a and T, the best of docs/PERFORMANCE.md,
+/** The lag detector's rows (--no-antilag drops them): gamma_a and T, the best of docs/measurements/PERFORMANCE.md,
  *  "The lag detector (0.5): what it buys, measured" (pcf at 1024x640, lambda 0.9). */
 constexpr float kSweepAntilagGamma = 1.0f;
 constexpr float kSweepAntilagThreshold = 0.25f;
-/** The blur bound's rows (--no-blur-bound drops them): B in px^2, the best of docs/PERFORMANCE.md,
+/** The blur bound's rows (--no-blur-bound drops them): B in px^2, the best of docs/measurements/PERFORMANCE.md,
  *  "The blur bound: what it buys, measured" (pcf bilinear and soft at 256x160). */
 constexpr float kSweepBlurBound = 0.5f;
 /** The view lobe's rows (--no-view-lobe drops them; env only): alpha in radians, the lobe whose age
- *  cap is 1 on the mirror sphere under the default camera (docs/PERFORMANCE.md, "The view lobe in
+ *  cap is 1 on the mirror sphere under the default camera (docs/measurements/PERFORMANCE.md, "The view lobe in
  *  the kernel (0.7), measured"). */
 constexpr float kSweepViewLobe = 0.0245f;
 /** The taps the rotated pattern's fixed point set has (its brute force is rotations of it). */

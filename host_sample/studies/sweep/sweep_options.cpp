@@ -26,7 +26,7 @@ std::vector<int> SweepOptions::checkpoints() const {
 
 std::string sweep_usage() {
     return "usage: rrc-sweep [options]\n"
-           "Error against run time (docs/PERFORMANCE.md, \"Error against run time\"): rrc-sample's scene and\n"
+           "Error against run time (docs/measurements/PERFORMANCE.md, \"Error against run time\"): rrc-sample's scene and\n"
            "signals, brute force at k samples a frame against rrc at k samples a frame for every lambda, blend\n"
            "and history filter, over an ensemble of seeds, scored against one target per application that\n"
            "does not depend on k or lambda.  Writes sweep_<app>.csv, hit_ratio.csv, sweep.md and (fronts.py)\n"

@@ -451,7 +451,7 @@ SweepResult run_sweep(const SweepOptions& o, std::ostream* progress) {
         }
 
         // Each application's share of rrc: its channel alone, less a third of what one context for all
-        // three saves (docs/PERFORMANCE.md, "Error against run time"; the arithmetic: sweep_time.h).
+        // three saves (docs/measurements/PERFORMANCE.md, "Error against run time"; the arithmetic: sweep_time.h).
         result.rrc_together_ms = median(together_ms);
         result.rrc_alone_sum_ms = median(alone_sum_ms);
         const double saving = sharing_saving_ms(alone_sum_ms, together_ms, apps_of(sigs).size());

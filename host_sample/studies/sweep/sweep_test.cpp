@@ -491,7 +491,7 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     EXPECT_EQ(lag.antilag_gamma, 0.75f);
     EXPECT_LT(on.lag.rmse, 0.9 * off.lag.rmse) << "rectification at lambda 0.9 must cut pcf's lag behind the moving light";
     EXPECT_LT(on.still.variance, 1.5 * off.still.variance) << "and keep its static variance";
-    // docs/PERFORMANCE.md, "History rectification": the lag detector on the moving light (x0.46 at the
+    // docs/measurements/PERFORMANCE.md, "History rectification": the lag detector on the moving light (x0.46 at the
     // study's 192x128 and 8 seeds; x0.67 on this small frame, where shadow edges are a larger share).
     EXPECT_LT(lag.lag.bias2, 0.8 * off.lag.bias2) << "the lag detector at lambda 0.9 must cut pcf's lag bias behind the moving light";
     EXPECT_LT(lag.still.rmse, 1.1 * off.still.rmse) << "and keep its static RMSE";
@@ -525,7 +525,7 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     const rrc_sample::ChannelSettings env_settings = rrc_sample::ChannelPresets{}.env;
     EXPECT_TRUE(std::memcmp(&env_preset.channel, &env_settings, sizeof env_settings) == 0);
     // On this small frame the base is no nearer the target than the samples are (its footprint spans
-    // the bump), so the residual alone does not cut the lag (2.3e-4 -> 2.9e-4 here; docs/rectify/README.md
+    // the bump), so the residual alone does not cut the lag (2.3e-4 -> 2.9e-4 here; docs/measurements/rectify/README.md
     // has the study's size); what must hold is that the deterministic base adds no noise: the static
     // error stays.
     EXPECT_LT(env_residual.still.rmse, 1.1 * env_bare.still.rmse) << "a deterministic base adds no noise";
@@ -534,7 +534,7 @@ TEST(RectifyStudy, TheMovingLightChangesTargetsAndRectificationAndTheLagDetector
     // the light moving the cap at 4 shortens the residual's history behind it.
     EXPECT_EQ(env_preset.still.rmse, env_residual.still.rmse) << "no turn, no cap";
     // On this small frame the cap's effect on the lag's bias is lost in its noise (2.88e-4 against
-    // 2.93e-4 here; x0.70 at the study's 192x128 and 8 seeds, docs/rectify/README.md); that it acts:
+    // 2.93e-4 here; x0.70 at the study's 192x128 and 8 seeds, docs/measurements/rectify/README.md); that it acts:
     EXPECT_NE(env_preset.lag.rmse, env_residual.lag.rmse) << "the lighting's turn must cap the residual's history";
     EXPECT_GT(env_preset.lag.variance, 1.15 * env_residual.lag.variance) << "a capped history is a shorter one (x1.34 here)";
 }

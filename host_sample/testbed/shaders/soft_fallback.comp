@@ -31,7 +31,7 @@ layout(set = 0, binding = 8, r32f) uniform writeonly image2D o_pcss;
 // the same taps (angle 0), each tap bilinear, so it carries no noise that
 // changes from frame to frame and moves continuously with the surface point;
 // 48 search and 64 filter taps, because what b varies by where the shadow does
-// not reaches the output as flicker under a moving camera (docs/PERFORMANCE.md,
+// not reaches the output as flicker under a moving camera (docs/measurements/PERFORMANCE.md,
 // "The soft residual: what it buys, measured").
 layout(push_constant) uniform Push { float prior; uint mode; } pc;
 

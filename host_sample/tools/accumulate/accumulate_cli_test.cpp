@@ -1056,7 +1056,7 @@ TEST(AccumulateTool, ObjectIdChannel) {
 // ======================================================================
 
 // --preset blender without --signal accumulates <view layer>.Combined with
-// the preset's own lambda, blend and filter (docs/OFFLINE.md, section 7:
+// the preset's own lambda, blend and filter (docs/measurements/OFFLINE.md, section 7:
 // chosen from the error against render time on Cycles sequences), and they
 // reach the library's channel description; an explicit --signal keeps the
 // tool's defaults and its own keys.
@@ -1245,7 +1245,7 @@ TEST(AccumulateTool, ObjectIdsEndToEnd) {
 
 // ======================================================================
 // --clean-report: the output against its own input, by region
-// (clean_regions.h; docs/OFFLINE.md, "What rrc adds to a clean input")
+// (clean_regions.h; docs/measurements/OFFLINE.md, "What rrc adds to a clean input")
 // ======================================================================
 
 TEST(AccumulateOptions, CleanReportAndFrom) {
@@ -1369,7 +1369,7 @@ std::map<std::string, std::pair<uint64_t, double>> clean_rows(const std::string&
 }  // namespace
 
 // Three frames of a still camera; frame 6 gives the right half a new object id, so with ids its
-// pixels miss (docs/OFFLINE.md, "Object ids"): at frame 6 columns 6-9 are edges (within 1 px of the
+// pixels miss (docs/measurements/OFFLINE.md, "Object ids"): at frame 6 columns 6-9 are edges (within 1 px of the
 // boundary between 7 and 8), 10-15 misses, 0-5 young hits (age 2).  color.G and color.B are the same
 // every frame (a clean input: rrc must return it), shadow.Y flips every frame (what rrc averages).
 TEST(AccumulateTool, CleanReportByRegion) {

@@ -38,7 +38,7 @@ void CleanReport::finish(std::ostream& out) const {
     const std::string range = "frames " + std::to_string(options_.clean_from) + "-" + std::to_string(options_.last_frame);
     std::string md = "# What rrc adds to a clean input\n\nThe accumulated output against each frame's own input, " + range +
                      " (" + std::to_string(frames_) +
-                     " frames), by region (docs/OFFLINE.md, \"What rrc adds to a clean input\").\n";
+                     " frames), by region (docs/measurements/OFFLINE.md, \"What rrc adds to a clean input\").\n";
     for (size_t s = 0; s < layout_.signals.size(); ++s) {
         const rrc_host::CleanSums& c = summary_[s];
         md += "\n## " + layout_.signals[s].options.layer + " (fill_age " + std::to_string(fill_ages_[s]) + ")\n\n" +

@@ -1,5 +1,5 @@
 // rrc-accumulate --clean-report: the accumulated output against each frame's
-// own input, by region (clean_regions.h; docs/OFFLINE.md, "What rrc adds to a
+// own input, by region (clean_regions.h; docs/measurements/OFFLINE.md, "What rrc adds to a
 // clean input").  Fed frame by frame by run_accumulate.
 #ifndef RRC_ACCUMULATE_CLEAN_REPORT_H
 #define RRC_ACCUMULATE_CLEAN_REPORT_H

@@ -3,7 +3,7 @@
 // position (the rule rrc_context_desc.use_object_id enforces, rrc.h), and
 // the older, looser count by the nearest previous texel alone.  Shared by
 // rrc-blender-check (blender/check_passes.cpp) and rrc_offline_test so both
-// count the same way (docs/OFFLINE.md).  Header only, no library needed.
+// count the same way (docs/measurements/OFFLINE.md).  Header only, no library needed.
 #ifndef RRC_ACCUMULATE_OBJECT_INDEX_HITS_H
 #define RRC_ACCUMULATE_OBJECT_INDEX_HITS_H
 

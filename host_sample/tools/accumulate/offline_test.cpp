@@ -1,4 +1,4 @@
-// rrc-accumulate on offline renderers' sequences (docs/OFFLINE.md):
+// rrc-accumulate on offline renderers' sequences (docs/measurements/OFFLINE.md):
 //   - a synthetic sequence in Blender 3.x's multilayer conventions
 //     (ViewLayer.Combined/Depth/Vector, linear depth with the sky at 1e10,
 //     vectors previous-minus-current in pixels with y up, half and float
@@ -12,10 +12,10 @@
 //   - the reference metrics (CSV, summary), the PNG coherence maps, the
 //     progress output, camera cuts and channel mapping by name;
 //   - the preset's depth tolerance: hit and false-hit rates measured against
-//     exact visibility (the table in docs/OFFLINE.md);
+//     exact visibility (the table in docs/measurements/OFFLINE.md);
 //   - object ids (Blender's IndexOB) on the committed real render: with them
 //     no hit takes a bilinear tap from another object, and without them the
-//     tool behaves as before (the table in docs/OFFLINE.md).
+//     tool behaves as before (the table in docs/measurements/OFFLINE.md).
 #include "accumulate.h"
 #include "enum_names.h"
 #include "object_index_hits.h"
@@ -82,7 +82,7 @@ rrc_scene::SceneConfig blender_scene_config(int w, int h) {
     sc.height = h;
     sc.depth_mode = RRC_DEPTH_MODE_LINEAR;
     sc.linear_background = 1e10f;  // Blender's sky
-    sc.jitter = false;             // Blender's Depth is the pixel-centre sample (docs/OFFLINE.md)
+    sc.jitter = false;             // Blender's Depth is the pixel-centre sample (docs/measurements/OFFLINE.md)
     return sc;
 }
 
@@ -670,7 +670,7 @@ TEST(OfflineOutputs, ReferenceMetricsAndCoherenceMaps) {
     TempDir dir;
     const int W = 48, H = 32;
     // A still camera and scene: the gain is the noise averaging alone (under
-    // motion the bilinear history fetch also blurs, docs/OFFLINE.md).
+    // motion the bilinear history fetch also blurs, docs/measurements/OFFLINE.md).
     rrc_scene::SceneConfig sc = blender_scene_config(W, H);
     sc.camera_motion = false;
     sc.object_motion = false;
@@ -800,7 +800,7 @@ TEST(OfflineOutputs, CutsResetTheHistory) {
 }
 
 // ======================================================================
-// The preset's depth tolerance: hit and false-hit rates (docs/OFFLINE.md)
+// The preset's depth tolerance: hit and false-hit rates (docs/measurements/OFFLINE.md)
 // ======================================================================
 
 // Blender's Depth is the pixel-centre sample and its Vector carries no depth
@@ -949,13 +949,13 @@ TEST(BlenderRender, RealFramesFollowTheDocumentedConvention) {
         << counted.nearest_foreign << " of " << counted.hits << " hits from another object";
 }
 
-// Object ids (docs/OFFLINE.md): the preset reads ViewLayer.IndexOB.X when the file
+// Object ids (docs/measurements/OFFLINE.md): the preset reads ViewLayer.IndexOB.X when the file
 // has it.  A hit then needs every previous depth tap of non-zero bilinear
 // weight on the pixel's object (rrc.h, use_object_id), so no hit is an
 // object-index false hit; the id rule only removes hits, and only those
 // with a tap on another object.  Without ids (--no-object-id, or a file
 // without the pass) the tool gives what the plain channel mapping gave
-// before object ids existed.  Prints the table of docs/OFFLINE.md.
+// before object ids existed.  Prints the table of docs/measurements/OFFLINE.md.
 TEST(BlenderRender, ObjectIdsRuleOutTapsOnOtherObjects) {
     const char* data = std::getenv("RRC_TEST_DATA");
     ASSERT_NE(data, nullptr) << "RRC_TEST_DATA is set by tests/CMakeLists.txt";

@@ -344,7 +344,7 @@ Accumulates a numbered sequence of OpenEXR frames (single- or multi-part,
 half, float or uint channels) with rrc, the real-time reprojection cache,
 and writes one OpenEXR per frame.  Renderer passes are read by channel name:
 the project's own names by default, Blender's with --preset blender, any
-other through the channel options.  docs/OFFLINE.md is the guide.
+other through the channel options.  docs/measurements/OFFLINE.md is the guide.
 
 Required:
   --input PATTERN        input frames, printf-style: frames/f_%04d.exr
@@ -367,7 +367,7 @@ Presets:
                          accumulated with
                          @PRESET_SIGNAL@
                          (chosen from the error against render time
-                         measured on Cycles sequences, docs/OFFLINE.md
+                         measured on Cycles sequences, docs/measurements/OFFLINE.md
                          section 7; an explicit --signal has the defaults
                          below).
                          Every option given explicitly overrides the preset.
@@ -486,7 +486,7 @@ Measurements and pictures:
   --clean-report FILE    what rrc adds to a clean input: per frame and signal
                          the accumulated output against that frame's own input,
                          RMSE over all pixels and by region (background, edge,
-                         filled, miss, young, history; docs/OFFLINE.md, "What
+                         filled, miss, young, history; docs/measurements/OFFLINE.md, "What
                          rrc adds to a clean input"), each with its share of
                          the squared error and of the pixels; FILE ending in
                          .md gets the summary tables, in .csv the rows per
@@ -754,10 +754,10 @@ ParseResult parse_arguments(int argc, const char* const* argv) {
         if (o.preset == "blender")
             return fail(
                 "option --depth-test adaptive cannot be combined with --preset blender, which sets --tau: on linear depth with plain "
-                "motion vectors both tests are tau x depth, so adaptive would only drop the preset's tau (docs/OFFLINE.md)");
+                "motion vectors both tests are tau x depth, so adaptive would only drop the preset's tau (docs/measurements/OFFLINE.md)");
     }
     if (o.preset == "blender") {
-        // What Blender 3.x writes (docs/OFFLINE.md); anything given explicitly wins.
+        // What Blender 3.x writes (docs/measurements/OFFLINE.md); anything given explicitly wins.
         // The library's RRC_PRESET_OFFLINE context: its motion_scale {1/W, -1/H} says pixels (not 1) and y up (negative).
         const rrc_context_desc p = blender_preset_context(2, 2);
         if (!c.given("--depth-mode")) o.depth_mode = p.depth_mode;

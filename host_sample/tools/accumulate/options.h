@@ -18,7 +18,7 @@ enum class Progress { Auto, Bar, Lines }; /* --progress; auto: a bar on a termin
 
 /** --preset blender's accumulation of <view layer>.Combined when no --signal is
  *  given: the library's RRC_PRESET_OFFLINE channel at this tool's tuning
- *  (docs/reference/presets.md; chosen in docs/OFFLINE.md, section 7).  An
+ *  (docs/reference/presets.md; chosen in docs/measurements/OFFLINE.md, section 7).  An
  *  explicit --signal takes the tool's defaults and its own keys.  Throws
  *  std::runtime_error if the library refuses. */
 rrc_channel_desc blender_preset_channel();
@@ -106,7 +106,7 @@ struct Options {
     std::string metrics_file;      /* --metrics: CSV path; default <output directory>/metrics.csv */
     float psnr_peak = 1.0f;        /* --psnr-peak: PSNR = 10 log10(peak^2 / MSE) */
     /* --clean-report FILE.md|FILE.csv: the output against each frame's own input, by region
-     * (clean_regions.h; docs/OFFLINE.md, "What rrc adds to a clean input"). */
+     * (clean_regions.h; docs/measurements/OFFLINE.md, "What rrc adds to a clean input"). */
     std::string clean_report;
     int64_t clean_from = 8; /* --from N: the report's summary is over frames >= N (the error study's) */
 

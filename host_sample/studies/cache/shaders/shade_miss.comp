@@ -1,6 +1,6 @@
 #version 450
 // The miss shader: dispatched indirectly on rrc's quad list
-// (include/rrc/rrc_values.h layout; docs/INTEGRATION.md "The shading cache"),
+// (include/rrc/rrc_values.h layout; docs/guide/integration.md "The shading cache"),
 // one invocation a listed 2x2 quad, every pixel of it inside the frame.
 // Counts the quads it shaded, so the host can check it ran on exactly the list.
 #extension GL_GOOGLE_include_directive : require

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Error against render time: rrc-accumulate on Cycles sequences against brute-force samples.
 
-Development script (no test runs it; CI has no Blender).  docs/OFFLINE.md,
+Development script (no test runs it; CI has no Blender).  docs/measurements/OFFLINE.md,
 section 7, gives the results and how the preset's defaults follow from them.
 
     python3 host_sample/tools/accumulate/blender/error_study.py WORK_DIR \\
@@ -19,7 +19,7 @@ rrc-accumulate's --signal takes it), with --rrc-args appended to every
 rrc-accumulate command, it prints and writes to WORK_DIR/evaluate/NAME.md the
 RMSE over frames >= --from against the reference, its ratio to the 4-spp
 RMSE, and the decomposition below.  Re-measuring the preset with a new option
-on the 320x180 sequences of docs/OFFLINE.md, section 7:
+on the 320x180 sequences of docs/measurements/OFFLINE.md, section 7:
 
     for s in strafe_a strafe_b; do
       nice -n 10 /usr/bin/python3 host_sample/tools/accumulate/blender/error_study.py /work/blender_seqs/$s \
@@ -447,7 +447,7 @@ def main():
 
     # 1. Renders and their times.
     # --jitter: the sequences rrc accumulates move their first sample over the
-    # pixel filter from frame to frame (docs/OFFLINE.md, section 7).
+    # pixel filter from frame to frame (docs/measurements/OFFLINE.md, section 7).
     jit = ["jitter=filter", "jitter_width=%g" % args.jitter_width] if args.jitter else []
     renders = {spp: render(work, "spp%d" % spp, spp, 0, args, jit if spp <= 2 else []) for spp in spps}
     ref = render(work, "ref", args.ref_spp, args.ref_seed, args)

@@ -1,6 +1,6 @@
 # Keys a sub-pixel camera jitter into a Blender scene, so that a 1- or
 # 2-sample Cycles sequence accumulated by rrc-accumulate converges to the
-# pixel-filtered image instead of the pixel-centre one (docs/OFFLINE.md,
+# pixel-filtered image instead of the pixel-centre one (docs/measurements/OFFLINE.md,
 # section 1, step 4, and section 7, "Jittering the camera").
 #
 #   blender -b scene.blend --python jitter_camera.py -- [--width W] [--save] [--json FILE]
@@ -13,7 +13,7 @@
 # sweeps the pixel as a many-sample render's samples sweep the filter.  The
 # default W is JITTER_SHARE (2/3) of the scene's filter width, 1 px for
 # Cycles' 1.5: rrc's resampled history adds its own blur, and on the
-# 320x180 sequences of docs/OFFLINE.md, section 7, 1 px beat the full 1.5.  The shift is keyed with constant interpolation on top of the
+# 320x180 sequences of docs/measurements/OFFLINE.md, section 7, 1 px beat the full 1.5.  The shift is keyed with constant interpolation on top of the
 # camera's own (static) shift_x / shift_y; Cycles' Vector pass leaves the
 # shift out, so the vectors stay unjittered.  Give rrc-accumulate no jitter
 # (no --camera "jitter"): each jittered frame is a sample of the filtered
@@ -28,7 +28,7 @@ import json
 import math
 import sys
 
-# The jitter's width as a share of the pixel filter's (docs/OFFLINE.md, section 7, "The
+# The jitter's width as a share of the pixel filter's (docs/measurements/OFFLINE.md, section 7, "The
 # spatial fill and a jittered camera": 1 px against 1.5 px took strafe_b from 0.921x to
 # 0.829x the 4-sample RMSE with the preset of then, strafe_a from 0.809x to 0.816x; with the
 # rectified preset, "Rectification, and a sequence held out", from 0.913x to 0.813x and

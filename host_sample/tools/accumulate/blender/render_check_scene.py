@@ -1,6 +1,6 @@
 # Renders a tiny Cycles scene whose geometry and cameras are known exactly,
 # so the Depth and Vector passes Blender writes can be checked against them
-# (docs/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
+# (docs/measurements/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
 #
 #   blender -b --factory-startup --python render_check_scene.py -- OUT_DIR [SAMPLES [float|half [fixed|seed [FRAMES]]]] [KEY=VALUE...]
 #
@@ -18,13 +18,13 @@
 #   offset=frame  Cycles' sample offset (frame - 1) * SAMPLES, so that every
 #                 frame takes the next samples of the sequence.  Without it
 #                 (offset=0, the default) a 1-sample frame's one sample lies
-#                 at the pixel centre whatever the seed (docs/OFFLINE.md,
+#                 at the pixel centre whatever the seed (docs/measurements/OFFLINE.md,
 #                 section 7): an animated seed does not jitter it.
 #   filter=W      the pixel filter width in pixels (Cycles' 1.5); 0.01 gives
 #                 a centre-sampled image
 #   bounces=N     Cycles' max_bounces (Blender's 12): fewer bounces make the
 #                 many-sample references of large frames affordable
-# Variants of the scene for the error study (docs/OFFLINE.md, section 7,
+# Variants of the scene for the error study (docs/measurements/OFFLINE.md, section 7,
 # "Independent 320x180 sequences"); rrc-blender-check understands only the
 # defaults (it intersects the ground, the cube and the sphere analytically):
 #   camera=check|strafe   check (default): the camera translates, rises and
@@ -47,7 +47,7 @@
 #                 filter over the frames; scene.json gives each frame's
 #                 "jitter" in pixels, x right, y down.  Cycles' Vector pass
 #                 leaves the shift out (unjittered vectors)
-# The fence sequence (docs/OFFLINE.md, section 7, "A fence of thin poles"; every
+# The fence sequence (docs/measurements/OFFLINE.md, section 7, "A fence of thin poles"; every
 # option off by default, so the sequences above are unchanged):
 #   fence=N       N thin upright poles (pass indices 10..) in a row at y =
 #                 fence_y= (-4), evenly over x in [-fence_span/2,
@@ -301,7 +301,7 @@ else:
 
 # jitter=filter: the camera's sub-pixel offset of frame f is jitter_camera.py's (the Halton
 # (2, 3) point f + 1 drawn through the pixel filter), so that Cycles' first sample, which lies
-# at the pixel centre (docs/OFFLINE.md, section 7), sweeps the filter over the frames as a
+# at the pixel centre (docs/measurements/OFFLINE.md, section 7), sweeps the filter over the frames as a
 # many-sample render's samples do.
 jitters = {f: (0.0, 0.0) for f in range(0, frames + 2)}
 if jitter_kind == "filter":

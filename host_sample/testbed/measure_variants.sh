@@ -1,8 +1,8 @@
 #!/bin/sh
-# The blur bound's rows of docs/PERFORMANCE.md ("The blur bound: what it buys,
+# The blur bound's rows of docs/measurements/PERFORMANCE.md ("The blur bound: what it buys,
 # measured"): each configuration's rrc-sample "RMSE accumulated" (and the 4k
 # brute force) averaged over --seed 0..3, one signal a run.
-#   docs/blur_bound/measure.sh SIZE SIGNAL "OPTIONS" ...   (run from the repository root)
+#   host_sample/testbed/measure_variants.sh SIZE SIGNAL "OPTIONS" ...   (run from the repository root)
 # prints one table row per OPTIONS string (quote each; "" = the preset); with pcf's
 # residual on (the preset), a last column: its base alone (summary.md's "pcf, the
 # residual's base alone"), averaged the same way.

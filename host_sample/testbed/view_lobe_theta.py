@@ -5,11 +5,11 @@ theta = the angle between P - C(t) and P - C(t - 1/30) for points P of the
 sphere's half facing the camera (centre (-3.2, 1.3, 5.6), radius 1.3: Scene::sphere,
 set by Scene::make in host_sample/testbed/scene.cpp) along the default camera path (Scene::camera in
 host_sample/testbed/scene.cpp, camera_speed 1, --fps 30), frames 1..59.
-docs/PERFORMANCE.md, "The view-dependent history (env): the rule, measured before building it",
+docs/measurements/PERFORMANCE.md, "The view-dependent history (env): the rule, measured before building it",
 uses its range to find the lobes whose age cap floor(lobe/theta) is the same
 at every pixel and frame.
 
-    python3 docs/view_lobe/theta.py
+    python3 host_sample/testbed/view_lobe_theta.py
 """
 import math
 def eye(t):
