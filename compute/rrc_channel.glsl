@@ -18,7 +18,7 @@
 #define COMPONENTS_ (CH_(components) ? 4u : 1u)
 #define FP16_ CH_(precision)  // the precision field is on for an fp16 history
 // A 1-component fp16 channel keeps value and age in one R32_UINT word
-// (docs/measurements/PERFORMANCE.md, "Inside the kernel"): one load per tap brings both,
+// (docs/design/inside-the-kernel.md): one load per tap brings both,
 // and one store writes both.
 #define PACKED_ (FP16_ && COMPONENTS_ == 1u)
 #define UNPACK_H(word) vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0)

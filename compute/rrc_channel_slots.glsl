@@ -14,7 +14,7 @@
 // The channel slots a module carries code for: the per-channel passes (frame, fill) are built
 // once for each count 1..RRC_MAX_CHANNELS (compute/CMakeLists.txt, -DRRC_SLOTS=N) and the library
 // takes the module of the context's channel count, so a driver compiles no code for slots the
-// context cannot use (docs/measurements/PERFORMANCE.md, "One module a channel count").  Unset: every slot.
+// context cannot use (docs/design/modules.md, "One module a channel count").  Unset: every slot.
 #ifndef RRC_SLOTS
 #define RRC_SLOTS RRC_MAX_CHANNELS
 #endif

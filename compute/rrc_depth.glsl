@@ -30,7 +30,7 @@ layout(push_constant) uniform Frame {
 // run on a clamped pixel and store nothing.  A kernel guards its stores with
 // it instead of returning early, because lavapipe runs everything after a
 // divergent return lane by lane, push-constant loads included (CAMERA's
-// matrix: docs/measurements/PERFORMANCE.md, "Inside the kernel").
+// matrix: docs/design/inside-the-kernel.md).
 bool rrc_store = true;
 
 bool rrc_finite(float x) { return !isnan(x) && !isinf(x); }

@@ -57,7 +57,7 @@
 
 // ---- Passes (the value of RRC_SPEC_PASS) ----------------------------------
 // Which passes a frame runs, in which order, over which grid, is decided in
-// one place: plugin/frame_plan.cpp (docs/measurements/PERFORMANCE.md, "The frame plan").
+// one place: plugin/frame_plan.cpp (docs/design/frame-plan.md).
 #define RRC_PASS_FUSED 0u     // rrc_frame_run / rrc_vulkan_record_frame: one pass, a dispatch over pixels
 #define RRC_PASS_CLASSIFY 1u  // classify, first dispatch: the mask, over pixels; in a context of REUSE channels only, also every HIT's channels
 #define RRC_PASS_LIST 2u      // classify, second dispatch: the quad list from that mask, over 2x2 quads
@@ -115,11 +115,11 @@
 // The fill list (library-owned): the pixels the spatial fill runs on,
 // appended by the pass that writes their channels (docs/CONVENTIONS.md,
 // "The spatial fill"), in RRC_FILL_LISTS sub-lists, one a band of rows, so
-// that the appends do not all contend for one counter (docs/measurements/PERFORMANCE.md,
-// "The frame plan"): a VkDispatchIndirectCommand {the sub-lists' groups of
-// RRC_FILL_LIST_PER_GROUP pixels, 1, 1}, each sub-list's count on a 64-byte
-// line of its own, then the sub-lists, RRC_FILL_LIST_CAPACITY words each,
-// one word x | y << 16 a pixel.
+// that the appends do not all contend for one counter
+// (docs/design/frame-plan.md): a VkDispatchIndirectCommand {the sub-lists'
+// groups of RRC_FILL_LIST_PER_GROUP pixels, 1, 1}, each sub-list's count on a
+// 64-byte line of its own, then the sub-lists, RRC_FILL_LIST_CAPACITY words
+// each, one word x | y << 16 a pixel.
 #define RRC_BINDING_FILL_LIST 32
 // The view buffer (library-owned, RRC_SPEC_VIEW_LOBE contexts only): this
 // frame's camera for the view lobe, std430 { mat4 Q; vec4 d; }: Q =

@@ -2,7 +2,7 @@
 // rrc_kernel_interface.h): a count, a VkDispatchIndirectCommand over groups
 // of `per_group` entries, the entries.  Classify's quad list (u_quads): the
 // list pass appends the quads with a pixel that is not a HIT, RESOLVE_LISTED
-// runs over them (docs/measurements/PERFORMANCE.md, "The frame plan").  The fill list
+// runs over them (docs/design/frame-plan.md).  The fill list
 // (u_fill; docs/CONVENTIONS.md, "The spatial fill"): the passes that write
 // channels append the pixels younger than a fill age to its sub-lists, the
 // fill pass runs over them.  GLSL passes no buffer to a function, and a pass declares only

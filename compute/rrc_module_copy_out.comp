@@ -1,4 +1,4 @@
-// The copy-out pass (docs/measurements/PERFORMANCE.md, "The frame plan"): after
+// The copy-out pass (docs/design/frame-plan.md): after
 // RESOLVE_LISTED, the library's results into the host's images.
 #version 450
 #extension GL_GOOGLE_include_directive : require

@@ -54,7 +54,7 @@ void rrc_count(uint mask, bool geometry, bool samples) {
 
 // Every channel is REUSE: a shading cache.  Classify then writes the HITs'
 // channels (a HIT reuses the cached value, which needs no sample) and
-// resolve runs only on the listed quads (docs/measurements/PERFORMANCE.md, "The frame plan").
+// resolve runs only on the listed quads (docs/design/frame-plan.md).
 // (One && or || a constant: glslang folds those into specialization-constant
 // operations, but turns a nested mix of them into run-time code.)
 const bool ACCUMULATES0 = CH_COUNT > 0u && CH0_blend != RRC_BLEND_REUSE;

@@ -1,4 +1,4 @@
-// The shading cache's list pass (docs/measurements/PERFORMANCE.md, "The frame plan"):
+// The shading cache's list pass (docs/design/frame-plan.md):
 // classify's quad list from its mask.
 #version 450
 #extension GL_GOOGLE_include_directive : require

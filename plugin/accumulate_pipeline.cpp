@@ -34,7 +34,7 @@ constexpr uint32_t kBufferBindings = RRC_BINDING_CHANNEL_PARAMS - RRC_BINDING_ST
 // Each module (compute/rrc_module_*.comp) has its own bindings
 // (compute/rrc_module_bindings.h); the per-pixel passes (FUSED, CLASSIFY,
 // RESOLVE, RESOLVE_LISTED) are one module that the PASS constant
-// specialises (docs/measurements/PERFORMANCE.md, "The frame plan").  Constants a module
+// specialises (docs/design/frame-plan.md).  Constants a module
 // does not declare are ignored by vkCreateComputePipelines.
 struct KernelModule {
     const uint32_t* code;
@@ -52,7 +52,7 @@ constexpr Binding kFillBindings[] = {RRC_MODULE_FILL_BINDINGS(RRC_BINDING_ID)};
 // The per-channel modules (frame, fill) come once for each channel count, slots
 // 1..RRC_MAX_CHANNELS (compute/CMakeLists.txt, RRC_SLOTS): `slots` picks the
 // module with exactly the context's channels, so a driver compiles no code for
-// slots it cannot use (docs/measurements/PERFORMANCE.md, "One module a channel count").  Every
+// slots it cannot use (docs/design/modules.md, "One module a channel count").  Every
 // count has the same bindings.
 static_assert(RRC_MAX_CHANNELS == 4, "one module a channel count: rrc_module_frame_1..4_spv, rrc_module_fill_1..4_spv");
 KernelModule kernel_module(uint32_t module, uint32_t slots) {

@@ -13,8 +13,7 @@ namespace rrc {
 
 // A 1-component fp16 channel keeps its value (low 16 bits, fp16) and age
 // (high 16 bits) in one R32_UINT word and has no age image: one load per
-// bilinear tap brings both and one store writes both (docs/measurements/PERFORMANCE.md,
-// "Inside the kernel").
+// bilinear tap brings both and one store writes both (docs/design/inside-the-kernel.md).
 constexpr VkFormat kPackedHistoryFormat = VK_FORMAT_R32_UINT;
 
 struct ChannelHistory {

@@ -6,7 +6,7 @@
 // Steps name resources by id (PlanResource); a context only maps the ids to
 // its images and buffers (PlanResources), and the core records the steps
 // (AccumulatorCore::record_call, the planner's one caller a call).  The
-// words: docs/measurements/PERFORMANCE.md, "The frame plan".
+// words: docs/design/frame-plan.md.
 #pragma once
 
 #include "accumulate_pipeline.h"

@@ -144,7 +144,7 @@ DescriptorSets StandaloneContext::set_for(uint32_t view, uint32_t p, uint32_t so
         d.view[in.own_binding][in.slot] = own_input(v, i, p).view;
     }
     // A fill's or a residual's displayed values: the frame's passes write them where the
-    // fill does not run, the fill where it does (docs/measurements/PERFORMANCE.md, "The frame plan").
+    // fill does not run, the fill where it does (docs/design/frame-plan.md).
     for (uint32_t s = 0; s < display_.size(); ++s)
         if (display_[s].image) d.view[RRC_BINDING_HOST_OUT][s] = display_[s].view;
     DescriptorSets set = core_->pipeline().allocate_set();

@@ -162,7 +162,7 @@ TEST(RrcSample, ShortSequenceUnderValidationLayer) {
 
 // The default run's frames 0-14 (256x160; one signal, no reference, no files: hits do not
 // depend on them) at the library's default depth test (no epsilon given: ADAPTIVE for this
-// API 0.2 caller; docs/guide/integration.md, "Changes since 0.1") with the G-buffer's object ids (the default): rrc must find almost
+// API 0.2 caller; CHANGELOG.md, "Changes since 0.1") with the G-buffer's object ids (the default): rrc must find almost
 // every truly visible pixel off silhouettes and never reuse a point that was hidden.  FIXED
 // 4 ulp reaches 79.4% here (293 096 of 369 280).
 TEST(RrcSample, DefaultDepthTestRecallAndNoFalseHits) {

@@ -15,7 +15,7 @@
  * filter) are in docs/CONVENTIONS.md; every choice this header leaves to the
  * library is written down there.
  *
- * Every member and function by concept: docs/guide/integration.md, "The API by concept".
+ * Every member and function by concept: docs/reference/api.md, "The API by concept".
  *
  * Lifetime
  * --------

@@ -4,7 +4,7 @@
  * <vulkan/vulkan.h> (define VK_NO_PROTOTYPES first if you use volk: this
  * header calls no Vulkan function).
  *
- * Model (docs/guide/integration.md has the full walk-through and an input table)
+ * Model (docs/guide/integration.md has the full walk-through, docs/reference/api.md an input table)
  * ---------------------------------------------------------------------
  *   rrc_vulkan_context_create()  once, on the host's instance/device
  *   rrc_vulkan_record_frame()    per frame: records barriers and one dispatch

@@ -1,4 +1,4 @@
-// The concept index of docs/guide/integration.md ("The API by concept") must list
+// The concept index of docs/reference/api.md ("The API by concept") must list
 // every public struct, struct member and function of include/rrc/rrc.h and
 // include/rrc/rrc_vulkan.h, one table row each:
 //     | `rrc_struct.member` (or `rrc_struct`, `rrc_function`) | meaning | 0.N |
@@ -130,9 +130,9 @@ std::map<std::string, std::string> expected_versions() {
 
 // The rows of the index: name -> the versions its rows give.
 std::multimap<std::string, std::string> index_rows() {
-    const std::string doc = read_source("docs/guide/integration.md");
+    const std::string doc = read_source("docs/reference/api.md");
     const size_t begin = doc.find("\n## The API by concept\n");
-    EXPECT_NE(begin, std::string::npos) << "docs/guide/integration.md: no section \"The API by concept\"";
+    EXPECT_NE(begin, std::string::npos) << "docs/reference/api.md: no section \"The API by concept\"";
     if (begin == std::string::npos) return {};
     const size_t end = doc.find("\n## ", begin + 1);
     std::stringstream section(doc.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
@@ -143,7 +143,7 @@ std::multimap<std::string, std::string> index_rows() {
         if (std::regex_match(line, m, row))
             rows.emplace(m[1], m[3]);
         else
-            EXPECT_NE(line.rfind("| `rrc_", 0), 0u) << "docs/guide/integration.md: a row not of the form | `name` | meaning | 0.N |: " << line;
+            EXPECT_NE(line.rfind("| `rrc_", 0), 0u) << "docs/reference/api.md: a row not of the form | `name` | meaning | 0.N |: " << line;
     }
     // rrc_channel_desc's options: each row of compute/rrc_channel_options.def is
     // its index row (its version; its meaning in docs/CONVENTIONS.md, its range in the table).
@@ -159,7 +159,7 @@ std::multimap<std::string, std::string> index_rows() {
 TEST(ApiIndexInDocs, EveryStructMemberAndFunctionIsListed) {
     const auto rows = index_rows();
     for (const auto& [name, version] : expected_versions())
-        EXPECT_TRUE(rows.count(name)) << "docs/guide/integration.md, \"The API by concept\": no row for " << name << " (since " << version << ")";
+        EXPECT_TRUE(rows.count(name)) << "docs/reference/api.md, \"The API by concept\": no row for " << name << " (since " << version << ")";
 }
 
 TEST(ApiIndexInDocs, EveryRowNamesTheApiWithItsVersion) {
@@ -167,11 +167,11 @@ TEST(ApiIndexInDocs, EveryRowNamesTheApiWithItsVersion) {
     for (const auto& [name, version] : index_rows()) {
         const auto it = expected.find(name);
         if (it == expected.end()) {
-            ADD_FAILURE() << "docs/guide/integration.md, \"The API by concept\": " << name << " is no public struct, member or function";
+            ADD_FAILURE() << "docs/reference/api.md, \"The API by concept\": " << name << " is no public struct, member or function";
         } else if (it->second == kAfter01) {
-            EXPECT_NE(version, "0.1") << "docs/guide/integration.md, \"The API by concept\": " << name << " is not in the 0.1 headers";
+            EXPECT_NE(version, "0.1") << "docs/reference/api.md, \"The API by concept\": " << name << " is not in the 0.1 headers";
         } else {
-            EXPECT_EQ(version, it->second) << "docs/guide/integration.md, \"The API by concept\": the version of " << name;
+            EXPECT_EQ(version, it->second) << "docs/reference/api.md, \"The API by concept\": the version of " << name;
         }
     }
 }

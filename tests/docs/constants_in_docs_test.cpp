@@ -85,7 +85,7 @@ const char* const kSampleHelp = "host_sample/testbed/options.cpp";          // u
 
 TEST(ConstantsInDocs, MaskBits) {
     expect_mask_list("docs/CONVENTIONS.md", "The mask bits:");
-    expect_mask_list("docs/guide/integration.md", "| mask | storage R8_UINT / `uint8_t[W*H]` | bits:");
+    expect_mask_list("docs/reference/api.md", "| mask | storage R8_UINT / `uint8_t[W*H]` | bits:");
     expect_mask_list("docs/measurements/OFFLINE.md", "`rrc.mask` (bits");
     expect_mask_list(kAccumulateHelp, "the integer value of the per-pixel bitfield");
 }
@@ -144,7 +144,7 @@ TEST(ConstantsInDocs, DefaultEpsilonScale) {
 TEST(ConstantsInDocs, DefaultBackgroundThreshold) {
     expect_value<float>("RRC_DEFAULT_BACKGROUND_THRESHOLD", RRC_DEFAULT_BACKGROUND_THRESHOLD,
                         {{"docs/CONVENTIONS.md", "background iff d ≥ threshold (default "},
-                         {"docs/guide/integration.md", "sky = +inf or ≥ `background_threshold` ("},
+                         {"docs/reference/api.md", "sky = +inf or ≥ `background_threshold` ("},
                          {"docs/measurements/OFFLINE.md", "`background_threshold` "},
                          {"include/rrc/rrc.h", "LINEAR: d >= this is background; 0 = default "},
                          {kAccumulateHelp, "linear depth >= T is background ("}});

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every rrc-* command line the documentation shows still parses.
 
-Extracts each command of the host programs from README.md, docs/**/*.md and
+Extracts each command of the host programs from README.md, CHANGELOG.md, docs/**/*.md and
 host_sample/**/README.md (fenced code blocks and inline `code` spans), and
 runs it with the program from the build's bin/ directory plus
 --check-options, which parses and validates every option as a run would
@@ -34,7 +34,7 @@ EXEMPT = [
 
 
 def doc_files(root):
-    files = [os.path.join(root, "README.md")]
+    files = [os.path.join(root, "README.md"), os.path.join(root, "CHANGELOG.md")]
     files += sorted(glob.glob(os.path.join(root, "docs", "**", "*.md"), recursive=True))
     files += sorted(glob.glob(os.path.join(root, "host_sample", "**", "README.md"), recursive=True))
     return [f for f in files if os.path.isfile(f)]

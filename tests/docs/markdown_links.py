@@ -2,7 +2,7 @@
 """Every relative link in the repository's Markdown leads somewhere, and every
 docs/ path the code cites exists.
 
-Checks each [text](target) and ![alt](target) of README.md, docs/**/*.md and
+Checks each [text](target) and ![alt](target) of README.md, CHANGELOG.md, docs/**/*.md and
 host_sample/**/*.md whose target is not a URL: the file or folder it names
 exists (relative to the linking file), and a #fragment names a heading of the
 target file (GitHub's anchors: lower case, punctuation but '-' and '_'
@@ -24,7 +24,7 @@ FENCE = re.compile(r"^\s*(```|~~~)")
 
 
 def markdown_files(root):
-    files = [os.path.join(root, "README.md")]
+    files = [os.path.join(root, "README.md"), os.path.join(root, "CHANGELOG.md")]
     files += glob.glob(os.path.join(root, "docs", "**", "*.md"), recursive=True)
     files += glob.glob(os.path.join(root, "host_sample", "**", "*.md"), recursive=True)
     return sorted(f for f in files if os.path.isfile(f))

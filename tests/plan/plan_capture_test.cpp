@@ -10,7 +10,7 @@
 // sets, the dispatch sizes and indirect buffers); where a plan differs from
 // the checked-in table (tests/plan/plan_table.txt); and where a table entry
 // is never recorded.  It prints the captured commands once per distinct
-// shape (docs/measurements/PERFORMANCE.md, "The frame plan").
+// shape (docs/design/frame-plan.md).
 #include "plan/plan_table.h"
 #include "rrc_interop.h"
 

@@ -1,7 +1,7 @@
 // The frame plan of every rrc-bench configuration, against the checked-in
 // table tests/plan/plan_table.txt: one file says what any configuration runs
 // (passes, the bindings each reads and writes, barriers, dispatch sizes or
-// "indirect" where the data decides; docs/measurements/PERFORMANCE.md, "The frame plan").
+// "indirect" where the data decides; docs/design/frame-plan.md).
 // The plan (plugin/frame_plan.cpp) is compiled into this test: it is pure
 // C++ on the context's configuration, no device involved.
 //

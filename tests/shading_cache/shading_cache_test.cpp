@@ -93,7 +93,7 @@ std::vector<rrc_channel_desc> variant_channels() {
 }
 
 // A context of REUSE channels only: classify writes the HITs' channels and
-// resolve runs on the listed quads only (docs/measurements/PERFORMANCE.md, "The frame plan").
+// resolve runs on the listed quads only (docs/design/frame-plan.md).
 std::vector<rrc_channel_desc> reuse_only_channels(bool fill) {
     std::vector<rrc_channel_desc> c = variant_channels();
     c.pop_back();

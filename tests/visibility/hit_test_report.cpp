@@ -64,7 +64,7 @@ public:
                  {&r.name, &r.scored, &r.excluded, &r.recall_fixed, &r.recall_default, &r.false_fixed, &r.false_default})
                 table << "| " << *cell << (cell == &r.false_default ? " |\n" : " ");
         // The date and the identical-mask count say which library the default
-        // column measured (ADAPTIVE became the default in 0.2: docs/guide/integration.md, "Changes since 0.1").
+        // column measured (ADAPTIVE became the default in 0.2: CHANGELOG.md, "Changes since 0.1").
         char date[32];
         const std::time_t now = std::time(nullptr);
         std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
