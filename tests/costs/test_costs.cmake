@@ -7,10 +7,10 @@
 # directory has run its tests, ctest's own measured costs
 # (Testing/Temporary/CTestCostData.txt) take over.
 #
-# Seconds: the release run's own times, one test per GoogleTest suite
+# Seconds: a release run's own times, one test per GoogleTest suite
 # (cmake/RrcGTestSuites.cmake; `ctest -j2 --timeout 900` in a build directory
-# without a cost file, 2026-12-05, 2-core AMD EPYC VM, Mesa 22.3.6 lavapipe,
-# otherwise idle).  Only the order matters; the sanitizer run uses the same.
+# without a cost file, on the 2-core machine of docs/measurements/PERFORMANCE.md,
+# "The test suite's time").  Only the order matters; the sanitizer run uses the same.
 set(_rrc_test_costs
   spirv_disabled_features_cost_nothing 87
   rrc_visibility_test/Cases/HitTestRecall 39
