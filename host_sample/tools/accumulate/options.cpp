@@ -344,7 +344,8 @@ Accumulates a numbered sequence of OpenEXR frames (single- or multi-part,
 half, float or uint channels) with rrc, the real-time reprojection cache,
 and writes one OpenEXR per frame.  Renderer passes are read by channel name:
 the project's own names by default, Blender's with --preset blender, any
-other through the channel options.  docs/measurements/OFFLINE.md is the guide.
+other through the channel options.  docs/guide/offline.md is the guide;
+docs/measurements/OFFLINE.md has every pass and convention, measured.
 
 Required:
   --input PATTERN        input frames, printf-style: frames/f_%04d.exr
