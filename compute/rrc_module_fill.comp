@@ -56,14 +56,13 @@ bool rrc_fill_similar(float d_q, float d_p, float tau) {
 // value is its history value, which the frame's pass wrote there.
 void rrc_fill() {
     ivec2 size = imageSize(u_prev_depth);
-    // The group's sub-list and its first slot there: the sub-lists' groups in order.
-    uint list = 0u, group = gl_WorkGroupID.x, count = u_fill.words[RRC_FILL_LIST_COUNTS];
-    for (uint groups = (count + RRC_FILL_LIST_PER_GROUP - 1u) / RRC_FILL_LIST_PER_GROUP;
-         group >= groups && list + 1u < RRC_FILL_LISTS;
-         groups = (count + RRC_FILL_LIST_PER_GROUP - 1u) / RRC_FILL_LIST_PER_GROUP) {
-        group -= groups;
-        ++list;
+    // The group's sub-list and its group there: the sub-lists' groups in order.
+    uint list = 0u, group = gl_WorkGroupID.x, count;
+    for (;; ++list) {
         count = u_fill.words[RRC_FILL_LIST_COUNTS + list * RRC_FILL_LIST_COUNT_STRIDE];
+        uint groups = (count + RRC_FILL_LIST_PER_GROUP - 1u) / RRC_FILL_LIST_PER_GROUP;
+        if (group < groups || list + 1u == RRC_FILL_LISTS) break;
+        group -= groups;
     }
     uint slot = group * RRC_FILL_LIST_PER_GROUP + gl_LocalInvocationID.x;
     rrc_store = slot < count;  // no early return (rrc_reproject.glsl says why)

@@ -111,8 +111,9 @@ float rrc_interpolated(float z) { return DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1
 // a step (a neighbour of the other sign and at least STEP_RATIO of |s|, |s|
 // above the noise) the larger such |n|, else 0.
 //
-// Written for lavapipe, which pays every operation (docs/design/inside-the-kernel.md); each shortcut gives the same bits as the plain
-// formula.  Finite s, s-, s+ imply finite a, c, b (a non-finite tap makes s
+// Written for lavapipe, which pays every operation
+// (docs/design/inside-the-kernel.md); each shortcut gives the same bits as
+// the plain formula.  Finite s, s-, s+ imply finite a, c, b (a non-finite tap makes s
 // inf or NaN), and the result is 0 otherwise, so finiteness is |x| < inf on
 // the magnitudes the step test needs anyway, and ulp(max(|a|, |b|, |c|))
 // takes the largest of their exponent fields (an integer max).  At the
