@@ -48,13 +48,16 @@ def make_texture(rng, count):
 
 
 def fetch(img, x, y):
-    h, w = img.shape
+    h, w = img.shape[:2]
     return img[np.clip(y, 0, h - 1), np.clip(x, 0, w - 1)]
 
 
 def bilinear(img, x, y):
+    """img at (x, y), texel centres at integers (an RGB image: the weights apply to each channel)."""
     i0, j0 = np.floor(x).astype(int), np.floor(y).astype(int)
     fx, fy = x - i0, y - j0
+    if img.ndim == 3:
+        fx, fy = fx[..., None], fy[..., None]
     return ((1 - fx) * (1 - fy) * fetch(img, i0, j0) + fx * (1 - fy) * fetch(img, i0 + 1, j0)
             + (1 - fx) * fy * fetch(img, i0, j0 + 1) + fx * fy * fetch(img, i0 + 1, j0 + 1))
 
@@ -75,6 +78,18 @@ def catmull_rom(img, x, y):
 
 def nearest(img, x, y):
     return fetch(img, np.floor(x).astype(int), np.floor(y).astype(int))
+
+
+def deviation_gate(b, s, d, n, kappa, cap):
+    """The deviation-bias gate: b and s, the blended mean and mean square of d = sample - history
+    (resampled to this pixel), take d at the rate max(1 / (min(n, cap) + 1), 0.25), n the samples
+    in the history; it fires where the history has at least 2 samples and
+    |b| > kappa * sqrt((s - b^2) * rate). Returns the new b, s and where it fired."""
+    rate = np.maximum(1.0 / (np.minimum(n, cap) + 1), 0.25)
+    b = (1 - rate) * b + rate * d
+    s = (1 - rate) * s + rate * d * d
+    fire = (np.abs(b) > kappa * np.sqrt(np.maximum(s - b * b, 0) * rate) + 1e-3) & (n >= 2)
+    return b, s, fire
 
 
 def run(texture, size, noise, gate, kappa, resample, seed, frames=25, lam=0.1, cap=16):
@@ -101,12 +116,8 @@ def run(texture, size, noise, gate, kappa, resample, seed, frames=25, lam=0.1, c
         elif gate == "moments, nearest":
             m2p, m1p = nearest(m2, px, py), nearest(hist, px, py)
             restart = np.abs(x - hp) > kappa * np.sqrt(np.maximum(m2p - m1p * m1p, 0)) + 1e-3
-        elif gate == "deviation bias":
-            rate = np.maximum(1.0 / (np.minimum(prev_age + 1, cap) + 1), 0.25)
-            d = x - hp
-            b = (1 - rate) * bilinear(b, px, py) + rate * d
-            s = (1 - rate) * bilinear(s, px, py) + rate * d * d
-            restart = (np.abs(b) > kappa * np.sqrt(np.maximum(s - b * b, 0) * rate) + 1e-3) & (prev_age >= 1)
+        elif gate == "deviation bias":  # age counts the frames after the first: n = age + 1
+            b, s, restart = deviation_gate(bilinear(b, px, py), bilinear(s, px, py), x - hp, prev_age + 1, kappa, cap)
         restart &= prev_age >= 0
         restarted.append(restart[inside].mean())
         prev_age = np.where(restart, -1, prev_age)
