@@ -11,10 +11,12 @@ rrc: the preset's filter (docs/guide/offline.md, "The preset": AGE_AWARE, lambda
 bilinear history, motion from Vector.X/Y, a hit where the nearest previous texel's depth is
 within 0.04 of this depth, relative, and its IndexOB is this pixel's) without its
 rectification and fill. With --kappas other than 0 the gate (gate_sim.deviation_gate, on
-the Rec. 709 luminance of sample - history) restarts a pixel's history when it fires.
+the Rec. 709 luminance of sample - history) restarts a pixel's history when it fires; with
+--soft it cuts the history's age to gate_sim.balanced_age instead.
 
 Prints, for each input and kappa, the RMSE against ref/ over frames 8-24 as a ratio to the
-4-spp input's RMSE, as error_study.py reports rrc-accumulate's (docs/measurements/clean-input.md,
+4-spp input's RMSE, as error_study.py reports rrc-accumulate's, and the hit pixels the gate
+restarted (or whose age it cut) a frame (docs/measurements/clean-input.md,
 "A temporal gate, simulated").
 """
 import argparse
@@ -23,7 +25,7 @@ import os
 import numpy as np
 import OpenImageIO as oiio
 
-from gate_sim import bilinear, deviation_gate, fetch
+from gate_sim import balanced_age, bilinear, deviation_gate, fetch
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
@@ -47,7 +49,7 @@ def frame(seq, folder, f):
     return load(os.path.join(seq, folder, f"frame_{f:04d}.exr"))
 
 
-def run(seq, folder, kappa, frames, first_scored, lam=0.85, cap=255, tau=0.04):
+def run(seq, folder, kappa, soft, frames, first_scored, lam=0.85, cap=255, tau=0.04):
     squared, restarted = [], []
     hist = None
     for f in range(1, frames + 1):
@@ -72,8 +74,10 @@ def run(seq, folder, kappa, frames, first_scored, lam=0.85, cap=255, tau=0.04):
                                         (sample - resampled) @ LUMA, n, kappa, cap)
             if not kappa:
                 fire[:] = False
+            elif soft:
+                n, fire = balanced_age(b, s, n, kappa)
             restarted.append(fire[hit].mean())
-            n = np.where(fire, 0, n)
+            n = np.where(fire & ~soft, 0, n)
             lam_eff = np.minimum(lam, n / (n + 1))[..., None]
             hist = np.where((n >= 1)[..., None], lam_eff * resampled + (1 - lam_eff) * sample, sample)
             age = np.where(background, 0, np.minimum(n + 1, cap))
@@ -89,6 +93,7 @@ def main():
     ap.add_argument("seq", help="a sequence folder with ref/, spp4/ and the --inputs folders")
     ap.add_argument("--inputs", default="ref,spp4,spp1", help="input folders (default ref,spp4,spp1)")
     ap.add_argument("--kappas", default="0,1,1.5,2,2.5", help="gate thresholds, 0 = no gate (default 0,1,1.5,2,2.5)")
+    ap.add_argument("--soft", action="store_true", help="cut the history's age to gate_sim.balanced_age instead of restarting it")
     ap.add_argument("--frames", type=int, default=24)
     ap.add_argument("--from", dest="first", type=int, default=8, help="first scored frame (default 8)")
     args = ap.parse_args()
@@ -98,7 +103,7 @@ def main():
     print(f"{name}: 4-spp RMSE {four:.4f}; output RMSE / 4-spp RMSE (restarted: hit pixels a frame)")
     for folder in args.inputs.split(","):
         for kappa in (float(k) for k in args.kappas.split(",")):
-            err, frac = run(args.seq, folder, kappa, args.frames, args.first)
+            err, frac = run(args.seq, folder, kappa, args.soft, args.frames, args.first)
             print(f"| {name} | {folder} | {kappa:g} | {err / four:.3f} | {100 * frac:.1f} % |", flush=True)
 
 

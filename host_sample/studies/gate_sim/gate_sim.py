@@ -92,6 +92,15 @@ def deviation_gate(b, s, d, n, kappa, cap):
     return b, s, fire
 
 
+def balanced_age(b, s, n, kappa):
+    """The soft form of the gate: the history keeps at most the age at which its bias b equals
+    kappa standard errors of the deviations, n' = max(1, floor(kappa^2 (s - b^2) / b^2)), where
+    that is below its own n (n >= 2). Returns the new n and where it was cut."""
+    cap = np.maximum(1, np.floor(kappa * kappa * np.maximum(s - b * b, 0) / np.maximum(b * b, 1e-12)))
+    cut = (n >= 2) & (cap < n)
+    return np.where(cut, cap, n), cut
+
+
 def run(texture, size, noise, gate, kappa, resample, seed, frames=25, lam=0.1, cap=16):
     w, h = size
     rng = np.random.default_rng(seed)
