@@ -2,7 +2,7 @@
 # Two builds' rrc-bench, interleaved (A B A B ...), so that the machine's drift
 # falls on both: each row's kernel time and kernel/roof ratio, every run and the
 # median, before (A) and after (B).  A change keeps a row within its spread when
-# B's median lies within A's min-max (docs/measurements/PERFORMANCE.md, "Comparing two builds").
+# B's median lies within A's min-max (docs/measurements/PERFORMANCE.md, "One table of channel options, measured").
 #
 #   bench/compare_builds.sh A/bin/rrc-bench B/bin/rrc-bench [CONFIGS] [RUNS]
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # rrc-bench through a GPU's Vulkan driver, at 1080p and 4K (docs/measurements/PERFORMANCE.md,
-# "On a GPU").  Two halves:
+# "A GPU").  Two halves:
 #   bash bench/device_bench.sh prepare [BUILD_DIR]   here, on the Debian bookworm build machine:
 #       gathers what a bare GPU machine lacks into two git-ignored folders, .gl (the Vulkan
 #       loader and GL dispatch packages, amd64) and .gpu (rrc-bench, librrc, this libstdc++)

@@ -1,6 +1,5 @@
 // The per-pixel passes: FUSED (the frame in one dispatch), CLASSIFY, RESOLVE
-// and RESOLVE_LISTED (the shading cache's passes; docs/measurements/PERFORMANCE.md, "The
-// frame plan"), one body selected by the PASS specialization constant:
+// and RESOLVE_LISTED (the shading cache's passes; docs/design/frame-plan.md), one body selected by the PASS specialization constant:
 // reverse reprojection, the epsilon-depth hit test and the lambda recursive
 // filter for up to RRC_MAX_CHANNELS channels.
 // Written for lavapipe's costs (every instruction and image operation is paid, a store most;

@@ -45,7 +45,7 @@ const bool ADAPTIVE = false;
 // frame, which classify made) and computes only where to resample history.
 layout(constant_id = RRC_SPEC_PASS) const uint PASS = RRC_PASS_FUSED;
 const bool RRC_TEST = PASS != RRC_PASS_RESOLVE;
-// Object ids (docs/CONVENTIONS.md, "Object ids"): a hit also needs every
+// Object ids (docs/CONVENTIONS.md, "Previous depth fetch and the hit test"): a hit also needs every
 // previous-depth tap with a non-zero weight to carry the pixel's id.
 #ifndef RRC_WITHOUT_OBJECT_ID
 layout(constant_id = RRC_SPEC_OBJECT_ID)

@@ -118,7 +118,7 @@
 #define RRC_MAX_REFRESH_PERIOD 65536u
 #define RRC_MAX_REFRESH_TILES 256u
 
-/* ---- The quad list of classify (docs/guide/integration.md, "Shading cache") ----
+/* ---- The quad list of classify (docs/guide/integration.md, "The shading cache: shade only the misses") ----
  * uint32 words: [0] the number of listed quads, [1..3] a
  * VkDispatchIndirectCommand {x, y, z} = {ceil(count / RRC_QUADS_PER_GROUP),
  * 1, 1}, then from word RRC_QUAD_LIST_FIRST_QUAD one word per listed quad,

@@ -39,7 +39,7 @@ struct DepthFetch {
 // its own decisions (Options::error_scale).
 DepthFetch fetch_depth(const Params& p, const std::vector<float>& depth, Bounded qx, Bounded qy, double scale);
 
-// Object ids (docs/CONVENTIONS.md "Object ids"): every bilinear tap whose
+// Object ids (docs/CONVENTIONS.md "Previous depth fetch and the hit test"): every bilinear tap whose
 // weight is not zero holds `id`.  Unsure where the kernel's position error
 // could move a foreign tap's weight across zero or change the cell.
 Decision taps_hold_id(const std::vector<uint32_t>& ids, int width, int height, Bounded qx, Bounded qy, uint32_t id, double scale);

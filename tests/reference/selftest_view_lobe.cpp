@@ -1,6 +1,6 @@
 // The view-dependent history's age cap of the reference (view_lobe.h,
-// docs/measurements/PERFORMANCE.md "The view-dependent history (0.6, env): the rule,
-// measured") against hand-computed cases: the angle between the two view
+// docs/measurements/PERFORMANCE.md "The view-dependent history (env): the rule,
+// measured before building it") against hand-computed cases: the angle between the two view
 // directions, the capped age floor(lobe/theta), the lambda_eff it caps, and
 // the world position a pixel's depth gives.
 #include <gtest/gtest.h>

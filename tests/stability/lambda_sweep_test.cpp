@@ -16,7 +16,7 @@
 // round to nearest fp16, as the kernel stores it): it stalls once
 // (1-λ)|s-H| < ulp(H)/2, so at λ = 0.999 its bias is ~3.6e-2.  The library
 // therefore keeps fp16 history only up to λ_max = RRC_FP16_MAX_LAMBDA
-// (docs/CONVENTIONS.md "fp16 history"); the kernel rows show the result.
+// (docs/CONVENTIONS.md "The recursive filter (per channel)"); the kernel rows show the result.
 #include "reference/rrc_reference.h"
 #include "stability_report.h"
 #include "stability_util.h"

@@ -1,6 +1,6 @@
 // rrc-blender-check: measures what Blender's Depth and Vector passes hold,
 // against the exact geometry of the scene render_check_scene.py made
-// (docs/measurements/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
+// (docs/measurements/OFFLINE.md, "2. What Blender writes, measured").  Development aid: no test runs it.
 //
 //   rrc-blender-check DIR [OTHER_DIR]
 //   rrc-blender-check DIR --hits OUT_PATTERN

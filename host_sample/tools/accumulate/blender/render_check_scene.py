@@ -1,6 +1,6 @@
 # Renders a tiny Cycles scene whose geometry and cameras are known exactly,
 # so the Depth and Vector passes Blender writes can be checked against them
-# (docs/measurements/OFFLINE.md, "What Blender writes").  Development aid: no test runs it.
+# (docs/measurements/OFFLINE.md, "2. What Blender writes, measured").  Development aid: no test runs it.
 #
 #   blender -b --factory-startup --python render_check_scene.py -- OUT_DIR [SAMPLES [float|half [fixed|seed [FRAMES]]]] [KEY=VALUE...]
 #
