@@ -61,7 +61,8 @@ struct RrcChannelParams {
 #define RRC_DECLARE_HIST_OUT layout(set = 0, binding = RRC_BINDING_HIST_OUT) uniform writeonly image2D u_hist_out[RRC_MAX_CHANNELS];
 // AGE_OUT: R16_UINT ages, or for packed channels their R32_UINT value|age words (so declared without a format)
 #define RRC_DECLARE_AGE_OUT layout(set = 0, binding = RRC_BINDING_AGE_OUT) uniform writeonly uimage2D u_age_out[RRC_MAX_CHANNELS];
-#define RRC_DECLARE_WEIGHT_OUT layout(set = 0, binding = RRC_BINDING_WEIGHT_OUT, r32f) uniform writeonly image2D u_weight_out[RRC_MAX_CHANNELS];
+// WEIGHT_OUT: R32F weights (confidence), or a gated channel's R32G32F (beta, varsigma) (so declared without a format)
+#define RRC_DECLARE_WEIGHT_OUT layout(set = 0, binding = RRC_BINDING_WEIGHT_OUT) uniform writeonly image2D u_weight_out[RRC_MAX_CHANNELS];
 // HOST_SAMPLES: INTEROP
 #define RRC_DECLARE_HOST_SAMPLES layout(set = 0, binding = RRC_BINDING_HOST_SAMPLES) uniform sampler2D s_samples[RRC_MAX_CHANNELS];
 // HOST_CONFIDENCE: INTEROP
@@ -78,6 +79,8 @@ struct RrcChannelParams {
 #define RRC_DECLARE_CLASSIFIED layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
 // FALLBACK: the host's fallback estimate: FILL's prior, and a residual's base b (the per-pixel passes and FILL)
 #define RRC_DECLARE_FALLBACK layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];
+// GATE: a gated channel's previous (beta, varsigma), R32G32F (docs/CONVENTIONS.md, "The deviation gate")
+#define RRC_DECLARE_GATE layout(set = 0, binding = RRC_BINDING_GATE) uniform sampler2D s_gate[RRC_MAX_CHANNELS];
 // STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch
 #define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 // QUADS: classify's quad list (rrc_list.glsl)

@@ -116,6 +116,34 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
 #undef LOAD_H
 #undef LOAD_W
 
+    // -- the deviation gate (docs/CONVENTIONS.md, "The deviation gate"): the
+    //    running mean beta and mean square varsigma of d = s - H (the first
+    //    three components' mean), resampled with the bilinear taps; where beta,
+    //    the history's bias, exceeds kappa standard errors of the deviations,
+    //    the age is cut to N_g = floor(kappa^2 v / beta^2), at which they balance.
+    const bool GATE_ = CH_(gate_kappa);
+    vec2 gate_prev = vec2(0.0), gate_new = vec2(0.0);
+    uint gate_cap = RRC_MAX_AGE_CAP;
+    if (GATE_ && PASS != RRC_PASS_RESOLVE_LISTED && hit_any) {
+        const vec4 wt = g.taps.w;
+        gate_prev = wt.x * texelFetch(s_gate[RRC_CH], g.taps.p00, 0).xy + wt.y * texelFetch(s_gate[RRC_CH], g.taps.p10, 0).xy +
+                    wt.z * texelFetch(s_gate[RRC_CH], g.taps.p01, 0).xy + wt.w * texelFetch(s_gate[RRC_CH], g.taps.p11, 0).xy;
+        if (s_valid && n_prev >= 1u) {
+            const vec4 dv = s - H;
+            const float d = COMPONENTS_ == 1u ? dv.x : ((dv.x + dv.y) + dv.z) * (1.0 / 3.0);
+            const float a = max(1.0 / float(n_prev + 1u), 0.25);
+            const float beta = (1.0 - a) * gate_prev.x + a * d, vs = (1.0 - a) * gate_prev.y + a * (d * d);
+            // An fp32 overflow of huge deviations restarts the statistics and caps nothing.
+            const bool finite = rrc_finite(beta) && rrc_finite(vs);
+            gate_new = finite ? vec2(beta, vs) : vec2(0.0);
+            const float b2 = beta * beta;
+            if (finite && n_prev >= 2u && b2 >= RRC_FLT_MIN) {
+                const float ratio = min(P.gate_kappa * P.gate_kappa * max(vs - b2, 0.0) / b2, float(RRC_MAX_AGE_CAP));
+                gate_cap = uint(max(floor(ratio), 1.0));
+            }
+        }
+    }
+
     // -- rectification: the blend's H clamped to mu +- gamma sigma of this
     //    frame's valid samples in the 3x3 block (docs/CONVENTIONS.md,
     //    "Rectification"); formed about the centre sample, which is valid
@@ -179,11 +207,12 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     //    history's mean offset in reflected direction stays within alpha.
     if (CH_(view_lobe) && view_theta >= RRC_FLT_MIN)
         n_blend = min(n_blend, uint(min(floor(P.view_lobe / view_theta), float(RRC_MAX_AGE_CAP))));
+    if (GATE_) n_blend = min(n_blend, gate_cap);
 
     // -- the table of docs/CONVENTIONS.md
     float lambda = rrc_lambda_eff(CH_(blend), P.lambda, n_prev);
     // A shortened age caps lambda_eff at n_a/(n_a + 1) (0: the sample alone).
-    const bool SHORTENED_ = CH_(antilag) || CH_(blur_bound) || CH_(view_lobe);
+    const bool SHORTENED_ = CH_(antilag) || CH_(blur_bound) || CH_(view_lobe) || GATE_;
     if (SHORTENED_) lambda = n_blend < n_prev ? min(lambda, float(n_blend) / (float(n_blend) + 1.0)) : lambda;
     float W_new = lambda * Wh + (1.0 - lambda) * w;
     vec4 blended;
@@ -249,6 +278,12 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
             imageStore(u_host_out[RRC_CH], px, (CH_(fill_age) || RESIDUAL_) && COMPONENTS_ == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
         if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
         if (CONFIDENCE_) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
+        // The gate's state, by the case of the table: the blend's, a hit's
+        // resampled state where the sample is invalid (the history is kept), else 0.
+        if (GATE_) {
+            const vec2 gate_out = hit && !s_valid ? gate_prev : hit && s_valid && n_prev >= 1u ? gate_new : vec2(0.0);
+            imageStore(u_weight_out[RRC_CH], px, vec4(gate_out, 0.0, 0.0));
+        }
     }
 }
 

@@ -106,12 +106,18 @@
 // The spatial fill's fallback estimates (0.4), per channel slot: samplers
 // (the host's images, or the standalone uploads), read by the FILL pass only.
 #define RRC_BINDING_FALLBACK 29
-#define RRC_BINDING_LAST RRC_BINDING_FALLBACK
+// The deviation gate's previous state (0.12, docs/CONVENTIONS.md "The
+// deviation gate"), per channel slot: R32G32_SFLOAT (beta, varsigma) read
+// through a sampler, the storage images being at lavapipe's 64 a stage; the
+// state is written through RRC_BINDING_WEIGHT_OUT (a gated channel has no
+// confidence weight).
+#define RRC_BINDING_GATE 30
+#define RRC_BINDING_LAST RRC_BINDING_GATE
 // The buffer bindings, after every image binding: the host's statistics
 // buffer (interop, rrc_vulkan_frame_stats; std430 uint[8]) and classify's
 // quad list (include/rrc/rrc_values.h layout).
-#define RRC_BINDING_STATS 30
-#define RRC_BINDING_QUADS 31
+#define RRC_BINDING_STATS 31
+#define RRC_BINDING_QUADS 32
 // The fill list (library-owned): the pixels the spatial fill runs on,
 // appended by the pass that writes their channels (docs/CONVENTIONS.md,
 // "The spatial fill"), in RRC_FILL_LISTS sub-lists, one a band of rows, so
@@ -120,7 +126,7 @@
 // groups of RRC_FILL_LIST_PER_GROUP pixels, 1, 1}, each sub-list's count on a
 // 64-byte line of its own, then the sub-lists, RRC_FILL_LIST_CAPACITY words
 // each, one word x | y << 16 a pixel.
-#define RRC_BINDING_FILL_LIST 32
+#define RRC_BINDING_FILL_LIST 33
 // The view buffer (library-owned, RRC_SPEC_VIEW_LOBE contexts only): this
 // frame's camera for the view lobe, std430 { mat4 Q; vec4 d; }: Q =
 // translate(-C) * inverse(VP_cur) (the pixel's clip position to its surface
@@ -128,12 +134,12 @@
 // lighting's turn phi (rrc_frame_desc.lighting_turn, 0.8); formed in
 // double on the CPU and written by the frame's own commands
 // (plugin/accumulator_core.cpp).  Bound to every per-pixel pass.
-#define RRC_BINDING_VIEW 33
+#define RRC_BINDING_VIEW 34
 #define RRC_VIEW_BUFFER_FLOATS 20
 // The channel parameter block (library-owned, a uniform buffer written once
 // at creation): each slot's PARAM rows (rrc_channel_options.def).  Bound to
 // the passes that run channels (frame, fill).
-#define RRC_BINDING_CHANNEL_PARAMS 34
+#define RRC_BINDING_CHANNEL_PARAMS 35
 #define RRC_FILL_LIST_DISPATCH 0u
 #define RRC_FILL_LISTS 16u
 #define RRC_FILL_LIST_COUNTS 16u        // sub-list k's count: word RRC_FILL_LIST_COUNTS + k * RRC_FILL_LIST_COUNT_STRIDE

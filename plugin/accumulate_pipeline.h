@@ -23,10 +23,11 @@ constexpr uint32_t kFirstChannelBinding = RRC_BINDING_FIRST_CHANNEL, kLastBindin
 // Sampled (combined image sampler) bindings; all others are storage images.
 inline bool is_sampled_binding(uint32_t b) {
     return b == RRC_BINDING_HOST_DEPTH || b == RRC_BINDING_HOST_REPROJ || b == RRC_BINDING_HOST_NOCACHE || b == RRC_BINDING_HOST_SAMPLES ||
-           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_HOST_OBJECT_ID || b == RRC_BINDING_CLASSIFIED || b == RRC_BINDING_FALLBACK;
+           b == RRC_BINDING_HOST_CONFIDENCE || b == RRC_BINDING_HOST_OBJECT_ID || b == RRC_BINDING_CLASSIFIED || b == RRC_BINDING_FALLBACK ||
+           b == RRC_BINDING_GATE;
 }
 inline uint32_t binding_count(uint32_t b) {
-    return (b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL) || b == RRC_BINDING_FALLBACK ? RRC_MAX_CHANNELS : 1;
+    return (b >= kFirstChannelBinding && b <= RRC_BINDING_LAST_CHANNEL) || b == RRC_BINDING_FALLBACK || b == RRC_BINDING_GATE ? RRC_MAX_CHANNELS : 1;
 }
 
 // The image view bound at [binding][slot], for every binding of every module:

@@ -17,14 +17,15 @@ ChannelHistory::ChannelHistory(VulkanDevice& dev, const ChannelConfig& c, uint32
         history[p] = GpuImage(dev, history_format(c), w, h);
         if (!packed()) age[p] = GpuImage(dev, VK_FORMAT_R16_UINT, w, h);
         if (c.confidence) weight[p] = GpuImage(dev, VK_FORMAT_R32_SFLOAT, w, h);
+        if (c.gate_kappa > 0.0f) gate[p] = GpuImage(dev, VK_FORMAT_R32G32_SFLOAT, w, h);
     }
 }
 
 void ChannelHistory::collect(std::vector<GpuImage*>& out) {
-    for (int p = 0; p < 2; ++p) out.insert(out.end(), {&history[p], &age[p], &weight[p]});
+    for (int p = 0; p < 2; ++p) out.insert(out.end(), {&history[p], &age[p], &weight[p], &gate[p]});
 }
 
-size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].bytes() + weight[0].bytes()); }
+size_t ChannelHistory::bytes() const { return 2 * (history[0].bytes() + age[0].bytes() + weight[0].bytes() + gate[0].bytes()); }
 
 void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& r, uint32_t prev, const ChannelHistory& h, uint32_t p) {
     if (h.packed()) {  // one R32_UINT word: value and age in, value and age out (AGE_OUT takes any uint format)
@@ -42,6 +43,8 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& r, uint3
     }
     if (r.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = r.weight[prev].view;
     if (h.weight[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.weight[p].view;
+    if (r.gate[prev].view) v.view[RRC_BINDING_GATE][s] = r.gate[prev].view;
+    if (h.gate[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.gate[p].view;
 }
 
 Placeholders::Placeholders(VulkanDevice& dev) {
@@ -87,7 +90,7 @@ DescriptorViews Placeholders::views() const {
         v.view[RRC_BINDING_HIST_OUT][s] = v.view[RRC_BINDING_WEIGHT_OUT][s] = v.view[RRC_BINDING_HOST_OUT][s] = wf;
         v.view[RRC_BINDING_AGE_OUT][s] = v.view[RRC_BINDING_HOST_AGE_OUT][s] = wu;
         v.view[RRC_BINDING_HOST_SAMPLES][s] = v.view[RRC_BINDING_HOST_CONFIDENCE][s] = v.view[RRC_BINDING_FALLBACK][s] =
-            read(VK_FORMAT_R32_SFLOAT);
+            v.view[RRC_BINDING_GATE][s] = read(VK_FORMAT_R32_SFLOAT);
     }
     return v;
 }

@@ -1,5 +1,6 @@
 // What the library owns per channel in both modes: the ping-pong history,
-// age and (with confidence) weight; plus the 1x1 placeholder images bound
+// age, (with confidence) weight and (with the deviation gate) the gate's
+// state; plus the 1x1 placeholder images bound
 // wherever a configuration leaves a kernel binding unused.
 #pragma once
 
@@ -18,6 +19,10 @@ constexpr VkFormat kPackedHistoryFormat = VK_FORMAT_R32_UINT;
 
 struct ChannelHistory {
     GpuImage history[2], age[2], weight[2];  // [parity]: the frame writing parity p reads 1 - p
+    // The deviation gate's (beta, varsigma), R32G32_SFLOAT (docs/CONVENTIONS.md,
+    // "The deviation gate"): read through RRC_BINDING_GATE, written through
+    // RRC_BINDING_WEIGHT_OUT (a gated channel has no weight).
+    GpuImage gate[2];
     bool packed() const { return history[0].format == kPackedHistoryFormat; }
     ChannelHistory(VulkanDevice& dev, const ChannelConfig& config, uint32_t width, uint32_t height);
     void collect(std::vector<GpuImage*>& out);

@@ -119,7 +119,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 11, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 12, 0)
 
 /** The largest `size` a tagged struct may state (Versioning, rule 2): far
  *  above any struct of this API, so that a garbage size is refused before
@@ -246,6 +246,7 @@ typedef enum rrc_mask_enum RRC_ENUM_BASE(uint32_t){RRC_MASK_VALUES(RRC_ENUM_VALU
 #define RRC_MAX_ANTILAG_THRESHOLD 2.0f        /* the relative gap is below 2 */
 #define RRC_MAX_BLUR_BOUND 64.0f              /* rrc_channel_desc.blur_bound (0.6), px^2: a blur of 8 px standard deviation */
 #define RRC_MAX_VIEW_LOBE 3.14159265f         /* rrc_channel_desc.view_lobe (0.7), radians: pi */
+#define RRC_MAX_GATE_KAPPA 16.0f              /* rrc_channel_desc.gate_kappa (0.12), standard errors */
 #define RRC_DEFAULT_FILL_DEPTH_TOLERANCE 0.005f /* rrc_channel_desc.fill_depth_tolerance (0.4; docs/measurements/PERFORMANCE.md "The spatial fill (soft shadows)") */
 
 /* ---- Logging ----------------------------------------------------------- */
@@ -338,6 +339,16 @@ typedef struct rrc_channel_desc {
      * did not follow.  With a fill_prior, b is the fill's prior (a residual
      * of 0).  Accumulating blends only (REUSE refuses it). */
     uint32_t residual;
+    /* ---- 0.12: the deviation gate (docs/CONVENTIONS.md, "The deviation gate") ---- */
+    /* kappa > 0: the channel keeps, per pixel, the running mean and mean
+     * square of the deviation d = sample - history; on a blend, where the
+     * mean (the history's bias) is large against the deviations' standard
+     * error, the history's age is cut to the one at which the bias equals
+     * kappa standard errors, so a history the resampling blurred away from a
+     * clean signal is shortened while one that only carries noise is not.
+     * In [0, RRC_MAX_GATE_KAPPA]; 0 = off.  Needs confidence = 0;
+     * accumulating blends only (REUSE refuses it). */
+    float gate_kappa;
 } rrc_channel_desc;
 
 typedef struct rrc_context_desc {

@@ -110,6 +110,8 @@ TEST(ChannelOptionTable, NeedsAndReuseRefusalsAreValidated) {
             Desc d;  // no prerequisite is on in the base description
             set_member(d.channel, r.member, 1.0);
             if (std::string(r.member) == "blur_sigma") set_member(d.channel, r.member, 0.5);
+            // The gate needs confidence off: its refusal is the base description with confidence on.
+            if (std::string(r.member) == "gate_kappa") d.channel.confidence = 1;
             EXPECT_NE(d.error().find(std::string("channels[0].") + r.member), std::string::npos) << r.member << " without its prerequisite";
         }
         Desc d;
