@@ -41,6 +41,19 @@ int nearest_index(double q, int size) {
     return static_cast<int>(std::floor(q));
 }
 
+BilinearTaps bilinear_taps(double qx, double qy, int width, int height) {
+    const Cell k = cell_at(qx, qy, width, height);
+    BilinearTaps t;
+    t.x0 = k.x0, t.y0 = k.y0;
+    const double w[4] = {(1 - k.fx) * (1 - k.fy), k.fx * (1 - k.fy), (1 - k.fx) * k.fy, k.fx * k.fy};
+    for (int n = 0; n < 4; ++n) {
+        t.x[n] = std::min(std::max(k.x0 + (n & 1), 0), width - 1);
+        t.y[n] = std::min(std::max(k.y0 + (n >> 1), 0), height - 1);
+        t.w[n] = w[n];
+    }
+    return t;
+}
+
 double Image::at(int x, int y, unsigned c) const {
     x = std::min(std::max(x, 0), width - 1);
     y = std::min(std::max(y, 0), height - 1);

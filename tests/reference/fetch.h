@@ -29,6 +29,17 @@ struct Image {
 // blur_g: GAUSSIAN's g = blur_sigma^2 / 2 (ignored by the other filters).
 void resample(const Image& img, rrc_history_filter filter, double qx, double qy, double* out, double blur_g = 0.125);
 
+// The four bilinear taps at q (docs/CONVENTIONS.md, "Coordinates and jitter"):
+// the cell's top-left corner (x0, y0) before the clamp, each tap clamped to the
+// image, in the order (x0, y0), (x0+1, y0), (x0, y0+1), (x0+1, y0+1), with the
+// weights (1-fx)(1-fy), fx(1-fy), (1-fx)fy, fx fy.
+struct BilinearTaps {
+    int x0, y0;
+    int x[4], y[4];
+    double w[4];
+};
+BilinearTaps bilinear_taps(double qx, double qy, int width, int height);
+
 struct DepthFetch {
     Bounded value;           // fetched previous depth (NDC z, or linear d for LINEAR)
     Decision no_background;  // none of the four taps is background

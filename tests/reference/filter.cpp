@@ -46,12 +46,14 @@ Update filter_update(const ChannelParams& ch, PixelCase pc, const Sample& s, con
     double lam = lambda_eff(ch, prev.age);
     const double* h = prev.rectified ? prev.h_rect : prev.h;  // only the blend formula uses the clamped H
     unsigned age = std::min(prev.age + 1u, ch.age_cap);
-    // The lag detector and the blur bound shorten the age of the blend row only
-    // (docs/CONVENTIONS.md, "The lag detector", "The blur bound"): the smaller age wins.
+    // The lag detector, the blur bound, the view lobe and the deviation gate
+    // shorten the age of the blend row only (docs/CONVENTIONS.md, "The lag
+    // detector", "The blur bound", "The deviation gate"): the smallest age wins.
     unsigned shortened = prev.age;
     if (prev.antilag) shortened = std::min(shortened, prev.age_antilag);
     if (prev.blur_bounded) shortened = std::min(shortened, prev.age_blur);
     if (prev.view_capped) shortened = std::min(shortened, prev.age_view);
+    if (prev.gated) shortened = std::min(shortened, prev.age_gate);
     if (shortened < prev.age) {
         const double na = shortened;
         lam = std::min(lam, na / (na + 1.0));

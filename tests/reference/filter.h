@@ -36,6 +36,10 @@ struct Resampled {
     // (docs/CONVENTIONS.md, "The view-dependent history").
     bool view_capped = false;
     unsigned age_view = 0;
+    // The deviation gate (gate.h): the cap N_g, the same way
+    // (docs/CONVENTIONS.md, "The deviation gate").
+    bool gated = false;
+    unsigned age_gate = 0;
 };
 
 struct Update {

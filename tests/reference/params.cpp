@@ -74,6 +74,7 @@ Params resolve(const rrc_context_desc& ctx) {
         ch.blur_bound = d.blur_bound;
         ch.view_lobe = d.view_lobe;
         ch.residual = d.residual != 0;
+        ch.gate_kappa = d.gate_kappa;
 #define RRC_CHANNEL_OPTION(member, ctype, check, dflt, ...) \
     ch.options.member = d.member != 0 ? (double)d.member : (double)(dflt);
 #include <rrc_channel_options.def>

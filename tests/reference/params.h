@@ -47,6 +47,8 @@ struct ChannelParams {
     double view_lobe = 0.0;
     // 0.9 the residual (docs/CONVENTIONS.md "The residual"): the channel filters s - b, b its fallback.
     bool residual = false;
+    // 0.12 the deviation gate (docs/CONVENTIONS.md "The deviation gate"): kappa, 0 = off.
+    double gate_kappa = 0.0;
     TableOptions options;
 };
 

@@ -29,6 +29,18 @@
 //    hit.  The ages the refresh reads are the nearest texel's (flagged by
 //    near_nearest_edge where that texel may differ).
 //  * Plain MOTION with STANDARD depth and far = +inf linearises as n/(1 - z).
+//
+// The deviation gate (reference/gate.h, docs/CONVENTIONS.md "The deviation
+// gate") keeps a per-pixel state (beta, varsigma) that the kernel never reads
+// back.  A test therefore takes history, age and weight from the kernel's
+// outputs as above, but the gate's state from the reference's OWN previous
+// FrameResult (carry_gate_state).  The two states then differ by the kernel's
+// fp32 roundings over the frames the state remembers, and by whatever the
+// kernel did differently on a pixel the reference flagged: each state value
+// carries a bound on that difference (infinite on near_threshold and
+// near_nearest_edge pixels, where the kernel may have taken another case of
+// the table or another n_prev), and ChannelResult::gate_uncertain flags the
+// pixels whose stored age that bound leaves open.
 #ifndef RRC_REFERENCE_H
 #define RRC_REFERENCE_H
 
@@ -44,6 +56,11 @@ struct ChannelHistory {
     std::vector<float> history;  // W*H*components, as stored (fp16 values for fp16 channels)
     std::vector<uint16_t> age;   // W*H
     std::vector<float> weight;   // W*H for confidence channels; empty otherwise
+    // The deviation gate's state (gate channels): beta and varsigma (the
+    // running mean and mean square of the deviation) and the bounds on how far
+    // the kernel's can be from them; W*H each, or empty = all zero.  Never the
+    // kernel's (it is not read back): the reference's own, carry_gate_state.
+    std::vector<double> gate_beta, gate_sq, gate_beta_err, gate_sq_err;
 };
 
 struct PreviousFrame {
@@ -85,6 +102,20 @@ struct ChannelResult {
     std::vector<uint8_t> view_capped;     // W*H
     std::vector<uint8_t> view_uncertain;  // W*H
     std::vector<double> view_theta;       // W*H
+    // The deviation gate (reference/gate.h): the stored state (beta, varsigma)
+    // and its bounds (as ChannelHistory: the next frame's gate state); where
+    // the gate applied, the cap N_g (else 65535), whether it capped the age
+    // (N_g < n_prev), whether the kernel's fp32 state and arithmetic could give
+    // another stored age (the smallest of the caps against n_prev, as
+    // blur_uncertain), and the deviation d (0 elsewhere).
+    std::vector<double> gate_beta, gate_sq, gate_beta_err, gate_sq_err;  // W*H
+    std::vector<uint16_t> gate_age;                                      // W*H
+    std::vector<uint8_t> gate_capped;                                    // W*H
+    std::vector<uint8_t> gate_uncertain;                                 // W*H
+    // The stored ages the kernel may take there (== age where certain): the
+    // range N_g's fp32 bound allows, composed with the other caps.
+    std::vector<uint16_t> gate_age_lo, gate_age_hi;  // W*H
+    std::vector<double> gate_d;                                          // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
     // not rounded to fp16); with a residual (docs/CONVENTIONS.md, "The
@@ -132,6 +163,12 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
 // kernel would store them: fp32 channels rounded to float), for multi-frame
 // runs of the reference on its own.
 PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& frame, const FrameResult& result);
+
+// Replaces prev's gate state (every channel's) with the one `own` stored: for
+// a `prev` built from the kernel's outputs (tests/support/kernel_state.h),
+// which cannot hold the kernel's gate state.  `own` must be the reference's
+// result of the frame prev describes.
+void carry_gate_state(PreviousFrame& prev, const FrameResult& own);
 
 // Clamp to +-65504, then round to the nearest fp16 value, ties to even.
 // The result is exactly representable in fp16.  NaN stays NaN.

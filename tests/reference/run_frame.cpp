@@ -10,6 +10,7 @@
 #include "fetch.h"
 #include "filter.h"
 #include "finish.h"
+#include "gate.h"
 #include "hit_test.h"
 #include "params.h"
 #include "reproject.h"
@@ -77,6 +78,12 @@ FrameResult allocate(const Params& p) {
         c.view_capped.assign(n, 0);
         c.view_uncertain.assign(n, 0);
         c.view_theta.assign(n, 0.0);
+        for (auto* v : {&c.gate_beta, &c.gate_sq, &c.gate_beta_err, &c.gate_sq_err, &c.gate_d}) v->assign(n, 0.0);
+        c.gate_age.assign(n, RRC_MAX_AGE_CAP);
+        c.gate_capped.assign(n, 0);
+        c.gate_uncertain.assign(n, 0);
+        c.gate_age_lo.assign(n, 0);
+        c.gate_age_hi.assign(n, 0);
         r.channels.push_back(std::move(c));
     }
     return r;
@@ -108,6 +115,9 @@ void check_inputs(const Params& p, const PreviousFrame& prev, const rrc_frame_de
         require(h.history.size() == n * p.channels[c].components, "previous history size");
         require(h.age.size() == n, "previous age size");
         require(!p.channels[c].confidence || h.weight.size() == n, "previous weight size");
+        for (const auto* v : {&h.gate_beta, &h.gate_sq, &h.gate_beta_err, &h.gate_sq_err})
+            require(v->empty() || v->size() == n, "previous gate state size");
+        require(h.gate_beta.empty() == h.gate_sq.empty(), "previous gate state: beta and varsigma");
     }
 }
 
@@ -140,6 +150,47 @@ bool refreshed(const Params& p, const PreviousFrame& prev, const rrc_frame_desc&
         amax = std::max(amax, a);
     }
     return refresh_due(p, i, j, frame.frame_index) || amin == 0 || (p.max_lifetime > 0 && amax >= p.max_lifetime);
+}
+
+// The deviation gate on a hit (docs/CONVENTIONS.md, "The deviation gate"):
+// the previous state at the bilinear taps; on the blend row the update and
+// the cap N_g (r.gated), composed with the other caps by filter_update.
+void apply_gate(const ChannelParams& ch, const ChannelHistory& h, int width, int height, const HitTest& t, const Sample& s, double scale,
+                Resampled& r, ChannelResult& out, size_t px) {
+    const double q_err = std::max(t.qx.err, t.qy.err) * scale;
+    const GateState prev = gate_previous(h.gate_beta, h.gate_sq, h.gate_beta_err, h.gate_sq_err, width, height, t.qx.v, t.qy.v, q_err);
+    GateState stored;
+    if (!s.valid) {
+        stored = prev;  // the history is kept, and so is the state
+    } else if (r.age >= 1) {
+        double h_err[4] = {0, 0, 0, 0};
+        resample_error(Image{h.history.data(), width, height, ch.components}, t.qx.v, t.qy.v, q_err, h_err);
+        const Deviation dv = gate_deviation(ch.components, s.s, r.h, h_err);  // H before rectification
+        const Gate g = gate_update(ch.gate_kappa, prev, dv, r.age, scale);
+        stored = g.state;
+        r.gated = true;
+        r.age_gate = g.age;
+        out.gate_age[px] = static_cast<uint16_t>(std::min<unsigned>(g.age, RRC_MAX_AGE_CAP));
+        out.gate_capped[px] = g.age < r.age;
+        out.gate_d[px] = dv.d;
+        // The stored age min(n', cap) + 1 may differ where N_g is uncertain.
+        unsigned other = r.age;
+        if (r.antilag) other = std::min(other, r.age_antilag);
+        if (r.blur_bounded) other = std::min(other, r.age_blur);
+        if (r.view_capped) other = std::min(other, r.age_view);
+        out.gate_uncertain[px] = std::min(other, g.age_lo) != std::min(other, g.age_hi);
+        // The stored age for a cap N (as filter_update stores it); it grows with N.
+        const auto stored_age = [&](unsigned cap) {
+            const unsigned shortened = std::min(other, cap);
+            return std::min((shortened < r.age ? shortened : r.age) + 1u, ch.age_cap);
+        };
+        out.gate_age_lo[px] = static_cast<uint16_t>(stored_age(g.age_lo));
+        out.gate_age_hi[px] = static_cast<uint16_t>(stored_age(g.age_hi));
+    }
+    out.gate_beta[px] = stored.beta;
+    out.gate_sq[px] = stored.sq;
+    out.gate_beta_err[px] = stored.beta_err;
+    out.gate_sq_err[px] = stored.sq_err;
 }
 
 }  // namespace
@@ -264,6 +315,15 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
                         if (r.blur_bounded) other = std::min(other, r.age_blur);
                         res.channels[c].view_uncertain[px] = std::min(other, vl.age_lo) != std::min(other, vl.age_hi);
                     }
+                    // The deviation gate: the blend case updates the state and caps
+                    // the age; a hit with an invalid sample keeps the previous state;
+                    // every other case stores (0, 0) (allocate's zeros).
+                    if (ch.gate_kappa > 0.0 && ch.blend != RRC_BLEND_REUSE && pc == PixelCase::hit)
+                        apply_gate(ch, prev.channels[c], p.width, p.height, t, s, scale, r, res.channels[c], px);
+                    // A pixel whose case or n_prev the kernel may have taken otherwise:
+                    // its state may be anything the table allows.
+                    if (ch.gate_kappa > 0.0 && (res.near_threshold[px] || res.near_nearest_edge[px]))
+                        res.channels[c].gate_beta_err[px] = res.channels[c].gate_sq_err[px] = INFINITY;
                     // REUSE: a refresh is a miss.
                     const PixelCase reuse_case = pc == PixelCase::hit ? PixelCase::miss : pc;
                     u = filter_update(ch, ch.blend == RRC_BLEND_REUSE ? reuse_case : pc, s, r);
@@ -320,7 +380,20 @@ PreviousFrame as_previous(const rrc_context_desc& ctx, const rrc_frame_desc& fra
         h.weight.assign(c.weight.begin(), c.weight.end());
         prev.channels.push_back(std::move(h));
     }
+    carry_gate_state(prev, result);
     return prev;
+}
+
+void carry_gate_state(PreviousFrame& prev, const FrameResult& own) {
+    if (prev.channels.size() != own.channels.size()) throw std::invalid_argument("rrc_ref::carry_gate_state: channel count");
+    for (size_t c = 0; c < own.channels.size(); ++c) {
+        ChannelHistory& h = prev.channels[c];
+        const ChannelResult& r = own.channels[c];
+        h.gate_beta = r.gate_beta;
+        h.gate_sq = r.gate_sq;
+        h.gate_beta_err = r.gate_beta_err;
+        h.gate_sq_err = r.gate_sq_err;
+    }
 }
 
 }  // namespace rrc_ref
