@@ -488,6 +488,9 @@ TEST(AccumulateOptions, SignalSpecs) {
     EXPECT_EQ(s.rectify, 0u);
     EXPECT_EQ(s.antilag, 0u);
     EXPECT_FLOAT_EQ(s.blur_bound, 0.25f);
+    EXPECT_EQ(s.gate_kappa, 0.0f);
+    ASSERT_TRUE(rrc_cli::parse_signal_spec("c:gate=2", s, err)) << err;
+    EXPECT_FLOAT_EQ(s.gate_kappa, 2.0f);
 
     struct Bad {
         const char* spec;
@@ -539,6 +542,9 @@ TEST(AccumulateOptions, SignalSpecs) {
                                                    {"s:blur_bound=65", "blur_bound"},
                                                    {"s:blur_bound=nan", "blur_bound"},
                                                    {"s:blur_bound=inf", "blur_bound"},
+                                                   {"s:gate=0", "gate"},
+                                                   {"s:gate=17", "gate"},
+                                                   {"s:gate=nan", "gate"},
                                                    {"mv", "reserved"},
                                                    {"prevclip", "reserved"},
                                                    {"nocache", "reserved"},
@@ -1130,7 +1136,7 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     // The cures reach the channel, and the library accepts them as given.
     o = parse_with({"--preset", "blender", "--signal",
                     "ViewLayer.Combined:lambda=0.85,blend=age_aware,rectify=on,rectify_gamma=1.5,antilag=on,antilag_gamma=0.5,"
-                    "antilag_threshold=0.25,blur_bound=0.5"})
+                    "antilag_threshold=0.25,blur_bound=0.5,gate=2"})
             .options;
     layout = rrc_cli::discover_layout(info, path, o);
     const rrc_context_desc cured = rrc_cli::make_context_desc(o, layout, channels);
@@ -1141,6 +1147,7 @@ TEST(AccumulateTool, BlenderPresetSignalDefaults) {
     EXPECT_FLOAT_EQ(channels[0].antilag_gamma, 0.5f);
     EXPECT_FLOAT_EQ(channels[0].antilag_threshold, 0.25f);
     EXPECT_FLOAT_EQ(channels[0].blur_bound, 0.5f);
+    EXPECT_FLOAT_EQ(channels[0].gate_kappa, 2.0f);
     EXPECT_EQ(rrc_validate_context_desc(&cured), RRC_SUCCESS) << rrc_last_error();
 
     // Without the preset the automatic signals keep the tool's defaults too.

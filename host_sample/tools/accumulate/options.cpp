@@ -199,16 +199,19 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
                     return false;
                 }
                 (key == "rectify" ? s.rectify : s.antilag) = value == "on" ? 1u : 0u;
-            } else if (key == "rectify_gamma" || key == "antilag_gamma" || key == "antilag_threshold" || key == "blur_bound") {
+            } else if (key == "rectify_gamma" || key == "antilag_gamma" || key == "antilag_threshold" || key == "blur_bound" ||
+                       key == "gate") {
                 // Each in (0, its maximum]: the library's own range (include/rrc/rrc.h), checked here so that
                 // a typo fails before any file is read.
                 const float hi = key == "rectify_gamma"   ? RRC_MAX_RECTIFY_GAMMA
                                  : key == "antilag_gamma" ? RRC_MAX_ANTILAG_GAMMA
                                  : key == "blur_bound"    ? RRC_MAX_BLUR_BOUND
+                                 : key == "gate"          ? RRC_MAX_GATE_KAPPA
                                                           : RRC_MAX_ANTILAG_THRESHOLD;
                 float& field = key == "rectify_gamma"   ? s.rectify_gamma
                                : key == "antilag_gamma" ? s.antilag_gamma
                                : key == "blur_bound"    ? s.blur_bound
+                               : key == "gate"          ? s.gate_kappa
                                                         : s.antilag_threshold;
                 if (!parse_float(value, field) || !(field > 0.0f && field <= hi)) {
                     char range[32];
@@ -219,7 +222,7 @@ bool parse_signal_spec(const std::string& text, SignalOptions& out, std::string&
             } else {
                 error = where + "unknown key " + quoted(key) +
                         " (expected lambda, blend, filter, history, max_age, fill, fill_radius, fill_tolerance, rectify, "
-                        "rectify_gamma, antilag, antilag_gamma, antilag_threshold, blur_bound)";
+                        "rectify_gamma, antilag, antilag_gamma, antilag_threshold, blur_bound, gate)";
                 return false;
             }
         }
@@ -459,7 +462,10 @@ Signals:
                          (0,2] (0.5: the relative gap that drops the
                          history); blur_bound=(0,64] px^2 (off: cap the
                          history's age so that its resampling blur stays
-                         within B px^2 per axis, "The blur bound").
+                         within B px^2 per axis, "The blur bound");
+                         gate=(0,16] (off: cut the history's age where its
+                         bias, the mean of sample - history, exceeds kappa
+                         standard errors, "The deviation gate").
                          Without --signal every layer of the first frame is
                          accumulated except the depth, motion, prevclip and
                          nocache channels' layers.  A layer is NAME.Y (or any

@@ -48,6 +48,7 @@ struct SignalOptions {
     float antilag_gamma = 0.0f;         /* antilag_gamma=(0, RRC_MAX_ANTILAG_GAMMA], needs antilag */
     float antilag_threshold = 0.0f;     /* antilag_threshold=(0, RRC_MAX_ANTILAG_THRESHOLD], needs antilag */
     float blur_bound = 0.0f;            /* blur_bound=(0, RRC_MAX_BLUR_BOUND] px^2 */
+    float gate_kappa = 0.0f;            /* gate=(0, RRC_MAX_GATE_KAPPA]: the deviation gate's kappa */
 };
 
 struct Options {

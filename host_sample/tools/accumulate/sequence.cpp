@@ -435,6 +435,7 @@ rrc_context_desc make_context_desc(const Options& o, const SequenceLayout& layou
         channels.back().antilag_gamma = s.options.antilag_gamma;
         channels.back().antilag_threshold = s.options.antilag_threshold;
         channels.back().blur_bound = s.options.blur_bound;
+        channels.back().gate_kappa = s.options.gate_kappa;
     }
 
     rrc_context_desc d = rrc_host::context_desc(static_cast<uint32_t>(layout.width), static_cast<uint32_t>(layout.height), channels);
