@@ -13,6 +13,7 @@ ChannelSettings settings_of(const rrc_channel_desc& d) {
     s.fill_age = d.fill_age, s.fill_radius = d.fill_radius, s.fill_depth_tolerance = d.fill_depth_tolerance, s.fill_prior = d.fill_prior;
     s.antilag = d.antilag, s.antilag_gamma = d.antilag_gamma, s.antilag_threshold = d.antilag_threshold;
     s.blur_bound = d.blur_bound, s.view_lobe = d.view_lobe, s.residual = d.residual;
+    s.gate_kappa = d.gate_kappa;
     return s;
 }
 

@@ -40,6 +40,8 @@ struct ChannelSettings {
     // prior; pcf's kSamplePcfBaseTaps bilinear compares (README.md, "The pcf residual"); env's
     // filtered reflections (kSampleEnvBase; README.md, "The env residual").
     uint32_t residual = 0;
+    // 0.12 the deviation gate (docs/CONVENTIONS.md, "The deviation gate"), kappa; 0 = off.
+    float gate_kappa = 0.0f;
 };
 
 /** The env preset's base with RRC_PRESET_FLAG_BASE: four reflections into the environment
@@ -58,6 +60,9 @@ constexpr uint32_t kSamplePcfBaseTaps = 4;
 /** rrc-sample's B where --blur-bound names a channel without --blur-bound-px2 (docs/measurements/PERFORMANCE.md,
  *  "The blur bound: what it buys, measured"). */
 constexpr float kSampleBlurBound = 0.5f;
+/** --gate's kappa where --gate-kappa is not given (docs/measurements/clean-input.md, "A temporal
+ *  gate, simulated": the soft form's best threshold in the offline preset's model). */
+constexpr float kSampleGateKappa = 2.0f;
 
 /** A channel's settings as the library's description holds them. */
 ChannelSettings settings_of(const rrc_channel_desc& d);

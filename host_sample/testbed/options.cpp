@@ -159,6 +159,11 @@ std::string usage() {
            "                           resampling blur stays within --blur-bound-px2 (docs/CONVENTIONS.md, \"The blur bound\")\n"
            "  --blur-bound-px2 B       that bound in px^2 per axis, in (0, 64] (default: the preset's on a preset channel\n"
            "                           when --blur-bound is not given, else 0.5)\n"
+"  --gate LIST              the deviation gate on exactly these channels (pcf,env,soft, or none; default: the\n"
+           "                           presets', none): a history whose mean deviation from the samples exceeds kappa\n"
+           "                           standard errors is shortened (docs/CONVENTIONS.md, \"The deviation gate\")\n"
+           "  --gate-kappa K           its kappa, in (0, 16] (default: the preset's on a preset channel when --gate is\n"
+           "                           not given, else 2)\n"
            "  --env-view-lobe-px P     the view-dependent history on the env channel: its age is capped at\n"
            "                           floor(A/theta), theta the turn of the view direction to the pixel's surface\n"
            "                           point since the last frame, A = P pixels of the camera's vertical angle\n"
@@ -213,6 +218,9 @@ Options parse_options(int argc, const char* const* argv) {
     // The signals whose channel gets the blur bound; not given: the presets' (channel_presets.h).
     std::optional<uint32_t> blur_bound;
     float blur_bound_px2 = 0.0f;
+    // The signals whose channel gets the deviation gate; not given: the presets'.
+    std::optional<uint32_t> gate;
+    float gate_kappa = 0.0f;
     // --no-base picks the presets every other option then changes: read it first.
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--no-base") == 0) o.base = false;
@@ -261,6 +269,10 @@ Options parse_options(int argc, const char* const* argv) {
             blur_bound = signal_bits_or_none(c);
         else if (c.option("--blur-bound-px2"))
             blur_bound_px2 = c.number(1e-6f, RRC_MAX_BLUR_BOUND);
+        else if (c.option("--gate"))
+            gate = signal_bits_or_none(c);
+        else if (c.option("--gate-kappa"))
+            gate_kappa = c.number(1e-6f, RRC_MAX_GATE_KAPPA);
         else if (c.option("--env-view-lobe")) {
             o.channels.env.view_lobe = c.number(0.0f, RRC_MAX_VIEW_LOBE);
             o.env_view_lobe_px = 0.0f;
@@ -395,6 +407,24 @@ Options parse_options(int argc, const char* const* argv) {
                          : blur_bound_px2 > 0.0f  ? blur_bound_px2
                          : from_preset            ? ch->blur_bound
                                                   : kSampleBlurBound;
+    }
+    // Not given, --gate keeps the presets' channels and kappa (--gate-kappa overrides it); given,
+    // the listed channels get the given kappa or kSampleGateKappa.
+    uint32_t preset_gate_bits = 0;
+    for (auto [bit, ch] : {std::pair<uint32_t, const ChannelSettings*>{kSignalPcf, &presets.pcf}, {kSignalEnv, &presets.env},
+                           {kSignalSoft, &presets.soft}})
+        if (ch->gate_kappa > 0.0f) preset_gate_bits |= bit;
+    const uint32_t gate_bits = gate ? *gate : preset_gate_bits;
+    if (gate_bits == 0 && gate_kappa > 0.0f) throw OptionError("--gate-kappa needs --gate");
+    for (auto [bit, ch] : {std::pair<uint32_t, ChannelSettings*>{kSignalPcf, &o.channels.pcf}, {kSignalEnv, &o.channels.env},
+                           {kSignalSoft, &o.channels.soft}}) {
+        const bool from_preset = !gate && ch->gate_kappa > 0.0f;
+        ch->gate_kappa = !(gate_bits & bit)   ? 0.0f
+                         : gate_kappa > 0.0f ? gate_kappa
+                         : from_preset       ? ch->gate_kappa
+                                             : kSampleGateKappa;
+        // rrc refuses the gate on a channel with confidence: say so here, by option name.
+        if (ch->gate_kappa > 0.0f && ch->confidence) throw OptionError("--gate: the pcf channel has --pcf-confidence, which the gate refuses");
     }
     // rrc refuses ADAPTIVE with an epsilon (rrc.h, rrc_context_desc.depth_test): say so here, by option name.
     if (o.depth_test == RRC_DEPTH_TEST_ADAPTIVE && o.epsilon_scale > 0.0f)

@@ -33,6 +33,7 @@ std::vector<rrc_channel_desc> channel_descs(uint32_t signals, const ChannelPrese
         d.blur_bound = c.blur_bound;
         d.view_lobe = c.view_lobe;
         d.residual = c.residual;
+        d.gate_kappa = c.gate_kappa;
         return d;
     };
     std::vector<rrc_channel_desc> c;

@@ -740,6 +740,18 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
     o = parse_options(1, no_bound);
     EXPECT_EQ(o.channels.pcf.blur_bound, ChannelPresets{}.pcf.blur_bound);
     EXPECT_EQ(o.channels.soft.blur_bound, ChannelPresets{}.soft.blur_bound);
+    // The deviation gate (0.12) on the listed channels only, kappa given or the sample's.
+    const char* gate[] = {"rrc-sample", "--gate", "env,soft", "--gate-kappa", "3"};
+    o = parse_options(5, gate);
+    EXPECT_EQ(o.channels.pcf.gate_kappa, 0.0f);
+    EXPECT_EQ(o.channels.env.gate_kappa, 3.0f);
+    EXPECT_EQ(o.channels.soft.gate_kappa, 3.0f);
+    const char* gate_default[] = {"rrc-sample", "--gate", "pcf"};
+    o = parse_options(3, gate_default);
+    EXPECT_EQ(o.channels.pcf.gate_kappa, kSampleGateKappa);
+    EXPECT_EQ(o.channels.soft.gate_kappa, 0.0f);
+    o = parse_options(1, gate_default);
+    EXPECT_EQ(o.channels.pcf.gate_kappa, ChannelPresets{}.pcf.gate_kappa) << "not given: the presets'";
     // The view lobe (0.7): env only; the preset's in radians at every size (channel_presets.h),
     // replaced by one in pixels of the vertical angle when those are given.
     EXPECT_EQ(o.env_view_lobe_px, 0.0f);
@@ -857,6 +869,10 @@ TEST(RrcSampleOptions, ParsesAndRefuses) {
                                                        {"rrc-sample", "--blur-bound", "none", "--blur-bound-px2", "0.5"},
                                                        {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "65"},
                                                        {"rrc-sample", "--blur-bound", "pcf", "--blur-bound-px2", "0"},
+                                                       {"rrc-sample", "--gate", "fog"},
+                                                       {"rrc-sample", "--gate", "none", "--gate-kappa", "2"},
+                                                       {"rrc-sample", "--gate", "pcf", "--gate-kappa", "17"},
+                                                       {"rrc-sample", "--gate", "pcf", "--pcf-confidence"},
                                                        {"rrc-sample", "--soft-lambda", "1"},
                                                        {"rrc-sample", "--soft-residual", "yes"},
                                                        {"rrc-sample", "--soft-residual"},
