@@ -22,6 +22,7 @@
 #include "reference/selftest_scene.h"
 #include "support/cache_policy.h"
 #include "support/kernel_state.h"
+#include "support/mismatches.h"
 #include "support/rrc_test_context.h"
 #include "support/scene_frames.h"
 #include "support/split_frame.h"
@@ -62,27 +63,6 @@ void change_signal(rrc_scene::Frame& f, int t) {
             for (int k = 0; k < 4; ++k) f.signal4[4 * p + k] += 0.125f * (k + 1);
         }
 }
-
-// Reports the first few mismatches of one kind in full and counts the rest,
-// so that a kernel ignoring an option fails readably.
-class Mismatches {
-public:
-    explicit Mismatches(std::string what) : what_(std::move(what)) {}
-    ~Mismatches() {
-        if (count_ > 0) ADD_FAILURE() << count_ << " " << what_ << " mismatches, the first:" << first_.str();
-    }
-    // The stream for the message of one mismatch.
-    std::ostream& add() {
-        sink_.str("");
-        return ++count_ <= 8 ? first_ << "\n  " : sink_;
-    }
-    int64_t count() const { return count_; }
-
-private:
-    std::string what_;
-    int64_t count_ = 0;
-    std::ostringstream first_, sink_;
-};
 
 // The value tolerance of tests/support/tolerance.h plus what the reference says
 // rectification's fp32 box adds.

@@ -20,6 +20,7 @@
 //     test (tests/options) does not: confidence, infinity, the range's end.
 #include "reference/rrc_reference.h"
 #include "support/kernel_state.h"
+#include "support/mismatches.h"
 #include "support/rrc_test_context.h"
 #include "support/tolerance.h"
 
@@ -120,24 +121,6 @@ rrc_channel_desc gated(rrc_channel_desc d, float kappa) {
     d.gate_kappa = kappa;
     return d;
 }
-
-// Reports the first few mismatches of one kind in full and counts the rest.
-class Mismatches {
-public:
-    explicit Mismatches(std::string what) : what_(std::move(what)) {}
-    ~Mismatches() {
-        if (count_ > 0) ADD_FAILURE() << count_ << " " << what_ << " mismatches, the first:" << first_.str();
-    }
-    std::ostream& add() {
-        sink_.str("");
-        return ++count_ <= 8 ? first_ << "\n  " : sink_;
-    }
-
-private:
-    std::string what_;
-    int64_t count_ = 0;
-    std::ostringstream first_, sink_;
-};
 
 struct Stats {
     int64_t compared = 0, skipped = 0, hits = 0, capped = 0, uncertain = 0, other_uncertain = 0, caught_off = 0;
