@@ -35,6 +35,17 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
     vec4 shown = v_p;
     if (fill_here && n_p < T) {
         float phi = float(T - n_p) / float(T);
+        // The deviation gate's noise weight (docs/CONVENTIONS.md, "The deviation
+        // gate", "With a spatial fill"): where p's stored state estimates its
+        // samples' noise (varsigma > 0), a neighbour further from v_p than kappa
+        // standard deviations of p's deviations is left out.
+        bool noise_test = false;
+        float limit = 0.0;
+        if (CH_(gate_kappa)) {
+            const vec2 st = texelFetch(s_gate[RRC_CH], px, 0).xy;
+            noise_test = st.y > 0.0;
+            limit = P.gate_kappa * P.gate_kappa * max(st.y - st.x * st.x, 0.0);
+        }
         vec4 acc = vec4(0.0);
         float wsum = 0.0;
         for (int b = -R; b <= R; ++b)
@@ -48,6 +59,11 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
                 uint n_q = LOAD_N(t, word);
                 float d_q = imageLoad(u_prev_depth, t).r;
                 bool ok = valid_p && inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) && rrc_fill_similar(d_q, d_p, P.fill_depth_tolerance);
+                if (CH_(gate_kappa) && noise_test) {
+                    const vec4 dv = v_q - v_p;
+                    const float dq = COMPONENTS_ == 1u ? dv.x : ((dv.x + dv.y) + dv.z) * (1.0 / 3.0);
+                    ok = ok && dq * dq <= limit;
+                }
                 float w_q = ok ? float(min(n_q, T)) : 0.0;
                 acc += w_q * (ok ? v_q : vec4(0.0));
                 wsum += w_q;
