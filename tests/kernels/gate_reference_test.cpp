@@ -16,8 +16,17 @@
 //     without the gate;
 //   - a residual channel equals a twin without the residual fed fl(s - b): the
 //     gate's deviation is the residual's;
+//   - with a spatial fill ("With a spatial fill"): the displayed value against
+//     the reference's fill of a twin context's (the same channels without the
+//     fill) history and ages, weighed by the reference's own gate state, as
+//     tests/kernels/finishing_reference_test.cpp compares the fill (a pixel
+//     whose neighbour test lies within fp32 error of its threshold skipped);
+//     the gate must leave neighbours out and the reference's fill without its
+//     weighing must differ from the kernel, so the comparison cannot pass
+//     without it;
 //   - the descriptor checks the section states that the option table's generic
 //     test (tests/options) does not: confidence, infinity, the range's end.
+#include "reference/finish.h"
 #include "reference/rrc_reference.h"
 #include "support/kernel_state.h"
 #include "support/mismatches.h"
@@ -287,6 +296,175 @@ TEST(GateKernel, TheResidualsDeviationIsGated) {
     EXPECT_EQ(value_diff, 0);
     EXPECT_GT(capped_apart, 1000) << "the gate hardly acted on the residual";
 }
+
+// ---- With a spatial fill ----------------------------------------------------------
+
+rrc_channel_desc filled(rrc_channel_desc d, uint32_t T, uint32_t r, float P) {
+    d.fill_age = T;
+    d.fill_radius = r;
+    d.fill_prior = P;
+    return d;
+}
+
+// The twin of a fill channel: no fill, and a residual channel's history as a
+// plain channel fed fl(s - b) (TheResidualsDeviationIsGated: the same history,
+// ages and gate state), so that its values are the history the fill reads.
+rrc_channel_desc fill_twin(rrc_channel_desc d) {
+    d.fill_age = 0;
+    d.fill_radius = 0;
+    d.fill_prior = 0.0f;
+    d.residual = 0;
+    return d;
+}
+
+// Runs the fill channels and their twins over the pan; compares the displayed
+// values with the reference's fill of the twin's history and ages and of the
+// reference's own gate state, which it carries as run_against_reference does.
+void run_fill_against_reference(const char* name, const std::vector<rrc_channel_desc>& chs, double amplitude) {
+    std::vector<rrc_channel_desc> twin_chs;
+    for (const rrc_channel_desc& d : chs) twin_chs.push_back(fill_twin(d));
+    Context ctx(plane_context(chs)), twin(plane_context(twin_chs));
+    ASSERT_TRUE(ctx && twin) << rrc_last_error();
+    Mismatches masks(std::string(name) + " mask (fill vs twin)"), ages(std::string(name) + " age (fill vs twin)"),
+        values(std::string(name) + " displayed value");
+    const size_t n = (size_t)kW * kH;
+    int64_t filled = 0, compared = 0, skipped = 0, weighed = 0, excluded = 0;
+    double max_ratio = 0;
+    std::vector<int64_t> excluded_by(chs.size(), 0);
+    // The wrong variants: the fill without the gate's weighing; v_p = varsigma_p
+    // (beta_p left out); a quarter larger kappa; the previous frame's state.
+    const char* variant_names[] = {"without the gate's weighing", "beta ignored", "1.25 kappa", "the previous frame's state"};
+    const size_t kVariants = 4;
+    std::vector<std::vector<int64_t>> caught(kVariants, std::vector<int64_t>(chs.size(), 0));
+    std::vector<rrc_channel_desc> wide_chs = chs;
+    for (rrc_channel_desc& d : wide_chs) d.gate_kappa *= 1.25f;
+    rrc_context_desc wide = ctx.desc();
+    wide.channels = wide_chs.data();
+    rrc_ref::PreviousFrame prev;
+    for (int t = 0; t < kFrames; ++t) {
+        Frame f(chs, t, amplitude);
+        // A fill's fallback: the smooth base (with a residual it is the base already).
+        for (size_t c = 0; c < chs.size(); ++c)
+            if (chs[c].fill_prior > 0) f.inputs[c].fallback = f.base[c].data();
+        // The twin's inputs: a residual channel's residual fl(s - b) as its samples.
+        std::vector<std::vector<float>> residual(chs.size());
+        std::vector<rrc_channel_input> twin_inputs;
+        for (size_t c = 0; c < chs.size(); ++c) {
+            if (chs[c].residual) {
+                residual[c].resize(f.samples[c].size());
+                for (size_t e = 0; e < residual[c].size(); ++e)
+                    residual[c][e] = f.samples[c][e] - f.base[c][e];  // fp32, as the kernel forms it
+            }
+            twin_inputs.push_back(channel_input(chs[c].residual ? residual[c].data() : f.samples[c].data()));
+        }
+        rrc_frame_desc twin_desc = f.desc;
+        twin_desc.channels = twin_inputs.data();
+        const FrameResult k = ctx.run(f.desc), tw = twin.run(twin_desc);
+        // The reference's gate state of this frame (the twin's: the fill does not touch it).
+        const rrc_ref::FrameResult r = rrc_ref::run_frame(twin.desc(), prev, twin_desc);
+        for (size_t c = 0; c < chs.size(); ++c) {
+            const uint32_t m = chs[c].components;
+            const std::vector<float> zero(chs[c].residual ? n * m : 0, 0.0f);  // a residual's prior: a residual of 0
+            const rrc_ref::ChannelResult& rc = r.channels[c];
+            rrc_ref::FillInputs fin{tw.values[c].data(), tw.age[c].data(), f.depth.data(),
+                                    chs[c].residual ? zero.data() : f.inputs[c].fallback};
+            fin.gate_beta = rc.gate_beta.data();
+            fin.gate_sq = rc.gate_sq.data();
+            fin.gate_beta_err = rc.gate_beta_err.data();
+            fin.gate_sq_err = rc.gate_sq_err.data();
+            const rrc_ref::FillResult ref = rrc_ref::spatial_fill(ctx.desc(), c, fin);
+            rrc_ref::FillOptions no_gate;
+            no_gate.gate = false;
+            const rrc_ref::FillResult off = rrc_ref::spatial_fill(ctx.desc(), c, fin, no_gate);
+            std::vector<rrc_ref::FillResult> variant(kVariants);
+            variant[0] = off;
+            const std::vector<double> zero_beta(n, 0.0);
+            rrc_ref::FillInputs vin = fin;
+            vin.gate_beta = zero_beta.data();
+            variant[1] = rrc_ref::spatial_fill(ctx.desc(), c, vin);
+            variant[2] = rrc_ref::spatial_fill(wide, c, fin);
+            const std::vector<double> none(n, 0.0);
+            vin = fin;
+            vin.gate_beta = prev.valid && !prev.channels[c].gate_beta.empty() ? prev.channels[c].gate_beta.data() : none.data();
+            vin.gate_sq = prev.valid && !prev.channels[c].gate_sq.empty() ? prev.channels[c].gate_sq.data() : none.data();
+            vin.gate_beta_err = vin.gate_sq_err = nullptr;
+            variant[3] = rrc_ref::spatial_fill(ctx.desc(), c, vin);
+            for (size_t i = 0; i < n; ++i) {
+                // The fill is display-only: the twin's ages (and mask).
+                if (k.age[c][i] != tw.age[c][i])
+                    ages.add() << "frame " << t << " pixel " << i << " channel " << c << " fill " << k.age[c][i] << " twin "
+                               << tw.age[c][i];
+                if (c == 0 && k.mask[i] != tw.mask[i]) masks.add() << "frame " << t << " pixel " << i;
+                if (!ref.filled[i] && !chs[c].residual) continue;  // v_p: the twin's value (finishing_reference_test checks it)
+                filled += ref.filled[i];
+                if (ref.near_threshold[i]) {
+                    ++skipped;
+                    continue;
+                }
+                ++compared;
+                weighed += ref.filled[i] && rc.gate_sq[i] > 0.0;
+                excluded += ref.gate_excluded[i] > 0;
+                excluded_by[c] += ref.gate_excluded[i] > 0;
+                bool differs[kVariants] = {false, false, false, false};
+                for (uint32_t q = 0; q < m; ++q) {
+                    const size_t e = m * i + q;
+                    // A residual's displayed value: the fill plus this frame's base, one more fp32 rounding.
+                    const double b = chs[c].residual ? f.base[c][e] : 0.0;
+                    const double rv = ref.shown[e] + b, kv = k.values[c][e];
+                    const double tol = arithmetic_tolerance(rv, ref.exact[e] + b, false) + ref.err[e] +
+                                       (chs[c].residual ? 2.0 * FLT_EPSILON * std::fabs(rv) : 0.0);
+                    if (!(std::fabs(kv - rv) <= tol))
+                        values.add() << "frame " << t << " pixel (" << i % kW << "," << i / kW << ") channel " << c << " component " << q
+                                     << " kernel " << kv << " reference " << rv << " (without the gate's weighing " << off.shown[e] + b
+                                     << ") history " << tw.values[c][e] << " age " << tw.age[c][i] << " neighbours "
+                                     << int(ref.neighbours[i]) << " left out " << int(ref.gate_excluded[i]) << " beta " << rc.gate_beta[i]
+                                     << " varsigma " << rc.gate_sq[i];
+                    max_ratio = std::max(max_ratio, std::fabs(kv - rv) / tol);
+                    for (size_t v = 0; v < kVariants; ++v)
+                        differs[v] = differs[v] || std::fabs(variant[v].shown[e] - ref.shown[e]) > 2 * tol;
+                }
+                for (size_t v = 0; v < kVariants; ++v) caught[v][c] += differs[v];
+            }
+        }
+        prev = rrc_test::kernel_state(f.depth, tw);
+        rrc_ref::carry_gate_state(prev, r);  // the kernel's gate state is not read back: the reference's own
+    }
+    std::printf(
+        "%-12s filled %lld compared %lld skipped (a test near its threshold) %lld weighed (varsigma > 0) %lld with neighbours "
+        "left out %lld (per channel",
+        name, (long long)filled, (long long)compared, (long long)skipped, (long long)weighed, (long long)excluded);
+    for (int64_t e : excluded_by) std::printf(" %lld", (long long)e);
+    std::printf("); max error %.3g of the tolerance\n", max_ratio);
+    EXPECT_GT(weighed, 1000) << name << ": too few filled pixels with a noise estimate";
+    for (size_t c = 0; c < chs.size(); ++c)
+        EXPECT_GT(excluded_by[c], 50) << name << " channel " << c << ": the gate hardly left a neighbour out";
+    for (size_t v = 0; v < kVariants; ++v) {
+        std::printf("  wrong variant %-28s would fail on pixels (per channel)", variant_names[v]);
+        for (size_t c = 0; c < chs.size(); ++c) std::printf(" %lld", (long long)caught[v][c]);
+        std::printf("\n");
+        for (size_t c = 0; c < chs.size(); ++c)
+            EXPECT_GT(caught[v][c], 200) << name << " channel " << c << ": the comparison would not notice " << variant_names[v];
+    }
+    EXPECT_LT(skipped, compared / 20) << name << ": too many pixels with a test near its threshold";
+}
+
+// Gated channels with a fill: 1 and 4 components, fp16 (the packed 1-component
+// history too) and fp32, a fallback, and a residual (its stored residuals
+// weighed, its prior a residual of 0, the base added after).
+std::vector<rrc_channel_desc> gate_fill_channels() {
+    std::vector<rrc_channel_desc> c = {
+        filled(gated(channel("f1f", 1, 0.95f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR), 1.25f), 4, 1, 0.0f),
+        filled(gated(channel("f4h", 4, 0.9f, RRC_HISTORY_FP16, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_CATMULL_ROM), 2.0f), 4, 2, 2.0f),
+        filled(gated(channel("f1h", 1, 0.9f, RRC_HISTORY_FP16, RRC_BLEND_FIXED, RRC_HISTORY_FILTER_GAUSSIAN), 1.5f), 8, 1, 0.0f),
+        filled(gated(channel("r1f", 1, 0.95f, RRC_HISTORY_FP32, RRC_BLEND_AGE_AWARE, RRC_HISTORY_FILTER_BILINEAR), 1.25f), 4, 2, 1.0f),
+    };
+    c[3].residual = 1;
+    return c;
+}
+
+TEST(GateKernel, CleanPanFillWeighsByTheGate) { run_fill_against_reference("fill clean", gate_fill_channels(), 0.0); }
+
+TEST(GateKernel, NoisyPanFillWeighsByTheGate) { run_fill_against_reference("fill noisy", gate_fill_channels(), 0.1); }
 
 // ---- Validation ----------------------------------------------------------------
 

@@ -181,12 +181,78 @@ double fill_depth_proxy(rrc_depth_mode mode, double z) {
     }
 }
 
+namespace {
+
+// The deviation gate's weighing of one filled pixel's neighbours
+// (docs/CONVENTIONS.md, "The deviation gate", "With a spatial fill").
+struct FillGate {
+    bool on = false;         // the reference's varsigma_p > 0: the test applies
+    bool maybe = false;      // the kernel's varsigma_p may be on the other side of 0
+    double limit = 0.0;      // kappa^2 v_p
+    double limit_err = 0.0;  // bound on the kernel's fp32 kappa^2 v_p: its state's and its roundings
+};
+
+FillGate fill_gate(const ChannelParams& ch, const FillInputs& in, size_t px, double scale) {
+    FillGate g;
+    const double beta = in.gate_beta[px], sq = in.gate_sq[px];
+    const double beta_err = in.gate_beta_err ? in.gate_beta_err[px] : 0.0, sq_err = in.gate_sq_err ? in.gate_sq_err[px] : 0.0;
+    g.on = sq > 0.0;
+    // The kernel tests its own varsigma > 0: the sign is certain only where
+    // the state's bound keeps it on the reference's side.
+    g.maybe = g.on ? !(sq > sq_err) : sq_err > 0.0;
+    const double k2 = ch.gate_kappa * ch.gate_kappa;
+    const double v = std::max(sq - beta * beta, 0.0);
+    g.limit = k2 * v;
+    // v = max(varsigma - beta^2, 0) within the state's bounds (error_scale is
+    // in them already), and fp32's beta^2, difference, kappa^2 and product
+    // (4u, x2 slack).
+    const double v_err = sq_err + (2.0 * std::fabs(beta) + beta_err) * beta_err;
+    g.limit_err = k2 * v_err + scale * 8.0 * kU32 * k2 * (sq + beta * beta + v);
+    return g;
+}
+
+// The gate's test of neighbour q: Delta_q = (1/m) sum_{k<m} (v_q,k - v_p,k),
+// m = min(components, 3), counted where Delta_q^2 <= kappa^2 v_p.  Sets `near`
+// where the kernel's fp32 Delta_q^2 and kappa^2 v_p may fall on the other
+// side of each other (or, with g.maybe, where the kernel may leave q out).
+bool fill_gate_passes(const FillGate& g, unsigned components, const float* vp, const float* vq, double scale, bool& near) {
+    const unsigned m = std::min(components, 3u);
+    double sum = 0.0, spread = 0.0;
+    for (unsigned k = 0; k < m; ++k) {
+        const double d = static_cast<double>(vq[k]) - vp[k];  // exact in double
+        sum += d;
+        spread += std::fabs(d);
+    }
+    const double delta = sum / m, lhs = delta * delta;
+    const bool pass = lhs <= g.limit;
+    near = false;
+    // Equal values make Delta = 0 in fp32 too, and 0 <= kappa^2 v_p always.
+    if (spread == 0.0 || !std::isfinite(lhs)) return pass;
+    // The kernel's Delta: m differences, m - 1 sums and the product with a
+    // rounded 1/3, each one rounding of at most the differences' sum (x2
+    // slack); then its square.
+    const double d_err = scale * 2.0 * (2.0 * m + 1.0) * kU32 * spread / m;
+    const double lhs_err = (2.0 * std::fabs(delta) + d_err) * d_err + scale * 2.0 * kU32 * lhs;
+    const double margin = lhs_err + g.limit_err;
+    if (g.maybe)
+        near = !(lhs + margin < g.limit);  // the kernel may leave q out, or not test it at all
+    else
+        near = std::fabs(lhs - g.limit) <= margin;
+    return pass;
+}
+
+}  // namespace
+
 FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const FillOptions& options) {
     if (c >= p.channels.size()) throw std::invalid_argument("rrc_ref::spatial_fill: no such channel");
     const ChannelParams& ch = p.channels[c];
     if (ch.fill_age == 0) throw std::invalid_argument("rrc_ref::spatial_fill: the channel has no fill");
     if (!in.values || !in.age || !in.depth || (ch.fill_prior > 0.0 && !in.fallback))
         throw std::invalid_argument("rrc_ref::spatial_fill: NULL input");
+    // The gate weighs the fill's neighbours by the state the frame's pass stored.
+    const bool gated = ch.gate_kappa > 0.0 && options.gate;
+    if (ch.gate_kappa > 0.0 && (!in.gate_beta || !in.gate_sq))
+        throw std::invalid_argument("rrc_ref::spatial_fill: a gated channel's fill needs the stored gate state");
     const int W = p.width, H = p.height, r = ch.fill_radius;
     const unsigned K = ch.components, T = ch.fill_age;
     const size_t n = static_cast<size_t>(W) * H;
@@ -197,6 +263,8 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
     res.filled.assign(n, 0);
     res.neighbours.assign(n, 0);
     res.near_threshold.assign(n, 0);
+    res.gate_excluded.assign(n, 0);
+    res.gate_near_threshold.assign(n, 0);
 
     auto finite_value = [&](const float* v, size_t px) {
         for (unsigned k = 0; k < K; ++k)
@@ -214,8 +282,12 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
             const double dp = fill_depth_proxy(p.mode, in.depth[px]);
             const bool valid_p = !is_invalid_depth(p, in.depth[px]);  // an invalid depth takes no neighbour
             const double phi = options.fade ? static_cast<double>(T - np) / T : 1.0;
+            // Where varsigma_p = 0 (and the kernel's is 0 too) the fill is as without the gate.
+            FillGate gate;
+            if (gated) gate = fill_gate(ch, in, px, options.error_scale);
+            const bool weigh = gate.on || gate.maybe;
             double num[4] = {0, 0, 0, 0}, num_abs[4] = {0, 0, 0, 0}, wsum = 0.0;
-            unsigned terms = 0;
+            unsigned terms = 0, excluded = 0;
             for (int b = -r; b <= r; ++b) {
                 for (int a = -r; a <= r; ++a) {
                     const int x = i + a, y = j + b;
@@ -228,6 +300,15 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
                     const double margin = options.error_scale * 8.0 * kU32 * (std::fabs(dq) + std::fabs(dp));
                     if (std::fabs(lhs - rhs) <= margin) res.near_threshold[px] = 1;
                     if (!(lhs <= rhs)) continue;
+                    if (weigh) {
+                        bool near = false;
+                        const bool pass = fill_gate_passes(gate, K, in.values + px * K, in.values + q * K, options.error_scale, near);
+                        if (near) res.near_threshold[px] = res.gate_near_threshold[px] = 1;
+                        if (gate.on && !pass) {
+                            ++excluded;
+                            continue;
+                        }
+                    }
                     const double w = std::min<unsigned>(in.age[q], T);  // w_q = min(n_q, T)
                     wsum += w;
                     ++terms;
@@ -238,6 +319,7 @@ FillResult spatial_fill(const Params& p, size_t c, const FillInputs& in, const F
                 }
             }
             res.neighbours[px] = static_cast<uint8_t>(std::min(terms, 255u));
+            res.gate_excluded[px] = static_cast<uint8_t>(std::min(excluded, 255u));
             double prior = 0.0;
             if (ch.fill_prior > 0.0 && finite_value(in.fallback, px)) {
                 prior = ch.fill_prior;

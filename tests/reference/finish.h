@@ -99,6 +99,15 @@ struct FillInputs {
     const uint16_t* age;    // W*H: ages after the frame
     const float* depth;     // W*H: this frame's depth, in the context's depth mode
     const float* fallback;  // W*H*components, or NULL; read only with fill_prior > 0
+    // The deviation gate's state as the frame's pass stored it (this frame's;
+    // docs/CONVENTIONS.md, "The deviation gate", "With a spatial fill"): beta
+    // and varsigma, W*H each, required for a channel with gate_kappa > 0 (the
+    // kappa of the channel's parameters), and the bounds on how far the
+    // kernel's fp32 state can be from them (GateState::*_err; NULL: exact).
+    const double* gate_beta = nullptr;
+    const double* gate_sq = nullptr;
+    const double* gate_beta_err = nullptr;
+    const double* gate_sq_err = nullptr;
 };
 
 struct FillOptions {
@@ -110,6 +119,10 @@ struct FillOptions {
     // value is rounded to fp16.  Standalone, values are read back from an fp32
     // display image (also for fp16 channels): no rounding.
     bool fp16_output = false;
+    // Test support: false leaves the gate's weighing out (every neighbour the
+    // fill's other rules count counts), to check that a test of the kernel
+    // would notice a fill that ignores the gate.
+    bool gate = true;
 };
 
 struct FillResult {
@@ -118,7 +131,18 @@ struct FillResult {
     std::vector<double> err;              // bound on the fp32 evaluation's error of `exact`
     std::vector<uint8_t> filled;          // W*H: not background and n_p < T (the formula applies)
     std::vector<uint8_t> neighbours;      // W*H: neighbours counted (filled pixels)
-    std::vector<uint8_t> near_threshold;  // W*H: a neighbour's depth test is within fp32 error of tau
+    // W*H: the kernel may count another set of neighbours: a neighbour's depth
+    // test is within fp32 error of tau, or its gate test is uncertain
+    // (gate_near_threshold).
+    std::vector<uint8_t> near_threshold;
+    // The gate's weighing (channels with gate_kappa > 0), W*H: the neighbours
+    // it left out of those the fill's other rules count, and the pixels where
+    // a neighbour's test Delta_q^2 <= kappa^2 v_p is within the fp32 error of
+    // the kernel's evaluation and of its state (or where the kernel's
+    // varsigma_p may be 0 on one side and not on the other while the test
+    // could leave a neighbour out).
+    std::vector<uint8_t> gate_excluded;
+    std::vector<uint8_t> gate_near_threshold;
 };
 
 // The displayed values of channel `c` (its fill_age must be > 0).

@@ -118,7 +118,8 @@ struct ChannelResult {
     std::vector<double> gate_d;                                          // W*H
     // Channels with a fill (fill_age > 0): the displayed value, spatial_fill
     // of `out` with this frame's depth and fallback (as read back standalone:
-    // not rounded to fp16); with a residual (docs/CONVENTIONS.md, "The
+    // not rounded to fp16), a gated channel's neighbours weighed by the gate
+    // state this frame stored (gate_beta, gate_sq); with a residual (docs/CONVENTIONS.md, "The
     // residual"), that value (or `out`) plus this frame's base b, a b that is
     // not finite counting as 0; empty otherwise.
     std::vector<double> shown;  // W*H*components

@@ -349,7 +349,15 @@ FrameResult run_frame(const rrc_context_desc& ctx, const PreviousFrame& prev, co
             const std::vector<float> stored(out.out.begin(), out.out.end());  // fp32 store (fp16 values are exact)
             // A residual's prior is its base: a residual of 0.
             const std::vector<float> zero(ch.residual ? n * ch.components : 0, 0.0f);
-            const FillInputs in{stored.data(), out.age.data(), frame.depth, ch.residual ? zero.data() : frame.channels[c].fallback};
+            FillInputs in{stored.data(), out.age.data(), frame.depth, ch.residual ? zero.data() : frame.channels[c].fallback};
+            // The gate weighs the neighbours by the state this frame's pass stored
+            // (docs/CONVENTIONS.md, "The deviation gate", "With a spatial fill").
+            if (ch.gate_kappa > 0.0) {
+                in.gate_beta = out.gate_beta.data();
+                in.gate_sq = out.gate_sq.data();
+                in.gate_beta_err = out.gate_beta_err.data();
+                in.gate_sq_err = out.gate_sq_err.data();
+            }
             FillOptions fo;
             fo.error_scale = scale;
             out.shown = spatial_fill(p, c, in, fo).shown;
