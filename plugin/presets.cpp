@@ -88,6 +88,7 @@ void write_channel_preset(const PresetRow& row, rrc_channel_desc* caller) {
     write_member(caller, offsetof(C, blur_bound), v.blur_bound);
     write_member(caller, offsetof(C, view_lobe), v.view_lobe);
     write_member(caller, offsetof(C, residual), v.residual);
+    write_member(caller, offsetof(C, gate_kappa), v.gate_kappa);
 }
 
 void write_context_preset(const PresetRow& row, const rrc_context_desc& d, rrc_context_desc* caller) {

@@ -18,6 +18,7 @@ struct PresetChannel {
     uint32_t rectify, antilag;
     float antilag_gamma, antilag_threshold, blur_bound, view_lobe;
     uint32_t residual;
+    float gate_kappa;  // 0.12: rows of earlier tunings leave it 0 (off)
 };
 
 // The context members an application fixes (rrc_context_preset).

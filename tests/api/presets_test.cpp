@@ -151,7 +151,7 @@ TEST(Presets, ContextPresetsFixWhatTheApplicationFixes) {
 
 // docs/reference/presets.md's table: one row per preset and variant,
 // "| `RRC_PRESET_X` | variant | λ | blend | filter | age cap | fill age |
-// fill radius | fill prior | rectify | anti-lag γ_a / T | blur bound | view lobe | residual |".
+// fill radius | fill prior | rectify | anti-lag γ_a / T | blur bound | view lobe | residual | gate κ |".
 TEST(Presets, EachPresetIsItsRowInTheDocs) {
     const std::string text = rrc_test::read_source("docs/reference/presets.md");
     std::map<std::string, std::vector<std::string>> rows;
@@ -165,7 +165,7 @@ TEST(Presets, EachPresetIsItsRowInTheDocs) {
             cells.push_back(cell);
         }
         if (!cells.empty() && cells.back().empty()) cells.pop_back();
-        if (cells.size() != 14) continue;  // the context members' table
+        if (cells.size() != 15) continue;  // the context members' table
         rows[cells[0] + "/" + cells[1]] = cells;
     }
     ASSERT_EQ(rows.size(), sizeof kVariants / sizeof kVariants[0]) << "one row per preset and variant";
@@ -195,6 +195,7 @@ TEST(Presets, EachPresetIsItsRowInTheDocs) {
         EXPECT_EQ(r[11], c.blur_bound > 0 ? num(c.blur_bound) : "off");
         EXPECT_EQ(r[12], c.view_lobe > 0 ? num(c.view_lobe) : "off");
         EXPECT_EQ(r[13], c.residual ? "on" : "off");
+        EXPECT_EQ(r[14], c.gate_kappa > 0 ? num(c.gate_kappa) : "off");
     }
 }
 

@@ -110,6 +110,7 @@ SignalOptions blender_preset_signal(const std::string& layer) {
     s.filter = d.filter;
     s.fill_age = d.fill_age;
     s.rectify = d.rectify;
+    s.gate_kappa = d.gate_kappa;
     return s;
 }
 
@@ -536,10 +537,11 @@ missing channel, library error, validation message), 2 a bad command line.
     std::snprintf(tau, sizeof tau, "%g", static_cast<double>(blender_preset_tau()));
     for (std::size_t p; (p = text.find("@TAU@")) != std::string::npos;) text.replace(p, 5, tau);
     const rrc_channel_desc preset = blender_preset_channel();
-    char preset_signal[96];
-    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u,rectify=%s",
+    char preset_signal[128], gate[32] = "";
+    if (preset.gate_kappa > 0.0f) std::snprintf(gate, sizeof gate, ",gate=%g", static_cast<double>(preset.gate_kappa));
+    std::snprintf(preset_signal, sizeof preset_signal, "lambda=%g,blend=%s,filter=%s,fill=%u,rectify=%s%s",
                   static_cast<double>(preset.lambda), rrc_host::enum_name(rrc_host::kBlendNames, preset.blend),
-                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, preset.filter), preset.fill_age, preset.rectify ? "on" : "off");
+                  rrc_host::enum_name(rrc_host::kHistoryFilterNames, preset.filter), preset.fill_age, preset.rectify ? "on" : "off", gate);
     const std::string marker = "@PRESET_SIGNAL@";
     for (std::size_t p; (p = text.find(marker)) != std::string::npos;) text.replace(p, marker.size(), preset_signal);
     return text;
