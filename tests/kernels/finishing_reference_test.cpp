@@ -21,6 +21,7 @@
 #include "reference/rrc_reference.h"
 #include "reference/selftest_scene.h"
 #include "support/cache_policy.h"
+#include "support/fill_channel.h"
 #include "support/kernel_state.h"
 #include "support/mismatches.h"
 #include "support/rrc_test_context.h"
@@ -464,21 +465,6 @@ TEST(ViewLobeKernelTurn, TheLightingsTurnAddsToTheViewTurn) {
 }
 
 // ---- The spatial fill -------------------------------------------------------------
-
-rrc_channel_desc filled(rrc_channel_desc d, uint32_t T, uint32_t r, float P) {
-    d.fill_age = T;
-    d.fill_radius = r;
-    d.fill_prior = P;
-    return d;
-}
-
-rrc_channel_desc without_fill(rrc_channel_desc d) {
-    d.fill_age = 0;
-    d.fill_radius = 0;
-    d.fill_depth_tolerance = 0.0f;
-    d.fill_prior = 0.0f;
-    return d;
-}
 
 struct FillMutant {
     std::string name;

@@ -28,6 +28,7 @@
 //     test (tests/options) does not: confidence, infinity, the range's end.
 #include "reference/finish.h"
 #include "reference/rrc_reference.h"
+#include "support/fill_channel.h"
 #include "support/kernel_state.h"
 #include "support/mismatches.h"
 #include "support/rrc_test_context.h"
@@ -299,20 +300,11 @@ TEST(GateKernel, TheResidualsDeviationIsGated) {
 
 // ---- With a spatial fill ----------------------------------------------------------
 
-rrc_channel_desc filled(rrc_channel_desc d, uint32_t T, uint32_t r, float P) {
-    d.fill_age = T;
-    d.fill_radius = r;
-    d.fill_prior = P;
-    return d;
-}
-
 // The twin of a fill channel: no fill, and a residual channel's history as a
 // plain channel fed fl(s - b) (TheResidualsDeviationIsGated: the same history,
 // ages and gate state), so that its values are the history the fill reads.
 rrc_channel_desc fill_twin(rrc_channel_desc d) {
-    d.fill_age = 0;
-    d.fill_radius = 0;
-    d.fill_prior = 0.0f;
+    d = without_fill(d);
     d.residual = 0;
     return d;
 }
