@@ -73,6 +73,8 @@ std::vector<Config> full_sweep() {
         {"fill", "fill", [](Config& c) { c.channels[0].fill_age = 8; }},
         {"fill_r1", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 1; }},
         {"fill_r4", "fill", [](Config& c) { c.channels[0].fill_age = 8, c.channels[0].fill_radius = 4; }},
+        // kappa 4, docs/guide/offline.md's setting for cleaner frames.
+        {"gate", "gate", [](Config& c) { c.channels[0].gate_kappa = 4.0f; }},
         {"object_id", "object_id", [](Config& c) { c.object_id = true; }},
         {"depth_fixed", "depth_test", [](Config& c) { c.depth_test = RRC_DEPTH_TEST_FIXED; }},
         {"sampled_inputs", "inputs", [](Config& c) { c.sampled_inputs = true; }},
@@ -103,16 +105,19 @@ std::vector<Config> full_sweep() {
     // The fill at a stated young fraction: the fill works on young pixels
     // only, so its cost is set against its twin without the fill at the same
     // nocache share (young12), round by round (docs/measurements/PERFORMANCE.md, "Targets").
-    // young12_fill_residual: the fill with the residual (rrc-sample's pcf preset).
+    // young12_fill_residual: the fill with the residual (rrc-sample's pcf preset);
+    // young12_fill_gate: the fill weighed by the deviation gate's state.
     const struct {
         const char* name;
         uint32_t fill_age, fill_radius;
         bool residual;
-    } young[] = {{"young12", 0, 0, false},
-                 {"young12_fill", kYoungAge, 0, false},
-                 {"young12_fill_r1", kYoungAge, 1, false},
-                 {"young12_fill_r4", kYoungAge, 4, false},
-                 {"young12_fill_residual", kYoungAge, 0, true}};
+        float gate_kappa;
+    } young[] = {{"young12", 0, 0, false, 0.0f},
+                 {"young12_fill", kYoungAge, 0, false, 0.0f},
+                 {"young12_fill_r1", kYoungAge, 1, false, 0.0f},
+                 {"young12_fill_r4", kYoungAge, 4, false, 0.0f},
+                 {"young12_fill_residual", kYoungAge, 0, true, 0.0f},
+                 {"young12_fill_gate", kYoungAge, 0, false, 4.0f}};
     for (const auto& y : young) {
         Config c = vary(y.name, "young");
         c.nocache = true;
@@ -121,6 +126,7 @@ std::vector<Config> full_sweep() {
         c.channels[0].fill_age = y.fill_age;
         c.channels[0].fill_radius = y.fill_radius;
         c.channels[0].residual = y.residual;
+        c.channels[0].gate_kappa = y.gate_kappa;
         all.push_back(c);
     }
     return all;
@@ -143,6 +149,7 @@ std::string channels_text(const Config& c) {
         if (ch.fill_age) s += "F";
         if (ch.view_lobe > 0.0f) s += "V";
         if (ch.residual) s += "B";
+        if (ch.gate_kappa > 0.0f) s += "G";
     }
     return s;
 }

@@ -22,6 +22,7 @@ struct ChannelConfig {
     uint32_t fill_radius = 0;  // 0: the library's default
     float view_lobe = 0.0f;    // 0.7: the view-dependent history's lobe, radians (the view turn a pixel; no byte the roof counts)
     bool residual = false;     // 0.9: the residual against a base image (4 bytes a pixel more read, which the roof does not count)
+    float gate_kappa = 0.0f;   // 0.12: the deviation gate (its state is the library's own; no byte the roof counts)
 };
 
 struct Config {

@@ -26,6 +26,7 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
         channels_.back().view_lobe = ch.view_lobe;
         channels_.back().residual = ch.residual ? 1u : 0u;
         channels_.back().fill_radius = ch.fill_radius;
+        channels_.back().gate_kappa = ch.gate_kappa;
     }
     desc_ = rrc_host::context_desc(c.width, c.height, channels_);
     desc_.depth_mode = RRC_DEPTH_MODE_REVERSED;
