@@ -126,8 +126,14 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     uint gate_cap = RRC_MAX_AGE_CAP;
     if (GATE_ && PASS != RRC_PASS_RESOLVE_LISTED && hit_any) {
         const vec4 wt = g.taps.w;
-        gate_prev = wt.x * texelFetch(s_gate[RRC_CH], g.taps.p00, 0).xy + wt.y * texelFetch(s_gate[RRC_CH], g.taps.p10, 0).xy +
-                    wt.z * texelFetch(s_gate[RRC_CH], g.taps.p01, 0).xy + wt.w * texelFetch(s_gate[RRC_CH], g.taps.p11, 0).xy;
+        // The four taps' beta and varsigma in two gathers, not four fetches
+        // (on lavapipe each sampled fetch is a call): centred on the block's
+        // shared corner base + 1, a gather picks texels base .. base + 1, and
+        // the sampler's CLAMP_TO_EDGE clamps them as the taps are clamped.
+        // Gather order: p01, p11, p10, p00.
+        const vec2 uv = vec2(g.taps.base + 1) / vec2(size);
+        const vec4 gb = textureGather(s_gate[RRC_CH], uv, 0), gs = textureGather(s_gate[RRC_CH], uv, 1);
+        gate_prev = wt.x * vec2(gb.w, gs.w) + wt.y * vec2(gb.z, gs.z) + wt.z * vec2(gb.x, gs.x) + wt.w * vec2(gb.y, gs.y);
         if (s_valid && n_prev >= 1u) {
             const vec4 dv = s - H;
             const float d = COMPONENTS_ == 1u ? dv.x : ((dv.x + dv.y) + dv.z) * (1.0 / 3.0);
