@@ -106,18 +106,22 @@ std::vector<Config> full_sweep() {
     // only, so its cost is set against its twin without the fill at the same
     // nocache share (young12), round by round (docs/measurements/PERFORMANCE.md, "Targets").
     // young12_fill_residual: the fill with the residual (rrc-sample's pcf preset);
-    // young12_fill_gate: the fill weighed by the deviation gate's state.
+    // young12_fill_gate: the fill weighed by the deviation gate's state;
+    // young12_fill_3x1 against young12_3x1: three channels with a fill (rrc-sample's three).
     const struct {
         const char* name;
         uint32_t fill_age, fill_radius;
         bool residual;
         float gate_kappa;
-    } young[] = {{"young12", 0, 0, false, 0.0f},
-                 {"young12_fill", kYoungAge, 0, false, 0.0f},
-                 {"young12_fill_r1", kYoungAge, 1, false, 0.0f},
-                 {"young12_fill_r4", kYoungAge, 4, false, 0.0f},
-                 {"young12_fill_residual", kYoungAge, 0, true, 0.0f},
-                 {"young12_fill_gate", kYoungAge, 0, false, 4.0f}};
+        uint32_t channels;
+    } young[] = {{"young12", 0, 0, false, 0.0f, 1},
+                 {"young12_fill", kYoungAge, 0, false, 0.0f, 1},
+                 {"young12_fill_r1", kYoungAge, 1, false, 0.0f, 1},
+                 {"young12_fill_r4", kYoungAge, 4, false, 0.0f, 1},
+                 {"young12_fill_residual", kYoungAge, 0, true, 0.0f, 1},
+                 {"young12_fill_gate", kYoungAge, 0, false, 4.0f, 1},
+                 {"young12_3x1", 0, 0, false, 0.0f, 3},
+                 {"young12_fill_3x1", kYoungAge, 0, false, 0.0f, 3}};
     for (const auto& y : young) {
         Config c = vary(y.name, "young");
         c.nocache = true;
@@ -127,6 +131,7 @@ std::vector<Config> full_sweep() {
         c.channels[0].fill_radius = y.fill_radius;
         c.channels[0].residual = y.residual;
         c.channels[0].gate_kappa = y.gate_kappa;
+        c.channels.assign(y.channels, c.channels[0]);
         all.push_back(c);
     }
     return all;
