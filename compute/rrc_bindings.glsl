@@ -79,8 +79,9 @@ struct RrcChannelParams {
 #define RRC_DECLARE_CLASSIFIED layout(set = 0, binding = RRC_BINDING_CLASSIFIED) uniform usampler2D s_classified;
 // FALLBACK: the host's fallback estimate: FILL's prior, and a residual's base b (the per-pixel passes and FILL)
 #define RRC_DECLARE_FALLBACK layout(set = 0, binding = RRC_BINDING_FALLBACK) uniform sampler2D s_fallback[RRC_MAX_CHANNELS];
-// GATE: a gated channel's previous (beta, varsigma), R32G32F (docs/CONVENTIONS.md, "The deviation gate")
-#define RRC_DECLARE_GATE layout(set = 0, binding = RRC_BINDING_GATE) uniform sampler2D s_gate[RRC_MAX_CHANNELS];
+// GATE: a gated channel's previous state, fp16 (beta, sqrt(varsigma)) packed in one word a
+// texel (an R32_UINT view of its R16G16_SFLOAT image; docs/CONVENTIONS.md, "The deviation gate")
+#define RRC_DECLARE_GATE layout(set = 0, binding = RRC_BINDING_GATE) uniform usampler2D s_gate[RRC_MAX_CHANNELS];
 // STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch
 #define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
 // QUADS: classify's quad list (rrc_list.glsl)

@@ -126,14 +126,16 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     uint gate_cap = RRC_MAX_AGE_CAP;
     if (GATE_ && PASS != RRC_PASS_RESOLVE_LISTED && hit_any) {
         const vec4 wt = g.taps.w;
-        // The four taps' beta and varsigma in two gathers, not four fetches
+        // The four taps' states in one gather of their words, not four fetches
         // (on lavapipe each sampled fetch is a call): centred on the block's
         // shared corner base + 1, a gather picks texels base .. base + 1, and
         // the sampler's CLAMP_TO_EDGE clamps them as the taps are clamped.
-        // Gather order: p01, p11, p10, p00.
-        const vec2 uv = vec2(g.taps.base + 1) / vec2(size);
-        const vec4 gb = textureGather(s_gate[RRC_CH], uv, 0), gs = textureGather(s_gate[RRC_CH], uv, 1);
-        gate_prev = wt.x * vec2(gb.w, gs.w) + wt.y * vec2(gb.z, gs.z) + wt.z * vec2(gb.x, gs.x) + wt.w * vec2(gb.y, gs.y);
+        // Gather order: p01, p11, p10, p00.  A word holds fp16 (beta, r),
+        // varsigma = r^2 (exact in fp32).
+        const uvec4 gw = textureGather(s_gate[RRC_CH], vec2(g.taps.base + 1) / vec2(size), 0);
+        const vec2 g00 = unpackHalf2x16(gw.w), g10 = unpackHalf2x16(gw.z), g01 = unpackHalf2x16(gw.x), g11 = unpackHalf2x16(gw.y);
+        gate_prev = wt.x * vec2(g00.x, g00.y * g00.y) + wt.y * vec2(g10.x, g10.y * g10.y) + wt.z * vec2(g01.x, g01.y * g01.y) +
+                    wt.w * vec2(g11.x, g11.y * g11.y);
         if (s_valid && n_prev >= 1u) {
             const vec4 dv = s - H;
             const float d = COMPONENTS_ == 1u ? dv.x : ((dv.x + dv.y) + dv.z) * (1.0 / 3.0);
@@ -286,9 +288,12 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
         if (CONFIDENCE_) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
         // The gate's state, by the case of the table: the blend's, a hit's
         // resampled state where the sample is invalid (the history is kept), else 0.
+        // Stored as fp16 (beta, sqrt(varsigma)), (0, 0) where either is beyond the fp16 range.
         if (GATE_) {
             const vec2 gate_out = hit && !s_valid ? gate_prev : hit && s_valid && n_prev >= 1u ? gate_new : vec2(0.0);
-            imageStore(u_weight_out[RRC_CH], px, vec4(gate_out, 0.0, 0.0));
+            const vec2 stored = vec2(gate_out.x, sqrt(gate_out.y));
+            const bool in_range = abs(stored.x) <= 65504.0 && stored.y <= 65504.0;
+            imageStore(u_weight_out[RRC_CH], px, in_range ? rrc_round_fp16(vec4(stored, 0.0, 0.0)) : vec4(0.0));
         }
     }
 }

@@ -107,10 +107,10 @@
 // (the host's images, or the standalone uploads), read by the FILL pass only.
 #define RRC_BINDING_FALLBACK 29
 // The deviation gate's previous state (0.12, docs/CONVENTIONS.md "The
-// deviation gate"), per channel slot: R32G32_SFLOAT (beta, varsigma) read
-// through a sampler, the storage images being at lavapipe's 64 a stage; the
-// state is written through RRC_BINDING_WEIGHT_OUT (a gated channel has no
-// confidence weight).
+// deviation gate"), per channel slot: fp16 (beta, sqrt(varsigma)) read as
+// one R32_UINT word a texel through a sampler, the storage images being at
+// lavapipe's 64 a stage; the state is written as R16G16_SFLOAT through
+// RRC_BINDING_WEIGHT_OUT (a gated channel has no confidence weight).
 #define RRC_BINDING_GATE 30
 #define RRC_BINDING_LAST RRC_BINDING_GATE
 // The buffer bindings, after every image binding: the host's statistics

@@ -17,7 +17,7 @@ ChannelHistory::ChannelHistory(VulkanDevice& dev, const ChannelConfig& c, uint32
         history[p] = GpuImage(dev, history_format(c), w, h);
         if (!packed()) age[p] = GpuImage(dev, VK_FORMAT_R16_UINT, w, h);
         if (c.confidence) weight[p] = GpuImage(dev, VK_FORMAT_R32_SFLOAT, w, h);
-        if (c.gate_kappa > 0.0f) gate[p] = GpuImage(dev, VK_FORMAT_R32G32_SFLOAT, w, h);
+        if (c.gate_kappa > 0.0f) gate[p] = GpuImage(dev, VK_FORMAT_R16G16_SFLOAT, w, h, VK_FORMAT_R32_UINT);
     }
 }
 
@@ -43,7 +43,7 @@ void bind_history(DescriptorViews& v, uint32_t s, const ChannelHistory& r, uint3
     }
     if (r.weight[prev].view) v.view[RRC_BINDING_WEIGHT][s] = r.weight[prev].view;
     if (h.weight[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.weight[p].view;
-    if (r.gate[prev].view) v.view[RRC_BINDING_GATE][s] = r.gate[prev].view;
+    if (r.gate[prev].view) v.view[RRC_BINDING_GATE][s] = r.gate[prev].alias_view;
     if (h.gate[p].view) v.view[RRC_BINDING_WEIGHT_OUT][s] = h.gate[p].view;
 }
 
@@ -90,7 +90,8 @@ DescriptorViews Placeholders::views() const {
         v.view[RRC_BINDING_HIST_OUT][s] = v.view[RRC_BINDING_WEIGHT_OUT][s] = v.view[RRC_BINDING_HOST_OUT][s] = wf;
         v.view[RRC_BINDING_AGE_OUT][s] = v.view[RRC_BINDING_HOST_AGE_OUT][s] = wu;
         v.view[RRC_BINDING_HOST_SAMPLES][s] = v.view[RRC_BINDING_HOST_CONFIDENCE][s] = v.view[RRC_BINDING_FALLBACK][s] =
-            v.view[RRC_BINDING_GATE][s] = read(VK_FORMAT_R32_SFLOAT);
+            read(VK_FORMAT_R32_SFLOAT);
+        v.view[RRC_BINDING_GATE][s] = read(VK_FORMAT_R32_UINT);  // the gate's state, one word a texel
     }
     return v;
 }

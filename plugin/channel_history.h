@@ -19,9 +19,11 @@ constexpr VkFormat kPackedHistoryFormat = VK_FORMAT_R32_UINT;
 
 struct ChannelHistory {
     GpuImage history[2], age[2], weight[2];  // [parity]: the frame writing parity p reads 1 - p
-    // The deviation gate's (beta, varsigma), R32G32_SFLOAT (docs/CONVENTIONS.md,
-    // "The deviation gate"): read through RRC_BINDING_GATE, written through
-    // RRC_BINDING_WEIGHT_OUT (a gated channel has no weight).
+    // The deviation gate's (beta, sqrt(varsigma)) in fp16, R16G16_SFLOAT
+    // (docs/CONVENTIONS.md, "The deviation gate"): written through
+    // RRC_BINDING_WEIGHT_OUT (a gated channel has no weight), read through
+    // RRC_BINDING_GATE as one R32_UINT word a texel (alias_view), so that one
+    // gather brings a bilinear cell's four states.
     GpuImage gate[2];
     bool packed() const { return history[0].format == kPackedHistoryFormat; }
     ChannelHistory(VulkanDevice& dev, const ChannelConfig& config, uint32_t width, uint32_t height);

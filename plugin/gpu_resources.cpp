@@ -31,6 +31,7 @@ uint32_t texel_bytes(VkFormat format) {
         case VK_FORMAT_R16_UINT:
         case VK_FORMAT_R16_SFLOAT: return 2;
         case VK_FORMAT_R32_UINT:
+        case VK_FORMAT_R16G16_SFLOAT:
         case VK_FORMAT_R32_SFLOAT: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R32G32_SFLOAT: return 8;
@@ -39,9 +40,12 @@ uint32_t texel_bytes(VkFormat format) {
     }
 }
 
-GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
+GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h, VkFormat alias)
     : format(fmt), width(w), height(h), texel_bytes(rrc::texel_bytes(fmt)), dev_(&dev) {
+    if (alias != VK_FORMAT_UNDEFINED && rrc::texel_bytes(alias) != texel_bytes)
+        fail(RRC_ERROR_UNSUPPORTED, "internal: VkFormat %d cannot alias VkFormat %d", (int)alias, (int)fmt);
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    if (alias != VK_FORMAT_UNDEFINED) ci.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = fmt;
     ci.extent = {w, h, 1};
@@ -54,7 +58,7 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
     // An image beyond what the device can hold is refused before it is made
     // (creating it anyway is invalid usage, not just a failed allocation).
     VkImageFormatProperties limits{};
-    VulkanDevice::check(dev.fi.GetPhysicalDeviceImageFormatProperties(dev.physical, fmt, ci.imageType, ci.tiling, ci.usage, 0, &limits),
+    VulkanDevice::check(dev.fi.GetPhysicalDeviceImageFormatProperties(dev.physical, fmt, ci.imageType, ci.tiling, ci.usage, ci.flags, &limits),
                         "vkGetPhysicalDeviceImageFormatProperties");
     if (w > limits.maxExtent.width || h > limits.maxExtent.height || (VkDeviceSize)bytes() > limits.maxResourceSize)
         fail(RRC_ERROR_OUT_OF_MEMORY,
@@ -72,6 +76,10 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
         vi.format = fmt;
         vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         VulkanDevice::check(dev.vk.vkCreateImageView(dev.device, &vi, dev.allocator, &view), "vkCreateImageView");
+        if (alias != VK_FORMAT_UNDEFINED) {
+            vi.format = alias;
+            VulkanDevice::check(dev.vk.vkCreateImageView(dev.device, &vi, dev.allocator, &alias_view), "vkCreateImageView");
+        }
     } catch (...) {
         reset();
         throw;
@@ -79,16 +87,18 @@ GpuImage::GpuImage(VulkanDevice& dev, VkFormat fmt, uint32_t w, uint32_t h)
 }
 
 void GpuImage::take(GpuImage& o) noexcept {
-    std::swap(image, o.image), std::swap(view, o.view), std::swap(memory_, o.memory_), std::swap(dev_, o.dev_);
+    std::swap(image, o.image), std::swap(view, o.view), std::swap(alias_view, o.alias_view), std::swap(memory_, o.memory_),
+        std::swap(dev_, o.dev_);
     format = o.format, width = o.width, height = o.height, texel_bytes = o.texel_bytes;
 }
 
 void GpuImage::reset() {
     if (!dev_) return;
     if (view) dev_->vk.vkDestroyImageView(dev_->device, view, dev_->allocator);
+    if (alias_view) dev_->vk.vkDestroyImageView(dev_->device, alias_view, dev_->allocator);
     if (image) dev_->vk.vkDestroyImage(dev_->device, image, dev_->allocator);
     if (memory_) dev_->vk.vkFreeMemory(dev_->device, memory_, dev_->allocator);
-    view = VK_NULL_HANDLE, image = VK_NULL_HANDLE, memory_ = VK_NULL_HANDLE;
+    view = alias_view = VK_NULL_HANDLE, image = VK_NULL_HANDLE, memory_ = VK_NULL_HANDLE;
 }
 
 HostBuffer::HostBuffer(VulkanDevice& dev, size_t bytes, VkBufferUsageFlags usage, bool device_local) : size(bytes), dev_(&dev) {

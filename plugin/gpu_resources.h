@@ -25,11 +25,14 @@ class GpuImage {
 public:
     GpuImage() = default;
     // A 2D storage image; record_initialise (below) moves it to GENERAL, cleared.
-    GpuImage(VulkanDevice& dev, VkFormat format, uint32_t width, uint32_t height);
+    // `alias`, a format of the same texel size: the image is created
+    // MUTABLE_FORMAT and alias_view reads its texels as that format.
+    GpuImage(VulkanDevice& dev, VkFormat format, uint32_t width, uint32_t height, VkFormat alias = VK_FORMAT_UNDEFINED);
     RRC_MOVE_ONLY_RESOURCE(GpuImage)
 
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
+    VkImageView alias_view = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t width = 0, height = 0;
     uint32_t texel_bytes = 0;

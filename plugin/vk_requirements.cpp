@@ -12,7 +12,7 @@ namespace {
 
 // The formats rrc's own images and the kernel's direct loads use as storage images.
 const VkFormat kStorageFormats[] = {VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                   VK_FORMAT_R8_UINT,    VK_FORMAT_R16_UINT,            VK_FORMAT_R32_UINT};
+                                   VK_FORMAT_R16G16_SFLOAT, VK_FORMAT_R8_UINT, VK_FORMAT_R16_UINT, VK_FORMAT_R32_UINT};
 
 // The features rrc needs, by name.  Storage images of any format are written
 // without a declared format (the kernel binds the host's outputs whatever

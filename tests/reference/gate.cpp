@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "error_bound.h"
+#include "rrc_reference.h"  // fp16_round
 
 namespace rrc_ref {
 
@@ -99,6 +100,36 @@ Deviation gate_deviation(unsigned components, const double* s, const double* h, 
     r.err = (propagated + 3.0 * kU * magnitude) / m + 2.0 * kU * std::fabs(r.d);
     if (!r.finite) r.d = NAN;
     return r;
+}
+
+GateState gate_stored(const GateState& s) {
+    const double kHalfMax = 65504.0;
+    GateState out;  // (0, 0) exactly, unless the range test is uncertain
+    const double r = std::sqrt(std::max(s.sq, 0.0));
+    // r's interval: varsigma within its bound, then the kernel's fp32 sqrt (2u).
+    const double r_lo = std::sqrt(std::max(s.sq - s.sq_err, 0.0)) * (1.0 - 2.0 * kU);
+    const double r_hi = std::sqrt(s.sq + s.sq_err) * (1.0 + 2.0 * kU);
+    const double b_lo = s.beta - s.beta_err, b_hi = s.beta + s.beta_err;
+    const bool in_range = std::fabs(s.beta) <= kHalfMax && r <= kHalfMax;
+    if (std::isinf(s.beta_err) || std::isinf(s.sq_err)) {  // the kernel's state may be anything
+        if (in_range) out.beta = fp16_round(s.beta), out.sq = fp16_round(r) * fp16_round(r);
+        out.beta_err = out.sq_err = INFINITY;
+        return out;
+    }
+    const bool surely = std::max(std::fabs(b_lo), std::fabs(b_hi)) <= kHalfMax && r_hi <= kHalfMax;
+    const bool surely_not = std::min(std::fabs(b_lo), std::fabs(b_hi)) > kHalfMax || r_lo > kHalfMax;
+    if (!surely && !surely_not) {  // the kernel may store either
+        out.beta_err = out.sq_err = INFINITY;
+        return out;
+    }
+    if (!in_range) return out;
+    out.beta = fp16_round(s.beta);
+    const double r16 = fp16_round(r);
+    out.sq = r16 * r16;
+    out.beta_err = std::max(std::fabs(fp16_round(b_lo) - out.beta), std::fabs(fp16_round(b_hi) - out.beta));
+    const double q_lo = fp16_round(r_lo), q_hi = fp16_round(r_hi);
+    out.sq_err = std::max(std::fabs(q_lo * q_lo - out.sq), std::fabs(q_hi * q_hi - out.sq));
+    return out;
 }
 
 Gate gate_update(double kappa, const GateState& prev, const Deviation& dv, unsigned n_prev, double scale) {

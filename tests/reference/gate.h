@@ -4,10 +4,11 @@
 // Re-derived in double from that section, pinned by hand-computed self-tests
 // (selftest_gate.cpp); nothing here is shared with compute/ or plugin/.
 //
-// The kernel keeps (beta, varsigma) in fp32 and never hands them back, so a
-// test carries the reference's own state from frame to frame (rrc_reference.h,
+// The kernel stores (beta, varsigma) as fp16 (beta, sqrt(varsigma)) and never
+// hands them back, so a test carries the reference's own state, rounded the
+// same way (gate_stored), from frame to frame (rrc_reference.h,
 // carry_gate_state).  The two states then differ by the kernel's fp32
-// roundings, accumulated over the frames the state remembers: each state value
+// roundings where they straddle an fp16 rounding: each state value
 // carries here a bound on that difference (GateState::*_err), and the cap the
 // range of ages it allows.  Why a propagated bound and not a fixed relative
 // margin on kappa^2 v / beta^2: on a clean input d is the history's small
@@ -17,7 +18,7 @@
 // varsigma and beta^2, which no one margin fits on every pixel.  The bounds
 // are per-operation worst cases (error_bound.h's model) and decay with the
 // state (1 - a <= 3/4 a frame).  Measured on lavapipe
-// (tests/kernels/gate_reference_test.cpp): 380 of 9745 capped ages flagged on
+// (tests/kernels/gate_reference_test.cpp): 452 of 9747 capped ages flagged on
 // the clean pan, none of which the kernel actually took differently.
 #ifndef RRC_REFERENCE_GATE_H
 #define RRC_REFERENCE_GATE_H
@@ -68,6 +69,15 @@ struct Gate {
     // (ratio + kappa^2).  age_lo <= age <= age_hi.
     unsigned age_lo = 65535, age_hi = 65535;
 };
+
+// The state as the kernel stores it: beta and r = sqrt(varsigma) rounded to
+// the nearest fp16 (ties to even), varsigma = r^2; (0, 0) where |beta| or r
+// exceeds 65504 (docs/CONVENTIONS.md, "The deviation gate").  The bounds: the
+// kernel's value lies within the bound of the reference's, so its rounding
+// lies between the roundings of that interval's ends (and the kernel's fp32
+// sqrt within 2u of the root): the bound becomes the largest distance from
+// the reference's rounding to theirs, 0 where the interval rounds to one value.
+GateState gate_stored(const GateState& s);
 
 // One blend's update (a hit, a valid sample, n_prev >= 1) from the previous
 // state at the pixel and the deviation.  error_scale multiplies the fp32

@@ -187,6 +187,7 @@ void apply_gate(const ChannelParams& ch, const ChannelHistory& h, int width, int
         out.gate_age_lo[px] = static_cast<uint16_t>(stored_age(g.age_lo));
         out.gate_age_hi[px] = static_cast<uint16_t>(stored_age(g.age_hi));
     }
+    stored = gate_stored(stored);  // as the kernel stores it: fp16 (beta, sqrt(varsigma))
     out.gate_beta[px] = stored.beta;
     out.gate_sq[px] = stored.sq;
     out.gate_beta_err[px] = stored.beta_err;

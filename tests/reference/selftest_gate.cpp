@@ -15,6 +15,8 @@
 
 using namespace rrc_ref;
 using rrc_ref_test::Scene;
+using rrc_ref_test::stored_beta;
+using rrc_ref_test::stored_sq;
 
 namespace {
 
@@ -53,7 +55,7 @@ TEST(Gate, TheFirstBlendIsAMeanWithTheMissAndCapsNothing) {
         ASSERT_EQ(r.mask[k], RRC_MASK_HIT) << k;
         EXPECT_EQ(r.channels[c].gate_d[k], 0.125) << k;
         EXPECT_EQ(r.channels[c].gate_beta[k], 0.1875) << k;
-        EXPECT_EQ(r.channels[c].gate_sq[k], 0.0703125) << k;
+        EXPECT_EQ(r.channels[c].gate_sq[k], stored_sq(0.0703125)) << k;
         EXPECT_EQ(r.channels[c].gate_age[k], RRC_MAX_AGE_CAP) << k;
         EXPECT_EQ(r.channels[c].gate_capped[k], 0) << k;
         EXPECT_EQ(r.channels[c].age[k], 2) << k;
@@ -76,7 +78,7 @@ TEST(Gate, TheCapIsKappaSquaredVOverBetaSquared) {
     const std::vector<float> H(s.size(), 0.875f);
     FrameResult r = s.run(gated_previous(s, {H, H}, 16, 0.125, 0.071875));
     EXPECT_EQ(r.channels[c].gate_beta[4], 0.125);
-    EXPECT_NEAR(r.channels[c].gate_sq[4], 0.0578125, 1e-17);
+    EXPECT_NEAR(r.channels[c].gate_sq[4], stored_sq(0.0578125), 1e-17);
     EXPECT_EQ(r.channels[c].gate_age[4], 10);
     EXPECT_EQ(r.channels[c].gate_capped[4], 1);
     EXPECT_EQ(r.channels[c].gate_uncertain[4], 0);
@@ -104,7 +106,7 @@ TEST(Gate, AConstantBiasCapsTheAgeAtOne) {
     s.samples[c].assign(s.size(), 1.0f);
     const FrameResult r = s.run(gated_previous(s, {std::vector<float>(s.size(), 0.875f)}, 2, 0.125, 0.015625));
     EXPECT_EQ(r.channels[c].gate_beta[4], 0.125);
-    EXPECT_EQ(r.channels[c].gate_sq[4], 0.015625);
+    EXPECT_EQ(r.channels[c].gate_sq[4], stored_sq(0.015625));
     EXPECT_EQ(r.channels[c].gate_age[4], 1);
     EXPECT_EQ(r.channels[c].age[4], 2);
     EXPECT_EQ(r.channels[c].out[4], 0.9375);
@@ -123,7 +125,7 @@ TEST(Gate, TheDeviationAveragesTheFirstThreeComponentsOfTheUnclampedHistory) {
     FrameResult r = s.run(gated_previous(s, {H}, 1, 0.0, 0.0));
     EXPECT_EQ(r.channels[c].gate_d[4], 1.5);
     EXPECT_EQ(r.channels[c].gate_beta[4], 0.75);
-    EXPECT_EQ(r.channels[c].gate_sq[4], 1.125);
+    EXPECT_EQ(r.channels[c].gate_sq[4], stored_sq(1.125));
     // A 1-component channel's d is its one difference.  With rectification the
     // blend's H is clamped to the flat block (1), the deviation's is not: d = 1 - 2.
     Scene t = shifted_scene();
@@ -176,7 +178,7 @@ TEST(Gate, TheStoredStateByTheCaseOfTheTable) {
     EXPECT_EQ(r.mask[s.at(2, 0)], RRC_MASK_INVALID_GEOMETRY);
     EXPECT_EQ(r.mask[s.at(2, 2)], RRC_MASK_HIT);
     EXPECT_EQ(r.channels[c].gate_beta[s.at(0, 2)], 0.25);
-    EXPECT_EQ(r.channels[c].gate_sq[s.at(0, 2)], 0.125);
+    EXPECT_EQ(r.channels[c].gate_sq[s.at(0, 2)], stored_sq(0.125));
     EXPECT_EQ(r.channels[c].age[s.at(0, 2)], 3);
     for (size_t k : {s.at(0, 0), s.at(1, 0), s.at(2, 0), s.at(2, 2)}) {
         EXPECT_EQ(r.channels[c].gate_beta[k], 0.0) << k;
@@ -202,10 +204,10 @@ TEST(Gate, ThePreviousStateIsFetchedBilinearly) {
     for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) prev.channels[c].gate_beta[s.at(i, j)] = 0.1 * i, prev.channels[c].gate_sq[s.at(i, j)] = 0.5 * i;
     const FrameResult r = s.run(prev);
-    EXPECT_NEAR(r.channels[c].gate_beta[s.at(0, 1)], 0.025, 1e-15);
+    EXPECT_NEAR(r.channels[c].gate_beta[s.at(0, 1)], stored_beta(0.025), 1e-15);
     EXPECT_NEAR(r.channels[c].gate_beta[s.at(1, 1)], 0.125, 1e-15);
-    EXPECT_NEAR(r.channels[c].gate_sq[s.at(1, 1)], 0.625, 1e-15);
-    EXPECT_NEAR(r.channels[c].gate_beta[s.at(2, 1)], 0.2, 1e-15);
+    EXPECT_NEAR(r.channels[c].gate_sq[s.at(1, 1)], stored_sq(0.625), 1e-15);
+    EXPECT_NEAR(r.channels[c].gate_beta[s.at(2, 1)], stored_beta(0.2), 1e-15);
 }
 
 TEST(Gate, AnOverflowingDeviationStoresZeroAndCapsNothing) {

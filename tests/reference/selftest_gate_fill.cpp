@@ -16,6 +16,8 @@
 
 using namespace rrc_ref;
 using rrc_ref_test::Scene;
+using rrc_ref_test::stored_beta;
+using rrc_ref_test::stored_sq;
 
 namespace {
 
@@ -212,7 +214,7 @@ TEST(GateFill, RunFrameWeighsByTheStateItsPassStored) {
     ASSERT_EQ(out.age[4], 2);
     EXPECT_EQ(out.out[4], 1.125);
     EXPECT_EQ(out.out[0], 2.0);
-    EXPECT_EQ(out.gate_sq[4], 0.03125);
+    EXPECT_EQ(out.gate_sq[4], stored_sq(0.03125));
     EXPECT_NEAR(out.shown[4], 9.25 / 9, 1e-15);
     // The corner (v = 1, threshold 2) keeps every neighbour; the edge pixels
     // (d = 0: varsigma = 0) are filled as without the gate.

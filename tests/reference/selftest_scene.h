@@ -4,6 +4,7 @@
 #ifndef RRC_REFERENCE_SELFTEST_SCENE_H
 #define RRC_REFERENCE_SELFTEST_SCENE_H
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -92,6 +93,15 @@ struct Scene {
         return p;
     }
 };
+
+// The deviation gate's state as stored (docs/CONVENTIONS.md, "The deviation
+// gate"): beta and sqrt(varsigma) rounded to fp16, varsigma read back as the
+// rounded root's square.
+inline double stored_beta(double beta) { return rrc_ref::fp16_round(beta); }
+inline double stored_sq(double sq) {
+    const double r = rrc_ref::fp16_round(std::sqrt(sq));
+    return r * r;
+}
 
 }  // namespace rrc_ref_test
 
