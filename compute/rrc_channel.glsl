@@ -130,12 +130,9 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
         // (on lavapipe each sampled fetch is a call): centred on the block's
         // shared corner base + 1, a gather picks texels base .. base + 1, and
         // the sampler's CLAMP_TO_EDGE clamps them as the taps are clamped.
-        // Gather order: p01, p11, p10, p00.  A word holds fp16 (beta, r),
-        // varsigma = r^2 (exact in fp32).
+        // Gather order: p01, p11, p10, p00.
         const uvec4 gw = textureGather(s_gate[RRC_CH], vec2(g.taps.base + 1) / vec2(size), 0);
-        const vec2 g00 = unpackHalf2x16(gw.w), g10 = unpackHalf2x16(gw.z), g01 = unpackHalf2x16(gw.x), g11 = unpackHalf2x16(gw.y);
-        gate_prev = wt.x * vec2(g00.x, g00.y * g00.y) + wt.y * vec2(g10.x, g10.y * g10.y) + wt.z * vec2(g01.x, g01.y * g01.y) +
-                    wt.w * vec2(g11.x, g11.y * g11.y);
+        gate_prev = wt.x * rrc_gate_state(gw.w) + wt.y * rrc_gate_state(gw.z) + wt.z * rrc_gate_state(gw.x) + wt.w * rrc_gate_state(gw.y);
         if (s_valid && n_prev >= 1u) {
             const vec4 dv = s - H;
             const float d = COMPONENTS_ == 1u ? dv.x : ((dv.x + dv.y) + dv.z) * (1.0 / 3.0);

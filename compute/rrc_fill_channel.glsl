@@ -42,8 +42,7 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
         bool noise_test = false;
         float limit = 0.0;
         if (CH_(gate_kappa)) {
-            const vec2 br = unpackHalf2x16(texelFetch(s_gate[RRC_CH], px, 0).r);  // fp16 (beta, sqrt(varsigma))
-            const vec2 st = vec2(br.x, br.y * br.y);
+            const vec2 st = rrc_gate_state(texelFetch(s_gate[RRC_CH], px, 0).r);  // (beta, varsigma)
             noise_test = st.y > 0.0;
             limit = P.gate_kappa * P.gate_kappa * max(st.y - st.x * st.x, 0.0);
         }

@@ -28,6 +28,14 @@ vec4 rrc_round_fp16(vec4 x) {
     return mix(normal, sub, lessThan(abs(x), vec4(6.103515625e-05)));
 }
 
+// A deviation gate state texel as stored, one word: fp16 (beta, r) with
+// r = sqrt(varsigma); read back as (beta, r^2), the square exact in fp32
+// (docs/CONVENTIONS.md, "The deviation gate", "Storing the state").
+vec2 rrc_gate_state(uint word) {
+    const vec2 br = unpackHalf2x16(word);
+    return vec2(br.x, br.y * br.y);
+}
+
 float rrc_lambda_eff(uint blend, float lambda, uint n_prev) {
     float n = float(n_prev);
     float running = n / (n + 1.0);

@@ -111,21 +111,17 @@ GateState gate_stored(const GateState& s) {
     const double r_hi = std::sqrt(s.sq + s.sq_err) * (1.0 + 2.0 * kU);
     const double b_lo = s.beta - s.beta_err, b_hi = s.beta + s.beta_err;
     const bool in_range = std::fabs(s.beta) <= kHalfMax && r <= kHalfMax;
-    if (std::isinf(s.beta_err) || std::isinf(s.sq_err)) {  // the kernel's state may be anything
-        if (in_range) out.beta = fp16_round(s.beta), out.sq = fp16_round(r) * fp16_round(r);
-        out.beta_err = out.sq_err = INFINITY;
-        return out;
-    }
+    const bool unbounded = std::isinf(s.beta_err) || std::isinf(s.sq_err);  // the kernel's state may be anything
     const bool surely = std::max(std::fabs(b_lo), std::fabs(b_hi)) <= kHalfMax && r_hi <= kHalfMax;
     const bool surely_not = std::min(std::fabs(b_lo), std::fabs(b_hi)) > kHalfMax || r_lo > kHalfMax;
-    if (!surely && !surely_not) {  // the kernel may store either
+    if (!unbounded && !surely && !surely_not) {  // the kernel may store (0, 0) or the rounding
         out.beta_err = out.sq_err = INFINITY;
         return out;
     }
-    if (!in_range) return out;
-    out.beta = fp16_round(s.beta);
     const double r16 = fp16_round(r);
-    out.sq = r16 * r16;
+    if (in_range) out.beta = fp16_round(s.beta), out.sq = r16 * r16;
+    if (unbounded) out.beta_err = out.sq_err = INFINITY;
+    if (unbounded || !in_range) return out;
     out.beta_err = std::max(std::fabs(fp16_round(b_lo) - out.beta), std::fabs(fp16_round(b_hi) - out.beta));
     const double q_lo = fp16_round(r_lo), q_hi = fp16_round(r_hi);
     out.sq_err = std::max(std::fabs(q_lo * q_lo - out.sq), std::fabs(q_hi * q_hi - out.sq));
