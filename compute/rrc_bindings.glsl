@@ -82,8 +82,9 @@ struct RrcChannelParams {
 // GATE: a gated channel's previous state, fp16 (beta, sqrt(varsigma)) packed in one word a
 // texel (an R32_UINT view of its R16G16_SFLOAT image; docs/CONVENTIONS.md, "The deviation gate")
 #define RRC_DECLARE_GATE layout(set = 0, binding = RRC_BINDING_GATE) uniform usampler2D s_gate[RRC_MAX_CHANNELS];
-// STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch
-#define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[RRC_STAT_COUNT]; } u_stats;
+// STATS: rrc_vulkan_frame_stats (include/rrc/rrc_vulkan.h), cleared by the library before the dispatch;
+// with COUNT_IO, rrc_vulkan_io_counts after it (rrc_io.glsl): the bound range says how many words
+#define RRC_DECLARE_STATS layout(std430, set = 0, binding = RRC_BINDING_STATS) buffer Stats { uint counters[]; } u_stats;
 // QUADS: classify's quad list (rrc_list.glsl)
 #define RRC_DECLARE_QUADS layout(std430, set = 0, binding = RRC_BINDING_QUADS) buffer Quads { uint words[]; } u_quads;
 // FILL_LIST: the fill list (rrc_list.glsl)

@@ -7,6 +7,7 @@
 
 #include "rrc_depth.glsl"          // pc.refresh_phase
 #include "rrc_channel_slots.glsl"  // CH*_BLEND, the history and age images
+#include "rrc_io.glsl"              // RRC_LOAD
 
 layout(constant_id = RRC_SPEC_REFRESH_POLICY) const uint REFRESH_POLICY = RRC_REFRESH_NONE;
 layout(constant_id = RRC_SPEC_REFRESH_PERIOD) const uint REFRESH_PERIOD = 1u;
@@ -56,7 +57,8 @@ bool rrc_refresh_due(ivec2 px, ivec2 size) {
     uint rrc_reuse_age_##C(ivec2 t) {                                                                \
         if (!REUSE##C) return 0xFFFFFFFFu;                                                            \
         const bool PACKED = CH##C##_precision && !CH##C##_components; /* fp16, 1 component */ \
-        return PACKED ? (imageLoad(u_hist_packed[C], t).r >> 16) : imageLoad(u_age[C], t).r;         \
+        return PACKED ? (RRC_LOAD(1u, 4u, imageLoad(u_hist_packed[C], t).r) >> 16)                   \
+                      : RRC_LOAD(1u, 2u, imageLoad(u_age[C], t).r);                                   \
     }
 RRC_REUSE_AGE(0)
 RRC_REUSE_AGE(1)

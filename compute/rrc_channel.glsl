@@ -27,14 +27,20 @@
 #define CONFIDENCE_ CH_(confidence)
 
 // This frame's sample and confidence at texel t (the pixel, or a neighbour for rectification).
-#define LOAD_RAW(t) (SAMPLED_INPUTS                 ? texelFetch(s_samples[RRC_CH], t, 0)        \
-                     : COMPONENTS_ == 1u ? vec4(imageLoad(u_sample1[RRC_CH], t).r, 0.0, 0.0, 0.0) \
-                                              : imageLoad(u_sample4[RRC_CH], t))
+// Every load and store counted (rrc_io.glsl): bytes in the format read or written, the
+// host's sampled inputs as fp32 (samples 4 a component, confidence 4, a base 4 a component).
+#define LOAD_RAW(t) (SAMPLED_INPUTS      ? RRC_LOAD(1u, 4u * COMPONENTS_, texelFetch(s_samples[RRC_CH], t, 0))      \
+                     : COMPONENTS_ == 1u ? vec4(RRC_LOAD(1u, 4u, imageLoad(u_sample1[RRC_CH], t).r), 0.0, 0.0, 0.0) \
+                                         : RRC_LOAD(1u, 16u, imageLoad(u_sample4[RRC_CH], t)))
 // The residual (docs/CONVENTIONS.md, "The residual"): the channel's sample is
 // s - b, b the host's base (the fallback image) at the same texel.
-#define LOAD_B(t) (RESIDUAL_ ? texelFetch(s_fallback[RRC_CH], t, 0) : vec4(0.0))
+#define LOAD_B(t) (RESIDUAL_ ? RRC_LOAD(1u, 4u * COMPONENTS_, texelFetch(s_fallback[RRC_CH], t, 0)) : vec4(0.0))
 #define LOAD_S(t) (RESIDUAL_ ? LOAD_RAW(t) - LOAD_B(t) : LOAD_RAW(t))
-#define LOAD_C(t) (!CONFIDENCE_ ? 1.0 : SAMPLED_INPUTS ? texelFetch(s_confidence[RRC_CH], t, 0).r : imageLoad(u_confidence[RRC_CH], t).r)
+#define LOAD_C(t)                                                                                              \
+    (!CONFIDENCE_     ? 1.0                                                                                    \
+     : SAMPLED_INPUTS ? RRC_LOAD(1u, 4u, texelFetch(s_confidence[RRC_CH], t, 0).r)                            \
+                      : RRC_LOAD(1u, 4u, imageLoad(u_confidence[RRC_CH], t).r))
+#define VALUE_BYTES_ ((FP16_ ? 2u : 4u) * COMPONENTS_)  // a value at the channel's precision
 
 #define RRC_SLOT_PASTE2(a, b) a##b
 #define RRC_SLOT_PASTE(a, b) RRC_SLOT_PASTE2(a, b)
@@ -57,10 +63,11 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     w = w < RRC_FLT_MIN ? 0.0 : w;  // denormal weights count as 0 on every device (flushing or not)
 
     // -- history H, weight W (resampled) and age (nearest) at uv_prev
-#define LOAD_WORD(t) imageLoad(u_hist_packed[RRC_CH], t).r
-#define LOAD_H(t) (PACKED_ ? UNPACK_H(LOAD_WORD(t)) : FP16_ ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
-                   : (COMPONENTS_ == 1u ? imageLoad(u_hist_r32f[RRC_CH], t) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
-#define LOAD_W(t) (CONFIDENCE_ ? imageLoad(u_weight[RRC_CH], t).r : 1.0)
+#define LOAD_WORD(t) RRC_LOAD(1u, 4u, imageLoad(u_hist_packed[RRC_CH], t).r)
+#define LOAD_H(t) (PACKED_ ? UNPACK_H(LOAD_WORD(t)) : FP16_ ? RRC_LOAD(1u, 8u, imageLoad(u_hist_rgba16f[RRC_CH], t)) \
+                   : (COMPONENTS_ == 1u ? RRC_LOAD(1u, 4u, imageLoad(u_hist_r32f[RRC_CH], t)) : RRC_LOAD(1u, 16u, imageLoad(u_hist_rgba32f[RRC_CH], t))))
+#define LOAD_W(t) (CONFIDENCE_ ? RRC_LOAD(1u, 4u, imageLoad(u_weight[RRC_CH], t).r) : 1.0)
+#define LOAD_AGE(t) RRC_LOAD(1u, 2u, imageLoad(u_age[RRC_CH], t).r)
     vec4 H;
     float Wh;
     uint n_prev;
@@ -70,7 +77,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
         uint word = PACKED_ ? LOAD_WORD(g.taps.nearest) : 0u;
         H = PACKED_ ? UNPACK_H(word) : LOAD_H(g.taps.nearest);
         Wh = LOAD_W(g.taps.nearest);
-        n_prev = PACKED_ ? word >> 16 : imageLoad(u_age[RRC_CH], g.taps.nearest).r;
+        n_prev = PACKED_ ? word >> 16 : LOAD_AGE(g.taps.nearest);
     } else {
         vec4 h00, h10, h01, h11;
         if (PACKED_) {
@@ -82,7 +89,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
             n_prev = nearest >> 16;
         } else {
             h00 = LOAD_H(g.taps.p00), h10 = LOAD_H(g.taps.p10), h01 = LOAD_H(g.taps.p01), h11 = LOAD_H(g.taps.p11);
-            n_prev = imageLoad(u_age[RRC_CH], g.taps.nearest).r;
+            n_prev = LOAD_AGE(g.taps.nearest);
         }
         vec4 wt = g.taps.w;
         H = wt.x * h00 + wt.y * h10 + wt.z * h01 + wt.w * h11;
@@ -115,6 +122,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
 #undef LOAD_WORD
 #undef LOAD_H
 #undef LOAD_W
+#undef LOAD_AGE
 
     // -- the deviation gate (docs/CONVENTIONS.md, "The deviation gate"): the
     //    running mean beta and mean square varsigma of d = s - H (the first
@@ -131,7 +139,7 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
         // shared corner base + 1, a gather picks texels base .. base + 1, and
         // the sampler's CLAMP_TO_EDGE clamps them as the taps are clamped.
         // Gather order: p01, p11, p10, p00.
-        const uvec4 gw = textureGather(s_gate[RRC_CH], vec2(g.taps.base + 1) / vec2(size), 0);
+        const uvec4 gw = RRC_LOAD(4u, 4u, textureGather(s_gate[RRC_CH], vec2(g.taps.base + 1) / vec2(size), 0));
         gate_prev = wt.x * rrc_gate_state(gw.w) + wt.y * rrc_gate_state(gw.z) + wt.z * rrc_gate_state(gw.x) + wt.w * rrc_gate_state(gw.y);
         if (s_valid && n_prev >= 1u) {
             const vec4 dv = s - H;
@@ -266,9 +274,12 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
     if (channel_store) {
         if (PACKED_) {
             // out_v is an fp16 value already (rrc_round_fp16): the conversion is exact.
+            rrc_io_store(4u);
             imageStore(u_age_out[RRC_CH], px, uvec4(packHalf2x16(vec2(out_v.x, 0.0)) | (n_out << 16)));
         } else {
+            rrc_io_store(FP16_ ? 8u : COMPONENTS_ == 1u ? 4u : 16u);  // RGBA16F, R32F or RGBA32F
             imageStore(u_hist_out[RRC_CH], px, out_v);
+            rrc_io_store(2u);
             imageStore(u_age_out[RRC_CH], px, uvec4(n_out));
         }
         // The host's output (with a fill, its value where the fill does not
@@ -279,10 +290,18 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
             if (COMPONENTS_ == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
             shown_v = rrc_plus_base(out_v, b_px);
         }
-        if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u)
+        if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u) {
+            rrc_io_store(VALUE_BYTES_);
             imageStore(u_host_out[RRC_CH], px, (CH_(fill_age) || RESIDUAL_) && COMPONENTS_ == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
-        if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
-        if (CONFIDENCE_) imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
+        }
+        if (INTEROP && (HOST_AGE_MASK & (1u << RRC_CH)) != 0u) {
+            rrc_io_store(2u);
+            imageStore(u_host_age_out[RRC_CH], px, uvec4(n_out));
+        }
+        if (CONFIDENCE_) {
+            rrc_io_store(4u);
+            imageStore(u_weight_out[RRC_CH], px, vec4(W_out));
+        }
         // The gate's state, by the case of the table: the blend's, a hit's
         // resampled state where the sample is invalid (the history is kept), else 0.
         // Stored as fp16 (beta, sqrt(varsigma)), (0, 0) where either is beyond the fp16 range.
@@ -290,11 +309,13 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
             const vec2 gate_out = hit && !s_valid ? gate_prev : hit && s_valid && n_prev >= 1u ? gate_new : vec2(0.0);
             const vec2 stored = vec2(gate_out.x, sqrt(gate_out.y));
             const bool in_range = abs(stored.x) <= 65504.0 && stored.y <= 65504.0;
+            rrc_io_store(4u);
             imageStore(u_weight_out[RRC_CH], px, in_range ? rrc_round_fp16(vec4(stored, 0.0, 0.0)) : vec4(0.0));
         }
     }
 }
 
+#undef VALUE_BYTES_
 #undef LOAD_S
 #undef LOAD_RAW
 #undef LOAD_B

@@ -21,11 +21,14 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
     if (RRC_CH >= CH_COUNT || !CH_(fill_age)) return;
     const RrcChannelParams P = u_params.slot[RRC_CH];
     // A packed channel's value and age come in one word (one load a tap).
-#define LOAD_WORD(t) (PACKED_ ? imageLoad(u_hist_packed[RRC_CH], t).r : 0u)
+// Every load and store counted (rrc_io.glsl): bytes in the format read or written.
+#define LOAD_WORD(t) (PACKED_ ? RRC_LOAD(1u, 4u, imageLoad(u_hist_packed[RRC_CH], t).r) : 0u)
 #define LOAD_V(t, word) (PACKED_ ? vec4(unpackHalf2x16(word).x, 0.0, 0.0, 0.0) \
-                   : FP16_ ? imageLoad(u_hist_rgba16f[RRC_CH], t) \
-                   : (COMPONENTS_ == 1u ? vec4(imageLoad(u_hist_r32f[RRC_CH], t).r, 0.0, 0.0, 0.0) : imageLoad(u_hist_rgba32f[RRC_CH], t)))
-#define LOAD_N(t, word) (PACKED_ ? (word) >> 16 : imageLoad(u_age[RRC_CH], t).r)
+                   : FP16_ ? RRC_LOAD(1u, 8u, imageLoad(u_hist_rgba16f[RRC_CH], t)) \
+                   : (COMPONENTS_ == 1u ? vec4(RRC_LOAD(1u, 4u, imageLoad(u_hist_r32f[RRC_CH], t).r), 0.0, 0.0, 0.0) \
+                                        : RRC_LOAD(1u, 16u, imageLoad(u_hist_rgba32f[RRC_CH], t))))
+#define LOAD_N(t, word) (PACKED_ ? (word) >> 16 : RRC_LOAD(1u, 2u, imageLoad(u_age[RRC_CH], t).r))
+#define VALUE_BYTES_ ((FP16_ ? 2u : 4u) * COMPONENTS_)  // a value at the channel's precision (the host's output)
     const uint T = P.fill_age;
     const int R = int(CH_(fill_radius));  // a loop bound, so a feature field, not a parameter
     uint word_p = LOAD_WORD(px);
@@ -42,7 +45,7 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
         bool noise_test = false;
         float limit = 0.0;
         if (CH_(gate_kappa)) {
-            const vec2 st = rrc_gate_state(texelFetch(s_gate[RRC_CH], px, 0).r);  // (beta, varsigma)
+            const vec2 st = rrc_gate_state(RRC_LOAD(1u, 4u, texelFetch(s_gate[RRC_CH], px, 0).r));  // (beta, varsigma)
             noise_test = st.y > 0.0;
             limit = P.gate_kappa * P.gate_kappa * max(st.y - st.x * st.x, 0.0);
         }
@@ -57,7 +60,7 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
                 vec4 v_q = LOAD_V(t, word);
                 if (COMPONENTS_ == 1u) v_q = vec4(v_q.x, 0.0, 0.0, 0.0);
                 uint n_q = LOAD_N(t, word);
-                float d_q = imageLoad(u_prev_depth, t).r;
+                float d_q = RRC_LOAD(1u, 4u, imageLoad(u_prev_depth, t).r);
                 bool ok = valid_p && inside && n_q >= 1u && rrc_finite4(v_q) && !rrc_is_background(d_q) && rrc_fill_similar(d_q, d_p, P.fill_depth_tolerance);
                 if (CH_(gate_kappa) && noise_test) {
                     const vec4 dv = v_q - v_p;
@@ -70,7 +73,7 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
             }
         if (CH_(fill_prior)) {
             // With a residual the fallback is the base: the prior's residual is 0.
-            vec4 f = RESIDUAL_ ? vec4(0.0) : texelFetch(s_fallback[RRC_CH], px, 0);
+            vec4 f = RESIDUAL_ ? vec4(0.0) : RRC_LOAD(1u, 4u * COMPONENTS_, texelFetch(s_fallback[RRC_CH], px, 0));
             if (COMPONENTS_ == 1u) f = vec4(f.x, 0.0, 0.0, 0.0);
             bool f_ok = rrc_finite4(f);
             acc += f_ok ? P.fill_prior * f : vec4(0.0);
@@ -82,11 +85,15 @@ void RRC_SLOT_PASTE(rrc_fill_channel_, RRC_CH)(ivec2 size, ivec2 px, bool store,
     }
     if (RESIDUAL_) {
         // The residual's displayed value: plus this frame's base (docs/CONVENTIONS.md, "The residual").
-        vec4 b = texelFetch(s_fallback[RRC_CH], px, 0);
+        vec4 b = RRC_LOAD(1u, 4u * COMPONENTS_, texelFetch(s_fallback[RRC_CH], px, 0));
         if (COMPONENTS_ == 1u) b = vec4(b.x, 0.0, 0.0, 0.0);
         shown = rrc_plus_base(shown, b);
     }
-    if (store) imageStore(u_host_out[RRC_CH], px, shown);
+    if (store) {
+        rrc_io_store(VALUE_BYTES_);
+        imageStore(u_host_out[RRC_CH], px, shown);
+    }
+#undef VALUE_BYTES_
 #undef LOAD_WORD
 #undef LOAD_V
 #undef LOAD_N

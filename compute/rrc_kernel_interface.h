@@ -43,7 +43,8 @@
 // radius); rrc_channel_slots.glsl reads them.
 #define RRC_SPEC_CHANNEL_FEATURES 22
 #define RRC_SPEC_CHANNEL_SLOTS 4
-#define RRC_SPEC_COUNT 26
+#define RRC_SPEC_COUNT_IO 26  // bool: count the image loads and stores into RRC_BINDING_STATS after the statistics (compute/rrc_io.glsl)
+#define RRC_SPEC_COUNT 27
 // The feature word of a default channel (rrc_create's defaults: 1 component,
 // fp16, FIXED, BILINEAR, nothing optional): the constants' default value.
 #define RRC_DEFAULT_CHANNEL_FEATURES 2u
@@ -161,6 +162,15 @@
 #define RRC_STAT_REFRESHED 5
 #define RRC_STAT_PIXELS 6
 #define RRC_STAT_COUNT 8
+// With RRC_SPEC_COUNT_IO, the words after the statistics: rrc_vulkan_io_counts
+// (include/rrc/rrc_vulkan.h), five 64-bit counters as (low, high) word pairs.
+#define RRC_IO_LOADS 0
+#define RRC_IO_TEXELS 1
+#define RRC_IO_LOAD_BYTES 2
+#define RRC_IO_STORES 3
+#define RRC_IO_STORE_BYTES 4
+#define RRC_IO_COUNTERS 5
+#define RRC_IO_WORD(counter) (RRC_STAT_COUNT + 2 * (counter))  // its low word; the high word follows
 
 // ---- Epsilon kinds (the value of RRC_SPEC_EPS_KIND) ------------------------
 #define RRC_EPS_ABSOLUTE 0u  // pc.eps is epsilon itself

@@ -32,9 +32,10 @@
     X(HOST_AGE_OUT)
 // The spatial fill, bound as the next frame: this frame's depth, history
 // and age, the fallback estimates (a residual's base), the deviation gate's
-// state, the fill list; the displayed values out.
+// state, the fill list; the displayed values out; the statistics buffer,
+// where a frame counts its image operations (compute/rrc_io.glsl).
 #define RRC_MODULE_FILL_BINDINGS(X)                                                                                         \
     X(PREV_DEPTH) X(HIST_PACKED) X(HIST_RGBA16F) X(HIST_R32F) X(HIST_RGBA32F) X(AGE) X(HOST_OUT) X(FALLBACK) X(GATE) X(FILL_LIST) \
-        X(CHANNEL_PARAMS)
+        X(CHANNEL_PARAMS) X(STATS)
 
 #endif  // RRC_MODULE_BINDINGS_H

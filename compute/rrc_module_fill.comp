@@ -10,6 +10,7 @@ layout(local_size_x_id = RRC_SPEC_GROUP_SIZE_X, local_size_y_id = RRC_SPEC_GROUP
 // This pass's bindings, exactly (rrc_module_bindings.h; the library's layout is made from the same list).
 #include "rrc_bindings.glsl"
 RRC_MODULE_FILL_BINDINGS(RRC_DECLARE)
+#include "rrc_io_flush.glsl"  // RRC_LOAD, rrc_io_store, rrc_io_flush: the counted image operations
 
 #include "rrc_depth.glsl"
 #include "rrc_filter.glsl"  // rrc_plus_base (a residual's displayed value)
@@ -69,7 +70,7 @@ void rrc_fill() {
     uint first = RRC_FILL_LIST_FIRST + list * RRC_FILL_LIST_CAPACITY(uint(size.x), uint(size.y));
     uint word = u_fill.words[first + min(slot, max(count, 1u) - 1u)];
     ivec2 px = min(ivec2(word & 0xFFFFu, word >> 16), size - 1);
-    float d_p = imageLoad(u_prev_depth, px).r;
+    float d_p = RRC_LOAD(1u, 4u, imageLoad(u_prev_depth, px).r);
     bool fill_here = !rrc_is_background(d_p);
     bool valid_p = !rrc_is_invalid_depth(d_p);  // an invalid depth takes no neighbour, only the fallback
 
@@ -83,6 +84,7 @@ void rrc_fill() {
 #if RRC_SLOTS > 3
     rrc_fill_channel_3(size, px, rrc_store, fill_here, valid_p, d_p);
 #endif
+    rrc_io_flush(rrc_store);
 }
 
 void main() { rrc_fill(); }

@@ -26,6 +26,7 @@ RRC_MODULE_FRAME_BINDINGS(RRC_DECLARE)
 #include "rrc_list.glsl"
 RRC_FILL_LIST_APPENDER  // rrc_list_fill
 #include "rrc_view_lobe.glsl"
+#include "rrc_io_flush.glsl"  // the counted image operations into the statistics buffer
 
 // The frame's statistics: an optional interop output, its own pipeline
 // variant (plugin/accumulate_pipeline.h, KernelVariant): off, its code is compiled out.
@@ -146,9 +147,13 @@ void rrc_pixel_at(ivec2 px, bool store) {
 #endif
     }
 
-    if (store) imageStore(u_mask, px, uvec4(mask));
+    if (store) {
+        rrc_io_store(1u);
+        imageStore(u_mask, px, uvec4(mask));
+    }
     if (FILL_ANY && CHANNELS && channel_store && young && !g.background) rrc_list_fill(px, size);
     rrc_count(mask, PASS != RRC_PASS_RESOLVE && !LISTED, PASS != RRC_PASS_CLASSIFY);
+    rrc_io_flush(store);
 }
 
 // FUSED, CLASSIFY and RESOLVE: one invocation a pixel.

@@ -12,6 +12,7 @@
 
 #include "rrc_values.glsl"  // rrc_reprojection, rrc_depth_mode, RRC_EPS_*, ids
 #include "rrc_depth.glsl"   // DEPTH_MODE, pc, u_prev_depth, rrc_store, background and invalid depth
+#include "rrc_io.glsl"      // RRC_LOAD, rrc_io_store
 
 // ---- Specialization constants (ids: rrc_kernel_interface.h) ---------------
 layout(constant_id = RRC_SPEC_SOURCE) const uint SOURCE = RRC_REPROJECTION_PREV_CLIP;
@@ -53,9 +54,15 @@ layout(constant_id = RRC_SPEC_OBJECT_ID)
 const bool OBJECT_ID = false;
 
 ivec2 rrc_size() { return SAMPLED_INPUTS ? textureSize(s_depth, 0) : imageSize(u_depth); }
-float rrc_load_depth(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r; }
-vec4 rrc_load_reprojection(ivec2 px) { return SAMPLED_INPUTS ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px); }
-bool rrc_load_nocache(ivec2 px) { return (SAMPLED_INPUTS ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u; }
+// Every load and store counted (rrc_io.glsl): the host's sampled inputs at the bytes
+// of the formats the storage path reads (depth R32F, reprojection RGBA32F, nocache R8UI),
+// as rrc-bench's roof counts them.
+float rrc_load_depth(ivec2 px) { return RRC_LOAD(1u, 4u, SAMPLED_INPUTS ? texelFetch(s_depth, px, 0).r : imageLoad(u_depth, px).r); }
+// (A MOTION host image is read through a sampler as RG32F: 8 bytes.)
+vec4 rrc_load_reprojection(ivec2 px) {
+    return RRC_LOAD(1u, SAMPLED_INPUTS && SOURCE == RRC_REPROJECTION_MOTION ? 8u : 16u, SAMPLED_INPUTS ? texelFetch(s_reproj, px, 0) : imageLoad(u_reproj, px));
+}
+bool rrc_load_nocache(ivec2 px) { return RRC_LOAD(1u, 1u, (SAMPLED_INPUTS ? texelFetch(s_nocache, px, 0).r : imageLoad(u_nocache, px).r) != 0u); }
 
 // ulp of an fp32 value whose exponent field, in place (bits & 0x7F800000),
 // is `exponent`: 2^(floor(log2|e|) - 23), 2^-149 in the denormal range.
@@ -151,7 +158,7 @@ struct RrcCross {
     float c;
     vec4 h, v;
 };
-vec4 rrc_gather_depth(ivec2 i0, vec2 inv_size) { return textureGather(s_depth, (vec2(i0) + 1.0) * inv_size); }
+vec4 rrc_gather_depth(ivec2 i0, vec2 inv_size) { return RRC_LOAD(4u, 4u, textureGather(s_depth, (vec2(i0) + 1.0) * inv_size)); }
 RrcCross rrc_depth_cross(ivec2 px, ivec2 size) {
     RrcCross r;
     if (SAMPLED_INPUTS) {
@@ -219,7 +226,10 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     RrcCross cr;  // ADAPTIVE: the depth's cross of neighbours, the centre among them
     if (ADAPTIVE && RRC_TEST) cr = rrc_depth_cross(px, size);
     float d = ADAPTIVE && RRC_TEST ? cr.c : rrc_load_depth(px);
-    if (INTEROP && RRC_TEST && rrc_store) imageStore(u_depth_out, px, vec4(d));
+    if (INTEROP && RRC_TEST && rrc_store) {
+        rrc_io_store(4u);
+        imageStore(u_depth_out, px, vec4(d));
+    }
     // Invalid first: only LINEAR's +inf is a (background) depth, any other
     // non-finite depth is invalid geometry.
     g.invalid = rrc_is_invalid_depth(d);
@@ -274,8 +284,9 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     g.hit = false;
     if (!RRC_TEST) return g;  // a constant: folded, not a divergent return
 
-    vec4 z = vec4(imageLoad(u_prev_depth, g.taps.p00).r, imageLoad(u_prev_depth, g.taps.p10).r,
-                  imageLoad(u_prev_depth, g.taps.p01).r, imageLoad(u_prev_depth, g.taps.p11).r);
+#define LOAD_PREV_DEPTH(t) RRC_LOAD(1u, 4u, imageLoad(u_prev_depth, t).r)
+    vec4 z = vec4(LOAD_PREV_DEPTH(g.taps.p00), LOAD_PREV_DEPTH(g.taps.p10), LOAD_PREV_DEPTH(g.taps.p01), LOAD_PREV_DEPTH(g.taps.p11));
+#undef LOAD_PREV_DEPTH
     bool tap_background = rrc_is_background(z.x) || rrc_is_background(z.y) ||
                           rrc_is_background(z.z) || rrc_is_background(z.w);
     float fetched = DEPTH_MODE == RRC_DEPTH_MODE_LINEAR ? 1.0 / dot(g.taps.w, 1.0 / z) : dot(g.taps.w, z);
@@ -300,10 +311,14 @@ RrcGeometry rrc_reproject(ivec2 px, ivec2 size) {
     bool nocache = HAS_NOCACHE && rrc_load_nocache(px);
     bool same_object = true;
     if (OBJECT_ID) {
-        uint id = texelFetch(s_object_id, px, 0).r;
-        if (INTEROP && rrc_store) imageStore(u_object_id_out, px, uvec4(id));
-        uvec4 taps = uvec4(imageLoad(u_prev_object_id, g.taps.p00).r, imageLoad(u_prev_object_id, g.taps.p10).r,
-                           imageLoad(u_prev_object_id, g.taps.p01).r, imageLoad(u_prev_object_id, g.taps.p11).r);
+        uint id = RRC_LOAD(1u, 4u, texelFetch(s_object_id, px, 0).r);
+        if (INTEROP && rrc_store) {
+            rrc_io_store(4u);
+            imageStore(u_object_id_out, px, uvec4(id));
+        }
+#define LOAD_PREV_ID(t) RRC_LOAD(1u, 4u, imageLoad(u_prev_object_id, t).r)
+        uvec4 taps = uvec4(LOAD_PREV_ID(g.taps.p00), LOAD_PREV_ID(g.taps.p10), LOAD_PREV_ID(g.taps.p01), LOAD_PREV_ID(g.taps.p11));
+#undef LOAD_PREV_ID
         bvec4 foreign = notEqual(taps, uvec4(id)), weighted = greaterThan(g.taps.w, vec4(0.0));
         same_object = !any(bvec4(foreign.x && weighted.x, foreign.y && weighted.y, foreign.z && weighted.z, foreign.w && weighted.w));
     }

@@ -24,8 +24,8 @@ namespace {
 static_assert(RRC_MAX_CHANNELS <= RRC_SPEC_CHANNEL_SLOTS, "the kernel declares RRC_SPEC_CHANNEL_SLOTS channel slots");
 static_assert(RRC_SPEC_MASK_IN_PLACE < RRC_SPEC_REFRESH_POLICY && RRC_SPEC_MAX_LIFETIME < RRC_SPEC_GROUP_SIZE_X &&
                   RRC_SPEC_GROUP_SIZE_Y < RRC_SPEC_CHANNEL_FEATURES &&
-                  RRC_SPEC_CHANNEL_FEATURES + RRC_SPEC_CHANNEL_SLOTS == RRC_SPEC_COUNT,
-              "the ids: dispatch, shading cache, workgroup size, channel feature words, in one range");
+                  RRC_SPEC_CHANNEL_FEATURES + RRC_SPEC_CHANNEL_SLOTS == RRC_SPEC_COUNT_IO && RRC_SPEC_COUNT_IO + 1 == RRC_SPEC_COUNT,
+              "the ids: dispatch, shading cache, workgroup size, channel feature words, the I/O counts, in one range");
 static_assert(RRC_BINDING_STATS > RRC_BINDING_LAST && RRC_BINDING_QUADS == RRC_BINDING_STATS + 1 && RRC_BINDING_FILL_LIST == RRC_BINDING_QUADS + 1 &&
                   RRC_BINDING_VIEW == RRC_BINDING_FILL_LIST + 1 && RRC_BINDING_CHANNEL_PARAMS == RRC_BINDING_VIEW + 1,
               "the buffers follow every image binding, in a row");
@@ -180,6 +180,7 @@ VkPipeline AccumulatePipeline::pipeline(const KernelVariant& variant) {
     spec.add(RRC_SPEC_CHANNEL_COUNT, (uint32_t)c.channels.size());
     spec.add(RRC_SPEC_INTEROP, interop_ ? 1u : 0u);
     spec.add(RRC_SPEC_STATS, variant.stats ? 1u : 0u);
+    spec.add(RRC_SPEC_COUNT_IO, variant.count_io ? 1u : 0u);
     spec.add(RRC_SPEC_HOST_AGE_MASK, variant.host_age_mask);
     spec.add(RRC_SPEC_ADAPTIVE, c.adaptive ? 1u : 0u);
     spec.add(RRC_SPEC_OBJECT_ID, c.use_object_id ? 1u : 0u);
@@ -258,7 +259,7 @@ void AccumulatePipeline::write_set(const DescriptorSets& sets, const DescriptorV
                 VkDescriptorBufferInfo& info = buffers[module][b - RRC_BINDING_STATS];
                 if (b == RRC_BINDING_STATS) {
                     if (!v.stats) fail(RRC_ERROR_UNSUPPORTED, "internal: the stats binding has no buffer");
-                    info = {v.stats, v.stats_offset, RRC_STAT_COUNT * sizeof(uint32_t)};
+                    info = {v.stats, v.stats_offset, v.stats_range};
                 } else if (b == RRC_BINDING_QUADS) {
                     if (!v.quads) fail(RRC_ERROR_UNSUPPORTED, "internal: the quad list binding has no buffer");
                     info = {v.quads, v.quads_offset, v.quads_range};

@@ -39,6 +39,7 @@ struct DescriptorViews {
     VkImageLayout layout[kBindingCount][RRC_MAX_CHANNELS] = {};  // 0 = GENERAL
     VkBuffer stats = VK_NULL_HANDLE;                             // RRC_BINDING_STATS: the host's buffer or a placeholder
     VkDeviceSize stats_offset = 0;
+    VkDeviceSize stats_range = RRC_STAT_COUNT * sizeof(uint32_t);  // with the I/O counts, those words too
     VkBuffer quads = VK_NULL_HANDLE;  // RRC_BINDING_QUADS: classify's list (the host's, the library's, or a placeholder)
     VkDeviceSize quads_offset = 0, quads_range = VK_WHOLE_SIZE;
     VkBuffer fill_list = VK_NULL_HANDLE;  // RRC_BINDING_FILL_LIST: the library's
@@ -62,6 +63,7 @@ struct DescriptorSets {
 // asks for costs nothing.
 struct KernelVariant {
     bool stats = false;
+    bool count_io = false;  // with stats: the image loads and stores counted after them (rrc_vulkan_frame_desc.count_io)
     bool storage_inputs = false;  // the host's inputs bound to the storage bindings (rrc_vulkan_frame_desc.storage_inputs)
     uint32_t host_age_mask = 0;   // bit c: slot c writes the host's age image
     uint32_t pass = RRC_PASS_FUSED;  // RRC_PASS_*: the pass (plugin/frame_plan.cpp chooses)
@@ -70,7 +72,7 @@ struct KernelVariant {
     bool mask_in_place = false;   // LIST, RESOLVE, RESOLVE_LISTED: classify's mask is the image bound at RRC_BINDING_MASK
     uint32_t key() const {
         return (stats ? 1u : 0u) | (storage_inputs ? 2u : 0u) | host_age_mask << 2 | pass << 6 | host_out_mask << 9 | (copy_mask ? 1u : 0u) << 13 |
-               (mask_in_place ? 1u : 0u) << 14;
+               (mask_in_place ? 1u : 0u) << 14 | (count_io ? 1u : 0u) << 15;
     }
 };
 

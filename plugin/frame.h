@@ -57,6 +57,7 @@ struct Frame {
     VkDeviceSize stats_buffer_size = 0;  // 0: not stated (a caller before 0.10)
     bool storage_inputs = false;  // the host's input images are read as storage images (rrc_vulkan_frame_desc)
     bool split_outputs = false;   // classify and resolve share the host's outputs (rrc_vulkan_frame_desc, 0.5)
+    bool count_io = false;        // the frame also counts its image operations (rrc_vulkan_frame_desc, 0.13)
     // The host's stated image extents (rrc_vulkan_image_extents on frame.next, 0.11); unchecked when not given.
     bool extents_given = false;
     std::vector<rrc_vulkan_image_extent> extents;

@@ -126,13 +126,19 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
         passes.push_back(barrier(PlanResource::Memory, kCompute, kWrite, kCompute | (to_indirect ? kIndirect : 0),
                                  kRead | kWrite | (to_indirect ? kIndirectRead : 0)));
     };
+    // A frame that counts its image operations (rrc_vulkan_frame_desc.count_io) counts them in its
+    // per-pixel passes, the frame's and the fill's, into the statistics buffer.
+    const bool count_io = r.stats && r.count_io && r.call == PlanCall::Run;
     auto add_fill = [&]() {
         if (!fill) return;
         pass_barrier(true);
-        passes.push_back(dispatch(RRC_PASS_FILL, PlanSet::Next, PlanGrid::FillList));
+        PlanStep s = dispatch(RRC_PASS_FILL, PlanSet::Next, PlanGrid::FillList);
+        s.variant.count_io = count_io;
+        passes.push_back(s);
     };
     auto counted = [&](PlanStep s) {
         s.variant.stats = r.stats;
+        s.variant.count_io = count_io;
         return s;
     };
     // Classify writes its mask into the host's image when the host asks for
@@ -207,6 +213,8 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
     frame.channel_inputs = r.call != PlanCall::Classify;
     for (const ChannelConfig& ch : c.channels) frame.fallbacks = frame.fallbacks || ch.residual;
     frame.stats = r.stats;
+    plan.sets[(int)PlanSet::Next].stats = count_io;  // the fill counts into the same buffer
+    plan.count_io = count_io;
     frame.quad_list = r.call == PlanCall::Classify || (r.call == PlanCall::Resolve && reuse);
     plan.sets[(int)PlanSet::Next].fallbacks = true;
     for (const PlanStep& s : passes) {
@@ -248,6 +256,7 @@ FramePlan make_plan(const ContextConfig& c, const PlanRequest& r) {
         start.pixels = c.width * c.height;
         std::vector<uint32_t> words(sizeof start / sizeof(uint32_t));
         std::memcpy(words.data(), &start, sizeof start);
+        if (count_io) words.resize(words.size() + sizeof(rrc_vulkan_io_counts) / sizeof(uint32_t), 0u);
         clear(steps, PlanResource::Stats, words, kAll, kMemory);
     }
     // Classify's list starts empty with a dispatch of {0, 1, 1}; the host's
@@ -399,9 +408,9 @@ std::string describe_plan(const FramePlan& plan, const ContextConfig& c) {
                     grid = "indirect (quad list, " + std::to_string(RRC_QUADS_PER_GROUP) + " quads a group)";
                 else
                     grid = "indirect (fill list, " + std::to_string(RRC_FILL_LIST_PER_GROUP) + " pixels a group)";
-                std::snprintf(line, sizeof line, "  %s over %s; set %s; host outputs 0x%x, host ages 0x%x%s%s%s\n    %s\n", pass_name(v.pass),
+                std::snprintf(line, sizeof line, "  %s over %s; set %s; host outputs 0x%x, host ages 0x%x%s%s%s%s\n    %s\n", pass_name(v.pass),
                               grid.c_str(), s.set == PlanSet::Frame ? "frame" : "next", v.host_out_mask, v.host_age_mask,
-                              v.stats ? "; statistics" : "", v.copy_mask ? "; copies the mask" : "", v.mask_in_place ? "; reads the mask in place" : "",
+                              v.stats ? "; statistics" : "", v.count_io ? "; counts image operations" : "", v.copy_mask ? "; copies the mask" : "", v.mask_in_place ? "; reads the mask in place" : "",
                               pass_bindings(v.pass, all_reuse(c)));
                 out += line;
                 break;

@@ -29,6 +29,7 @@ struct PlanRequest {
     bool host_mask = false;      // interop: the frame has a host mask image
     uint32_t host_age_mask = 0;  // interop: bit c, channel c has a host age image
     bool stats = false;          // interop: the frame has a statistics buffer
+    bool count_io = false;       // interop, with stats: rrc_vulkan_frame_desc.count_io (Run only)
 };
 
 // What a step acts on.  The fill list and the view buffer are the core's
@@ -96,6 +97,7 @@ struct PlanSetContents {
 struct FramePlan {
     std::vector<PlanStep> steps;
     PlanSetContents sets[2];  // [PlanSet]
+    bool count_io = false;    // the statistics buffer's range holds rrc_vulkan_io_counts too
     bool uses(PlanSet set) const { return sets[(int)set].used; }
 };
 

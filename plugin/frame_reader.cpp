@@ -67,6 +67,7 @@ Frame read_frame(const rrc_vulkan_frame_desc* caller, size_t context_channels) {
         std::tie(d.command_buffer, d.stats_buffer, d.stats_offset, d.stats_buffer_size);
     f.storage_inputs = d.storage_inputs != 0;
     f.split_outputs = d.split_outputs != 0;
+    f.count_io = d.count_io != 0;
     rrc_vulkan_image_extents e;
     if ((f.extents_given = find_extension(d.next, "frame.next (rrc_vulkan_image_extents)", e))) {
         if (e.count == 0 || e.count > RRC_MAX_IMAGE_EXTENTS)

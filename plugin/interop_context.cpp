@@ -109,6 +109,7 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
     request.split_outputs = f.split_outputs;
     request.host_mask = f.mask_image.image != VK_NULL_HANDLE;
     request.stats = f.stats_buffer != VK_NULL_HANDLE;
+    request.count_io = f.count_io;
     for (uint32_t s = 0; s < f.channel_count; ++s)
         if (f.channels[s].age_image.image) request.host_age_mask |= 1u << s;
     KernelVariant base;
@@ -159,10 +160,13 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
         v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
         if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
         bind_host(v, frame);
+        // With the I/O counts, the statistics' range holds them too (rrc_vulkan_frame_desc.count_io).
+        const VkDeviceSize stats_range = sizeof(rrc_vulkan_frame_stats) + (plan.count_io ? sizeof(rrc_vulkan_io_counts) : 0);
         if (frame.stats) {
             v.stats = f.stats_buffer;
             v.stats_offset = f.stats_offset;
-            res.stats = {f.stats_buffer, f.stats_offset, sizeof(rrc_vulkan_frame_stats)};
+            v.stats_range = stats_range;
+            res.stats = {f.stats_buffer, f.stats_offset, stats_range};
         }
         if (list) {
             v.quads = list;
@@ -176,6 +180,11 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
             // Bound as the next frame would be: this frame's results as history
             // inputs, its depth as the previous depth; the host's outputs.
             DescriptorViews nv = core_->library_views(view, 1 - p, view, p);
+            if (plan.sets[(int)PlanSet::Next].stats) {
+                nv.stats = f.stats_buffer;
+                nv.stats_offset = f.stats_offset;
+                nv.stats_range = stats_range;
+            }
             for (const LiveInput& in : core_->inputs())
                 if (in.role == InputRole::Fallback) {
                     nv.view[RRC_BINDING_FALLBACK][in.slot] = host_image(f, in).view;

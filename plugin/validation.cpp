@@ -456,9 +456,12 @@ void validate_geometry(const ContextConfig& c, const Frame& f, uint64_t stats_al
     if (vulkan && f.mask_image.image && f.mask_image.format != VK_FORMAT_R8_UINT)
         fail(RRC_ERROR_INVALID_ARGUMENT, "frame.mask.format is %s, must be %s", format_name(f.mask_image.format).c_str(),
              format_name(VK_FORMAT_R8_UINT).c_str());
+    if (vulkan && f.count_io && !f.stats_buffer)
+        fail(RRC_ERROR_INVALID_ARGUMENT, "frame.count_io is set but frame.stats_buffer is VK_NULL_HANDLE: the counts follow the statistics");
     if (vulkan && f.stats_buffer && f.stats_buffer_size)
-        check_range("frame.stats_offset", f.stats_offset, sizeof(rrc_vulkan_frame_stats), "frame.stats_buffer_size", f.stats_buffer_size,
-                    "rrc_vulkan_frame_stats");
+        check_range("frame.stats_offset", f.stats_offset, sizeof(rrc_vulkan_frame_stats) + (f.count_io ? sizeof(rrc_vulkan_io_counts) : 0),
+                    "frame.stats_buffer_size", f.stats_buffer_size,
+                    f.count_io ? "rrc_vulkan_frame_stats and rrc_vulkan_io_counts" : "rrc_vulkan_frame_stats");
     if (vulkan) {
         const FrameImages images = frame_images(f);
         check_distinct_images(images);

@@ -119,7 +119,7 @@ extern "C" {
 #define RRC_VERSION_PATCH(v) ((uint32_t)(v)&0xFFFu)
 
 /** The version of this header. */
-#define RRC_API_VERSION RRC_MAKE_VERSION(0, 12, 0)
+#define RRC_API_VERSION RRC_MAKE_VERSION(0, 13, 0)
 
 /** The largest `size` a tagged struct may state (Versioning, rule 2): far
  *  above any struct of this API, so that a garbage size is refused before

@@ -212,7 +212,39 @@ typedef struct rrc_vulkan_frame_desc {
      * buffer's end is written (docs/guide/integration.md, "What rrc checks and
      * what it cannot"). */
     VkDeviceSize stats_buffer_size;
+    /* ---- 0.13 ---- */
+    /* Non-zero: rrc_vulkan_record_frame also counts the image loads and
+     * stores its dispatches make, and writes an rrc_vulkan_io_counts (below)
+     * right after the statistics, at stats_offset + sizeof(rrc_vulkan_frame_stats).
+     * Needs stats_buffer (else refused, RRC_ERROR_INVALID_ARGUMENT); with
+     * stats_buffer_size, the range checked is both structs.  For measuring
+     * only: the frame runs a counting variant of its pipelines, with atomics
+     * at every pixel, whose outputs equal the plain frame's but whose time
+     * does not.  rrc_vulkan_record_classify and _resolve count nothing (the
+     * checks above still apply). */
+    uint32_t count_io;
 } rrc_vulkan_frame_desc;
+
+/** What a frame with count_io writes after its rrc_vulkan_frame_stats
+ *  (std430: five uint64 counters, 40 bytes, each written as two 32-bit
+ *  words, low word first): the image operations of the frame's per-pixel
+ *  dispatches (the frame and, with a spatial fill, the fill) at the pixels
+ *  inside the frame.  A load is one imageLoad, texelFetch or textureGather;
+ *  `texels_loaded` counts a gather's four texels.  Bytes are each texel's
+ *  size in the format the kernel reads or writes: the library's own images
+ *  in their formats, the host's inputs as rrc-bench's roof counts them
+ *  (depth 4, reprojection 16 or, MOTION through a sampler, 8, samples 4 a
+ *  component, confidence 4, object ids 4, a fallback 4 a component) and the
+ *  host's outputs at the channel's history precision
+ *  (docs/measurements/PERFORMANCE.md, "What a pixel moves").
+ *  Divide by rrc_vulkan_frame_stats.pixels for figures a pixel. */
+typedef struct rrc_vulkan_io_counts {
+    uint64_t loads;         /* load instructions */
+    uint64_t texels_loaded; /* texels they read */
+    uint64_t bytes_loaded;
+    uint64_t stores;        /* imageStore instructions (one texel each) */
+    uint64_t bytes_stored;
+} rrc_vulkan_io_counts;
 
 /* ---- Image extents (0.11): what Vulkan cannot report -------------------- *
  * An extension on rrc_vulkan_frame_desc.next (rrc.h Versioning, rule 5) for

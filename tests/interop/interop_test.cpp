@@ -252,6 +252,13 @@ TEST(Interop, MistakesAreRefusedWithNothingWrittenAndTheContextIntact) {
          [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) {
              f.stats_buffer = stats.buffer, f.stats_offset = stats_size, f.stats_buffer_size = stats_size;
          }},
+        {"I/O counts past the buffer", RRC_ERROR_SIZE_MISMATCH, "rrc_vulkan_frame_stats and rrc_vulkan_io_counts",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) {
+             // Room for the statistics, not for the counts after them.
+             f.stats_buffer = stats.buffer, f.stats_offset = 0, f.stats_buffer_size = sizeof(rrc_vulkan_frame_stats), f.count_io = 1;
+         }},
+        {"I/O counts without a statistics buffer", RRC_ERROR_INVALID_ARGUMENT, "frame.count_io",
+         [&](rrc_vulkan_frame_desc& f, rrc_vulkan_channel_images*) { f.count_io = 1; }},
         {"an output that is an input", RRC_ERROR_INVALID_ARGUMENT, "frame.channels[0].output.image is frame.channels[0].samples.image",
          [&](rrc_vulkan_frame_desc&, rrc_vulkan_channel_images* ch) { ch[0].output = ch[0].samples; }},
         {"two outputs in one image", RRC_ERROR_INVALID_ARGUMENT, "two outputs in one image",
