@@ -122,6 +122,20 @@ std::vector<Config> full_sweep() {
                  {"young12_fill_gate", kYoungAge, 0, false, 4.0f, 1},
                  {"young12_3x1", 0, 0, false, 0.0f, 3},
                  {"young12_fill_3x1", kYoungAge, 0, false, 0.0f, 3}};
+    // rrc-sample's three presets as a host with a base renders them (rrc_channel_preset with
+    // RRC_PRESET_FLAG_BASE: each has the residual): what a pixel moves with each.
+    const struct {
+        const char* name;
+        rrc_preset preset;
+        uint32_t components;
+    } presets[] = {{"preset_pcf", RRC_PRESET_PCF_SHADOWS, 1}, {"preset_env", RRC_PRESET_ENV_BUMP, 4}, {"preset_soft", RRC_PRESET_SOFT_SHADOWS, 1}};
+    for (const auto& p : presets) {
+        Config c = vary(p.name, "preset");
+        c.channels[0].preset = p.preset;
+        c.channels[0].components = p.components;
+        c.channels[0].residual = true;
+        all.push_back(c);
+    }
     for (const auto& y : young) {
         Config c = vary(y.name, "young");
         c.nocache = true;
@@ -155,6 +169,9 @@ std::string channels_text(const Config& c) {
         if (ch.view_lobe > 0.0f) s += "V";
         if (ch.residual) s += "B";
         if (ch.gate_kappa > 0.0f) s += "G";
+        if (ch.preset == RRC_PRESET_PCF_SHADOWS) s += "[pcf]";
+        if (ch.preset == RRC_PRESET_ENV_BUMP) s += "[env]";
+        if (ch.preset == RRC_PRESET_SOFT_SHADOWS) s += "[soft]";
     }
     return s;
 }

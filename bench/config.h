@@ -23,6 +23,9 @@ struct ChannelConfig {
     float view_lobe = 0.0f;    // 0.7: the view-dependent history's lobe, radians (the view turn a pixel; no byte the roof counts)
     bool residual = false;     // 0.9: the residual against a base image (4 bytes a pixel more read, which the roof does not count)
     float gate_kappa = 0.0f;   // 0.12: the deviation gate (its state is the library's own; no byte the roof counts)
+    // Non-zero: the channel is rrc_channel_preset(preset, RRC_PRESET_FLAG_BASE) over its components and
+    // precision (the options above are ignored but `residual`, which every base preset has).
+    rrc_preset preset = 0;
 };
 
 struct Config {
@@ -57,6 +60,9 @@ struct Config {
     // ClassifyFused: classify, then the fused frame (a diagnostic: classify's
     // cost is this row's time less Fused's; classify alone never advances history).
     enum class Cache { Off, Fused, Split, ClassifyFused } shading_cache = Cache::Off;
+    // A frame is one rrc_vulkan_record_frame (no classify): its statistics frame also counts the
+    // image operations (rrc_vulkan_frame_desc.count_io, which classify and resolve ignore).
+    bool records_frame_only() const { return shading_cache == Cache::Off || shading_cache == Cache::Fused; }
     // Split: classify and resolve share the host's outputs (rrc_vulkan_frame_desc.split_outputs);
     // false: resolve copies every pixel into them (the 0.3/0.4 behaviour).
     bool split_outputs = true;

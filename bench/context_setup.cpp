@@ -4,6 +4,7 @@
 #include "scene.h"
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 namespace rrc_bench {
@@ -27,6 +28,8 @@ ContextSetup::ContextSetup(const Config& c, LogCounter& log) {
         channels_.back().residual = ch.residual ? 1u : 0u;
         channels_.back().fill_radius = ch.fill_radius;
         channels_.back().gate_kappa = ch.gate_kappa;
+        if (ch.preset && rrc_channel_preset(ch.preset, RRC_PRESET_FLAG_BASE, RRC_API_VERSION, &channels_.back()) != RRC_SUCCESS)
+            throw std::runtime_error(std::string("rrc_channel_preset: ") + rrc_last_error());
     }
     desc_ = rrc_host::context_desc(c.width, c.height, channels_);
     desc_.depth_mode = RRC_DEPTH_MODE_REVERSED;

@@ -71,7 +71,8 @@ void InteropBench::release() {
 // One kernel frame (pose = frame parity): {GPU ms, wall ms}.  Timed frames
 // pass no statistics buffer (the library's default; counting costs the
 // kernel time the roof does not spend); one untimed frame at the end does,
-// for the hit/miss mix the report gives.
+// for the hit/miss mix the report gives, and where the frame is one
+// rrc_vulkan_record_frame it also counts the image operations (count_io).
 std::pair<double, double> InteropBench::kernel(bool with_stats) {
     const int pose = (int)(frame_ % 2);
     const PoseFrame& pf = scene_.poses[pose];
@@ -92,6 +93,7 @@ std::pair<double, double> InteropBench::kernel(bool with_stats) {
     f.channel_count = (uint32_t)channels_.size();
     f.channels = channels_.data();
     if (with_stats) f.stats_buffer = stats_.buffer, f.stats_buffer_size = 256;  // the size stated: rrc refuses a range past it
+    if (with_stats && config_.records_frame_only()) f.count_io = 1;
     const double t0 = now_ms();
     f.command_buffer = sub_->begin();
     full_barrier(f.command_buffer);
@@ -178,6 +180,8 @@ uint64_t InteropBench::count_young() {
 InteropResult InteropBench::finish(bool check_roof) {
     kernel(true);
     std::memcpy(&res_.stats, stats_.mapped, sizeof res_.stats);
+    res_.io_counted = config_.records_frame_only();
+    if (res_.io_counted) std::memcpy(&res_.io, static_cast<const char*>(stats_.mapped) + sizeof res_.stats, sizeof res_.io);
     if (quads_.mapped) std::memcpy(&res_.listed_quads, quads_.mapped, sizeof res_.listed_quads);
     res_.young = count_young();
     if (check_roof) {

@@ -25,6 +25,8 @@ struct InteropResult {
     bool timestamps = false;                        // false: the device has none, *_ms are wall clock of the submission
     uint64_t memory_bytes = 0;                      // rrc_context_memory_usage
     rrc_vulkan_frame_stats stats{};                 // of one untimed frame after the timed ones
+    bool io_counted = false;                        // that frame also counted its image operations (rrc_vulkan_record_frame's rows)
+    rrc_vulkan_io_counts io{};                      // what it counted (rrc_vulkan_frame_desc.count_io)
     uint32_t listed_quads = 0;                      // Config::Cache::Split: the quads that frame listed
     uint64_t young = 0;                             // that frame's surface pixels of age < kYoungAge (channel 0)
     std::string roof_check;                         // "" exact, else what differs ("skipped" when not asked)

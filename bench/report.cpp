@@ -80,6 +80,20 @@ std::vector<Field> fields(const Row& r) {
                           {"bound_bytes_written", std::to_string(r.interop.roof_bytes_bound.written), false},
                           {"memory_bytes", std::to_string(r.interop.memory_bytes), false},
                       });
+    // The kernel's image operations a pixel (count_io), beside the roof's.
+    const bool io = r.interop.io_counted;
+    const rrc_vulkan_io_counts& n = r.interop.io;
+    f.insert(f.end(), {
+                          {"loads_per_pixel", io ? num(r.io_per_pixel(n.loads), 3) : "", false},
+                          {"texels_loaded_per_pixel", io ? num(r.io_per_pixel(n.texels_loaded), 3) : "", false},
+                          {"bytes_loaded_per_pixel", io ? num(r.io_per_pixel(n.bytes_loaded), 3) : "", false},
+                          {"stores_per_pixel", io ? num(r.io_per_pixel(n.stores), 3) : "", false},
+                          {"bytes_stored_per_pixel", io ? num(r.io_per_pixel(n.bytes_stored), 3) : "", false},
+                          {"roof_loads_per_pixel", std::to_string(r.api_bytes.loads_per_pixel), false},
+                          {"roof_bytes_loaded_per_pixel", num(r.roof_per_pixel(r.api_bytes.read), 3), false},
+                          {"roof_stores_per_pixel", std::to_string(r.api_bytes.stores_per_pixel), false},
+                          {"roof_bytes_stored_per_pixel", num(r.roof_per_pixel(r.api_bytes.written), 3), false},
+                      });
     add_spread(f, "wall_ms", w);
     f.insert(f.end(), {
                           {"hit_fraction", num(r.hit_fraction()), false},
@@ -114,6 +128,39 @@ std::vector<Field> fields(const Row& r) {
     return f;
 }
 
+// What a pixel moves: the kernel's counted image operations of the statistics frame
+// (rrc_vulkan_frame_desc.count_io) beside the roof's, a row per configuration that
+// runs rrc_vulkan_record_frame (classify and resolve count nothing).
+std::string io_table(const std::vector<Row>& rows, bool markdown) {
+    std::string o;
+    char line[512];
+    if (markdown)
+        o += "| config | loads/px | texels/px | bytes loaded/px | stores/px | bytes stored/px | roof loads/px | roof bytes loaded/px | roof "
+             "stores/px | roof bytes stored/px |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    else {
+        std::snprintf(line, sizeof line, "%-18s %8s %8s %9s %8s %9s | %6s %9s %6s %9s\n", "what a pixel moves", "loads", "texels",
+                      "bytes in", "stores", "bytes out", "roof:", "bytes in", "stores", "bytes out");
+        o += line;
+    }
+    for (const Row& r : rows) {
+        if (!r.interop.io_counted) continue;
+        const rrc_vulkan_io_counts& n = r.interop.io;
+        const char* fmt = markdown ? "| %s | %.2f | %.2f | %.1f | %.2f | %.1f | %u | %.1f | %u | %.1f |\n"
+                                   : "%-18s %8.2f %8.2f %9.1f %8.2f %9.1f | %6u %9.1f %6u %9.1f\n";
+        std::snprintf(line, sizeof line, fmt, r.config.name.c_str(), r.io_per_pixel(n.loads), r.io_per_pixel(n.texels_loaded),
+                      r.io_per_pixel(n.bytes_loaded), r.io_per_pixel(n.stores), r.io_per_pixel(n.bytes_stored), r.api_bytes.loads_per_pixel,
+                      r.roof_per_pixel(r.api_bytes.read), r.api_bytes.stores_per_pixel, r.roof_per_pixel(r.api_bytes.written));
+        o += line;
+    }
+    return o;
+}
+
+void print_io_table(const std::vector<Row>& rows) {
+    bool any = false;
+    for (const Row& r : rows) any = any || r.interop.io_counted;
+    if (any) std::printf("\n%s", io_table(rows, false).c_str());
+}
+
 void write_file(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
     out << text;
@@ -137,6 +184,7 @@ void print_table(const std::vector<Row>& rows) {
                     channels_text(r.config).c_str(), kern, t.median, ratio, r.roof_gbps(), r.kernel_gbps(), mb(r.interop.memory_bytes),
                     r.wall().median, 100.0 * r.hit_fraction(), 100.0 * r.young_fraction());
     }
+    print_io_table(rows);
     for (const Row& r : rows)
         if (r.has_standalone) {
             const Summary s = summarize(r.standalone.frame_ms), m = summarize(r.standalone.memcpy_ms);
@@ -236,6 +284,13 @@ void write_markdown(const std::string& path, const RunInfo& info, const std::vec
             o << " " << r.config.name << ": " << r.interop.listed_quads << " quads listed, " << num(100.0 * r.listed_fraction(), 1)
               << " % of pixels.";
     o << "\n";
+    bool any_io = false;
+    for (const Row& r : rows) any_io = any_io || r.interop.io_counted;
+    if (any_io)
+        o << "\nWhat a pixel moves: the kernel's image loads (a gather's four texels counted as texels) and stores in the untimed "
+             "statistics frame (`rrc_vulkan_frame_desc.count_io`), over its pixels, beside the roof's, which loads and stores each "
+             "image once (docs/measurements/PERFORMANCE.md, \"What a pixel moves\").\n\n"
+          << io_table(rows, true);
     for (const Row& r : rows)
         if (r.has_standalone) {
             const Summary s = summarize(r.standalone.frame_ms), m = summarize(r.standalone.memcpy_ms);

@@ -36,6 +36,11 @@ struct Row {
     }
     /** Split shading cache: listed quads x 4 over the pixels (the share classify asks the host to shade). */
     double listed_fraction() const { return interop.stats.pixels ? 4.0 * interop.listed_quads / interop.stats.pixels : 0.0; }
+    /** A count of the statistics frame's rrc_vulkan_io_counts over its pixels (the kernel's
+     *  image operations a pixel, docs/measurements/PERFORMANCE.md "What a pixel moves"). */
+    double io_per_pixel(uint64_t count) const { return interop.stats.pixels ? (double)count / interop.stats.pixels : 0.0; }
+    /** The roof's bytes a pixel, read or written. */
+    double roof_per_pixel(uint64_t bytes) const { return (double)bytes / ((double)config.width * config.height); }
     /** Bytes of the roof / its median time, in GB/s (1e9 bytes). */
     double roof_gbps() const { return (double)api_bytes.total() / (roof().median * 1e6); }
     /** The same bytes over the kernel's median time: the kernel's effective bandwidth. */

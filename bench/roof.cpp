@@ -51,24 +51,29 @@ size_t count_differences(const std::vector<unsigned char>& a, const std::vector<
 }  // namespace
 
 RoofBytes roof_bytes_from_api(const Config& c) {
+    // Bytes and images a pixel: the roof loads each image once and stores each output once.
     uint64_t r = 4 + reprojection_bytes(c.source) + 4;  // depth, reprojection data, previous depth (R32F)
     uint64_t w = 1 + 4;                                  // mask, depth copy (interop)
+    uint32_t loads = c.source == RRC_REPROJECTION_CAMERA ? 2 : 3, stores = 2;
     for (const ChannelConfig& ch : c.channels) {
         const uint64_t value = (ch.precision == RRC_HISTORY_FP32 ? 4 : 2) * (uint64_t)ch.components;
         r += 4 * (uint64_t)ch.components + value + 2;  // samples (fp32, as passed), history at the channel's precision, age R16_UINT
         w += value + 2;          // values, age
+        loads += 3, stores += 2;
         if (ch.confidence) {
             r += 4 + 4;  // confidence, previous weight (R32F)
             w += 4;      // weight
+            loads += 2, stores += 1;
         }
     }
-    if (c.nocache) r += 1;
+    if (c.nocache) r += 1, loads += 1;
     if (c.object_id) {
         r += 4 + 4;  // ids, previous ids (R32_UINT)
         w += 4;      // ids copy
+        loads += 2, stores += 1;
     }
     const uint64_t px = (uint64_t)c.width * c.height;
-    return RoofBytes{r * px, w * px};
+    return RoofBytes{r * px, w * px, loads, stores};
 }
 
 Roof::Roof(VulkanBootstrap& vk, const Config& c, const BenchImages& img) : vk_(vk), config_(c), images_(img) {

@@ -11,6 +11,7 @@ namespace rrc_bench {
 
 struct RoofBytes {
     uint64_t read = 0, written = 0;
+    uint32_t loads_per_pixel = 0, stores_per_pixel = 0;  // the roof's image loads and stores a pixel (roof_bytes_from_api only)
     uint64_t total() const { return read + written; }
 };
 

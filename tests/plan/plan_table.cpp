@@ -38,7 +38,8 @@ std::map<std::string, std::string> plan_texts() {
             default: calls = {{"frame", rrc::PlanCall::Run}};
         }
         // The Vulkan path: the bench gives the host's mask and age images, and
-        // a statistics buffer to its last frame only.
+        // a statistics buffer to its last frame only, which also counts the image
+        // operations (count_io) where the frame is rrc_vulkan_record_frame alone.
         for (bool stats : {false, true})
             for (const auto& call : calls) {
                 rrc::PlanRequest r;
@@ -47,6 +48,7 @@ std::map<std::string, std::string> plan_texts() {
                 r.host_age_mask = (1u << c.channels.size()) - 1u;
                 r.split_outputs = b.shading_cache == rrc_bench::Config::Cache::Split && b.split_outputs;  // bench/interop_run.cpp
                 r.stats = stats;
+                r.count_io = stats && b.records_frame_only();  // bench/interop_run.cpp
                 r.call = call.second;
                 texts[b.name + "/interop/" + call.first + (stats ? "+stats" : "")] = rrc::describe_plan(rrc::make_plan(c, r), c);
             }
@@ -79,7 +81,8 @@ std::string plan_table() {
     out << "# The frame plan of each rrc-bench configuration at " << kWidth << "x" << kHeight
         << ", each distinct plan once (tests/plan/plan_table_test.cpp;\n"
         << "# tests/plan/plan_capture_test.cpp checks that the contexts record exactly these commands).  Keys:\n"
-        << "# configuration/path/call, +stats with the host's statistics buffer.  The host's first call on the\n"
+        << "# configuration/path/call, +stats with the host's statistics buffer (and, on a frame call alone, the\n"
+        << "# image operations counted).  The host's first call on the\n"
         << "# Vulkan path also initialises the library's images, right after its label.\n";
     int n = 0;
     for (const auto& shape : shapes) {
