@@ -290,7 +290,12 @@ void RRC_SLOT_PASTE(rrc_channel_, RRC_CH)(ivec2 px, RrcGeometry g, bool hit_any,
             if (COMPONENTS_ == 1u) b_px = vec4(b_px.x, 0.0, 0.0, 0.0);
             shown_v = rrc_plus_base(out_v, b_px);
         }
-        if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u) {
+        // Not where this channel's own age lists the pixel for the fill (rrc_module_frame.comp):
+        // the fill's pass, later in the same call, writes every filled channel's displayed
+        // value there, so this store would be overwritten unread.  (Classify stores anyway:
+        // its list is filled in the resolve call.)
+        const bool filled_later = CH_(fill_age) && PASS != RRC_PASS_CLASSIFY && n_out < P.fill_age && !g.background;
+        if ((HOST_OUT_MASK & (1u << RRC_CH)) != 0u && !filled_later) {
             rrc_io_store(VALUE_BYTES_);
             imageStore(u_host_out[RRC_CH], px, (CH_(fill_age) || RESIDUAL_) && COMPONENTS_ == 1u ? vec4(shown_v.x, 0.0, 0.0, 0.0) : shown_v);
         }
