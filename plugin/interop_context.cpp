@@ -160,12 +160,15 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
         v.view[RRC_BINDING_DEPTH_OUT][0] = view.depth[p].view;
         if (core_->config().use_object_id) v.view[RRC_BINDING_OBJECT_ID][0] = view.object_id[p].view;
         bind_host(v, frame);
-        // With the I/O counts, the statistics' range holds them too (rrc_vulkan_frame_desc.count_io).
+        // The host's statistics buffer; with the I/O counts, its range holds them too (rrc_vulkan_frame_desc.count_io).
         const VkDeviceSize stats_range = sizeof(rrc_vulkan_frame_stats) + (plan.count_io ? sizeof(rrc_vulkan_io_counts) : 0);
+        auto bind_stats = [&](DescriptorViews& set_views) {
+            set_views.stats = f.stats_buffer;
+            set_views.stats_offset = f.stats_offset;
+            set_views.stats_range = stats_range;
+        };
         if (frame.stats) {
-            v.stats = f.stats_buffer;
-            v.stats_offset = f.stats_offset;
-            v.stats_range = stats_range;
+            bind_stats(v);
             res.stats = {f.stats_buffer, f.stats_offset, stats_range};
         }
         if (list) {
@@ -180,11 +183,7 @@ void InteropContext::record_pass(const Frame& f, PlanCall call, VkBuffer list, V
             // Bound as the next frame would be: this frame's results as history
             // inputs, its depth as the previous depth; the host's outputs.
             DescriptorViews nv = core_->library_views(view, 1 - p, view, p);
-            if (plan.sets[(int)PlanSet::Next].stats) {
-                nv.stats = f.stats_buffer;
-                nv.stats_offset = f.stats_offset;
-                nv.stats_range = stats_range;
-            }
+            if (plan.sets[(int)PlanSet::Next].stats) bind_stats(nv);
             for (const LiveInput& in : core_->inputs())
                 if (in.role == InputRole::Fallback) {
                     nv.view[RRC_BINDING_FALLBACK][in.slot] = host_image(f, in).view;
